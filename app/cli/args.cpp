@@ -1,0 +1,89 @@
+#include "args.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace impactlab::cli {
+
+Args::Args(const std::string& command, const std::vector<std::string>& argv, const std::set<std::string>& valued,
+           const std::set<std::string>& switches)
+    : command_(command) {
+    for (std::size_t i = 0; i < argv.size(); ++i) {
+        const std::string& a = argv[i];
+        if (a.rfind("--", 0) != 0 || a.size() < 3) {
+            if (!a.empty() && a[0] == '-' && a.size() > 1 && !std::isdigit(static_cast<unsigned char>(a[1])))
+                throw UsageError(command_ + ": unknown option '" + a + "' (see: impactlab " + command_ + " --help)");
+            positional_.push_back(a);
+            continue;
+        }
+        std::string flag = a, value;
+        const auto eq = a.find('=');
+        bool inline_value = eq != std::string::npos;
+        if (inline_value) {
+            flag = a.substr(0, eq);
+            value = a.substr(eq + 1);
+        }
+        if (switches.count(flag)) {
+            if (inline_value) throw UsageError(command_ + ": option '" + flag + "' takes no value");
+            switches_set_.insert(flag);
+        } else if (valued.count(flag)) {
+            if (!inline_value) {
+                if (i + 1 >= argv.size()) throw UsageError(command_ + ": option '" + flag + "' needs a value");
+                value = argv[++i];
+            }
+            if (values_.count(flag)) throw UsageError(command_ + ": option '" + flag + "' given twice");
+            values_[flag] = value;
+        } else {
+            throw UsageError(command_ + ": unknown option '" + flag + "' (see: impactlab " + command_ + " --help)");
+        }
+    }
+}
+
+bool Args::has(const std::string& flag) const { return values_.count(flag) || switches_set_.count(flag); }
+
+std::string Args::str(const std::string& flag, const std::string& fallback) const {
+    const auto it = values_.find(flag);
+    return it == values_.end() ? fallback : it->second;
+}
+
+std::string Args::required(const std::string& flag) const {
+    const auto it = values_.find(flag);
+    if (it == values_.end()) throw UsageError(command_ + ": missing required option '" + flag + "'");
+    return it->second;
+}
+
+double Args::num(const std::string& flag, double fallback, double lo, double hi) const {
+    const auto it = values_.find(flag);
+    if (it == values_.end()) return fallback;
+    const std::string& s = it->second;
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size() || errno == ERANGE || !std::isfinite(v))
+        throw UsageError(command_ + ": option '" + flag + "': '" + s + "' is not a finite number");
+    if (v < lo || v > hi) {
+        std::ostringstream msg;
+        msg << command_ << ": option '" << flag << "': " << s << " is outside [" << lo << ", " << hi << "]";
+        throw UsageError(msg.str());
+    }
+    return v;
+}
+
+int Args::integer(const std::string& flag, int fallback, int lo, int hi) const {
+    const auto it = values_.find(flag);
+    if (it == values_.end()) return fallback;
+    const std::string& s = it->second;
+    char* end = nullptr;
+    errno = 0;
+    const long v = std::strtol(s.c_str(), &end, 10);
+    if (s.empty() || end != s.c_str() + s.size() || errno == ERANGE)
+        throw UsageError(command_ + ": option '" + flag + "': '" + s + "' is not an integer");
+    if (v < lo || v > hi)
+        throw UsageError(command_ + ": option '" + flag + "': " + s + " is outside [" + std::to_string(lo) + ", " +
+                         std::to_string(hi) + "]");
+    return static_cast<int>(v);
+}
+
+}  // namespace impactlab::cli

@@ -1,0 +1,34 @@
+// A small strict command-line parser: --flag value pairs and --switches, nothing guessed. Every error is a
+// UsageError whose message names the flag; main() prints it and exits with code 2.
+#pragma once
+
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace impactlab::cli {
+
+struct UsageError : std::runtime_error { using std::runtime_error::runtime_error; };
+
+class Args {
+public:
+    // argv after the command name. `valued`: flags that take a value; `switches`: flags that do not.
+    Args(const std::string& command, const std::vector<std::string>& argv, const std::set<std::string>& valued,
+         const std::set<std::string>& switches = {});
+    bool has(const std::string& flag) const;
+    std::string str(const std::string& flag, const std::string& fallback) const;
+    std::string required(const std::string& flag) const;
+    double num(const std::string& flag, double fallback, double lo, double hi) const;
+    int integer(const std::string& flag, int fallback, int lo, int hi) const;
+    const std::vector<std::string>& positional() const { return positional_; }
+
+private:
+    std::string command_;
+    std::map<std::string, std::string> values_;
+    std::set<std::string> switches_set_;
+    std::vector<std::string> positional_;
+};
+
+}  // namespace impactlab::cli

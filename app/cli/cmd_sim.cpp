@@ -1,0 +1,215 @@
+// Commands over the simulator and the sweeps: models, simulate, poincare, bifurcation, figure3.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "impactlab/figures.hpp"
+#include "impactlab/forces.hpp"
+#include "impactlab/params_json.hpp"
+#include "impactlab/simulator.hpp"
+#include "impactlab/sweep.hpp"
+
+namespace impactlab::cli {
+
+namespace {
+bool wants_help(const std::vector<std::string>& args, const char* text) {
+    for (const auto& a : args)
+        if (a == "--help" || a == "-h") {
+            std::printf("%s", text);
+            return true;
+        }
+    return false;
+}
+}  // namespace
+
+int cmd_models(const std::vector<std::string>& argv) {
+    if (wants_help(argv, "usage: impactlab models [--json NAME]\n\n"
+                         "Lists every model version XY (stiffness X, impact Y) with its parameters (SI units).\n"
+                         "  --json NAME   print the parameter file of version NAME (a starting point for --model FILE.json)\n"))
+        return 0;
+    const Args a("models", argv, {"--json"});
+    if (a.has("--json")) {
+        Params p;
+        try {
+            p = make_version(a.str("--json", ""));
+        } catch (const ParamError& e) {
+            throw UsageError(std::string("--json: ") + e.what());
+        }
+        std::printf("%s", params_to_json_text(p).c_str());
+        return 0;
+    }
+    std::printf("Stiffness versions (Table 1), m = 6.73766 kg, eps = 1e-6 m/s:\n");
+    std::printf("  %-4s %-9s %-8s %-7s %-7s %-10s %-11s %-9s %-10s\n", "id", "m0e", "k", "c", "T", "a1", "a3", "b2", "b4");
+    for (const auto& s : stiffness_sets())
+        std::printf("  %-4s %-9.6g %-8.6g %-7.5g %-7.5g %-10.6g %-11.5g %-9.6g %-10.5g\n", s.id, s.m0e, s.k, s.c, s.T,
+                    s.a[0], s.a[1], s.b[0], s.b[1]);
+    std::printf("\nImpact versions (Tables 2, 3):\n");
+    for (const auto& m : impact_models()) {
+        std::printf("  %-3s %s\n      ", m.id, m.summary);
+        for (std::size_t i = 0; i < kMaxLawParams && m.names[i]; ++i)
+            std::printf("%s = %g %s%s", m.names[i], m.defaults[i], m.units[i],
+                        (i + 1 < kMaxLawParams && m.names[i + 1]) ? ", " : "\n");
+    }
+    std::printf("\nVersions (any XY; the paper's five first):\n  ");
+    const auto names = version_names();
+    for (std::size_t i = 0; i < names.size(); ++i) std::printf("%s%s", names[i].c_str(), i + 1 < names.size() ? " " : "\n");
+    std::printf("\nExtra effects (for parameter files and impactlab fit):\n");
+    for (const auto& e : effect_laws()) std::printf("  %-22s %s\n", e.id, e.meaning);
+    return 0;
+}
+
+int cmd_simulate(const std::vector<std::string>& argv) {
+    if (wants_help(argv, "usage: impactlab simulate --model A1H --omega 18 --duration 60 --out traj.csv [options]\n\n"
+                         "Integrates one run at constant omega from rest (or --x0/--v0) and writes\n"
+                         "t,x,v,phi,regime (regime 1 = free flight, 2 = sticking, 3 = permanent contact).\n"
+                         "  --omega W        forcing frequency [rad/s] (required)\n"
+                         "  --duration D     simulated time [s] (required)\n"
+                         "  --out FILE       CSV output (required)\n"
+                         "  --dt DT          output sample step [s] (default 1e-3)\n"
+                         "  --x0 X, --v0 V   initial state [m], [m/s] (default 0, 0)\n" ) ||
+        wants_help(argv, kModelHelp))
+        return 0;
+    const Args a("simulate", argv, with_model_flags({"--omega", "--duration", "--out", "--dt", "--x0", "--v0"}));
+    const Params p = model_from(a);
+    const double omega = a.num("--omega", 0, 0.0, 1000.0);
+    if (!a.has("--omega")) throw UsageError("simulate: missing required option '--omega'");
+    if (!a.has("--duration")) throw UsageError("simulate: missing required option '--duration'");
+    const double duration = a.num("--duration", 0, 1e-6, 1e6);
+    const double dt = a.num("--dt", 1e-3, 1e-7, 1e3);
+    std::ofstream out = open_out(a.required("--out"));
+    Simulator sim(tolerances_from(a));
+    const Drive drive(omega);
+    State s;
+    s.x = a.num("--x0", 0.0, -0.1, 0.1);
+    s.v = a.num("--v0", 0.0, -10.0, 10.0);
+    Simulator::make_consistent(p, drive, s);
+    out << "t,x,v,phi,regime\n";
+    UniformSampler sampler(drive, dt, 0.0, [&](const Sample& smp) {
+        out << smp.t << ',' << smp.x << ',' << smp.v << ',' << smp.phi << ',' << static_cast<int>(smp.regime) << '\n';
+    });
+    Progress progress;
+    ProgressBar bar("simulate " + p.name, progress);
+    // Advance in slices so the bar moves.
+    const int slices = 200;
+    for (int i = 1; i <= slices; ++i) {
+        sim.advance(p, drive, s, duration * i / slices, &sampler);
+        progress.fraction.store(static_cast<double>(i) / slices);
+    }
+    bar.finish();
+    if (!out) throw std::runtime_error(a.required("--out") + ": write failed");
+    std::fprintf(stderr, "%s: %.6g s simulated, %llu steps, %llu impacts -> %s\n", p.name.c_str(), duration,
+                 static_cast<unsigned long long>(s.steps), static_cast<unsigned long long>(s.impacts),
+                 a.required("--out").c_str());
+    return 0;
+}
+
+int cmd_poincare(const std::vector<std::string>& argv) {
+    if (wants_help(argv, "usage: impactlab poincare --model A1H --omega 18 --periods 200 --out sec.csv [options]\n\n"
+                         "Samples (x, v) once per revolution of the unbalance (phi = 2 pi n) and writes n,x,v.\n"
+                         "  --omega W        forcing frequency [rad/s] (required)\n"
+                         "  --periods N      section points to record (required)\n"
+                         "  --transient N    periods discarded first (default 0)\n"
+                         "  --out FILE       CSV output (required)\n"
+                         "  --x0 X, --v0 V   initial state (default 0, 0)\n") ||
+        wants_help(argv, kModelHelp))
+        return 0;
+    const Args a("poincare", argv, with_model_flags({"--omega", "--periods", "--transient", "--out", "--x0", "--v0"}));
+    const Params p = model_from(a);
+    if (!a.has("--omega")) throw UsageError("poincare: missing required option '--omega'");
+    if (!a.has("--periods")) throw UsageError("poincare: missing required option '--periods'");
+    const double omega = a.num("--omega", 0, 1e-3, 1000.0);
+    const int periods = a.integer("--periods", 0, 1, 10000000);
+    const int transient = a.integer("--transient", 0, 0, 10000000);
+    std::ofstream out = open_out(a.required("--out"));
+    State s;
+    s.x = a.num("--x0", 0.0, -0.1, 0.1);
+    s.v = a.num("--v0", 0.0, -10.0, 10.0);
+    Progress progress;
+    ProgressBar bar("poincare " + p.name, progress);
+    const auto pts = poincare_section(p, omega, periods, transient, s, tolerances_from(a), &progress);
+    bar.finish();
+    out << "n,x,v\n";
+    for (const auto& sp : pts) out << sp.n - transient << ',' << sp.x << ',' << sp.v << '\n';
+    std::fprintf(stderr, "%s: %zu section points -> %s\n", p.name.c_str(), pts.size(), a.required("--out").c_str());
+    return 0;
+}
+
+int cmd_bifurcation(const std::vector<std::string>& argv) {
+    if (wants_help(argv,
+                   "usage: impactlab bifurcation --model A1H --sweep up|down|ramp --out diag.csv [--png diag.png] [options]\n\n"
+                   "  --sweep up       CF sweep: omega_j = 25 j/300, 20 transient + 70 recorded periods each,\n"
+                   "                   each omega starting from the previous final state (MODEL.md)\n"
+                   "  --sweep down     the same omegas in reverse (hysteresis)\n"
+                   "  --sweep ramp     EF ramp: omega = 25.1 t/2800 for 0 <= t <= 2800 s, x at every phi = 2 pi i\n"
+                   "  --omega-min W, --omega-max W, --steps N, --transient N, --record N   override the CF defaults\n"
+                   "                   (for ramp: --omega-max is the final omega, --ramp-time T its duration)\n"
+                   "  --out FILE       CSV output with columns omega,x,v (required)\n"
+                   "  --png FILE       also plot the diagram\n") ||
+        wants_help(argv, kModelHelp))
+        return 0;
+    const Args a("bifurcation", argv,
+                 with_model_flags({"--sweep", "--out", "--png", "--omega-min", "--omega-max", "--steps", "--transient",
+                                   "--record", "--ramp-time"}));
+    const Params p = model_from(a);
+    const std::string sweep = a.str("--sweep", "up");
+    if (sweep != "up" && sweep != "down" && sweep != "ramp")
+        throw UsageError("bifurcation: option '--sweep': '" + sweep + "' is not one of up, down, ramp");
+    const std::string out_path = a.required("--out");
+    std::ofstream out = open_out(out_path);
+    Progress progress;
+    Diagram d;
+    {
+        ProgressBar bar("bifurcation " + p.name + " " + sweep, progress);
+        if (sweep == "ramp") {
+            EfSpec spec;
+            spec.omega_max = a.num("--omega-max", spec.omega_max, 0.01, 1000.0);
+            spec.t_ramp = a.num("--ramp-time", spec.t_ramp, 1.0, 1e6);
+            d = run_ef_ramp(p, spec, &progress, tolerances_from(a));
+        } else {
+            CfSpec spec;
+            spec.steps = a.integer("--steps", spec.steps, 1, 100000);
+            spec.omega_min = a.num("--omega-min", 25.0 / spec.steps, 1e-3, 1000.0);
+            spec.omega_max = a.num("--omega-max", spec.omega_max, 1e-3, 1000.0);
+            if (spec.omega_max < spec.omega_min) throw UsageError("bifurcation: --omega-max is below --omega-min");
+            spec.transient = a.integer("--transient", spec.transient, 0, 1000000);
+            spec.record = a.integer("--record", spec.record, 1, 1000000);
+            spec.direction = sweep == "up" ? SweepDirection::Up : SweepDirection::Down;
+            d = run_cf_sweep(p, spec, &progress, tolerances_from(a));
+        }
+    }
+    write_diagram_csv(d, out);
+    if (!out) throw std::runtime_error(out_path + ": write failed");
+    std::fprintf(stderr, "%s %s: %zu points, %.0f s simulated, %llu steps -> %s\n", p.name.c_str(), d.protocol.c_str(),
+                 d.points.size(), d.simulated_seconds, static_cast<unsigned long long>(d.steps), out_path.c_str());
+    if (a.has("--png")) {
+        save_diagram_png(d, a.str("--png", ""));
+        std::fprintf(stderr, "plot -> %s\n", a.str("--png", "").c_str());
+    }
+    return 0;
+}
+
+int cmd_figure3(const std::vector<std::string>& argv) {
+    if (wants_help(argv, "usage: impactlab figure3 --out fig3.png [--steps N] [--rtol R]\n\n"
+                         "Computes and stacks the panels of the paper's Fig. 3: the EF forcing omega(t), A1C-EF, and the\n"
+                         "CF diagrams of A1C, A1C1, A3C, A1G, A1H (increasing omega).\n"
+                         "  --steps N   omegas per CF diagram (default 300)\n"))
+        return 0;
+    const Args a("figure3", argv, {"--out", "--steps", "--rtol"});
+    const std::string out_path = a.required("--out");
+    const int steps = a.integer("--steps", 300, 2, 100000);
+    const Tolerances tol = tolerances_from(a);
+    Figure3Data data;
+    Progress progress;
+    {
+        ProgressBar bar("figure3", progress);
+        data = compute_figure3(steps, tol, &progress);
+    }
+    save_figure3_png(data, out_path);
+    std::fprintf(stderr, "figure 3 -> %s\n", out_path.c_str());
+    return 0;
+}
+
+}  // namespace impactlab::cli

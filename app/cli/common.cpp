@@ -1,0 +1,69 @@
+#include "common.hpp"
+
+#include <cstdio>
+
+#include "impactlab/params_json.hpp"
+
+namespace impactlab::cli {
+
+Params model_from(const Args& a, const std::string& fallback) {
+    Params p;
+    const std::string name = a.str("--model", fallback);
+    try {
+        p = resolve_model(name);
+    } catch (const ParamError& e) {
+        throw UsageError(std::string("--model: ") + e.what());
+    }
+    if (a.has("--xI")) {
+        p.xI = a.num("--xI", 0.0, -0.05, 0.05);
+        p.name += "(xI=" + a.str("--xI", "") + ")";
+    }
+    if (a.has("--m0e")) p.m0e = a.num("--m0e", p.m0e, 0.0, 10.0);
+    validate(p, name);
+    return p;
+}
+
+Tolerances tolerances_from(const Args& a) {
+    Tolerances t;
+    t.rtol = a.num("--rtol", t.rtol, 1e-13, 1e-2);
+    return t;
+}
+
+std::set<std::string> with_model_flags(std::set<std::string> flags) {
+    flags.insert(kModelFlags.begin(), kModelFlags.end());
+    return flags;
+}
+
+std::ofstream open_out(const std::string& path) {
+    std::ofstream out(path);
+    if (!out) throw UsageError(path + ": cannot open for writing");
+    out.precision(10);
+    return out;
+}
+
+ProgressBar::ProgressBar(const std::string& label, Progress& progress) : label_(label), progress_(progress) {
+    thread_ = std::thread([this] {
+        const auto start = std::chrono::steady_clock::now();
+        while (!done_.load()) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (elapsed < 1.0 || done_.load()) continue;
+            const double f = std::clamp(progress_.fraction.load(), 0.0, 1.0);
+            const int width = 30, filled = static_cast<int>(f * width);
+            std::fprintf(stderr, "\r%-28s [%s%s] %5.1f%%  %5.0f s", label_.c_str(), std::string(filled, '#').c_str(),
+                         std::string(width - filled, '.').c_str(), 100 * f, elapsed);
+            std::fflush(stderr);
+            drawn_ = true;
+        }
+    });
+}
+
+void ProgressBar::finish() {
+    if (done_.exchange(true)) return;
+    thread_.join();
+    if (drawn_) std::fprintf(stderr, "\r%-28s done%50s\n", label_.c_str(), "");
+}
+
+ProgressBar::~ProgressBar() { finish(); }
+
+}  // namespace impactlab::cli

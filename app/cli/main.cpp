@@ -1,0 +1,63 @@
+// impactlab: the command-line face of the core. Exit codes: 0 success, 1 runtime failure, 2 usage error.
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "args.hpp"
+#include "commands.hpp"
+#include "impactlab/params.hpp"
+
+namespace impactlab::cli {
+
+const std::vector<Command>& commands() {
+    static const std::vector<Command> table{
+        {"models", "list the model versions and their parameters", cmd_models},
+        {"simulate", "integrate one run at constant omega, write t,x,v,phi,regime as CSV", cmd_simulate},
+        {"poincare", "Poincare section at constant omega, write n,x,v as CSV", cmd_poincare},
+        {"bifurcation", "CF sweep up or down, or the EF ramp: omega,x,v as CSV (and a PNG)", cmd_bifurcation},
+        {"figure3", "the paper's Fig. 3 as one PNG", cmd_figure3},
+    };
+    return table;
+}
+
+}  // namespace impactlab::cli
+
+namespace {
+void usage() {
+    std::printf("impactlab: simulator of a forced impact oscillator with a double-well magnetic stiffness\n\n"
+                "usage: impactlab COMMAND [options]   (impactlab COMMAND --help for its options)\n\ncommands:\n");
+    for (const auto& c : impactlab::cli::commands()) std::printf("  %-12s %s\n", c.name, c.summary);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+    using namespace impactlab::cli;
+    if (argc < 2) {
+        usage();
+        return 2;
+    }
+    const std::string name = argv[1];
+    if (name == "--help" || name == "-h" || name == "help") {
+        usage();
+        return 0;
+    }
+    const std::vector<std::string> rest(argv + 2, argv + argc);
+    for (const auto& c : commands()) {
+        if (name != c.name) continue;
+        try {
+            return c.run(rest);
+        } catch (const UsageError& e) {
+            std::fprintf(stderr, "impactlab: error: %s\n", e.what());
+            return 2;
+        } catch (const impactlab::ParamError& e) {
+            std::fprintf(stderr, "impactlab: error: %s\n", e.what());
+            return 2;
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "impactlab: error: %s\n", e.what());
+            return 1;
+        }
+    }
+    std::fprintf(stderr, "impactlab: error: unknown command '%s' (see impactlab --help)\n", name.c_str());
+    return 2;
+}

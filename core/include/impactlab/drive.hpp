@@ -1,0 +1,33 @@
+// The prescribed rotation of the unbalance: omega(t) piecewise linear through knots, phi its exact integral.
+// Constant omega (CF), the EF ramp and the synthetic data's plateaus are all Drives.
+#pragma once
+
+#include <vector>
+
+namespace impactlab {
+
+class Drive {
+public:
+    Drive() : Drive(0.0) {}
+    // Constant omega [rad/s] from time t0 with phase phi0 there.
+    explicit Drive(double omega, double t0 = 0.0, double phi0 = 0.0);
+    // omega through the knots (t_k [s], omega_k [rad/s]), constant before the first and after the last.
+    static Drive piecewise_linear(const std::vector<double>& t, const std::vector<double>& omega, double phi0 = 0.0);
+    // The paper's EF protocol: omega = 25.1 t / 2800 for 0 <= t <= 2800 s (scaled by omega_max, t_ramp).
+    static Drive ef_ramp(double omega_max = 25.1, double t_ramp = 2800.0);
+
+    double omega(double t) const;
+    double alpha(double t) const;     // phi'' [rad/s^2]
+    double phi(double t) const;
+    // The time at which phi reaches `phase` (phi is nondecreasing); +inf if it never does.
+    double time_of_phase(double phase) const;
+    // Time of the next knot strictly after t (the forcing's slope jumps there), +inf if none.
+    double next_knot(double t) const;
+    double t_begin() const { return t_.front(); }
+
+private:
+    std::size_t segment(double t) const;
+    std::vector<double> t_, w_, phi_;   // knots and phi at each knot
+};
+
+}  // namespace impactlab

@@ -1,0 +1,118 @@
+// Model parameters: a model version is data. A Params value never changes while a simulation runs
+// (MuJoCo's model/data split); everything that evolves lives in State (simulator.hpp).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace impactlab {
+
+inline constexpr std::size_t kMaxLawParams = 8;
+
+// Stiffness law of Eq. (3): F_SA(x) = k x + (a1 x + a3 x^3 + a5 x^5 + a7 x^7) / (1 + b2 x^2 + ... + b8 x^8).
+// Together with the bearing resistance and the unbalance it makes the "A" part of a version.
+struct StiffnessSet {
+    const char* id;                 // "A1", "A3"
+    const char* summary;
+    double m0e;                     // unbalance m0*e [kg m]
+    double k;                       // mechanical springs [N/m]
+    double c;                       // viscous bearing resistance [N s/m]
+    double T;                       // dry rolling resistance [N]
+    std::array<double, 4> a;        // a1 [N/m], a3 [N/m^3], a5, a7
+    std::array<double, 4> b;        // b2 [1/m^2], b4 [1/m^4], b6, b8
+};
+
+enum class ImpactKind { Compliant, Rigid };
+
+// A contact force law for a compliant bumper: F >= 0 and its partial derivatives at penetration h >= 0
+// and penetration rate hdot. The derivatives feed the implicit integrator's Newton matrix.
+struct ContactForce { double F, dF_dh, dF_dhdot; };
+using ContactForceFn = ContactForce (*)(const double* p, double h, double hdot);
+// A rigid (event-driven) law: restitution kappa(v-) and impact duration T_imp(v-) [s].
+using ImpactFn = double (*)(const double* p, double v_minus);
+
+// One row of the impact registry (impact/registry.cpp): a law plus one named parameter set.
+struct ImpactModel {
+    const char* id;                                 // "C", "C1", "G", "H"
+    const char* summary;
+    ImpactKind kind;
+    std::array<const char*, kMaxLawParams> names;   // parameter names (JSON keys), nullptr-terminated
+    std::array<const char*, kMaxLawParams> units;
+    std::array<double, kMaxLawParams> defaults;     // SI units
+    ContactForceFn contact = nullptr;               // Compliant only
+    ImpactFn restitution = nullptr;                 // Rigid only
+    ImpactFn duration = nullptr;                    // Rigid only
+    double eps_v = 1e-4;                            // Rigid: |v+| below this may end in permanent contact [m/s]
+};
+
+// Where the cart is and how fast, with the forcing, as seen by an extra force law.
+struct ForceContext {
+    double t, x, v, phi, omega, alpha;   // alpha = phi'' [rad/s^2]
+    double m0e, xI;
+};
+// An extra force on the cart (positive pushes towards +x) with its partial derivatives.
+struct EffectForce { double F = 0, dF_dx = 0, dF_dv = 0, dF_dt = 0; };
+using EffectForceFn = EffectForce (*)(const double* p, const ForceContext& ctx);
+
+// One row of the effect registry (effects/registry.cpp): a named physical effect the base model lacks.
+struct EffectLaw {
+    const char* id;                                 // stable snake_case id, e.g. "constant_force"
+    const char* meaning;                            // one line of physics
+    std::array<const char*, kMaxLawParams> names;   // nullptr-terminated
+    std::array<const char*, kMaxLawParams> units;
+    std::array<double, kMaxLawParams> defaults;
+    EffectForceFn force;
+};
+
+// An effect switched on in a parameter set.
+struct EffectInstance {
+    const EffectLaw* law = nullptr;
+    std::array<double, kMaxLawParams> p{};
+};
+
+struct Params {
+    std::string name = "A1H";       // version name, e.g. "A1H" or a user's label
+    std::string stiffness_id = "A1";
+    double m = 6.73766;             // cart mass [kg]
+    double m0e = 0.025152;          // unbalance [kg m]
+    double k = 1115.2;              // [N/m]
+    double c = 12.373;              // [N s/m]
+    double T = 1.2267;              // [N]
+    double eps = 1e-6;              // friction smoothing [m/s]
+    std::array<double, 4> a{};      // a1, a3, a5, a7
+    std::array<double, 4> b{};      // b2, b4, b6, b8
+    double xI = 0.0;                // bumper position [m]
+    const ImpactModel* impact = nullptr;            // never null in a valid Params
+    std::array<double, kMaxLawParams> ip{};         // impact law parameters (impact->names order)
+    std::vector<EffectInstance> effects;            // extra force laws (identify/, effects/)
+
+    bool rigid() const { return impact->kind == ImpactKind::Rigid; }
+};
+
+// Thrown for any invalid parameter set: the message names the source, the key and the problem.
+struct ParamError : std::runtime_error { using std::runtime_error::runtime_error; };
+
+// Registries: explicit tables, one line per entry.
+const std::vector<StiffnessSet>& stiffness_sets();
+const std::vector<ImpactModel>& impact_models();
+const std::vector<EffectLaw>& effect_laws();
+const StiffnessSet* find_stiffness(const std::string& id);
+const ImpactModel* find_impact(const std::string& id);
+const EffectLaw* find_effect(const std::string& id);
+
+// "A1H", "A3C1", ...: any stiffness id followed by any impact id. Throws ParamError for an unknown name.
+Params make_version(const std::string& name);
+// All XY combinations, paper's versions first.
+std::vector<std::string> version_names();
+// Checks every value (finite, signs, ranges); throws ParamError naming `source` and the key.
+void validate(const Params& p, const std::string& source = "parameters");
+// Value of an impact-law parameter by name; throws ParamError if the law has no such parameter.
+double impact_param(const Params& p, const std::string& key);
+void set_impact_param(Params& p, const std::string& key, double value);
+// Adds an effect with its default parameters; returns it for the caller to set values.
+EffectInstance& add_effect(Params& p, const std::string& id);
+
+}  // namespace impactlab

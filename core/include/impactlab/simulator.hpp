@@ -1,0 +1,115 @@
+// The hybrid simulator: regimes I (free flight), II (sticking during a rigid impact) and III (permanent
+// contact) over the RODAS4 stepper, with events located on the dense output and then hit exactly.
+// Parameters stay apart from state: step(const Params&, const Drive&, State&, ...). Nothing allocates in
+// the step loop. All functions are called on the thread that owns the State (the simulation thread in
+// the GUI, the worker in a sweep, the main thread in the CLI).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+
+#include "impactlab/drive.hpp"
+#include "impactlab/params.hpp"
+#include "impactlab/rosenbrock.hpp"
+
+namespace impactlab {
+
+enum class Regime : std::uint8_t { Free = 1, Sticking = 2, Contact = 3 };   // I, II, III
+const char* regime_name(Regime r);
+
+struct State {
+    double t = 0, x = 0, v = 0;          // [s], [m], [m/s]
+    Regime regime = Regime::Free;
+    double t_release = 0;                // regime II: when the sticking ends [s]
+    double v_release = 0;                // regime II: the velocity v+ it ends with [m/s]
+    double v_impact = 0;                 // regime II: the velocity v- of the impact in progress [m/s]
+    double h = 0;                        // next step-size guess [s]; 0 lets the simulator choose
+    std::int64_t next_section = 1;       // i of the next Poincare section phi = 2 pi i
+    std::int8_t side = 0;                // compliant bumper: +1 in contact, -1 clear, 0 unknown
+    std::uint64_t steps = 0, rejected = 0, impacts = 0;
+};
+
+struct SectionPoint { std::int64_t n; double t, x, v; Regime regime; };
+struct ImpactEvent { double t, v_minus, v_plus, duration; };
+
+// A stretch of trajectory the simulator has just completed: (x, v) anywhere in [t0, t1].
+struct Piece {
+    double t0, t1;
+    Regime regime;
+    const RodasStep* step;   // free flight: the accepted step; null while held at the bumper
+    double x_hold;           // regimes II/III: the bumper position
+    Vec2 at(double t) const { return step ? step->at(t) : Vec2(x_hold, 0.0); }
+};
+
+// Receives what happens, in time order, on the simulating thread. Default: ignore.
+class Observer {
+public:
+    virtual ~Observer() = default;
+    virtual void on_piece(const Piece&) {}
+    virtual void on_section(const SectionPoint&) {}
+    virtual void on_impact(const ImpactEvent&) {}
+    virtual void on_regime(double /*t*/, Regime /*from*/, Regime /*to*/) {}
+    virtual bool stop() const { return false; }   // true: advance() returns after the current piece
+};
+
+class Simulator {
+public:
+    explicit Simulator(const Tolerances& tol = {}) : tol_(tol) {}
+    const Tolerances& tolerances() const { return tol_; }
+    void set_tolerances(const Tolerances& tol) { tol_ = tol; }
+
+    // Makes a state consistent with the parameters and the drive: a rigid bumper never has the cart beyond
+    // xI (it is put on the bumper, in regime III if the normal force presses it there, else I); compliant
+    // models only know regime I; the next Poincare section is the first after state.t.
+    static void make_consistent(const Params& p, const Drive& d, State& s);
+    // After a change of drive only: the next section becomes the first phi = 2 pi n after s.t; a regime II
+    // or III in progress carries over.
+    static void sync_sections(const Drive& d, State& s);
+
+    // One piece: an accepted integration step, a located event, or a stretch held at the bumper; never
+    // past t_limit. Returns false if nothing could be done (t_limit reached).
+    bool step(const Params& p, const Drive& d, State& s, double t_limit, Observer* obs = nullptr);
+    // Steps until s.t == t_end or the observer asks to stop.
+    void advance(const Params& p, const Drive& d, State& s, double t_end, Observer* obs = nullptr);
+
+private:
+    bool free_step(const Params& p, const Drive& d, State& s, double t_stop, bool stop_is_section, Observer* obs);
+    void hold_step(const Params& p, const Drive& d, State& s, double t_stop, Observer* obs);
+    void release(const Params& p, const Drive& d, State& s, double v_plus, Observer* obs);
+    Tolerances tol_;
+    RodasStep work_, retry_;
+};
+
+// Normal force pressing the cart on the bumper at xI while it rests there [N] (positive: pressed).
+double normal_force(const Params& p, const Drive& d, double t);
+// Total mechanical energy 1/2 m v^2 + V(x) (+ the bumper's elastic energy for compliant models) [J].
+double mechanical_energy(const Params& p, double x, double v);
+// The force the bumper exerts at this instant [N]: F_I (compliant), N (regime III), the mean force of the
+// impulse (regime II), else 0.
+double bumper_force(const Params& p, const Drive& d, const State& s);
+
+// All force terms of Eq. (1) at one instant, with effects; the residual and the GUI use them.
+struct ForceTerms {
+    double resistance = 0, spring_magnet = 0, impact = 0, unbalance = 0, effects = 0;
+    double net() const { return unbalance + effects - resistance - spring_magnet - impact; }
+};
+ForceTerms force_terms(const Params& p, double t, double x, double v, double phi, double omega, double alpha);
+
+// Observer that samples the trajectory at a fixed step dt (from t_first) and hands each sample to a callback.
+struct Sample { double t, x, v, phi, omega; Regime regime; };
+class UniformSampler : public Observer {
+public:
+    UniformSampler(const Drive& d, double dt, double t_first, std::function<void(const Sample&)> sink)
+        : drive_(d), dt_(dt), t_first_(t_first), next_(t_first), sink_(std::move(sink)) {}
+    void on_piece(const Piece& piece) override;
+private:
+    const Drive& drive_;
+    double dt_;
+    double t_first_;
+    double next_;
+    std::int64_t k_ = 0;
+    std::function<void(const Sample&)> sink_;
+};
+
+}  // namespace impactlab

@@ -1,0 +1,66 @@
+// Bifurcation diagrams: the CF sweep (up or down) and the EF ramp of MODEL.md, for any model version.
+// A long job runs on whatever thread calls it; it reports progress through atomics, can be cancelled,
+// and returns a finished Diagram whole.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "impactlab/params.hpp"
+#include "impactlab/rosenbrock.hpp"
+#include "impactlab/simulator.hpp"
+
+namespace impactlab {
+
+// Shared between the job (writer) and a UI or progress bar (reader).
+struct Progress {
+    std::atomic<double> fraction{0.0};   // written by the job thread
+    std::atomic<bool> cancel{false};     // written by any thread, read by the job thread
+};
+
+struct DiagramPoint { double omega, x, v; };
+
+struct Diagram {
+    std::string model;
+    std::string protocol;                // "cf-up", "cf-down", "ef"
+    std::vector<DiagramPoint> points;
+    bool cancelled = false;
+    double simulated_seconds = 0;
+    std::uint64_t steps = 0, impacts = 0;
+};
+
+enum class SweepDirection { Up, Down };
+
+struct CfSpec {
+    double omega_min = 25.0 / 300.0;     // omega_j = omega_min + (j-1) (omega_max - omega_min)/(steps-1)
+    double omega_max = 25.0;
+    int steps = 300;
+    int transient = 20;                  // periods discarded at each omega
+    int record = 70;                     // periods recorded at each omega
+    SweepDirection direction = SweepDirection::Up;
+};
+
+struct EfSpec {
+    double omega_max = 25.1;             // [rad/s] reached at t_ramp
+    double t_ramp = 2800.0;              // [s]
+};
+
+// Starts at rest at x = 0 (made consistent with the bumper), as MODEL.md prescribes.
+Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress = nullptr, const Tolerances& tol = {});
+Diagram run_ef_ramp(const Params& p, const EfSpec& spec, Progress* progress = nullptr, const Tolerances& tol = {});
+
+// Poincare section at constant omega: `transient` periods discarded, then `periods` points recorded.
+std::vector<SectionPoint> poincare_section(const Params& p, double omega, int periods, int transient, State& state,
+                                           const Tolerances& tol = {}, Progress* progress = nullptr);
+
+// Distinct values among the recorded section points at one omega (period detection, tests, README):
+// the number of clusters of x closer than `tol` [m]; returns record+1 if it exceeds max_period.
+int count_period(const std::vector<double>& xs, double tol, int max_period = 16);
+
+// omega,x,v rows with a header; the format the CLI writes and the GUI exports.
+void write_diagram_csv(const Diagram& d, std::ostream& out);
+
+}  // namespace impactlab

@@ -1,0 +1,82 @@
+#include "impactlab/drive.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace impactlab {
+
+Drive::Drive(double omega, double t0, double phi0) : t_{t0}, w_{omega}, phi_{phi0} {
+    if (!std::isfinite(omega) || omega < 0) throw std::invalid_argument("omega must be finite and >= 0");
+}
+
+Drive Drive::piecewise_linear(const std::vector<double>& t, const std::vector<double>& omega, double phi0) {
+    if (t.empty() || t.size() != omega.size())
+        throw std::invalid_argument("omega profile: need as many times as omegas, at least one");
+    Drive d(omega[0], t[0], phi0);
+    for (std::size_t i = 1; i < t.size(); ++i) {
+        if (!(t[i] > t[i - 1])) throw std::invalid_argument("omega profile: knot times must increase");
+        if (!std::isfinite(omega[i]) || omega[i] < 0) throw std::invalid_argument("omega profile: omega must be >= 0");
+        const double dt = t[i] - t[i - 1];
+        d.t_.push_back(t[i]);
+        d.w_.push_back(omega[i]);
+        d.phi_.push_back(d.phi_.back() + 0.5 * (omega[i - 1] + omega[i]) * dt);
+    }
+    return d;
+}
+
+Drive Drive::ef_ramp(double omega_max, double t_ramp) {
+    return piecewise_linear({0.0, t_ramp}, {0.0, omega_max});
+}
+
+std::size_t Drive::segment(double t) const {
+    // Index of the last knot at or before t (0 if t precedes all knots).
+    const auto it = std::upper_bound(t_.begin(), t_.end(), t);
+    return it == t_.begin() ? 0 : static_cast<std::size_t>(it - t_.begin()) - 1;
+}
+
+double Drive::omega(double t) const {
+    const std::size_t i = segment(t);
+    if (i + 1 >= t_.size() || t <= t_[i]) return w_[i];
+    return w_[i] + (w_[i + 1] - w_[i]) * (t - t_[i]) / (t_[i + 1] - t_[i]);
+}
+
+double Drive::alpha(double t) const {
+    const std::size_t i = segment(t);
+    if (i + 1 >= t_.size() || t < t_[i]) return 0.0;
+    return (w_[i + 1] - w_[i]) / (t_[i + 1] - t_[i]);
+}
+
+double Drive::phi(double t) const {
+    const std::size_t i = segment(t);
+    const double tau = t - t_[i];
+    if (i + 1 >= t_.size() || tau < 0) return phi_[i] + w_[i] * tau;
+    const double a = (w_[i + 1] - w_[i]) / (t_[i + 1] - t_[i]);
+    return phi_[i] + tau * (w_[i] + 0.5 * a * tau);
+}
+
+double Drive::time_of_phase(double phase) const {
+    const double inf = std::numeric_limits<double>::infinity();
+    if (phase <= phi_[0]) {
+        if (w_[0] <= 0) return phase == phi_[0] ? t_[0] : -inf;
+        return t_[0] + (phase - phi_[0]) / w_[0];
+    }
+    const std::size_t i =
+        static_cast<std::size_t>(std::upper_bound(phi_.begin(), phi_.end(), phase) - phi_.begin()) - 1;
+    const double dphi = phase - phi_[i];
+    if (i + 1 >= t_.size()) return w_[i] > 0 ? t_[i] + dphi / w_[i] : inf;
+    const double a = (w_[i + 1] - w_[i]) / (t_[i + 1] - t_[i]);
+    // Solve 1/2 a tau^2 + w tau = dphi in the cancellation-free form.
+    const double disc = std::max(0.0, w_[i] * w_[i] + 2.0 * a * dphi);
+    const double denom = w_[i] + std::sqrt(disc);
+    if (denom <= 0) return inf;
+    return t_[i] + 2.0 * dphi / denom;
+}
+
+double Drive::next_knot(double t) const {
+    const auto it = std::upper_bound(t_.begin(), t_.end(), t);
+    return it == t_.end() ? std::numeric_limits<double>::infinity() : *it;
+}
+
+}  // namespace impactlab

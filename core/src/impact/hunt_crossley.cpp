@@ -1,0 +1,29 @@
+#include "impact/hunt_crossley.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace impactlab::hunt_crossley {
+
+namespace {
+// h^n with the common n = 1.5 done by a square root (pow is the cost of a contact step).
+inline double power(double h, double n) { return n == 1.5 ? h * std::sqrt(h) : std::pow(h, n); }
+}  // namespace
+
+ContactForce contact(const double* p, double h, double hdot) {
+    const double kI = p[0], b = p[1], n1 = p[2], n2 = p[3], n3 = p[4];
+    if (h <= 0.0) return {0.0, 0.0, 0.0};
+    const double hn1 = power(h, n1), hn2 = power(h, n2);
+    const double av = std::abs(hdot);
+    const double avn3 = av > 0.0 ? std::pow(av, n3) : 0.0;
+    const double sgn = hdot > 0.0 ? 1.0 : (hdot < 0.0 ? -1.0 : 0.0);
+    const double F = kI * (hn1 + b * hn2 * avn3 * sgn);
+    if (F <= 0.0) return {0.0, 0.0, 0.0};   // the bumper never pulls
+    const double dF_dh = kI * (n1 * hn1 / h + b * n2 * hn2 / h * avn3 * sgn);
+    // Bounded slope: the exact n3 |h'|^(n3-1) is infinite at h' = 0 and would stall the implicit method.
+    const double av_slope = std::max(av, kSlopeFloorVelocity);
+    const double dF_dhdot = kI * b * hn2 * n3 * std::pow(av_slope, n3 - 1.0);
+    return {F, dF_dh, dF_dhdot};
+}
+
+}  // namespace impactlab::hunt_crossley

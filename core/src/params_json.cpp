@@ -1,0 +1,210 @@
+#include "impactlab/params_json.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+namespace impactlab {
+
+using nlohmann::json;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& src, const std::string& msg) { throw ParamError(src + ": " + msg); }
+
+double number(const json& j, const std::string& key, const std::string& src) {
+    if (!j.is_number()) fail(src, "key '" + key + "': expected a number, got " + std::string(j.type_name()));
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) fail(src, "key '" + key + "': must be a finite number");
+    return v;
+}
+
+void check_keys(const json& obj, const std::set<std::string>& allowed, const std::string& prefix,
+                const std::string& src) {
+    for (auto it = obj.begin(); it != obj.end(); ++it)
+        if (!allowed.count(it.key())) {
+            std::string list;
+            for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+            fail(src, "unknown key '" + prefix + it.key() + "' (allowed: " + list + ")");
+        }
+}
+
+// Reads obj[key] into out if present; if absent and required, fails naming the key.
+void read(const json& obj, const std::string& key, double& out, bool required, const std::string& prefix,
+          const std::string& src) {
+    if (!obj.contains(key)) {
+        if (required) fail(src, "missing key '" + prefix + key + "'");
+        return;
+    }
+    out = number(obj.at(key), prefix + key, src);
+}
+
+void read_coeffs(const json& obj, const std::string& key, std::array<double, 4>& out, bool required,
+                 const std::string& src) {
+    if (!obj.contains(key)) {
+        if (required) fail(src, "missing key '" + key + "'");
+        return;
+    }
+    const json& arr = obj.at(key);
+    if (!arr.is_array() || arr.empty() || arr.size() > 4)
+        fail(src, "key '" + key + "': expected an array of 1 to 4 numbers");
+    out = {};
+    for (std::size_t i = 0; i < arr.size(); ++i) out[i] = number(arr[i], key + "[" + std::to_string(i) + "]", src);
+}
+
+}  // namespace
+
+Params params_from_json_text(const std::string& text, const std::string& src) {
+    json j;
+    try {
+        j = json::parse(text);
+    } catch (const json::parse_error& e) {
+        // nlohmann reports a byte offset; turn it into line and column.
+        std::size_t line = 1, col = 1;
+        for (std::size_t i = 0; i < std::min<std::size_t>(e.byte ? e.byte - 1 : 0, text.size()); ++i) {
+            if (text[i] == '\n') {
+                ++line;
+                col = 1;
+            } else {
+                ++col;
+            }
+        }
+        fail(src, "line " + std::to_string(line) + ", column " + std::to_string(col) + ": invalid JSON (" +
+                      std::string(e.what()) + ")");
+    }
+    if (!j.is_object()) fail(src, "expected a JSON object at the top level");
+    check_keys(j, {"name", "base", "stiffness", "m", "m0e", "k", "c", "T", "eps", "a", "b", "xI", "impact", "effects"},
+               "", src);
+
+    // "base": start from a built-in version and override what the file gives; otherwise every key is required.
+    Params p;
+    bool required = true;
+    if (j.contains("base")) {
+        if (!j["base"].is_string()) fail(src, "key 'base': expected a version name such as \"A1H\"");
+        try {
+            p = make_version(j["base"].get<std::string>());
+        } catch (const ParamError& e) {
+            fail(src, std::string("key 'base': ") + e.what());
+        }
+        required = false;
+    }
+    if (j.contains("name")) {
+        if (!j["name"].is_string()) fail(src, "key 'name': expected a string");
+        p.name = j["name"].get<std::string>();
+    } else if (!required) {
+        p.name = j["base"].get<std::string>() + "*";
+    } else {
+        p.name = "custom";
+    }
+    if (j.contains("stiffness")) {
+        if (!j["stiffness"].is_string()) fail(src, "key 'stiffness': expected a string");
+        p.stiffness_id = j["stiffness"].get<std::string>();
+    }
+    read(j, "m", p.m, required, "", src);
+    read(j, "m0e", p.m0e, required, "", src);
+    read(j, "k", p.k, required, "", src);
+    read(j, "c", p.c, required, "", src);
+    read(j, "T", p.T, required, "", src);
+    read(j, "eps", p.eps, required, "", src);
+    read_coeffs(j, "a", p.a, required, src);
+    read_coeffs(j, "b", p.b, required, src);
+    read(j, "xI", p.xI, required, "", src);
+
+    if (j.contains("impact")) {
+        const json& im = j["impact"];
+        if (!im.is_object()) fail(src, "key 'impact': expected an object with \"model\" and its parameters");
+        if (!im.contains("model") || !im["model"].is_string()) fail(src, "missing key 'impact.model' (C, C1, G or H)");
+        const std::string model = im["model"].get<std::string>();
+        const ImpactModel* law = find_impact(model);
+        if (!law) fail(src, "key 'impact.model': unknown impact model '" + model + "' (known: C, C1, G, H)");
+        const bool same_law = p.impact == law;
+        p.impact = law;
+        if (!same_law) p.ip = law->defaults;
+        std::set<std::string> allowed{"model"};
+        for (std::size_t i = 0; i < kMaxLawParams && law->names[i]; ++i) allowed.insert(law->names[i]);
+        check_keys(im, allowed, "impact.", src);
+        // Without a base, or when the file switches the law, each of its parameters must be given.
+        for (std::size_t i = 0; i < kMaxLawParams && law->names[i]; ++i)
+            read(im, law->names[i], p.ip[i], required || !same_law, "impact.", src);
+    } else if (required) {
+        fail(src, "missing key 'impact'");
+    }
+
+    if (j.contains("effects")) {
+        const json& ef = j["effects"];
+        if (!ef.is_array()) fail(src, "key 'effects': expected an array of objects");
+        p.effects.clear();
+        for (std::size_t n = 0; n < ef.size(); ++n) {
+            const std::string where = "effects[" + std::to_string(n) + "]";
+            const json& e = ef[n];
+            if (!e.is_object() || !e.contains("id") || !e["id"].is_string())
+                fail(src, "key '" + where + "': expected an object with a string \"id\"");
+            EffectInstance* inst = nullptr;
+            try {
+                inst = &add_effect(p, e["id"].get<std::string>());
+            } catch (const ParamError& err) {
+                fail(src, "key '" + where + ".id': " + err.what());
+            }
+            std::set<std::string> allowed{"id"};
+            for (std::size_t i = 0; i < kMaxLawParams && inst->law->names[i]; ++i) allowed.insert(inst->law->names[i]);
+            check_keys(e, allowed, where + ".", src);
+            for (std::size_t i = 0; i < kMaxLawParams && inst->law->names[i]; ++i)
+                read(e, inst->law->names[i], inst->p[i], true, where + ".", src);
+        }
+    }
+    validate(p, src);
+    return p;
+}
+
+Params load_params(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw ParamError(path + ": cannot open the parameter file");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return params_from_json_text(ss.str(), path);
+}
+
+std::string params_to_json_text(const Params& p) {
+    json j;
+    j["name"] = p.name;
+    j["stiffness"] = p.stiffness_id;
+    j["m"] = p.m;
+    j["m0e"] = p.m0e;
+    j["k"] = p.k;
+    j["c"] = p.c;
+    j["T"] = p.T;
+    j["eps"] = p.eps;
+    j["a"] = json::array();
+    j["b"] = json::array();
+    for (double v : p.a) j["a"].push_back(v);
+    for (double v : p.b) j["b"].push_back(v);
+    j["xI"] = p.xI;
+    json im;
+    im["model"] = p.impact->id;
+    for (std::size_t i = 0; i < kMaxLawParams && p.impact->names[i]; ++i) im[p.impact->names[i]] = p.ip[i];
+    j["impact"] = im;
+    j["effects"] = json::array();
+    for (const auto& e : p.effects) {
+        json ej;
+        ej["id"] = e.law->id;
+        for (std::size_t i = 0; i < kMaxLawParams && e.law->names[i]; ++i) ej[e.law->names[i]] = e.p[i];
+        j["effects"].push_back(ej);
+    }
+    return j.dump(2) + "\n";
+}
+
+void save_params(const Params& p, const std::string& path) {
+    std::ofstream out(path);
+    if (!out) throw ParamError(path + ": cannot write the parameter file");
+    out << params_to_json_text(p);
+    if (!out) throw ParamError(path + ": write failed");
+}
+
+Params resolve_model(const std::string& name_or_path) {
+    const bool is_file = name_or_path.size() > 5 && name_or_path.substr(name_or_path.size() - 5) == ".json";
+    return is_file ? load_params(name_or_path) : make_version(name_or_path);
+}
+
+}  // namespace impactlab

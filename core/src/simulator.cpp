@@ -1,0 +1,346 @@
+#include "impactlab/simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "impactlab/forces.hpp"
+
+namespace impactlab {
+
+const char* regime_name(Regime r) {
+    switch (r) {
+        case Regime::Free: return "I";
+        case Regime::Sticking: return "II";
+        case Regime::Contact: return "III";
+    }
+    return "?";
+}
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr double kRestartStep = 1e-4;   // [s] first step after a discontinuity; the controller grows it
+
+// Sum of the extra effects at one instant.
+inline EffectForce effects_at(const Params& p, const ForceContext& ctx) {
+    EffectForce sum;
+    for (const auto& e : p.effects) {
+        const EffectForce f = e.law->force(e.p.data(), ctx);
+        sum.F += f.F;
+        sum.dF_dx += f.dF_dx;
+        sum.dF_dv += f.dF_dv;
+        sum.dF_dt += f.dF_dt;
+    }
+    return sum;
+}
+
+// Eq. (1) as a first-order system y = (x, v) for the stepper, in free flight or against a compliant bumper.
+struct RigSystem {
+    const Params& p;
+    const Drive& d;
+    bool compliant;
+
+    Vec2 rhs(double t, const Vec2& y) const {
+        const double w = d.omega(t), phi = d.phi(t);
+        double F = unbalance_force(p, phi, w) - resistance(p, y[1]).F - spring_magnet(p, y[0]).F;
+        if (compliant) F -= p.impact->contact(p.ip.data(), y[0] - p.xI, y[1]).F;
+        if (!p.effects.empty()) F += effects_at(p, {t, y[0], y[1], phi, w, d.alpha(t), p.m0e, p.xI}).F;
+        return {y[1], F / p.m};
+    }
+
+    void jacobian(double t, const Vec2& y, Mat2& J, Vec2& dfdt) const {
+        const double w = d.omega(t), phi = d.phi(t), al = d.alpha(t);
+        double dFdx = -spring_magnet(p, y[0]).dF, dFdv = -resistance(p, y[1]).dF;
+        double dFdt = p.m0e * (2.0 * w * al * std::sin(phi) + w * w * w * std::cos(phi));
+        if (compliant) {
+            const ContactForce c = p.impact->contact(p.ip.data(), y[0] - p.xI, y[1]);
+            dFdx -= c.dF_dh;
+            dFdv -= c.dF_dhdot;
+        }
+        if (!p.effects.empty()) {
+            const EffectForce e = effects_at(p, {t, y[0], y[1], phi, w, al, p.m0e, p.xI});
+            dFdx += e.dF_dx;
+            dFdv += e.dF_dv;
+            dFdt += e.dF_dt;
+        }
+        J << 0.0, 1.0, dFdx / p.m, dFdv / p.m;
+        dfdt << 0.0, dFdt / p.m;
+    }
+};
+
+// Illinois (modified regula falsi) on g over [a, b] with g(a) <= 0 < g(b) or the reverse.
+template <class G>
+double find_root(G&& g, double a, double b, double ga, double gb) {
+    for (int it = 0; it < 100 && b - a > 1e-15 * std::max(1.0, std::abs(b)); ++it) {
+        const double c = (ga == gb) ? 0.5 * (a + b) : b - gb * (b - a) / (gb - ga);
+        const double m = std::clamp(c, a, b);
+        const double gm = g(m);
+        if (gm == 0.0) return m;
+        if ((gm > 0) == (gb > 0)) {
+            b = m;
+            gb = gm;
+            ga *= 0.5;
+        } else {
+            a = m;
+            ga = gm;
+            gb *= 0.5;
+        }
+    }
+    return b;   // the side past the crossing
+}
+
+}  // namespace
+
+double normal_force(const Params& p, const Drive& d, double t) {
+    const double w = d.omega(t), phi = d.phi(t);
+    double N = unbalance_force(p, phi, w) - spring_magnet(p, p.xI).F;
+    if (!p.effects.empty()) N += effects_at(p, {t, p.xI, 0.0, phi, w, d.alpha(t), p.m0e, p.xI}).F;
+    return N;
+}
+
+double mechanical_energy(const Params& p, double x, double v) {
+    double E = 0.5 * p.m * v * v + spring_magnet_potential(p, x);
+    if (!p.rigid() && x > p.xI) {
+        const double n1 = p.ip[2];
+        E += p.ip[0] * std::pow(x - p.xI, n1 + 1.0) / (n1 + 1.0);
+    }
+    return E;
+}
+
+double bumper_force(const Params& p, const Drive& d, const State& s) {
+    if (!p.rigid()) return p.impact->contact(p.ip.data(), s.x - p.xI, s.v).F;
+    if (s.regime == Regime::Contact) return std::max(0.0, normal_force(p, d, s.t));
+    if (s.regime == Regime::Sticking) {
+        const double T = p.impact->duration(p.ip.data(), s.v_impact);
+        return T > 0 ? p.m * (std::abs(s.v_impact) + std::abs(s.v_release)) / T : 0.0;
+    }
+    return 0.0;
+}
+
+ForceTerms force_terms(const Params& p, double t, double x, double v, double phi, double omega, double alpha) {
+    ForceTerms f;
+    f.resistance = resistance(p, v).F;
+    f.spring_magnet = spring_magnet(p, x).F;
+    f.impact = p.rigid() ? 0.0 : p.impact->contact(p.ip.data(), x - p.xI, v).F;
+    f.unbalance = unbalance_force(p, phi, omega);
+    if (!p.effects.empty()) f.effects = effects_at(p, {t, x, v, phi, omega, alpha, p.m0e, p.xI}).F;
+    return f;
+}
+
+void Simulator::make_consistent(const Params& p, const Drive& d, State& s) {
+    if (p.rigid()) {
+        if (s.regime != Regime::Free || s.x > p.xI || (s.x == p.xI && s.v >= 0)) {
+            // On (or beyond) the bumper: held there, pressed or not.
+            if (s.regime != Regime::Sticking) s.regime = normal_force(p, d, s.t) > 0 ? Regime::Contact : Regime::Free;
+            s.x = p.xI;
+            s.v = 0.0;
+        }
+    } else {
+        s.regime = Regime::Free;
+    }
+    s.side = 0;
+    s.h = 0;
+    sync_sections(d, s);
+}
+
+void Simulator::sync_sections(const Drive& d, State& s) {
+    // The next section is the first phi = 2 pi n strictly after now.
+    const double periods = d.phi(s.t) / kTwoPi;
+    s.next_section = static_cast<std::int64_t>(std::floor(periods + 1e-9)) + 1;
+}
+
+bool Simulator::step(const Params& p, const Drive& d, State& s, double t_limit, Observer* obs) {
+    if (!(s.t < t_limit)) return false;
+    const double t_sec = d.time_of_phase(kTwoPi * static_cast<double>(s.next_section));
+    if (t_sec <= s.t) {   // a section at this very instant was already taken (or the drive was swapped)
+        ++s.next_section;
+        return true;
+    }
+    double t_stop = std::min(t_limit, d.next_knot(s.t));
+    const bool at_section = t_sec <= t_stop;
+    if (at_section) t_stop = t_sec;
+
+    if (s.regime == Regime::Free) {
+        free_step(p, d, s, t_stop, at_section, obs);
+    } else {
+        hold_step(p, d, s, t_stop, obs);
+    }
+    if (at_section && s.t == t_stop) {
+        const bool held = s.regime != Regime::Free;
+        if (obs) obs->on_section({s.next_section, s.t, held ? p.xI : s.x, held ? 0.0 : s.v, s.regime});
+        ++s.next_section;
+    }
+    return true;
+}
+
+void Simulator::advance(const Params& p, const Drive& d, State& s, double t_end, Observer* obs) {
+    while (s.t < t_end) {
+        if (!step(p, d, s, t_end, obs)) break;
+        if (obs && obs->stop()) break;
+    }
+}
+
+bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_stop, bool /*stop_is_section*/,
+                          Observer* obs) {
+    const RigSystem sys{p, d, !p.rigid()};
+    const Vec2 y0(s.x, s.v);
+    const double t0 = s.t;
+    double h = std::min(s.h > 0 ? s.h : kRestartStep, tol_.h_max);
+    bool truncated = false;
+    // Land exactly on t_stop; avoid leaving a sliver behind it.
+    if (t0 + 1.05 * h >= t_stop) {
+        h = t_stop - t0;
+        truncated = true;
+    }
+    double err = 0;
+    for (;;) {
+        work_.take(sys, t0, y0, h);
+        err = work_.error_norm(tol_);
+        if (err <= 1.0 || h <= tol_.h_min) break;
+        ++s.rejected;
+        h = std::isfinite(err) ? next_step_size(h, err, false) : 0.25 * h;
+        h = std::max(h, tol_.h_min);
+        truncated = false;
+    }
+    ++s.steps;
+    const double h_next = next_step_size(h, err, true);
+
+    // Events on the accepted step: the bumper plane x = xI, sampled on the dense output.
+    const double xI = p.xI;
+    if (s.side == 0 && !p.rigid()) s.side = s.x > xI ? 1 : -1;
+    const bool inside_before = p.rigid() ? false : s.side > 0;
+    auto crossed = [&](double t) {
+        const bool inside = work_.at(t)[0] - xI > 0;
+        return inside != inside_before;
+    };
+    constexpr int kSamples = 4;
+    double ta = t0, tb = t0;
+    bool event = false;
+    for (int k = 1; k <= kSamples; ++k) {
+        tb = (k == kSamples) ? t0 + h : t0 + h * k / kSamples;
+        if (crossed(tb)) {
+            event = true;
+            break;
+        }
+        ta = tb;
+    }
+    if (!event) {
+        s.t = truncated ? t_stop : t0 + h;
+        s.x = work_.y1[0];
+        s.v = work_.y1[1];
+        s.h = truncated ? std::max(h_next, s.h) : h_next;
+        if (obs) obs->on_piece({t0, s.t, Regime::Free, &work_, 0.0});
+        return truncated;
+    }
+
+    // Bracket the first crossing; a step that starts on the bumper plane (just released) needs a point
+    // clear of it, found by halving towards the start.
+    auto g = [&](double t) { return (work_.at(t)[0] - xI) * (inside_before ? -1.0 : 1.0); };
+    if (ta == t0 && g(t0) >= 0) {
+        double tm = tb;
+        for (int j = 0; j < 60 && g(tm) >= 0; ++j) tm = t0 + 0.5 * (tm - t0);
+        if (g(tm) < 0) ta = tm;
+    }
+    double t_ev = (g(ta) < 0) ? find_root(g, ta, tb, g(ta), g(tb)) : ta;
+    // Hit the event with a real step (not the interpolant): Newton on the step length.
+    for (int it = 0; it < 4; ++it) {
+        retry_.take(sys, t0, y0, std::max(t_ev - t0, tol_.h_min));
+        const double miss = retry_.y1[0] - xI;
+        if (std::abs(miss) <= 1e-14 || retry_.y1[1] == 0.0) break;
+        const double t_new = std::clamp(t_ev - miss / retry_.y1[1], t0 + tol_.h_min, t0 + h);
+        if (std::abs(t_new - t_ev) <= 1e-15 * std::max(1.0, std::abs(t_ev))) break;
+        t_ev = t_new;
+    }
+    s.t = retry_.t0 + retry_.h;
+    s.x = retry_.y1[0];
+    s.v = retry_.y1[1];
+    s.h = std::min(h_next, kRestartStep);
+    if (obs) obs->on_piece({t0, s.t, Regime::Free, &retry_, 0.0});
+
+    if (!p.rigid()) {
+        s.side = s.v > 0 ? 1 : -1;   // entering if moving right
+        return false;
+    }
+    // Rigid bumper: an impact.
+    const double v_minus = std::max(s.v, 0.0);
+    const double kappa = p.impact->restitution(p.ip.data(), v_minus);
+    const double t_imp = p.impact->duration(p.ip.data(), v_minus);
+    const double v_plus = -kappa * v_minus;
+    ++s.impacts;
+    s.x = xI;
+    if (obs) obs->on_impact({s.t, v_minus, v_plus, t_imp});
+    if (t_imp > 0) {
+        s.regime = Regime::Sticking;
+        s.t_release = s.t + t_imp;
+        s.v_release = v_plus;
+        s.v_impact = v_minus;
+        s.v = 0.0;
+        if (obs) obs->on_regime(s.t, Regime::Free, Regime::Sticking);
+    } else {
+        release(p, d, s, v_plus, obs);
+    }
+    return false;
+}
+
+void Simulator::release(const Params& p, const Drive& d, State& s, double v_plus, Observer* obs) {
+    const Regime before = s.regime;
+    s.x = p.xI;
+    if (std::abs(v_plus) < p.impact->eps_v && normal_force(p, d, s.t) > 0) {
+        s.regime = Regime::Contact;
+        s.v = 0.0;
+    } else {
+        s.regime = Regime::Free;
+        s.v = v_plus;
+    }
+    s.h = kRestartStep;
+    if (obs && before != s.regime) obs->on_regime(s.t, before, s.regime);
+}
+
+void Simulator::hold_step(const Params& p, const Drive& d, State& s, double t_stop, Observer* obs) {
+    const double t0 = s.t;
+    if (s.regime == Regime::Sticking) {
+        const double t1 = std::min(t_stop, s.t_release);
+        s.t = t1;
+        if (obs) obs->on_piece({t0, t1, Regime::Sticking, nullptr, p.xI});
+        if (t1 == s.t_release) release(p, d, s, s.v_release, obs);
+        return;
+    }
+    // Regime III: held until the normal force N(t) (known in closed form) falls to zero.
+    const double w = std::max(d.omega(t0), 1e-3);
+    const double scan = std::min(kTwoPi / w / 64.0, 0.05);
+    double ta = t0, na = normal_force(p, d, t0);
+    while (ta < t_stop) {
+        const double tb = std::min(ta + scan, t_stop);
+        const double nb = normal_force(p, d, tb);
+        if (nb <= 0.0) {
+            auto N = [&](double t) { return normal_force(p, d, t); };
+            const double t_lift = na > 0 ? find_root(N, ta, tb, na, nb) : ta;
+            s.t = t_lift;
+            if (obs) obs->on_piece({t0, t_lift, Regime::Contact, nullptr, p.xI});
+            s.regime = Regime::Free;
+            s.x = p.xI;
+            s.v = 0.0;
+            s.h = kRestartStep;
+            if (obs) obs->on_regime(t_lift, Regime::Contact, Regime::Free);
+            return;
+        }
+        ta = tb;
+        na = nb;
+    }
+    s.t = t_stop;
+    if (obs) obs->on_piece({t0, t_stop, Regime::Contact, nullptr, p.xI});
+}
+
+void UniformSampler::on_piece(const Piece& piece) {
+    while (next_ <= piece.t1) {
+        if (next_ >= piece.t0) {
+            const Vec2 y = piece.at(next_);
+            sink_({next_, y[0], y[1], drive_.phi(next_), drive_.omega(next_), piece.regime});
+        }
+        ++k_;
+        next_ = t_first_ + dt_ * static_cast<double>(k_);
+    }
+}
+
+}  // namespace impactlab

@@ -1,0 +1,136 @@
+#include "impactlab/sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <ostream>
+#include <numbers>
+
+namespace impactlab {
+
+namespace {
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+// Collects section points with n in [first, last] and watches for cancellation.
+class SectionCollector : public Observer {
+public:
+    SectionCollector(std::int64_t first, Progress* progress) : first_(first), progress_(progress) {}
+    void on_section(const SectionPoint& sp) override {
+        if (sp.n >= first_) points.push_back(sp);
+        if (on_section_progress) on_section_progress(sp);
+    }
+    bool stop() const override { return progress_ && progress_->cancel.load(std::memory_order_relaxed); }
+    std::vector<SectionPoint> points;
+    std::function<void(const SectionPoint&)> on_section_progress;
+
+private:
+    std::int64_t first_;
+    Progress* progress_;
+};
+
+bool cancelled(const Progress* p) { return p && p->cancel.load(std::memory_order_relaxed); }
+}  // namespace
+
+std::vector<SectionPoint> poincare_section(const Params& p, double omega, int periods, int transient, State& s,
+                                           const Tolerances& tol, Progress* progress) {
+    Simulator sim(tol);
+    const Drive drive(omega, s.t, 0.0);
+    Simulator::make_consistent(p, drive, s);
+    SectionCollector col(transient + 1, progress);
+    if (progress)
+        col.on_section_progress = [&](const SectionPoint& sp) {
+            progress->fraction.store(static_cast<double>(sp.n) / (periods + transient), std::memory_order_relaxed);
+        };
+    sim.advance(p, drive, s, drive.time_of_phase(kTwoPi * (periods + transient)), &col);
+    return std::move(col.points);
+}
+
+Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress, const Tolerances& tol) {
+    Diagram diag;
+    diag.model = p.name;
+    diag.protocol = spec.direction == SweepDirection::Up ? "cf-up" : "cf-down";
+    std::vector<double> omegas(static_cast<std::size_t>(spec.steps));
+    for (int j = 0; j < spec.steps; ++j)
+        omegas[static_cast<std::size_t>(j)] =
+            spec.steps == 1 ? spec.omega_min
+                            : spec.omega_min + (spec.omega_max - spec.omega_min) * j / (spec.steps - 1);
+    if (spec.direction == SweepDirection::Down) std::reverse(omegas.begin(), omegas.end());
+    // Progress weighted by simulated time, which goes as 1/omega.
+    double total = 0, done = 0;
+    for (double w : omegas) total += 1.0 / w;
+    diag.points.reserve(omegas.size() * static_cast<std::size_t>(spec.record));
+
+    Simulator sim(tol);
+    State s;   // at rest at x = 0
+    const int n_total = spec.transient + spec.record;
+    bool first = true;
+    for (double w : omegas) {
+        if (cancelled(progress)) {
+            diag.cancelled = true;
+            break;
+        }
+        const Drive drive(w, s.t, 0.0);   // each level starts at a section instant: phi = 0 mod 2 pi
+        if (first) Simulator::make_consistent(p, drive, s);
+        else Simulator::sync_sections(drive, s);
+        first = false;
+        SectionCollector col(spec.transient + 1, progress);
+        if (progress)
+            col.on_section_progress = [&](const SectionPoint& sp) {
+                progress->fraction.store((done + (1.0 / w) * sp.n / n_total) / total, std::memory_order_relaxed);
+            };
+        sim.advance(p, drive, s, drive.time_of_phase(kTwoPi * n_total), &col);
+        if (cancelled(progress)) {
+            diag.cancelled = true;
+            break;
+        }
+        for (const auto& sp : col.points) diag.points.push_back({w, sp.x, sp.v});
+        done += 1.0 / w;
+    }
+    diag.simulated_seconds = s.t;
+    diag.steps = s.steps;
+    diag.impacts = s.impacts;
+    if (progress && !diag.cancelled) progress->fraction.store(1.0);
+    return diag;
+}
+
+Diagram run_ef_ramp(const Params& p, const EfSpec& spec, Progress* progress, const Tolerances& tol) {
+    Diagram diag;
+    diag.model = p.name;
+    diag.protocol = "ef";
+    const Drive drive = Drive::ef_ramp(spec.omega_max, spec.t_ramp);
+    Simulator sim(tol);
+    State s;
+    Simulator::make_consistent(p, drive, s);
+    SectionCollector col(1, progress);
+    col.on_section_progress = [&](const SectionPoint& sp) {
+        progress->fraction.store(sp.t / spec.t_ramp, std::memory_order_relaxed);
+    };
+    if (!progress) col.on_section_progress = nullptr;
+    sim.advance(p, drive, s, spec.t_ramp, &col);
+    diag.cancelled = cancelled(progress);
+    for (const auto& sp : col.points) diag.points.push_back({drive.omega(sp.t), sp.x, sp.v});
+    diag.simulated_seconds = s.t;
+    diag.steps = s.steps;
+    diag.impacts = s.impacts;
+    if (progress && !diag.cancelled) progress->fraction.store(1.0);
+    return diag;
+}
+
+int count_period(const std::vector<double>& xs, double tol, int max_period) {
+    if (xs.empty()) return 0;
+    std::vector<double> v(xs);
+    std::sort(v.begin(), v.end());
+    int clusters = 1;
+    for (std::size_t i = 1; i < v.size(); ++i)
+        if (v[i] - v[i - 1] > tol) ++clusters;
+    return std::min(clusters, max_period + 1);
+}
+
+void write_diagram_csv(const Diagram& d, std::ostream& out) {
+    const auto old = out.precision(10);
+    out << "omega,x,v\n";
+    for (const auto& pt : d.points) out << pt.omega << ',' << pt.x << ',' << pt.v << '\n';
+    out.precision(old);
+}
+
+}  // namespace impactlab
