@@ -52,7 +52,7 @@ struct Figure {
     int panel_height = 300;
     std::string title;
     std::vector<Panel> panels;
-    float font_scale = 1.0f;   // multiplies every font size (and the text margins)
+    float font_scale = 1.0f;   // multiplies every font size and the text margins (not line widths or dots)
 };
 
 struct Image {
@@ -86,9 +86,10 @@ std::vector<Mapping> layout(const Figure& fig);
 // Tick positions: multiples of a "nice" step (1, 2 or 5 times a power of ten) inside [lo, hi]
 // (with a relative tolerance of 1e-9 of the step at both ends), at most max(max_count, 1) of them,
 // using the smallest such step. The first tick is less than one step above lo and the last less than
-// one step below hi. lo > hi are swapped; lo == hi gives {lo}; non-finite input gives {}.
+// one step below hi. lo > hi are swapped; lo == hi gives {lo}; non-finite input, or hi - lo below 1e-300
+// or overflowing, gives {}.
 std::vector<double> nice_ticks(double lo, double hi, int max_count);
-// The step nice_ticks(lo, hi, max_count) uses (0 when lo == hi or the input is not finite).
+// The step nice_ticks(lo, hi, max_count) uses (0 when it returns {} or {lo}).
 double nice_step(double lo, double hi, int max_count);
 // Labels for ticks spaced by `step`: fixed notation with the decimals the step needs ("0.05", "-1.5",
 // "20"), or, when the largest |tick| is >= 1e5 or < 1e-2, short scientific notation ("-5e-3", "2.5e5").

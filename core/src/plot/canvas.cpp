@@ -1,5 +1,7 @@
 #include "plot/canvas.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace impactlab::plot::detail {
@@ -44,11 +46,13 @@ bool clip_segment(double& x0, double& y0, double& x1, double& y1, double xlo, do
             t1 = std::min(t1, t);
         if (t0 > t1) return false;
     }
+    // Clamped: with far-away ends (1e300) the products lose all precision near the box.
     const double nx0 = x0 + t0 * dx, ny0 = y0 + t0 * dy, nx1 = x0 + t1 * dx, ny1 = y0 + t1 * dy;
-    x0 = nx0;
-    y0 = ny0;
-    x1 = nx1;
-    y1 = ny1;
+    if (!std::isfinite(nx0) || !std::isfinite(ny0) || !std::isfinite(nx1) || !std::isfinite(ny1)) return false;
+    x0 = std::clamp(nx0, xlo, xhi);
+    y0 = std::clamp(ny0, ylo, yhi);
+    x1 = std::clamp(nx1, xlo, xhi);
+    y1 = std::clamp(ny1, ylo, yhi);
     return true;
 }
 

@@ -103,6 +103,7 @@ void raster_segment(double x0, double y0, double x1, double y1, double half_widt
 }
 
 // Liang-Barsky: clips the segment to the rectangle [xlo, xhi] x [ylo, yhi]; false if nothing is left.
+// The ends it leaves are finite and inside the rectangle.
 bool clip_segment(double& x0, double& y0, double& x1, double& y1, double xlo, double ylo, double xhi, double yhi);
 
 // A coverage buffer over a rectangle: primitives of one series write max(coverage) into it, then it is

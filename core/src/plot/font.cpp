@@ -62,73 +62,56 @@ const FontFile& font_file() {
 const std::string& font_path() { return font_file().path; }
 
 namespace detail {
-namespace {
-
-// Everything a plot label plausibly needs beyond ASCII: Latin-1, Greek, and some math symbols.
-std::vector<char32_t> baked_codepoints() {
-    std::vector<char32_t> cps;
-    for (char32_t c = 32; c < 127; ++c) cps.push_back(c);
-    for (char32_t c = 0xA0; c <= 0xFF; ++c) cps.push_back(c);
-    for (char32_t c = 0x391; c <= 0x3C9; ++c) cps.push_back(c);
-    for (char32_t c : {0x3D1, 0x3D5, 0x3F5, 0x2013, 0x2014, 0x2026, 0x2032, 0x2033, 0x2070, 0x2071, 0x2190, 0x2191,
-                       0x2192, 0x2193, 0x2202, 0x2206, 0x2207, 0x2211, 0x2212, 0x221A, 0x221D, 0x221E, 0x222B, 0x2248,
-                       0x2260, 0x2261, 0x2264, 0x2265, 0x22C5, 0x27E8, 0x27E9, 0xFFFD})
-        cps.push_back(c);
-    for (char32_t c = 0x2074; c <= 0x208E; ++c) cps.push_back(c);   // superscripts and subscripts
-    return cps;
-}
-
-}  // namespace
 
 GlyphSet::GlyphSet(int pixel_size) : size_(pixel_size) {
-    const FontFile& font = font_file();
-    const stbtt_fontinfo* info = &font.info;
+    const stbtt_fontinfo* info = &font_file().info;
     scale_ = stbtt_ScaleForMappingEmToPixels(info, static_cast<float>(pixel_size));
     int asc = 0, desc = 0, gap = 0;
     stbtt_GetFontVMetrics(info, &asc, &desc, &gap);
     ascent_ = static_cast<float>(asc) * scale_;
     descent_ = static_cast<float>(desc) * scale_;
 
-    ascii_.fill(-1);
-    for (char32_t cp : baked_codepoints()) {
-        const int index = stbtt_FindGlyphIndex(info, static_cast<int>(cp));
-        if (index == 0 && cp != U'?') continue;   // not in the font: falls back to '?'
-        Glyph g;
-        g.index = index;
-        int adv = 0, lsb = 0;
-        stbtt_GetGlyphHMetrics(info, index, &adv, &lsb);
-        g.advance = static_cast<float>(adv) * scale_;
-        for (int p = 0; p < kSubpixel; ++p) {
-            const float shift = static_cast<float>(p) / kSubpixel;
-            GlyphBitmap& b = g.phase[static_cast<std::size_t>(p)];
-            int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-            stbtt_GetGlyphBitmapBoxSubpixel(info, index, scale_, scale_, shift, 0.0f, &x0, &y0, &x1, &y1);
-            b.x0 = x0;
-            b.y0 = y0;
-            b.w = std::max(0, x1 - x0);
-            b.h = std::max(0, y1 - y0);
-            b.alpha.assign(static_cast<std::size_t>(b.w) * static_cast<std::size_t>(b.h), 0);
-            if (b.w > 0 && b.h > 0)
-                stbtt_MakeGlyphBitmapSubpixel(info, b.alpha.data(), b.w, b.h, b.w, scale_, scale_, shift, 0.0f, index);
-        }
-        const int slot = static_cast<int>(glyphs_.size());
-        glyphs_.push_back(std::move(g));
-        if (cp < 128)
-            ascii_[cp] = slot;
-        else
-            others_.emplace(cp, slot);
+    ascii_.resize(128);
+    const int question = stbtt_FindGlyphIndex(info, '?');
+    for (int cp = 0; cp < 128; ++cp) {
+        const int index = cp >= 32 && cp < 127 ? stbtt_FindGlyphIndex(info, cp) : 0;
+        ascii_[static_cast<std::size_t>(cp)] = bake(index != 0 || cp == ' ' ? index : question);
     }
-    fallback_ = ascii_[static_cast<std::size_t>('?')];
-    for (auto& slot : ascii_)
-        if (slot < 0) slot = fallback_;
-    const GlyphBitmap& zero = glyphs_[static_cast<std::size_t>(ascii_[static_cast<std::size_t>('0')])].phase[0];
-    cap_ = static_cast<float>(-zero.y0);
+    cap_ = static_cast<float>(-ascii_[static_cast<std::size_t>('0')].phase[0].y0);
+}
+
+Glyph GlyphSet::bake(int glyph_index) const {
+    const stbtt_fontinfo* info = &font_file().info;
+    Glyph g;
+    g.index = glyph_index;
+    int adv = 0, lsb = 0;
+    stbtt_GetGlyphHMetrics(info, glyph_index, &adv, &lsb);
+    g.advance = static_cast<float>(adv) * scale_;
+    for (int p = 0; p < kSubpixel; ++p) {
+        const float shift = static_cast<float>(p) / kSubpixel;
+        GlyphBitmap& b = g.phase[static_cast<std::size_t>(p)];
+        int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+        stbtt_GetGlyphBitmapBoxSubpixel(info, glyph_index, scale_, scale_, shift, 0.0f, &x0, &y0, &x1, &y1);
+        b.x0 = x0;
+        b.y0 = y0;
+        b.w = std::max(0, x1 - x0);
+        b.h = std::max(0, y1 - y0);
+        b.alpha.assign(static_cast<std::size_t>(b.w) * static_cast<std::size_t>(b.h), 0);
+        if (b.w > 0 && b.h > 0)
+            stbtt_MakeGlyphBitmapSubpixel(info, b.alpha.data(), b.w, b.h, b.w, scale_, scale_, shift, 0.0f, glyph_index);
+    }
+    return g;
 }
 
 const Glyph& GlyphSet::glyph(char32_t codepoint) const {
-    if (codepoint < 128) return glyphs_[static_cast<std::size_t>(ascii_[codepoint])];
-    const auto it = others_.find(codepoint);
-    return glyphs_[static_cast<std::size_t>(it != others_.end() ? it->second : fallback_)];
+    if (codepoint < 128) return ascii_[codepoint];
+    const std::lock_guard<std::mutex> lock(mutex_);
+    auto it = others_.find(codepoint);
+    if (it == others_.end()) {
+        const int index = codepoint <= 0x10FFFF ? stbtt_FindGlyphIndex(&font_file().info, static_cast<int>(codepoint)) : 0;
+        it = others_.emplace(codepoint, index != 0 ? std::make_unique<const Glyph>(bake(index)) : nullptr).first;
+    }
+    return it->second ? *it->second : ascii_[static_cast<std::size_t>('?')];
 }
 
 float GlyphSet::kern(const Glyph& left, const Glyph& right) const {

@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -32,16 +34,19 @@ public:
     float ascent() const { return ascent_; }     // > 0, px above the baseline
     float descent() const { return descent_; }   // < 0, px below the baseline
     float cap_height() const { return cap_; }    // height of the digits above the baseline
+    // ASCII is baked up front, any other codepoint on first use; one the font lacks shows as '?'.
+    // The reference stays valid as long as the set.
     const Glyph& glyph(char32_t codepoint) const;
     float kern(const Glyph& left, const Glyph& right) const;
 
 private:
+    Glyph bake(int glyph_index) const;
+
     int size_;
     float scale_ = 0, ascent_ = 0, descent_ = 0, cap_ = 0;
-    std::vector<Glyph> glyphs_;
-    std::array<int, 128> ascii_{};                 // index into glyphs_
-    std::unordered_map<char32_t, int> others_;     // index into glyphs_
-    int fallback_ = 0;                             // '?'
+    std::vector<Glyph> ascii_;                     // indexed by codepoint, 0..127
+    mutable std::mutex mutex_;                     // guards others_
+    mutable std::unordered_map<char32_t, std::unique_ptr<const Glyph>> others_;   // nullptr: not in the font
 };
 
 // The glyphs of one size, baked on first use (thread-safe). Throws std::runtime_error without a font.

@@ -2,6 +2,8 @@
 // a title and an optional legend.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -39,6 +41,12 @@ struct Style {
     int title_lh, panel_title_lh, label_lh, tick_lh;   // line heights (ascent - descent)
 };
 
+std::string num(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
 int line_height(int px) {
     const auto& g = detail::glyphs(px);
     return static_cast<int>(std::ceil(g.ascent() - g.descent()));
@@ -47,7 +55,7 @@ int line_height(int px) {
 Style make_style(const Figure& fig) {
     const float s = fig.font_scale;
     if (!(s > 0.0f) || !std::isfinite(s) || s > 20.0f)
-        throw std::invalid_argument("impactlab::plot: font_scale must be in (0, 20], got " + std::to_string(s));
+        throw std::invalid_argument("impactlab::plot: font_scale must be in (0, 20], got " + num(s));
     auto scaled = [s](double v, int lo) { return std::max(lo, static_cast<int>(std::lround(v * s))); };
     Style st{};
     st.title_px = scaled(20, 6);
@@ -76,8 +84,9 @@ struct AxisTicks {
     float max_width = 0;
 };
 
-// Ticks over [lo, hi] whose labels keep at least `min_gap` px apart on an axis `length_px` long.
+// As many ticks over [lo, hi] as fit on an axis `length_px` long without their labels touching.
 // horizontal: labels sit side by side (their widths count); otherwise stacked (their height counts).
+// Starts from a generous count and lowers it until the labels keep a gap.
 AxisTicks make_ticks(double lo, double hi, double length_px, bool horizontal, const Style& st) {
     const double per_tick = horizontal ? 7.0 * st.tick_px : 2.6 * st.tick_lh;
     int n = std::max(2, static_cast<int>(length_px / per_tick) + 1);
@@ -105,7 +114,7 @@ AxisTicks make_ticks(double lo, double hi, double length_px, bool horizontal, co
 }
 
 struct Extent {
-    double lo = INFINITY, hi = -INFINITY;
+    double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
     bool any() const { return lo <= hi; }
 };
 
@@ -133,10 +142,9 @@ void resolve_range(double user_lo, double user_hi, const Extent& data, const cha
     const bool fix_lo = std::isfinite(user_lo), fix_hi = std::isfinite(user_hi);
     if (fix_lo && fix_hi && user_lo > user_hi)
         throw std::invalid_argument("impactlab::plot: panel " + std::to_string(panel_index) + ": " + axis + "min (" +
-                                    std::to_string(user_lo) + ") > " + axis + "max (" + std::to_string(user_hi) + ")");
+                                    num(user_lo) + ") > " + axis + "max (" + num(user_hi) + ")");
     double dlo = 0.0, dhi = 1.0;
     if (data.any()) {
-        // Halve before subtracting so that +-1e308 data cannot overflow.
         dlo = data.lo;
         dhi = data.hi;
         if (dlo == dhi) {
@@ -144,7 +152,7 @@ void resolve_range(double user_lo, double user_hi, const Extent& data, const cha
             dlo -= p;
             dhi += p;
         }
-        const double m = kAutoMargin * (dhi / 2 - dlo / 2) * 2;
+        const double m = kAutoMargin * (dhi / 2 - dlo / 2) * 2;   // halved first: +-1e308 cannot overflow
         if (std::isfinite(dlo - m) && std::isfinite(dhi + m)) {
             dlo -= m;
             dhi += m;
@@ -164,7 +172,11 @@ void resolve_range(double user_lo, double user_hi, const Extent& data, const cha
             lo = hi - (std::isfinite(span) && span > 0 ? span : 1.0);
         }
     }
-    if (!(hi > lo) || !std::isfinite(hi - lo)) {   // overflow or a span below the double resolution
+    if (!std::isfinite(hi - lo)) {   // a span beyond the doubles (data near +-1.8e308)
+        lo = std::max(lo, -8e307);
+        hi = std::min(hi, 8e307);
+    }
+    if (!(hi > lo)) {   // a span below the double resolution
         const double c = std::clamp(lo / 2 + hi / 2, -1e300, 1e300);
         const double p = std::max(std::abs(c) * 1e-6, 1e-300);
         lo = c - p;
@@ -367,24 +379,26 @@ void draw_legend(Canvas& cv, const Panel& panel, const Mapping& m, const Style& 
 
     for (std::size_t k = 0; k < entries.size(); ++k) {
         const Series& s = *entries[k];
-        const double yc = box.y0 + inner + static_cast<double>(k) * row_h + (row_h - 3) / 2.0;
+        // On a pixel centre, so that a thin sample line is crisp.
+        const double yc = box.y0 + inner + static_cast<int>(k) * row_h + (row_h - 3) / 2 + 0.5;
         const double x0 = box.x0 + inner;
         Color c = s.color;
         c.a = 255;   // a faint scatter colour would vanish in the legend
         const Paint p = detail::paint(c);
+        const double size = std::isfinite(s.size) ? s.size : 1.0;
         if (s.kind == Series::Kind::Line) {
-            const double hw = std::clamp(static_cast<double>(s.size), 0.5, 4.0) / 2;
+            const double hw = std::clamp(size, 0.5, 4.0) / 2;
             detail::raster_segment(x0, yc, x0 + sample_w, yc, hw, area,
                                    [&](int x, int y, float cov) { cv.blend_unchecked(x, y, p, cov); });
         } else {
-            detail::draw_dot(cv, x0 + sample_w / 2.0, yc, std::clamp(static_cast<double>(s.size), 2.5, 6.0), area, p);
+            detail::draw_dot(cv, x0 + sample_w / 2.0, yc, std::clamp(size, 2.5, 6.0), area, p);
         }
         detail::draw_text(cv, masks[k], x0 + sample_w + st.gap, yc, HAlign::Left, VAlign::Middle,
                           detail::paint(kText));
     }
 }
 
-void draw_panel(Canvas& cv, const Figure& fig, const Panel& panel, const PanelLayout& pl, const Style& st) {
+void draw_panel(Canvas& cv, const Panel& panel, const PanelLayout& pl, const Style& st) {
     const Mapping& m = pl.m;
     const Rect area{m.left, m.top, m.right, m.bottom};
 
@@ -459,7 +473,6 @@ void draw_panel(Canvas& cv, const Figure& fig, const Panel& panel, const PanelLa
                           m.top - st.gap, HAlign::Center, VAlign::Bottom, text);
 
     draw_legend(cv, panel, m, st);
-    (void)fig;
 }
 
 }  // namespace
@@ -483,7 +496,7 @@ Image render(const Figure& fig) {
     if (!fig.title.empty())
         detail::draw_text(cv, detail::rasterize(fig.title, L.st.title_px), L.width / 2.0, L.st.pad, HAlign::Center,
                           VAlign::Top, detail::paint(kText));
-    for (std::size_t p = 0; p < fig.panels.size(); ++p) draw_panel(cv, fig, fig.panels[p], L.panels[p], L.st);
+    for (std::size_t p = 0; p < fig.panels.size(); ++p) draw_panel(cv, fig.panels[p], L.panels[p], L.st);
     return cv.to_image();
 }
 

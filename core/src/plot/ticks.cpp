@@ -35,12 +35,13 @@ Step choose_step(double lo, double hi, int max_count) {
     if (!std::isfinite(lo) || !std::isfinite(hi)) return {};
     if (lo > hi) std::swap(lo, hi);
     const double span = hi - lo;
-    if (!(span > 0) || !std::isfinite(span)) return {};
+    if (!(span >= 1e-300) || !std::isfinite(span)) return {};
     const int n = std::clamp(max_count, 1, kMaxTicks);
-    const int k0 = static_cast<int>(std::floor(std::log10(span / n))) - 1;
+    const int k0 = static_cast<int>(std::floor(std::log10(span) - std::log10(n))) - 1;
     for (int k = k0; k <= k0 + 4; ++k)
         for (int m : {1, 2, 5}) {
             Step s{m, k, m * std::pow(10.0, k)};
+            if (!(s.value > 0) || !std::isfinite(s.value)) continue;
             double first = 0, last = 0;
             tick_range(lo, hi, s.value, first, last);
             if (last - first + 1 <= n) return s;
@@ -74,6 +75,7 @@ std::vector<std::string> format_ticks(const std::vector<double>& ticks, double s
     for (double v : ticks)
         if (std::isfinite(v)) maxabs = std::max(maxabs, std::abs(v));
     if (!(step > 0) || !std::isfinite(step)) step = maxabs > 0 ? maxabs : 1.0;
+    if (maxabs < kTol * step) maxabs = 0;   // only (rounded) zeros
     const int k = static_cast<int>(std::floor(std::log10(step) + 1e-9));
     const bool sci = maxabs >= 1e5 || (maxabs > 0 && maxabs < 1e-2);
 
