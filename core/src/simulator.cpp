@@ -21,6 +21,9 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kRestartStep = 1e-4;   // [s] first step after a discontinuity; the controller grows it
+// h * (largest rate) below which the explicit method is stable (Dormand-Prince's region reaches -3.3 on
+// the real axis); kept below that bound so that a step never hovers at the edge of stability.
+constexpr double kExplicitStabilityLimit = 2.0;
 
 // Sum of the extra effects at one instant.
 inline EffectForce effects_at(const Params& p, const ForceContext& ctx) {
@@ -47,6 +50,17 @@ struct RigSystem {
         if (compliant) F -= p.impact->contact(p.ip.data(), y[0] - p.xI, y[1]).F;
         if (!p.effects.empty()) F += effects_at(p, {t, y[0], y[1], phi, w, d.alpha(t), p.m0e, p.xI}).F;
         return {y[1], F / p.m};
+    }
+
+    // Largest rate of the linearised system [1/s]: friction (and contact damping), contact stiffness.
+    double stiffness(const Vec2& y) const {
+        double damp = resistance(p, y[1]).dF, spring = std::abs(spring_magnet(p, y[0]).dF);
+        if (compliant && y[0] > p.xI) {
+            const ContactForce c = p.impact->contact(p.ip.data(), y[0] - p.xI, y[1]);
+            damp += c.dF_dhdot;
+            spring += c.dF_dh;
+        }
+        return damp / p.m + std::sqrt(spring / p.m);
     }
 
     void jacobian(double t, const Vec2& y, Mat2& J, Vec2& dfdt) const {
@@ -151,6 +165,9 @@ void Simulator::sync_sections(const Drive& d, State& s) {
 }
 
 bool Simulator::step(const Params& p, const Drive& d, State& s, double t_limit, Observer* obs) {
+    // Parameters or drive may have changed since the last call: the FSAL value is only trusted inside one
+    // advance(), where both are fixed.
+    if (!in_advance_) fsal_valid_ = false;
     if (!(s.t < t_limit)) return false;
     const double t_sec = d.time_of_phase(kTwoPi * static_cast<double>(s.next_section));
     if (t_sec <= s.t) {   // a section at this very instant was already taken (or the drive was swapped)
@@ -175,10 +192,13 @@ bool Simulator::step(const Params& p, const Drive& d, State& s, double t_limit, 
 }
 
 void Simulator::advance(const Params& p, const Drive& d, State& s, double t_end, Observer* obs) {
+    fsal_valid_ = false;
+    in_advance_ = true;
     while (s.t < t_end) {
         if (!step(p, d, s, t_end, obs)) break;
         if (obs && obs->stop()) break;
     }
+    in_advance_ = false;
 }
 
 bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_stop, bool /*stop_is_section*/,
@@ -193,18 +213,34 @@ bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_st
         h = t_stop - t0;
         truncated = true;
     }
+    // Stiffness switching: Dormand-Prince where h * rate stays inside its stability region, RODAS4 where
+    // the friction (|v| within a few eps of 0: sticking, creeping) or a compliant contact is stiff.
+    const double rate = sys.stiffness(y0);
     double err = 0;
+    bool explicit_step = false;
     for (;;) {
-        work_.take(sys, t0, y0, h);
+        explicit_step = h * rate < kExplicitStabilityLimit;
+        if (explicit_step) {
+            if (!(fsal_valid_ && fsal_t_ == t0 && fsal_y_ == y0)) fsal_f_ = sys.rhs(t0, y0);
+            work_.take_explicit(sys, t0, y0, h, fsal_f_);
+        } else {
+            work_.take(sys, t0, y0, h);
+        }
         err = work_.error_norm(tol_);
         if (err <= 1.0 || h <= tol_.h_min) break;
         ++s.rejected;
-        h = std::isfinite(err) ? next_step_size(h, err, false) : 0.25 * h;
+        h = std::isfinite(err) ? next_step_size(h, err, false, explicit_step ? 5 : 4) : 0.25 * h;
         h = std::max(h, tol_.h_min);
         truncated = false;
     }
     ++s.steps;
-    const double h_next = next_step_size(h, err, true);
+    double h_next = next_step_size(h, err, true, explicit_step ? 5 : 4);
+    if (explicit_step) {
+        fsal_valid_ = true;
+        fsal_t_ = t0 + h;
+        fsal_y_ = work_.y1;
+        fsal_f_ = work_.f1;
+    }
 
     // Events on the accepted step: the bumper plane x = xI, sampled on the dense output.
     const double xI = p.xI;
@@ -227,6 +263,7 @@ bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_st
     }
     if (!event) {
         s.t = truncated ? t_stop : t0 + h;
+        if (truncated) fsal_t_ = t_stop;
         s.x = work_.y1[0];
         s.v = work_.y1[1];
         s.h = truncated ? std::max(h_next, s.h) : h_next;
@@ -243,11 +280,15 @@ bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_st
         if (g(tm) < 0) ta = tm;
     }
     double t_ev = (g(ta) < 0) ? find_root(g, ta, tb, g(ta), g(tb)) : ta;
-    // Hit the event with a real step (not the interpolant): Newton on the step length.
-    for (int it = 0; it < 4; ++it) {
-        retry_.take(sys, t0, y0, std::max(t_ev - t0, tol_.h_min));
+    // Hit the event with a real step (not the interpolant). A rigid bumper needs x = xI to the last digit:
+    // Newton on the step length. For a compliant bumper the crossing is only a restart point at the
+    // kink of h^n1, so the interpolated time is enough.
+    for (int it = 0; it < (p.rigid() ? 4 : 1); ++it) {
+        const double h_ev = std::max(t_ev - t0, tol_.h_min);
+        if (explicit_step) retry_.take_explicit(sys, t0, y0, h_ev, sys.rhs(t0, y0));
+        else retry_.take(sys, t0, y0, h_ev);
         const double miss = retry_.y1[0] - xI;
-        if (std::abs(miss) <= 1e-14 || retry_.y1[1] == 0.0) break;
+        if (!p.rigid() || std::abs(miss) <= 1e-14 || retry_.y1[1] <= 0.0) break;
         const double t_new = std::clamp(t_ev - miss / retry_.y1[1], t0 + tol_.h_min, t0 + h);
         if (std::abs(t_new - t_ev) <= 1e-15 * std::max(1.0, std::abs(t_ev))) break;
         t_ev = t_new;
@@ -259,7 +300,7 @@ bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_st
     if (obs) obs->on_piece({t0, s.t, Regime::Free, &retry_, 0.0});
 
     if (!p.rigid()) {
-        s.side = s.v > 0 ? 1 : -1;   // entering if moving right
+        s.side = inside_before ? -1 : 1;   // now on the other side of the plane
         return false;
     }
     // Rigid bumper: an impact.

@@ -24,28 +24,69 @@ namespace impactlab {
 using Vec2 = Eigen::Vector2d;
 using Mat2 = Eigen::Matrix2d;
 
+// Error per step relative to rtol * (scale + |y|): the scales make the absolute part follow rtol, so
+// that one number sets the accuracy (the cart moves over ~1 cm at ~0.1 m/s).
 struct Tolerances {
     double rtol = 1e-8;
-    double atol_x = 1e-10;   // [m]
-    double atol_v = 1e-9;    // [m/s]
+    double x_scale = 1e-2;   // [m]
+    double v_scale = 1e-1;   // [m/s]
     double h_max = 0.5;      // [s]
     double h_min = 1e-14;    // [s] below this a step is forced through (never hangs)
 };
 
-// One RODAS4 step with its error estimate and the data for dense output. Allocation-free.
-struct RodasStep {
+// One step of either method with its error estimate and a cubic dense output
+//   y(s) = (1-s) y0 + s (y1 + (1-s)(cont3 + s cont4)),  s = (t - t0)/h,
+// which is RODAS4's own order-3 interpolant, or the Hermite cubic through (y0, f0), (y1, f1) after a
+// Dormand-Prince step. Allocation-free.
+struct DenseStep {
     double t0 = 0, h = 0;
     Vec2 y0, y1, err;
     Vec2 cont3, cont4;   // dense-output coefficients
+    Vec2 f1;             // Dormand-Prince: f(t0+h, y1), reused by the next step (FSAL)
+    bool implicit = true;
 
-    // Dense output at t in [t0, t0+h] (order 3).
     Vec2 at(double t) const {
         const double s = (t - t0) / h, s1 = 1.0 - s;
         return y0 * s1 + s * (y1 + s1 * (cont3 + s * cont4));
     }
 
+    // Dormand-Prince 5(4) (Hairer, Norsett & Wanner, "Solving ODEs I", II.5): the explicit method for the
+    // non-stiff stretches (free flight away from v = 0), where it needs a fraction of RODAS4's steps.
+    // f0 = f(t, y) is passed in (first same as last).
+    template <class System>
+    void take_explicit(const System& sys, double t, const Vec2& y, double step, const Vec2& f0) {
+        constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
+        constexpr double a21 = 1.0 / 5;
+        constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
+        constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
+        constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561, a54 = -212.0 / 729;
+        constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247, a64 = 49.0 / 176,
+                         a65 = -5103.0 / 18656;
+        constexpr double b1 = 35.0 / 384, b3 = 500.0 / 1113, b4 = 125.0 / 192, b5 = -2187.0 / 6784, b6 = 11.0 / 84;
+        constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
+                         e6 = 22.0 / 525, e7 = -1.0 / 40;
+        t0 = t;
+        h = step;
+        y0 = y;
+        implicit = false;
+        const Vec2& k1 = f0;
+        const Vec2 k2 = sys.rhs(t + c2 * h, y + h * (a21 * k1));
+        const Vec2 k3 = sys.rhs(t + c3 * h, y + h * (a31 * k1 + a32 * k2));
+        const Vec2 k4 = sys.rhs(t + c4 * h, y + h * (a41 * k1 + a42 * k2 + a43 * k3));
+        const Vec2 k5 = sys.rhs(t + c5 * h, y + h * (a51 * k1 + a52 * k2 + a53 * k3 + a54 * k4));
+        const Vec2 k6 = sys.rhs(t + h, y + h * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5));
+        y1 = y + h * (b1 * k1 + b3 * k3 + b4 * k4 + b5 * k5 + b6 * k6);
+        f1 = sys.rhs(t + h, y1);
+        err = h * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * f1);
+        // Hermite cubic in the form of at().
+        const Vec2 dy = y1 - y0;
+        cont3 = h * k1 - dy;
+        cont4 = 2.0 * dy - h * (k1 + f1);
+    }
+
     template <class System>
     void take(const System& sys, double t, const Vec2& y, double step) {
+        implicit = true;
         // Coefficients of RODAS4 (gamma = 0.25).
         constexpr double gamma = 0.25, d1 = 0.25, d2 = -0.1043, d3 = 0.1035, d4 = 0.3620000000000023e-01;
         constexpr double c2 = 0.386, c3 = 0.21, c4 = 0.63;
@@ -97,16 +138,16 @@ struct RodasStep {
 
     // Scaled error norm (max over components); <= 1 means the step is accepted.
     double error_norm(const Tolerances& tol) const {
-        const double sx = tol.atol_x + tol.rtol * std::max(std::abs(y0[0]), std::abs(y1[0]));
-        const double sv = tol.atol_v + tol.rtol * std::max(std::abs(y0[1]), std::abs(y1[1]));
+        const double sx = tol.rtol * (tol.x_scale + std::max(std::abs(y0[0]), std::abs(y1[0])));
+        const double sv = tol.rtol * (tol.v_scale + std::max(std::abs(y0[1]), std::abs(y1[1])));
         return std::max(std::abs(err[0]) / sx, std::abs(err[1]) / sv);
     }
 };
 
-// Standard step-size proposal for an embedded pair whose error estimate is O(h^4).
-inline double next_step_size(double h, double err_norm, bool accepted) {
+// Standard step-size proposal for an embedded pair whose error estimate is O(h^order).
+inline double next_step_size(double h, double err_norm, bool accepted, int order = 4) {
     const double e = std::max(err_norm, 1e-10);
-    double fac = 0.9 * std::pow(e, -0.25);
+    double fac = 0.9 * std::pow(e, order == 5 ? -0.2 : -0.25);
     fac = std::clamp(fac, 0.2, accepted ? 6.0 : 1.0);
     return h * fac;
 }

@@ -37,7 +37,7 @@ struct ImpactEvent { double t, v_minus, v_plus, duration; };
 struct Piece {
     double t0, t1;
     Regime regime;
-    const RodasStep* step;   // free flight: the accepted step; null while held at the bumper
+    const DenseStep* step;   // free flight: the accepted step; null while held at the bumper
     double x_hold;           // regimes II/III: the bumper position
     Vec2 at(double t) const { return step ? step->at(t) : Vec2(x_hold, 0.0); }
 };
@@ -78,7 +78,11 @@ private:
     void hold_step(const Params& p, const Drive& d, State& s, double t_stop, Observer* obs);
     void release(const Params& p, const Drive& d, State& s, double v_plus, Observer* obs);
     Tolerances tol_;
-    RodasStep work_, retry_;
+    DenseStep work_, retry_;
+    // First-same-as-last cache of the explicit method: f at (fsal_t_, fsal_y_).
+    bool fsal_valid_ = false, in_advance_ = false;
+    double fsal_t_ = 0;
+    Vec2 fsal_y_ = Vec2::Zero(), fsal_f_ = Vec2::Zero();
 };
 
 // Normal force pressing the cart on the bumper at xI while it rests there [N] (positive: pressed).

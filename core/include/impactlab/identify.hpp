@@ -1,0 +1,156 @@
+// impactlab fit: close the loop with measured data. A measured run goes in; out come where the model is
+// wrong (the residual in three forms), which physical effect it lacks (a library of named effects chosen by
+// sparse regression with cross-validation and a significance test, or a generic smooth force named by the
+// variable it depends on), the model with that effect added, and the error before and after.
+//
+// The equation error is taken in weak form: r_K(t_i) = sum_j K(t_j - t_i) [m x'' + F_R + F_SA + F_I -
+// forcing - effects](t_j), a local average over a smooth bump K of half-width `window`, with m x'' moved
+// onto K'' by parts (so no acceleration is differentiated out of noisy x) and v from a Savitzky-Golay
+// derivative where a force is nonlinear in v. Samples whose window touches an impact are left out.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "impactlab/identify_data.hpp"
+#include "impactlab/params.hpp"
+
+namespace impactlab::identify {
+
+enum class Forcing { Unbalance, Input };   // phi drives m0e phi'^2 sin(phi); or a measured input u
+
+// The model impactlab fit works with: the physical parameters (with any effects), and how the data force it.
+struct Model {
+    Params p;
+    Forcing forcing = Forcing::Unbalance;
+    double gain = 1.0;      // Input: the force is gain * u [N per unit of u]
+    bool bumper = true;     // false: no bumper anywhere on the rail (the Duffing baseline)
+    // The measurement map x_measured = sensor_gain * x + sensor_offset, from the sensor_* effects.
+    double sensor_gain() const;
+    double sensor_offset() const;
+};
+
+// A version name ("A1H"), a parameter file (*.json), or "duffing": m y'' + d y' + k y + k3 y^3 = gain u
+// (m = 1, no bumper; for the Silverbox benchmark). Throws ParamError.
+Model resolve_fit_model(const std::string& name_or_path, Forcing forcing);
+
+// The effects impactlab fit and synth know: the registry's force laws plus three that change the base
+// model instead of adding a force (bumper_offset, impact_duration, restitution).
+struct EffectInfo {
+    std::string id, meaning;
+    std::vector<std::string> names, units;
+    std::vector<double> defaults;
+    bool generic = false;      // unexplained_*: only the last-resort generic stage uses it
+    bool changes_base = false; // bumper_offset, impact_duration, restitution
+};
+const std::vector<EffectInfo>& effect_catalogue();
+const EffectInfo* find_catalogue_effect(const std::string& id);
+// Sets effect `id` with its parameter values (missing ones keep their defaults) into the model: a force law
+// is appended to p.effects, a base-changing effect edits p (xI, the impact law). Throws ParamError.
+void apply_effect(Model& m, const std::string& id, const std::vector<std::pair<std::string, double>>& values);
+
+struct FitOptions {
+    bool fit_baseline = false;           // false: validate the model with its parameters fixed
+    std::vector<std::string> fit_params; // base parameters to fit (empty: a default set for the model)
+    double window = 0.0;                 // half-width of the weak-form kernel [s]; 0: automatic
+    double z_threshold = 5.0;            // significance (|coefficient| / its HAC standard error)
+    double min_gain = 0.01;              // least share of the current residual an effect must explain
+    int max_effects = 4;
+    bool generic = true;                 // allow the generic smooth fits (unexplained_*)
+    std::vector<std::string> only;       // restrict the library to these ids (empty: all)
+    std::vector<std::string> exclude;    // never consider these ids
+    bool refine_shooting = true;         // shooting: refine each window's initial state (Gauss-Newton)
+    double knot_spacing = 0.5;           // [s] knots of the omega(t) fitted to phi
+    double omega_bin = 0.25;             // [rad/s] bins of the diagram distance
+    double rtol = 1e-8;                  // integrator tolerance for the shooting
+    bool plots = true;
+};
+
+struct ImpactLawError {
+    std::size_t impacts = 0;
+    double kappa_rms = 0;        // RMS of measured -v+/v- minus the model's kappa(v-)
+    double duration_rms_s = 0;   // RMS of the measured dwell minus the model's T_imp(v-) [s]
+    double level_offset_m = 0;   // measured bumper level minus the model's xI (in measured coordinates) [m]
+};
+
+struct ErrorSummary {
+    double residual_rms_N = 0;        // RMS of the weak-form equation error on free-flight samples
+    double shooting_rms_1_m = 0;      // multiple shooting over windows of one forcing period
+    double shooting_rms_10_m = 0;     // ... of ten forcing periods
+    ImpactLawError impact;
+    double diagram_distance_m = -1;   // mean per omega bin of the Wasserstein distance; < 0: not computed
+    std::size_t diagram_bins = 0;
+    double simulation_rms_m = -1;     // free run over the whole record (input-forced data); < 0: not computed
+    double test_simulation_rms_m = -1;// the same on the test rows, if given
+};
+
+struct FoundEffect {
+    std::string id;
+    double explained_fraction = 0;    // share of the baseline residual (of the impact-law error for impact effects)
+    std::vector<std::pair<std::string, double>> parameters, sigma;   // fitted values and standard errors
+    std::string sentence;
+    double z = 0;                     // significance
+    std::string evidence;             // "equation error" or "impact law"
+};
+
+struct CandidateScore {              // every library candidate tried in the first round
+    std::string id;
+    double gain = 0, z = 0;          // share of the residual it would explain alone, and its significance
+    bool selected = false;
+};
+
+// Plot material kept from the run.
+struct Trace {
+    std::vector<double> t, measured, before, after;
+};
+struct ResidualCloud {
+    std::vector<double> x, v, phi, before, after;
+};
+struct ImpactPoint { double t, v_minus, v_plus, dwell, level; };
+
+struct FitReport {
+    std::string data_source, model_name, forcing, baseline;
+    std::size_t samples = 0, rows_used = 0;
+    double dt = 0, duration = 0, sigma_x = 0, window_s = 0, noise_floor_N = 0;
+    double omega_min = 0, omega_max = 0, drive_fit_rms_rad = 0, period_s = 0;
+    Model before, after;
+    std::vector<FoundEffect> effects_found;
+    std::vector<CandidateScore> candidates;
+    ErrorSummary error_before, error_after;
+    std::vector<ImpactPoint> impacts;
+    ResidualCloud residual;
+    Trace trace;
+    std::vector<std::pair<double, double>> diagram_measured, diagram_before, diagram_after;   // (omega, x)
+    std::vector<std::string> notes;
+    double runtime_s = 0;
+};
+
+// The whole loop. `test` (optional): data held out for the simulation error (same layout as `data`).
+FitReport run_fit(const MeasuredData& data, const Model& model, const FitOptions& options = {},
+                  const MeasuredData* test = nullptr);
+
+// DIR/report.json, DIR/report.md, DIR/model_after.json and the PNGs. Throws std::runtime_error.
+void write_report(const FitReport& report, const std::string& dir, bool plots = true);
+std::string report_json_text(const FitReport& report);
+
+// Synthetic measured data: the model (with its effects) driven by `omega_knots`, sampled at exact integrator
+// stops, with Gaussian noise on x then quantised, and phi quantised to an encoder's counts.
+struct SynthOptions {
+    double duration = 60.0;            // [s]
+    double rate = 1000.0;              // [Hz]
+    double noise = 3e-6;               // [m] standard deviation added to x
+    double quantum = 1e-6;             // [m] x is rounded to multiples of this (0: not at all)
+    int phi_counts = 4096;             // counts per revolution of the encoder (0: exact phi)
+    std::vector<double> knot_t{0.0}, knot_omega{16.0};   // omega(t) piecewise linear through the knots
+    double x0 = -0.01, v0 = 0.0;
+    unsigned seed = 1;
+    double rtol = 1e-10;
+};
+MeasuredData synthesize(const Model& model, const SynthOptions& options);
+// Knots of the steps profile: plateaus of `plateau` seconds at each omega, joined by `ramp`-second ramps.
+void steps_profile(const std::vector<double>& omegas, double plateau, double ramp, std::vector<double>& t,
+                   std::vector<double>& w);
+
+}  // namespace impactlab::identify

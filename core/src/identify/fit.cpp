@@ -1,0 +1,630 @@
+// The loop of impactlab fit: baseline, residual, effect selection, the model with the effects, errors before
+// and after.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <numeric>
+
+#include "identify/internal.hpp"
+#include "impactlab/forces.hpp"
+
+namespace impactlab::identify {
+
+using namespace detail;
+
+namespace {
+
+// A parameter the nonlinear least squares may move: its address, finite-difference step and bounds.
+struct Knob {
+    double* value;
+    double step, lo, hi;
+    std::string name;
+};
+
+// Levenberg-Marquardt on the weak-form residual over `knobs` (numerical Jacobian). Returns the final
+// residual in R and the Jacobian dR/dknob in J.
+void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_iter, Eigen::VectorXd& R, Eigen::MatrixXd& J) {
+    std::vector<double> pw;
+    residual(pr, m, R, pw);
+    const auto p = static_cast<Eigen::Index>(knobs.size());
+    J.resize(R.size(), p);
+    if (p == 0) return;
+    double ss = R.squaredNorm(), lambda = 1e-4;
+    Eigen::VectorXd Rt;
+    auto jacobian = [&]() {
+        for (Eigen::Index k = 0; k < p; ++k) {
+            Knob& kb = knobs[static_cast<std::size_t>(k)];
+            const double v0 = *kb.value;
+            double h = kb.step;
+            if (v0 + h > kb.hi) h = -h;
+            *kb.value = v0 + h;
+            residual(pr, m, Rt, pw);
+            *kb.value = v0;
+            J.col(k) = (Rt - R) / h;
+        }
+    };
+    jacobian();
+    for (int it = 0; it < max_iter; ++it) {
+        const Eigen::MatrixXd A = J.transpose() * J;
+        const Eigen::VectorXd g = J.transpose() * R;
+        bool improved = false;
+        for (int tries = 0; tries < 8; ++tries) {
+            Eigen::MatrixXd Ad = A;
+            for (Eigen::Index k = 0; k < p; ++k) Ad(k, k) += lambda * A(k, k) + 1e-300;
+            const Eigen::VectorXd d = Ad.ldlt().solve(-g);
+            std::vector<double> old(knobs.size());
+            for (std::size_t k = 0; k < knobs.size(); ++k) {
+                old[k] = *knobs[k].value;
+                *knobs[k].value = std::clamp(old[k] + d[static_cast<Eigen::Index>(k)], knobs[k].lo, knobs[k].hi);
+            }
+            residual(pr, m, Rt, pw);
+            const double ss_new = Rt.squaredNorm();
+            if (std::isfinite(ss_new) && ss_new < ss) {
+                const double rel = (ss - ss_new) / ss;
+                R.swap(Rt);
+                ss = ss_new;
+                lambda = std::max(lambda / 4, 1e-9);
+                improved = rel > 1e-9;
+                break;
+            }
+            for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = old[k];
+            lambda *= 8;
+        }
+        if (!improved) break;
+        jacobian();
+    }
+}
+
+// Small LM for the impact laws: minimises sum f(theta)^2 with bounds; returns the covariance scale (J'J)^-1.
+Eigen::MatrixXd lm_small(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, Eigen::VectorXd& th,
+                         const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
+    const Eigen::Index p = th.size();
+    Eigen::VectorXd r = f(th);
+    double ss = r.squaredNorm(), lambda = 1e-3;
+    Eigen::MatrixXd J(r.size(), p);
+    auto jac = [&] {
+        for (Eigen::Index k = 0; k < p; ++k) {
+            Eigen::VectorXd t2 = th;
+            const double h = 1e-6 * std::max(1.0, std::abs(th[k])) * (th[k] + 1e-6 * std::max(1.0, std::abs(th[k])) > hi[k] ? -1 : 1);
+            t2[k] += h;
+            J.col(k) = (f(t2) - r) / h;
+        }
+    };
+    jac();
+    for (int it = 0; it < 100; ++it) {
+        const Eigen::MatrixXd A = J.transpose() * J;
+        const Eigen::VectorXd g = J.transpose() * r;
+        bool ok = false;
+        for (int tries = 0; tries < 10; ++tries) {
+            Eigen::MatrixXd Ad = A;
+            for (Eigen::Index k = 0; k < p; ++k) Ad(k, k) += lambda * A(k, k) + 1e-12;
+            Eigen::VectorXd tn = th + Ad.ldlt().solve(-g);
+            for (Eigen::Index k = 0; k < p; ++k) tn[k] = std::clamp(tn[k], lo[k], hi[k]);
+            const Eigen::VectorXd rn = f(tn);
+            if (rn.squaredNorm() < ss) {
+                ok = (ss - rn.squaredNorm()) > 1e-12 * ss;
+                th = tn;
+                r = rn;
+                ss = r.squaredNorm();
+                lambda = std::max(lambda / 4, 1e-12);
+                break;
+            }
+            lambda *= 8;
+        }
+        if (!ok) break;
+        jac();
+    }
+    Eigen::MatrixXd A = J.transpose() * J;
+    for (Eigen::Index k = 0; k < p; ++k) A(k, k) += 1e-12 * A(k, k) + 1e-300;
+    return A.ldlt().solve(Eigen::MatrixXd::Identity(p, p));
+}
+
+ImpactLawError impact_error(const Prep& pr, const Model& m) {
+    ImpactLawError e;
+    if (!m.bumper || pr.impacts.empty()) return e;
+    const double g = m.sensor_gain(), o = m.sensor_offset();
+    double sk = 0, sd = 0;
+    std::size_t nk = 0;
+    std::vector<double> lev;
+    for (const auto& im : pr.impacts) {
+        double kappa, dwell;
+        model_impact_law(m.p, im.v_minus / g, kappa, dwell);
+        if (im.v_minus > 0.02) {
+            const double k = -im.v_plus / im.v_minus - kappa;
+            sk += k * k;
+            ++nk;
+        }
+        const double dd = (im.t_out - im.t_in) - dwell;
+        sd += dd * dd;
+        lev.push_back(im.level);
+    }
+    e.impacts = pr.impacts.size();
+    e.kappa_rms = nk ? std::sqrt(sk / static_cast<double>(nk)) : 0.0;
+    e.duration_rms_s = std::sqrt(sd / static_cast<double>(pr.impacts.size()));
+    e.level_offset_m = median(lev) - (g * m.p.xI + o);
+    return e;
+}
+
+std::vector<std::pair<std::string, double>> named(const EffectInstance& e) {
+    std::vector<std::pair<std::string, double>> v;
+    for (std::size_t k = 0; k < kMaxLawParams && e.law->names[k]; ++k) v.emplace_back(e.law->names[k], e.p[k]);
+    return v;
+}
+
+double rms_of(const Eigen::VectorXd& R) { return R.size() ? std::sqrt(R.squaredNorm() / static_cast<double>(R.size())) : 0.0; }
+
+}  // namespace
+
+FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOptions& o, const MeasuredData* test) {
+    const auto clock0 = std::chrono::steady_clock::now();
+    FitReport rep;
+    rep.data_source = data.source;
+    rep.model_name = model0.p.name;
+    rep.forcing = data.has_phi() ? "phi (unbalance)" : "u (measured input)";
+    rep.baseline = o.fit_baseline ? "fit" : "fixed";
+    validate(model0.p, "model");
+    const Prep pr = prepare(data, model0, o, rep.notes);
+    rep.samples = pr.n;
+    rep.rows_used = pr.rows.size();
+    rep.dt = pr.dt;
+    rep.duration = data.t.back() - data.t.front();
+    rep.sigma_x = pr.sigma_x;
+    rep.window_s = (pr.K.H + 1) * pr.dt;
+    rep.period_s = pr.period;
+    rep.drive_fit_rms_rad = pr.drive_rms;
+    if (pr.phi_forced) {
+        rep.omega_min = *std::min_element(pr.omega.begin(), pr.omega.end());
+        rep.omega_max = *std::max_element(pr.omega.begin(), pr.omega.end());
+    }
+    const int stride = std::max(1, pr.K.H / 4);
+    const int hac_lag = static_cast<int>(std::ceil(2.0 * (2 * pr.K.H + 1) / stride));
+
+    // ---- 1. the baseline --------------------------------------------------------------------------------
+    Model base = model0;
+    std::vector<double> pw;
+    Eigen::VectorXd R0, Rtmp;
+    Eigen::MatrixXd Jtmp;
+    std::vector<std::string> base_names;
+    if (o.fit_baseline) {
+        base_names = o.fit_params.empty() ? default_fit_params(base) : o.fit_params;
+        auto bp = base_params(base, base_names);
+        std::vector<Knob> knobs;
+        for (const auto& b : bp) {
+            double lo = -1e12, hi = 1e12;
+            if (b.name == "c" || b.name == "T" || b.name == "m0e" || b.name == "m") lo = 0;
+            if (b.name == "b2") lo = -50;
+            knobs.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6), lo, hi, b.name});
+        }
+        // A first pass from the starting values (linear parameters converge in one step), then refine.
+        lm_residual(pr, base, knobs, 40, R0, Jtmp);
+    }
+    residual(pr, base, R0, pw);
+    rep.before = base;
+    const double in0 = R0.squaredNorm();
+    rep.noise_floor_N = base.p.m * pr.sigma_x * pr.K.noise_gain / base.sensor_gain();
+
+    // ---- 2. candidate columns -----------------------------------------------------------------------------
+    struct Group {
+        std::size_t cand;
+        double start;
+        EffectInstance inst;
+        std::vector<int> cols;
+    };
+    const std::vector<Candidate> cands = library_candidates(base, pr, o);
+    std::vector<Eigen::VectorXd> columns;
+    std::vector<int> base_cols;
+    std::vector<BaseParam> bparams;
+    if (o.fit_baseline) {
+        bparams = base_params(base, base_names);
+        for (const auto& b : bparams) {
+            const double v0 = *b.value, h = std::max(1e-4 * std::abs(v0), 1e-6);
+            *b.value = v0 + h;
+            residual(pr, base, Rtmp, pw);
+            *b.value = v0;
+            columns.push_back(-(Rtmp - R0) / h);
+            base_cols.push_back(static_cast<int>(columns.size()) - 1);
+        }
+    }
+    std::vector<Group> groups;
+    for (std::size_t ci = 0; ci < cands.size(); ++ci) {
+        const Candidate& c = cands[ci];
+        const std::vector<double> starts = c.starts.empty() ? std::vector<double>{0.0} : c.starts;
+        for (double st : starts) {
+            Group g{ci, st, start_instance(c, base, pr, st), {}};
+            for (int li : c.linear) {
+                const int k = c.free[static_cast<std::size_t>(li)];
+                const double h = c.step[static_cast<std::size_t>(li)];
+                Eigen::VectorXd col(static_cast<Eigen::Index>(pr.rows.size()));
+                if (c.sensor) {
+                    Model mp = base;
+                    mp.p.effects.push_back(g.inst);
+                    mp.p.effects.back().p[static_cast<std::size_t>(k)] += h;
+                    residual(pr, mp, Rtmp, pw);
+                    mp.p.effects.back().p[static_cast<std::size_t>(k)] -= 2 * h;
+                    Eigen::VectorXd Rm;
+                    residual(pr, mp, Rm, pw);
+                    col = -(Rtmp - Rm) / (2 * h);
+                } else {
+                    effect_column(pr, base, g.inst, k, h, col, pw);
+                }
+                if (!col.allFinite()) col.setZero();
+                columns.push_back(col);
+                g.cols.push_back(static_cast<int>(columns.size()) - 1);
+            }
+            groups.push_back(std::move(g));
+        }
+    }
+    Eigen::MatrixXd X(R0.size(), static_cast<Eigen::Index>(columns.size()));
+    for (std::size_t k = 0; k < columns.size(); ++k) X.col(static_cast<Eigen::Index>(k)) = columns[k];
+    const Folds folds = make_folds(X, R0, 5);
+
+    auto zscore = [&](const std::vector<int>& cols, const std::vector<int>& sub) {
+        double cv, in;
+        Eigen::VectorXd beta;
+        cv_sse(folds, cols, cv, in, &beta);
+        Eigen::MatrixXd Xs(X.rows(), static_cast<Eigen::Index>(cols.size()));
+        for (std::size_t k = 0; k < cols.size(); ++k) Xs.col(static_cast<Eigen::Index>(k)) = X.col(cols[k]);
+        const Eigen::VectorXd e = R0 - Xs * beta;
+        const Eigen::MatrixXd V = hac_cov(Xs, e, hac_lag);
+        // Wald statistic of the sub-block (positions in cols).
+        const auto q = static_cast<Eigen::Index>(sub.size());
+        Eigen::MatrixXd Vs(q, q);
+        Eigen::VectorXd bs(q);
+        for (Eigen::Index i = 0; i < q; ++i) {
+            bs[i] = beta[sub[static_cast<std::size_t>(i)]];
+            for (Eigen::Index j = 0; j < q; ++j) Vs(i, j) = V(sub[static_cast<std::size_t>(i)], sub[static_cast<std::size_t>(j)]);
+        }
+        for (Eigen::Index i = 0; i < q; ++i) Vs(i, i) += 1e-12 * Vs(i, i) + 1e-300;
+        const double W = bs.dot(Vs.ldlt().solve(bs));
+        return chi2_to_z(W, static_cast<int>(q));
+    };
+
+    // ---- 3. greedy selection ------------------------------------------------------------------------------
+    std::vector<int> cur = base_cols;
+    double cv_cur, in_cur;
+    cv_sse(folds, cur, cv_cur, in_cur);
+    const double in_base = in_cur;
+    std::vector<std::size_t> chosen;   // group indices
+    std::vector<double> step_gain;
+    std::vector<bool> cand_used(cands.size(), false);
+    for (int round = 0; round < o.max_effects; ++round) {
+        struct Eval {
+            std::size_t g;
+            double gain_cv, gain_in, z = 0;
+        };
+        std::vector<Eval> best_per_cand(cands.size(), {0, -INFINITY, 0, 0});
+        for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+            const Group& g = groups[gi];
+            if (cand_used[g.cand]) continue;
+            std::vector<int> cols = cur;
+            cols.insert(cols.end(), g.cols.begin(), g.cols.end());
+            double cv, in;
+            cv_sse(folds, cols, cv, in);
+            const double gcv = (cv_cur - cv) / cv_cur, gin = (in_cur - in) / in_base;
+            if (cands[g.cand].positive) {
+                Eigen::VectorXd beta;
+                double cv2, in2;
+                cv_sse(folds, cols, cv2, in2, &beta);
+                if (!(beta[static_cast<Eigen::Index>(cur.size())] > 0)) continue;
+            }
+            if (gcv > best_per_cand[g.cand].gain_cv) best_per_cand[g.cand] = {gi, gcv, gin, 0};
+        }
+        std::vector<Eval> evals;
+        for (std::size_t c = 0; c < cands.size(); ++c)
+            if (!cand_used[c] && std::isfinite(best_per_cand[c].gain_cv)) evals.push_back(best_per_cand[c]);
+        std::sort(evals.begin(), evals.end(), [](const Eval& a, const Eval& b) { return a.gain_cv > b.gain_cv; });
+        int lib_checked = 0, gen_checked = 0;
+        for (auto& e : evals) {
+            const bool gen = cands[groups[e.g].cand].generic;
+            int& checked = gen ? gen_checked : lib_checked;
+            if (checked >= 4 && round > 0) continue;
+            ++checked;
+            std::vector<int> cols = cur, sub;
+            for (int c : groups[e.g].cols) {
+                sub.push_back(static_cast<int>(cols.size()));
+                cols.push_back(c);
+            }
+            e.z = zscore(cols, sub);
+        }
+        if (round == 0)
+            for (const auto& e : evals)
+                rep.candidates.push_back({cands[groups[e.g].cand].id, e.gain_in, e.z, false});
+        const Eval* lib = nullptr;
+        const Eval* gen = nullptr;
+        for (const auto& e : evals) {
+            if (!(e.gain_cv >= o.min_gain && e.z >= o.z_threshold && e.gain_in > 0)) continue;
+            const bool g = cands[groups[e.g].cand].generic;
+            if (g && !gen) gen = &e;
+            if (!g && !lib) lib = &e;
+        }
+        const Eval* pick = lib;
+        if (gen && (!lib || lib->gain_cv < 0.8 * gen->gain_cv)) pick = gen;
+        if (!pick) break;
+        const Group& g = groups[pick->g];
+        cand_used[g.cand] = true;
+        chosen.push_back(pick->g);
+        step_gain.push_back(pick->gain_in);
+        cur.insert(cur.end(), g.cols.begin(), g.cols.end());
+        cv_sse(folds, cur, cv_cur, in_cur);
+        for (auto& cs : rep.candidates)
+            if (cs.id == cands[g.cand].id) cs.selected = true;
+    }
+
+    // ---- 4. the model with the effects: linear estimates, then joint nonlinear refinement ----------------
+    Model after = base;
+    {
+        double cv, in;
+        Eigen::VectorXd beta;
+        cv_sse(folds, cur, cv, in, &beta);
+        std::size_t pos = 0;
+        for (std::size_t k = 0; k < bparams.size(); ++k) ++pos;   // base parameters: refit below
+        for (std::size_t gi : chosen) {
+            const Group& g = groups[gi];
+            EffectInstance inst = g.inst;
+            const Candidate& c = cands[g.cand];
+            for (int li : c.linear) inst.p[static_cast<std::size_t>(c.free[static_cast<std::size_t>(li)])] += beta[static_cast<Eigen::Index>(pos++)];
+            after.p.effects.push_back(inst);
+        }
+    }
+    std::vector<Knob> knobs;
+    std::vector<std::pair<std::size_t, std::size_t>> knob_of_effect;   // (effect index in after.p.effects, param)
+    const std::size_t first_new = base.p.effects.size();
+    if (o.fit_baseline) {
+        for (const auto& b : base_params(after, base_names)) {
+            double lo = -1e12;
+            if (b.name == "c" || b.name == "T" || b.name == "m0e" || b.name == "m") lo = 0;
+            if (b.name == "b2") lo = -50;
+            knobs.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6), lo, 1e12, b.name});
+        }
+    }
+    const std::size_t n_base_knobs = knobs.size();
+    for (std::size_t k = 0; k < chosen.size(); ++k) {
+        const Candidate& c = cands[groups[chosen[k]].cand];
+        EffectInstance& inst = after.p.effects[first_new + k];
+        for (std::size_t li = 0; li < c.free.size(); ++li) {
+            const auto pi = static_cast<std::size_t>(c.free[li]);
+            double lo = -1e12, hi = 1e12;
+            if (c.id == "stribeck_friction") lo = pi == 1 ? 0.005 : 0.0;
+            if (c.id == "sensor_gain") {
+                lo = 0.5;
+                hi = 2.0;
+            }
+            knobs.push_back({&inst.p[pi], c.step[li], lo, hi, c.law->names[pi]});
+            knob_of_effect.emplace_back(first_new + k, pi);
+        }
+    }
+    Eigen::VectorXd R1;
+    Eigen::MatrixXd J1;
+    lm_residual(pr, after, knobs, knobs.empty() ? 0 : 30, R1, J1);
+    if (knobs.empty()) residual(pr, after, R1, pw);
+
+    // Uncertainties (HAC) and significance of each found effect at the final model.
+    std::vector<double> knob_sigma(knobs.size(), 0.0);
+    Eigen::MatrixXd V;
+    if (!knobs.empty()) {
+        V = hac_cov(-J1, R1, hac_lag);
+        for (std::size_t k = 0; k < knobs.size(); ++k) knob_sigma[k] = std::sqrt(std::max(0.0, V(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k))));
+    }
+    SentenceContext sc;
+    {
+        std::vector<double> av, ax;
+        for (std::size_t r : pr.rows) {
+            av.push_back(std::abs(pr.vs[r]));
+            ax.push_back(std::abs(data.x[r]));
+        }
+        sc.v_typ = quantile(av, 0.5) > 0 ? std::sqrt(std::accumulate(av.begin(), av.end(), 0.0, [](double s, double v) { return s + v * v; }) /
+                                                     static_cast<double>(av.size()))
+                                         : 0.0;
+        sc.x_typ = quantile(ax, 0.9);
+        sc.m = base.p.m;
+    }
+    {
+        std::size_t kk = n_base_knobs;
+        for (std::size_t k = 0; k < chosen.size(); ++k) {
+            const Candidate& c = cands[groups[chosen[k]].cand];
+            const EffectInstance& inst = after.p.effects[first_new + k];
+            FoundEffect f;
+            f.id = c.id;
+            f.evidence = "equation error";
+            f.explained_fraction = step_gain[k] * in_base / std::max(in0, 1e-300);
+            f.parameters = named(inst);
+            std::vector<int> sub;
+            for (std::size_t li = 0; li < c.free.size(); ++li, ++kk) {
+                f.sigma.emplace_back(c.law->names[static_cast<std::size_t>(c.free[li])], knob_sigma[kk]);
+                sub.push_back(static_cast<int>(kk));
+            }
+            // Wald z over the effect's parameters, against their null values.
+            const auto q = static_cast<Eigen::Index>(sub.size());
+            Eigen::MatrixXd Vs(q, q);
+            Eigen::VectorXd d(q);
+            const EffectInstance null_inst = start_instance(c, base, pr, c.starts.empty() ? 0.0 : inst.p[1]);
+            for (Eigen::Index i = 0; i < q; ++i) {
+                const auto pi = static_cast<std::size_t>(c.free[static_cast<std::size_t>(i)]);
+                d[i] = inst.p[pi] - null_inst.p[pi];
+                for (Eigen::Index j = 0; j < q; ++j) Vs(i, j) = V(sub[static_cast<std::size_t>(i)], sub[static_cast<std::size_t>(j)]);
+            }
+            if (c.id == "stribeck_friction") {   // the speed scale has no null value: test Fs alone
+                f.z = std::abs(inst.p[0]) / std::max(knob_sigma[static_cast<std::size_t>(sub[0])], 1e-300);
+            } else {
+                for (Eigen::Index i = 0; i < q; ++i) Vs(i, i) += 1e-12 * Vs(i, i) + 1e-300;
+                f.z = chi2_to_z(d.dot(Vs.ldlt().solve(d)), static_cast<int>(q));
+            }
+            f.sentence = sentence(c.id, base, f.parameters, f.sigma, sc);
+            rep.effects_found.push_back(std::move(f));
+        }
+    }
+
+    // ---- 5. the impact law: bumper position, impact duration, restitution ----------------------------------
+    if (after.bumper && pr.impacts.size() >= 3) {
+        const double g = after.sensor_gain(), off = after.sensor_offset();
+        const std::size_t ni = pr.impacts.size();
+        std::vector<double> lev;
+        for (const auto& im : pr.impacts) lev.push_back((im.level - off) / g);
+        const double med = median(lev);
+        std::vector<double> dev;
+        for (double l : lev) dev.push_back(std::abs(l - med));
+        const double se = std::max(1.2533 * 1.4826 * median(dev), 0.3 * pr.sigma_x) / std::sqrt(static_cast<double>(ni));
+        const double delta = med - after.p.xI;
+        if (std::abs(delta) / se >= o.z_threshold && std::abs(delta) > 2.0 * pr.sigma_x + 1e-7) {
+            double sb = 0, sa = 0;
+            for (double l : lev) {
+                sb += (l - after.p.xI) * (l - after.p.xI);
+                sa += (l - med) * (l - med);
+            }
+            FoundEffect f;
+            f.id = "bumper_offset";
+            f.evidence = "impact law";
+            f.explained_fraction = sb > 0 ? 1.0 - sa / sb : 0.0;
+            f.parameters = {{"dx", delta}};
+            f.sigma = {{"dx", se}};
+            f.z = std::abs(delta) / se;
+            f.sentence = sentence("bumper_offset", after, f.parameters, f.sigma, sc);
+            apply_effect(after, "bumper_offset", {{"dx", delta}});
+            rep.effects_found.push_back(std::move(f));
+        }
+        // The dwell time and the restitution against the model's laws.
+        for (const char* which : {"impact_duration", "restitution"}) {
+            const bool dur = std::strcmp(which, "impact_duration") == 0;
+            std::vector<double> vm, obs;
+            for (const auto& im : pr.impacts) {
+                if (!dur && im.v_minus < 0.02) continue;
+                vm.push_back(im.v_minus / g);
+                obs.push_back(dur ? im.t_out - im.t_in : -im.v_plus / im.v_minus);
+            }
+            const auto n = static_cast<Eigen::Index>(vm.size());
+            if (n < 3) continue;
+            Eigen::VectorXd model_pred(n);
+            for (Eigen::Index i = 0; i < n; ++i) {
+                double kap, dw;
+                model_impact_law(after.p, vm[static_cast<std::size_t>(i)], kap, dw);
+                model_pred[i] = dur ? dw : kap;
+            }
+            auto law = [&](const Eigen::VectorXd& th) {
+                Eigen::VectorXd r(n);
+                for (Eigen::Index i = 0; i < n; ++i)
+                    r[i] = (th[0] - th[1]) * std::exp(-th[2] * vm[static_cast<std::size_t>(i)]) + th[1] - obs[static_cast<std::size_t>(i)];
+                return r;
+            };
+            double mean = 0;
+            for (double v : obs) mean += v;
+            mean /= static_cast<double>(n);
+            Eigen::VectorXd th(3), lo(3), hi(3);
+            th << mean, mean, 1.0;
+            lo << 0, 0, 0;
+            hi << (dur ? 1.0 : 1.0), (dur ? 1.0 : 1.0), 50.0;
+            const Eigen::MatrixXd C = lm_small(law, th, lo, hi);
+            const Eigen::VectorXd ra = law(th);
+            double sb = 0;
+            for (Eigen::Index i = 0; i < n; ++i) sb += std::pow(obs[static_cast<std::size_t>(i)] - model_pred[i], 2);
+            const double sa = ra.squaredNorm();
+            const double floor_var = dur ? std::pow(0.05 * pr.dt, 2) : 1e-4;
+            const double s2 = std::max(sa / std::max<double>(1.0, static_cast<double>(n) - 3.0), floor_var);
+            const double z = chi2_to_z((sb - sa) / s2, 3);
+            const double gain_rms = std::sqrt(sb / static_cast<double>(n)) - std::sqrt(sa / static_cast<double>(n));
+            const bool practical = dur ? gain_rms > 0.2 * pr.dt : gain_rms > 0.02;
+            if (z >= o.z_threshold && practical && sb > 0) {
+                FoundEffect f;
+                f.id = which;
+                f.evidence = "impact law";
+                f.explained_fraction = 1.0 - sa / sb;
+                const char* nm[3] = {dur ? "Ti0" : "kappa0", dur ? "Ti1" : "kappa1", dur ? "a_T" : "a_kappa"};
+                for (int k = 0; k < 3; ++k) {
+                    f.parameters.emplace_back(nm[k], th[k]);
+                    f.sigma.emplace_back(nm[k], std::sqrt(std::max(0.0, C(k, k) * s2)));
+                }
+                f.z = z;
+                f.sentence = sentence(which, after, f.parameters, f.sigma, sc);
+                apply_effect(after, which, f.parameters);
+                rep.effects_found.push_back(std::move(f));
+            }
+        }
+    }
+    std::stable_sort(rep.effects_found.begin(), rep.effects_found.end(),
+                     [](const FoundEffect& a, const FoundEffect& b) { return a.explained_fraction > b.explained_fraction; });
+    if (!rep.effects_found.empty()) after.p.name = base.p.name + "+" + rep.effects_found.front().id;
+    for (std::size_t k = 1; k < rep.effects_found.size(); ++k) after.p.name += "+" + rep.effects_found[k].id;
+    rep.after = after;
+
+    // ---- 6. errors before and after ------------------------------------------------------------------------
+    residual(pr, after, R1, pw);
+    auto errors = [&](const Model& m, const Eigen::VectorXd& R, ErrorSummary& e, ShootOut& so) {
+        e.residual_rms_N = rms_of(R);
+        so = shooting(pr, m, o);
+        e.shooting_rms_1_m = so.rms1;
+        e.shooting_rms_10_m = so.rms10;
+        e.impact = impact_error(pr, m);
+        if (!pr.phi_forced) {
+            const std::vector<double> fr = free_run(pr, m, o.rtol);
+            double s = 0;
+            std::size_t c = 0;
+            for (std::size_t i = 0; i < pr.n; ++i)
+                if (std::isfinite(fr[i])) {
+                    s += (fr[i] - data.x[i]) * (fr[i] - data.x[i]);
+                    ++c;
+                }
+            e.simulation_rms_m = c ? std::sqrt(s / static_cast<double>(c)) : -1;
+        }
+    };
+    ShootOut sb, sa;
+    errors(base, R0, rep.error_before, sb);
+    errors(after, R1, rep.error_after, sa);
+    if (pr.phi_forced && rep.omega_max - rep.omega_min > 2 * o.omega_bin) {
+        rep.diagram_measured = measured_sections(pr);
+        rep.diagram_before = free_run_sections(pr, base, o.rtol);
+        rep.diagram_after = free_run_sections(pr, after, o.rtol);
+        rep.error_before.diagram_distance_m =
+            diagram_distance(rep.diagram_measured, rep.diagram_before, o.omega_bin, rep.error_before.diagram_bins);
+        rep.error_after.diagram_distance_m =
+            diagram_distance(rep.diagram_measured, rep.diagram_after, o.omega_bin, rep.error_after.diagram_bins);
+    }
+    if (test) {
+        std::vector<std::string> tnotes;
+        const Prep pt = prepare(*test, model0, o, tnotes);
+        for (auto [m, e] : {std::pair<const Model*, ErrorSummary*>{&base, &rep.error_before}, {&after, &rep.error_after}}) {
+            const std::vector<double> fr = free_run(pt, *m, o.rtol);
+            double s = 0;
+            std::size_t c = 0;
+            for (std::size_t i = 0; i < pt.n; ++i)
+                if (std::isfinite(fr[i])) {
+                    s += (fr[i] - test->x[i]) * (fr[i] - test->x[i]);
+                    ++c;
+                }
+            e->test_simulation_rms_m = c ? std::sqrt(s / static_cast<double>(c)) : -1;
+        }
+    }
+
+    // ---- 7. material for the plots -----------------------------------------------------------------------
+    {
+        const std::size_t step = std::max<std::size_t>(1, pr.rows.size() / 20000);
+        for (std::size_t r = 0; r < pr.rows.size(); r += step) {
+            const std::size_t i = pr.rows[r];
+            rep.residual.x.push_back(data.x[i]);
+            rep.residual.v.push_back(pr.vs[i]);
+            rep.residual.phi.push_back(pr.phi_forced ? std::fmod(pr.phi[i], kTwoPi) : 0.0);
+            rep.residual.before.push_back(R0[static_cast<Eigen::Index>(r)]);
+            rep.residual.after.push_back(R1[static_cast<Eigen::Index>(r)]);
+        }
+        if (!sb.windows10.empty()) {
+            const auto worst = std::max_element(sb.windows10.begin(), sb.windows10.end(),
+                                                [](const auto& a, const auto& b) { return a.second < b.second; });
+            for (const auto& [a, b] : windows(pr, 10))
+                if (a == worst->first) {
+                    rep.trace.before = simulate_window(pr, base, a, b, o.refine_shooting, o.rtol);
+                    rep.trace.after = simulate_window(pr, after, a, b, o.refine_shooting, o.rtol);
+                    for (std::size_t i = a; i <= b; ++i) {
+                        rep.trace.t.push_back(data.t[i]);
+                        rep.trace.measured.push_back(data.x[i]);
+                    }
+                    break;
+                }
+        }
+        for (const auto& im : pr.impacts) rep.impacts.push_back({im.t_in, im.v_minus, im.v_plus, im.t_out - im.t_in, im.level});
+    }
+    if (rep.effects_found.empty()) rep.notes.push_back("no missing effect: the residual is at the level of the noise and the model's own error");
+    rep.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+    return rep;
+}
+
+}  // namespace impactlab::identify

@@ -1,0 +1,165 @@
+// Internals of impactlab fit shared by the files of this folder (not installed).
+#pragma once
+
+#include <Eigen/Dense>
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "impactlab/drive.hpp"
+#include "impactlab/identify.hpp"
+
+namespace impactlab::identify::detail {
+
+constexpr double kPi = 3.141592653589793;
+constexpr double kTwoPi = 2.0 * kPi;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// ---- signal.cpp ---------------------------------------------------------------------------------------
+// Standard deviation of white noise on a smooth signal, from the MAD of its 4th differences.
+double noise_sigma(const std::vector<double>& x);
+// Savitzky-Golay weights c[0..2M] (offsets -M..M) of the `deriv`-th derivative of a degree-`degree` fit.
+std::vector<double> savgol(int half, int degree, int deriv, double dt);
+// Centred FIR: y[i] = sum_k c[k] x[i + k - M]; NaN where the window leaves the data.
+std::vector<double> apply_fir(const std::vector<double>& x, const std::vector<double>& c);
+// Weights of one-sided polynomial fits evaluated at the split between samples (for impact detection):
+// derivative at t = +dt/2 past the last of n samples (left) or dt/2 before the first (right).
+std::vector<double> onesided_slope(int n, int degree, double dt, bool left);
+
+// The weak-form kernel phi(tau) = (1 - tau^2/L^2)^6, L = (H+1) dt: w = phi/sum(phi), w1 = -phi'/sum(phi)
+// (applied to x gives the averaged velocity), w2 = phi''/sum(phi) (the averaged acceleration).
+struct Kernel {
+    int H = 0;
+    std::vector<double> w, w1, w2;   // index k = 0..2H for offsets -H..H
+    double noise_gain = 0;           // sqrt(sum w2^2): sigma of the averaged acceleration per unit sigma_x
+};
+Kernel make_kernel(int H, double dt);
+
+// omega(t) piecewise linear with knots every `spacing` seconds, fitted to the unwrapped phi by least squares
+// (phi itself being the exact integral); rms: fit residual [rad].
+Drive fit_drive(const std::vector<double>& t, const std::vector<double>& phi, double spacing, double& rms);
+// The period of the strongest spectral line of x (detrended) [s].
+double dominant_period(const std::vector<double>& x, double dt);
+
+// ---- impacts.cpp --------------------------------------------------------------------------------------
+struct ImpactObs {
+    double t_in, t_out, level, v_minus, v_plus;   // [s], [s], [m], [m/s] (v- > 0), [m/s] (v+ <= 0)
+    std::size_t i_first, i_last;                  // samples spanned by the event (first after entry ... last held)
+};
+// Finds impacts on a bumper at the right (+x) end: abrupt drops of the one-sided velocity, each fitted by
+// quadratic flight before, a held plateau (possibly of zero length) and quadratic flight after.
+std::vector<ImpactObs> find_impacts(const std::vector<double>& t, const std::vector<double>& x, double sigma_x,
+                                    double level_hint);
+
+// The impact law of a model as the data would show it: restitution -v+/v- and dwell time for an approach
+// speed v- > 0 (rigid laws in closed form, compliant ones by integrating one collision).
+void model_impact_law(const Params& p, double v_minus, double& kappa, double& dwell);
+
+// ---- residual.cpp -------------------------------------------------------------------------------------
+// The data made ready for the residual: smoothed signals, drive, kernel, masks, rows.
+struct Prep {
+    const MeasuredData* data = nullptr;
+    std::size_t n = 0;
+    double dt = 0, sigma_x = 0, period = 0, drive_rms = 0;
+    bool phi_forced = true;
+    Drive drive;
+    std::vector<double> xs, vs;              // S-G position and velocity (measured coordinates)
+    std::vector<double> phi, omega, alpha;   // from the drive (phi data); zeros otherwise
+    std::vector<double> u;
+    Kernel K;
+    int Hv = 0;
+    std::vector<ImpactObs> impacts;
+    std::vector<char> zone;                  // 1: the sample lies in or next to an impact
+    std::vector<std::size_t> rows;           // centres of the residual windows used
+    std::size_t j_lo = 0, j_hi = 0;          // samples the rows' windows touch [j_lo, j_hi)
+};
+Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::vector<std::string>& notes);
+
+// Weak-form residual at prep.rows [N]; `pointwise` is scratch.
+void residual(const Prep& pr, const Model& m, Eigen::VectorXd& R, std::vector<double>& pointwise);
+// Filtered pointwise derivative of effect `e`'s force with respect to parameter k at the current values,
+// i.e. the regressor column X = -dR/dp_k [N per unit]; `m` supplies the measurement map.
+void effect_column(const Prep& pr, const Model& m, const EffectInstance& e, int k, double h, Eigen::Ref<Eigen::VectorXd> X,
+                   std::vector<double>& pointwise);
+
+// ---- linear algebra helpers (stats.cpp) -----------------------------------------------------------------
+struct Folds {   // contiguous blocks of rows for cross-validation, with per-block Gram matrices
+    int K = 5;
+    std::vector<Eigen::MatrixXd> G;   // X_f' X_f over all columns
+    std::vector<Eigen::VectorXd> b;   // X_f' R_f
+    std::vector<double> rr;           // R_f' R_f
+    Eigen::MatrixXd Gt;
+    Eigen::VectorXd bt;
+    double rrt = 0;
+};
+Folds make_folds(const Eigen::MatrixXd& X, const Eigen::VectorXd& R, int K = 5);
+// Cross-validated SSE and in-sample SSE of the regression of R on columns `cols`.
+void cv_sse(const Folds& f, const std::vector<int>& cols, double& cv, double& in_sample, Eigen::VectorXd* beta = nullptr);
+// Newey-West (Bartlett, lag L) covariance of the least-squares coefficients of R on X.
+Eigen::MatrixXd hac_cov(const Eigen::MatrixXd& X, const Eigen::VectorXd& e, int L);
+// A chi-square statistic with p degrees of freedom as the equivalent standard-normal z (Wilson-Hilferty).
+double chi2_to_z(double W, int p);
+// Weighted quantile / median helpers.
+double median(std::vector<double> v);
+double quantile(std::vector<double> v, double q);
+
+// ---- shooting.cpp -------------------------------------------------------------------------------------
+// Simulates samples i0..i1 from the state estimated at i0 (refined by Gauss-Newton if asked); returns the
+// simulated measurement g x + o at each sample (empty if the window cannot start).
+std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, bool refine, double rtol);
+struct ShootOut {
+    double rms1 = 0, rms10 = 0;
+    std::size_t n1 = 0, n10 = 0;
+    std::vector<std::pair<std::size_t, double>> windows10;   // first sample and RMS of each 10-period window
+};
+ShootOut shooting(const Prep& pr, const Model& m, const FitOptions& o);
+// Window boundaries (sample indices [a, b]) of `periods` forcing periods each.
+std::vector<std::pair<std::size_t, std::size_t>> windows(const Prep& pr, int periods);
+// Free run over the whole record from the first usable sample: simulated measurement at every sample
+// (NaN before the start).
+std::vector<double> free_run(const Prep& pr, const Model& m, double rtol);
+// Section points (omega, x) at phi = 2 pi k: simulated in a free run, or measured.
+std::vector<std::pair<double, double>> free_run_sections(const Prep& pr, const Model& m, double rtol);
+std::vector<std::pair<double, double>> measured_sections(const Prep& pr);
+// Mean over omega bins of the 1-D Wasserstein distance between two (omega, x) clouds.
+double diagram_distance(const std::vector<std::pair<double, double>>& a, const std::vector<std::pair<double, double>>& b,
+                        double bin, std::size_t& bins);
+
+}  // namespace impactlab::identify::detail
+
+namespace impactlab::identify::detail {
+
+// ---- catalogue.cpp ------------------------------------------------------------------------------------
+// How the selection treats one library effect.
+struct Candidate {
+    std::string id;
+    const EffectLaw* law = nullptr;
+    std::vector<int> free;          // parameters fitted (indices into the law's parameters)
+    std::vector<double> step;       // their finite-difference steps (also their natural scale)
+    std::vector<int> linear;        // of `free`, those fitted in the linear screening (the others stay at start)
+    std::vector<double> starts;     // starting values of the nonlinear parameter free[linear.size()]
+    bool generic = false, sensor = false;
+    bool positive = false;          // the first linear parameter must come out > 0 to make physical sense
+};
+std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const FitOptions& o);
+// The instance a candidate starts from: shape parameters from the model, the free ones at their null value
+// (or `start` for the nonlinear one).
+EffectInstance start_instance(const Candidate& c, const Model& m, const Prep& pr, double start);
+
+struct SentenceContext {
+    double v_typ = 0, x_typ = 0, m = 1, g_earth = 9.81;
+};
+std::string sentence(const std::string& id, const Model& before, const std::vector<std::pair<std::string, double>>& values,
+                     const std::vector<std::pair<std::string, double>>& sigma, const SentenceContext& ctx);
+
+// Base parameters that `fit` mode estimates: name and address in the model.
+struct BaseParam {
+    std::string name;
+    double* value;
+    double step;
+};
+std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& names);
+std::vector<std::string> default_fit_params(const Model& m);
+
+}  // namespace impactlab::identify::detail

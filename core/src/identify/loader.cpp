@@ -1,0 +1,273 @@
+// The measured-data loader: MODEL.md's CSV conventions, explicit column mapping, strict checks.
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "impactlab/identify_data.hpp"
+
+namespace impactlab::identify {
+
+namespace {
+
+std::string_view trim(std::string_view s) {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+    return s;
+}
+
+std::string_view unquote(std::string_view s) {
+    s = trim(s);
+    if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = trim(s.substr(1, s.size() - 2));
+    return s;
+}
+
+void split(std::string_view line, std::vector<std::string_view>& fields) {
+    fields.clear();
+    std::size_t start = 0;
+    for (;;) {
+        const std::size_t comma = line.find(',', start);
+        if (comma == std::string_view::npos) {
+            fields.push_back(line.substr(start));
+            return;
+        }
+        fields.push_back(line.substr(start, comma - start));
+        start = comma + 1;
+    }
+}
+
+[[noreturn]] void fail(const std::string& source, long line, const std::string& what) {
+    throw DataError(source + (line > 0 ? ": line " + std::to_string(line) : std::string()) + ": " + what);
+}
+
+bool all_digits(const std::string& s) {
+    return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+std::string show(std::string_view s) {
+    std::string out(s.substr(0, 40));
+    if (s.size() > 40) out += "...";
+    return "'" + out + "'";
+}
+
+}  // namespace
+
+void parse_row_range(const std::string& spec, long& begin, long& end) {
+    const auto colon = spec.find(':');
+    if (colon == std::string::npos) throw DataError("row range '" + spec + "': expected A:B (0-based, B excluded)");
+    auto num = [&](const std::string& s, long fallback) {
+        if (s.empty()) return fallback;
+        long v = 0;
+        const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+        if (r.ec != std::errc() || r.ptr != s.data() + s.size() || v < 0)
+            throw DataError("row range '" + spec + "': '" + s + "' is not a row number >= 0");
+        return v;
+    };
+    begin = num(spec.substr(0, colon), 0);
+    end = num(spec.substr(colon + 1), -1);
+    if (end >= 0 && end <= begin) throw DataError("row range '" + spec + "': empty (B must exceed A)");
+}
+
+std::string read_data_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw DataError(path + ": cannot open the data file");
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw DataError(path + ": read error");
+    return is_gzip(bytes) ? gunzip(bytes, path) : bytes;
+}
+
+MeasuredData load_measured(const std::string& path, const LoadOptions& options) {
+    return parse_measured(read_data_file(path), path, options);
+}
+
+MeasuredData parse_measured(std::string_view text, const std::string& src, const LoadOptions& opt) {
+    MeasuredData d;
+    d.source = src;
+    if (text.size() >= 3 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);   // UTF-8 BOM
+    if (text.find('\0') != std::string_view::npos) fail(src, 0, "not a text file (it contains NUL bytes)");
+
+    enum Sig { T, X, PHI, U, OMEGA, V, NSIG };
+    const char* sig_name[NSIG] = {"t", "x", "phi", "u", "omega", "v"};
+    const std::string* mapped[NSIG] = {&opt.columns.t, &opt.columns.x, &opt.columns.phi,
+                                       &opt.columns.u, &opt.columns.omega, &opt.columns.v};
+    int col[NSIG];
+    std::fill(col, col + NSIG, -1);
+    std::vector<std::string> header;
+    long header_line = 0;
+    std::size_t ncols = 0;
+    std::vector<std::string_view> fields;
+    std::vector<double> rows[NSIG];
+    std::vector<long> lines;
+
+    auto finish_header = [&]() {
+        // Empty names are allowed only at the end (a trailing comma on every line).
+        std::size_t named = header.size();
+        while (named > 0 && header[named - 1].empty()) --named;
+        for (std::size_t k = 0; k < named; ++k) {
+            if (header[k].empty()) fail(src, header_line, "column " + std::to_string(k + 1) + " of the header has no name");
+            for (std::size_t j = 0; j < k; ++j)
+                if (header[j] == header[k]) fail(src, header_line, "column name '" + header[k] + "' appears twice");
+        }
+        auto list = [&] {
+            std::string s;
+            for (std::size_t k = 0; k < named; ++k) s += (k ? ", " : "") + header[k];
+            return s;
+        };
+        for (int s = 0; s < NSIG; ++s) {
+            const std::string& m = *mapped[s];
+            if (m.empty()) {
+                for (std::size_t k = 0; k < named; ++k)
+                    if (header[k] == sig_name[s]) col[s] = static_cast<int>(k);
+                continue;
+            }
+            if (all_digits(m)) {
+                const long k = std::stol(m);
+                if (k < 1 || static_cast<std::size_t>(k) > named)
+                    fail(src, header_line, std::string("the mapping of '") + sig_name[s] + "' to column " + m +
+                                               " names no column (the header has " + std::to_string(named) +
+                                               " columns: " + list() + ")");
+                col[s] = static_cast<int>(k - 1);
+            } else {
+                const std::string want(unquote(m));
+                for (std::size_t k = 0; k < named; ++k)
+                    if (header[k] == want) col[s] = static_cast<int>(k);
+                if (col[s] < 0)
+                    fail(src, header_line, std::string("the mapping of '") + sig_name[s] + "' to column '" + m +
+                                               "' names no column (the header has: " + list() + ")");
+            }
+        }
+        for (int s = 0; s < NSIG; ++s)
+            for (int r = 0; r < s; ++r)
+                if (col[s] >= 0 && col[s] == col[r])
+                    fail(src, header_line, std::string("'") + sig_name[r] + "' and '" + sig_name[s] +
+                                               "' are mapped to the same column");
+        if (col[X] < 0) fail(src, header_line, "no position column 'x' (the header has: " + list() + "; map one with --x-col)");
+        if (col[T] < 0 && !(opt.rate > 0))
+            fail(src, header_line, "no time column 't' and no sample rate (give --rate HZ or map --t-col)");
+        if (col[T] >= 0 && opt.rate > 0)
+            fail(src, header_line, "both a time column and a sample rate are given; use one");
+        if (col[PHI] >= 0 && col[U] >= 0) {
+            if (!opt.columns.phi.empty() && opt.columns.u.empty()) col[U] = -1;
+            else if (!opt.columns.u.empty() && opt.columns.phi.empty()) col[PHI] = -1;
+            else fail(src, header_line, "both a 'phi' and a 'u' column: say which is the forcing (--phi-col or --u-col)");
+        }
+        if (col[PHI] < 0 && col[U] < 0)
+            fail(src, header_line, "no forcing column: need the unbalance angle 'phi' or a measured input 'u' (the header has: " +
+                                       list() + ")");
+        ncols = header.size();
+    };
+
+    long lineno = 0;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+        std::size_t eol = text.find('\n', pos);
+        if (eol == std::string_view::npos) eol = text.size();
+        std::string_view line = text.substr(pos, eol - pos);
+        pos = eol + 1;
+        ++lineno;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        const std::string_view tl = trim(line);
+        if (tl.empty()) continue;
+        if (tl.front() == '#') {
+            const std::string_view body = trim(tl.substr(1));
+            const auto colon = body.find(':');
+            if (colon != std::string_view::npos && colon > 0) {
+                const std::string key(trim(body.substr(0, colon)));
+                if (key.find(' ') == std::string::npos) d.meta[key] = std::string(trim(body.substr(colon + 1)));
+            }
+            continue;
+        }
+        split(line, fields);
+        if (header.empty()) {
+            header_line = lineno;
+            for (auto f : fields) header.emplace_back(unquote(f));
+            finish_header();
+            continue;
+        }
+        if (fields.size() != ncols)
+            fail(src, lineno, std::to_string(fields.size()) + " fields, but the header (line " + std::to_string(header_line) +
+                                  ") has " + std::to_string(ncols));
+        for (int s = 0; s < NSIG; ++s) {
+            if (col[s] < 0) continue;
+            std::string_view f = unquote(fields[static_cast<std::size_t>(col[s])]);
+            const std::string name = "column '" + header[static_cast<std::size_t>(col[s])] + "' (" + sig_name[s] + ")";
+            if (f.empty()) fail(src, lineno, name + " is empty");
+            if (f.front() == '+') f.remove_prefix(1);
+            double v = 0;
+            const auto r = std::from_chars(f.data(), f.data() + f.size(), v);
+            if (r.ec == std::errc::result_out_of_range) fail(src, lineno, name + ": " + show(f) + " is out of range");
+            if (r.ec != std::errc() || r.ptr != f.data() + f.size()) fail(src, lineno, name + ": " + show(f) + " is not a number");
+            if (!std::isfinite(v)) fail(src, lineno, name + ": " + show(f) + " is not a finite number");
+            rows[s].push_back(v);
+        }
+        lines.push_back(lineno);
+    }
+    if (header.empty()) fail(src, 0, "no header row (the file is empty or holds only comments)");
+    const std::size_t n = lines.size();
+    if (n == 0) fail(src, 0, "no data rows after the header (line " + std::to_string(header_line) + ")");
+
+    // Whole-file checks, before any row selection.
+    if (col[T] >= 0) {
+        for (std::size_t i = 1; i < n; ++i)
+            if (!(rows[T][i] > rows[T][i - 1])) {
+                std::ostringstream msg;
+                msg << std::setprecision(10) << "time does not increase: t = " << rows[T][i] << " after t = " << rows[T][i - 1]
+                    << " (line " << lines[i - 1] << ")";
+                fail(src, lines[i], msg.str());
+            }
+    }
+    if (col[PHI] >= 0) {
+        for (std::size_t i = 1; i < n; ++i) {
+            const double jump = (rows[PHI][i] - rows[PHI][i - 1]) * opt.phi_scale;
+            if (std::abs(jump) > 3.141592653589793) {
+                std::ostringstream msg;
+                msg << std::setprecision(6) << "phi jumps by " << jump
+                    << " rad from the previous sample: phi must be the unwrapped, continuous angle";
+                fail(src, lines[i], msg.str());
+            }
+        }
+    }
+
+    const std::size_t b = static_cast<std::size_t>(std::max(0L, opt.row_begin));
+    const std::size_t e = opt.row_end < 0 ? n : static_cast<std::size_t>(opt.row_end);
+    if (b >= n || e > n)
+        fail(src, 0, "rows " + std::to_string(opt.row_begin) + ":" + (opt.row_end < 0 ? "" : std::to_string(opt.row_end)) +
+                         " lie outside the file's " + std::to_string(n) + " data rows");
+    if (e - b < opt.min_samples)
+        fail(src, 0, "only " + std::to_string(e - b) + " samples; at least " + std::to_string(opt.min_samples) + " are needed");
+
+    auto take = [&](int s, double scale, std::vector<double>& out) {
+        if (col[s] < 0) return;
+        out.assign(rows[s].begin() + static_cast<long>(b), rows[s].begin() + static_cast<long>(e));
+        if (scale != 1.0)
+            for (double& v : out) v *= scale;
+    };
+    if (col[T] >= 0) {
+        take(T, opt.t_scale, d.t);
+    } else {
+        d.t.resize(e - b);
+        for (std::size_t i = b; i < e; ++i) d.t[i - b] = static_cast<double>(i) / opt.rate;
+    }
+    take(X, opt.x_scale, d.x);
+    take(PHI, opt.phi_scale, d.phi);
+    take(U, opt.u_scale, d.u);
+    take(OMEGA, 1.0, d.omega);
+    take(V, opt.x_scale, d.v);
+    d.line.assign(lines.begin() + static_cast<long>(b), lines.begin() + static_cast<long>(e));
+    return d;
+}
+
+void write_measured_csv(std::ostream& out, const MeasuredData& d) {
+    for (const auto& [k, v] : d.meta) out << "# " << k << ": " << v << '\n';
+    out << "t,x," << (d.has_phi() ? "phi" : "u") << '\n';
+    const auto& f = d.has_phi() ? d.phi : d.u;
+    char buf[96];
+    for (std::size_t i = 0; i < d.size(); ++i) {
+        const int len = std::snprintf(buf, sizeof buf, "%.6f,%.7f,%.6f\n", d.t[i], d.x[i], f[i]);
+        out.write(buf, len);
+    }
+}
+
+}  // namespace impactlab::identify

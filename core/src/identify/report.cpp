@@ -1,0 +1,326 @@
+// The report of impactlab fit: report.json, report.md, model_after.json and the PNG plots.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "identify/internal.hpp"
+#include "impactlab/params_json.hpp"
+#include "impactlab/plot.hpp"
+
+namespace impactlab::identify {
+
+using nlohmann::json;
+
+namespace {
+
+json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json errors_json(const ErrorSummary& e) {
+    json j;
+    j["residual_rms_N"] = num(e.residual_rms_N);
+    j["shooting_rms_1_m"] = num(e.shooting_rms_1_m);
+    j["shooting_rms_10_m"] = num(e.shooting_rms_10_m);
+    j["impact_law"] = {{"impacts", e.impact.impacts},
+                       {"kappa_rms", num(e.impact.kappa_rms)},
+                       {"duration_rms_s", num(e.impact.duration_rms_s)},
+                       {"level_offset_m", num(e.impact.level_offset_m)}};
+    j["diagram_distance_m"] = e.diagram_distance_m >= 0 ? num(e.diagram_distance_m) : json(nullptr);
+    j["diagram_bins"] = e.diagram_bins;
+    if (e.simulation_rms_m >= 0) j["simulation_rms_m"] = num(e.simulation_rms_m);
+    if (e.test_simulation_rms_m >= 0) j["test_simulation_rms_m"] = num(e.test_simulation_rms_m);
+    return j;
+}
+
+json model_json(const Model& m) {
+    json j = json::parse(params_to_json_text(m.p));
+    j["forcing"] = m.forcing == Forcing::Unbalance ? "unbalance" : "input";
+    if (m.forcing == Forcing::Input) j["gain"] = m.gain;
+    j["bumper"] = m.bumper;
+    return j;
+}
+
+std::string g3(double v, const char* f = "%.3g") {
+    if (!std::isfinite(v)) return "-";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, f, v);
+    return buf;
+}
+
+plot::Series points(const std::vector<double>& x, const std::vector<double>& y, plot::Color c, double xs = 1.0, double ys = 1.0,
+                    const std::string& label = "") {
+    plot::Series s;
+    s.kind = plot::Series::Kind::Points;
+    s.x.reserve(x.size());
+    s.y.reserve(y.size());
+    for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) {
+        s.x.push_back(x[i] * xs);
+        s.y.push_back(y[i] * ys);
+    }
+    s.color = c;
+    s.size = 1.2f;
+    s.label = label;
+    return s;
+}
+
+plot::Series line(const std::vector<double>& x, const std::vector<double>& y, plot::Color c, float width, const std::string& label,
+                  double ys = 1.0) {
+    plot::Series s;
+    s.kind = plot::Series::Kind::Line;
+    s.x = x;
+    for (double v : y) s.y.push_back(v * ys);
+    s.y.resize(s.x.size(), std::nan(""));
+    s.color = c;
+    s.size = width;
+    s.label = label;
+    return s;
+}
+
+void residual_figure(const FitReport& r, const std::vector<double>& var, double scale, const std::string& xlabel,
+                     const std::string& title, const std::string& path) {
+    plot::Figure fig;
+    fig.title = title;
+    fig.width = 1100;
+    fig.panel_height = 320;
+    double lo = INFINITY, hi = -INFINITY;
+    for (double v : r.residual.before)
+        if (std::isfinite(v)) {
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+        }
+    for (int k = 0; k < 2; ++k) {
+        plot::Panel p;
+        p.title = k == 0 ? "before: " + r.before.p.name : "after: " + r.after.p.name;
+        p.xlabel = xlabel;
+        p.ylabel = "residual [N]";
+        p.series.push_back(points(var, k == 0 ? r.residual.before : r.residual.after,
+                                  k == 0 ? plot::Color{214, 39, 40, 90} : plot::Color{31, 119, 180, 90}, scale));
+        if (std::isfinite(lo) && hi > lo) {
+            p.ymin = lo - 0.03 * (hi - lo);
+            p.ymax = hi + 0.03 * (hi - lo);
+        }
+        fig.panels.push_back(std::move(p));
+    }
+    plot::save_png(fig, path);
+}
+
+void plots(const FitReport& r, const std::string& dir) {
+    namespace fs = std::filesystem;
+    const std::string xl = r.forcing.rfind("phi", 0) == 0 ? "x [mm]" : "x (as measured) x 1000";
+    residual_figure(r, r.residual.x, 1e3, xl, "Residual against the position", (fs::path(dir) / "residual_x.png").string());
+    residual_figure(r, r.residual.v, 1.0, "v [m/s]", "Residual against the velocity", (fs::path(dir) / "residual_v.png").string());
+    if (r.forcing.rfind("phi", 0) == 0)
+        residual_figure(r, r.residual.phi, 1.0, "phi mod 2 pi [rad]", "Residual against the unbalance angle",
+                        (fs::path(dir) / "residual_phi.png").string());
+    if (!r.trace.t.empty()) {
+        plot::Figure fig;
+        fig.title = "Measured and simulated x(t): one window of 10 forcing periods (multiple shooting)";
+        fig.width = 1200;
+        fig.panel_height = 300;
+        for (int k = 0; k < 2; ++k) {
+            plot::Panel p;
+            p.title = k == 0 ? "before: " + r.before.p.name : "after: " + r.after.p.name;
+            p.xlabel = "t [s]";
+            p.ylabel = "x [mm]";
+            p.series.push_back(line(r.trace.t, r.trace.measured, {20, 20, 20, 255}, 1.6f, "measured", 1e3));
+            p.series.push_back(line(r.trace.t, k == 0 ? r.trace.before : r.trace.after,
+                                    k == 0 ? plot::Color{214, 39, 40, 230} : plot::Color{31, 119, 180, 230}, 1.3f, "simulated", 1e3));
+            fig.panels.push_back(std::move(p));
+        }
+        plot::save_png(fig, (fs::path(dir) / "x_t.png").string());
+    }
+    if (r.impacts.size() >= 3) {
+        plot::Figure fig;
+        fig.title = "Impact law: measured impacts against the model's kappa(v-) and T_imp(v-)";
+        fig.width = 1000;
+        fig.panel_height = 300;
+        double vmax = 0;
+        std::vector<double> vm, kap, dw;
+        for (const auto& im : r.impacts) {
+            vmax = std::max(vmax, im.v_minus);
+            vm.push_back(im.v_minus);
+            kap.push_back(im.v_minus > 0 ? -im.v_plus / im.v_minus : NAN);
+            dw.push_back(im.dwell * 1e3);
+        }
+        std::vector<double> grid, kb, ka, tb, ta;
+        for (int k = 0; k <= 100; ++k) {
+            const double v = vmax * 1.1 * k / 100.0;
+            grid.push_back(v);
+            double a, b;
+            detail::model_impact_law(r.before.p, v, a, b);
+            kb.push_back(a);
+            tb.push_back(b * 1e3);
+            detail::model_impact_law(r.after.p, v, a, b);
+            ka.push_back(a);
+            ta.push_back(b * 1e3);
+        }
+        plot::Panel p1, p2;
+        p1.title = "restitution -v+/v-";
+        p1.xlabel = "v- [m/s]";
+        p1.ylabel = "kappa";
+        p1.series.push_back(points(vm, kap, {20, 20, 20, 255}, 1, 1, "measured"));
+        p1.series.back().size = 2.5f;
+        p1.series.push_back(line(grid, kb, {214, 39, 40, 230}, 1.5f, "model before"));
+        p1.series.push_back(line(grid, ka, {31, 119, 180, 230}, 1.5f, "model after"));
+        p2.title = "time held at the bumper";
+        p2.xlabel = "v- [m/s]";
+        p2.ylabel = "dwell [ms]";
+        p2.series.push_back(points(vm, dw, {20, 20, 20, 255}, 1, 1, "measured"));
+        p2.series.back().size = 2.5f;
+        p2.series.push_back(line(grid, tb, {214, 39, 40, 230}, 1.5f, "model before"));
+        p2.series.push_back(line(grid, ta, {31, 119, 180, 230}, 1.5f, "model after"));
+        fig.panels.push_back(std::move(p1));
+        fig.panels.push_back(std::move(p2));
+        plot::save_png(fig, (fs::path(dir) / "impacts.png").string());
+    }
+    if (!r.diagram_measured.empty()) {
+        plot::Figure fig;
+        fig.title = "Bifurcation diagrams: x at phi = 2 pi k against omega";
+        fig.width = 1100;
+        fig.panel_height = 260;
+        const std::vector<std::pair<double, double>>* d[3] = {&r.diagram_measured, &r.diagram_before, &r.diagram_after};
+        const char* names[3] = {"measured", "simulated before", "simulated after"};
+        for (int k = 0; k < 3; ++k) {
+            plot::Panel p;
+            p.title = names[k];
+            p.xlabel = "omega [rad/s]";
+            p.ylabel = "x [mm]";
+            std::vector<double> w, x;
+            for (const auto& [a, b] : *d[k]) {
+                w.push_back(a);
+                x.push_back(b);
+            }
+            p.series.push_back(points(w, x, {20, 20, 20, 120}, 1, 1e3));
+            fig.panels.push_back(std::move(p));
+        }
+        plot::save_png(fig, (fs::path(dir) / "diagram.png").string());
+    }
+}
+
+std::string markdown(const FitReport& r, bool with_plots) {
+    std::ostringstream md;
+    md << "# impactlab fit: " << r.data_source << "\n\n";
+    md << "Model **" << r.before.p.name << "** (" << (r.baseline == "fit" ? "parameters fitted to the data" : "parameters fixed")
+       << "), forcing " << r.forcing << ". " << r.samples << " samples, " << g3(r.duration) << " s at " << g3(1.0 / r.dt)
+       << " Hz; sensor noise about " << g3(r.sigma_x * 1e6) << " um.\n\n";
+    md << "The equation error is the local average over a smooth window of half-width " << g3(r.window_s * 1e3)
+       << " ms of m x'' + F_R + F_SA + F_I - forcing, on " << r.rows_used
+       << " free-flight windows (impacts left out); its noise floor is about " << g3(r.noise_floor_N) << " N.\n\n";
+    md << "## Effects found\n\n";
+    if (r.effects_found.empty()) {
+        md << "None: no missing effect explains the residual beyond the noise.\n\n";
+    } else {
+        int k = 1;
+        for (const auto& f : r.effects_found) {
+            md << k++ << ". **" << f.id << "** (explains " << g3(100 * f.explained_fraction, "%.1f") << " % of the "
+               << (f.evidence == "impact law" ? "impact-law error" : "residual") << ", z = " << g3(f.z, "%.1f") << "): "
+               << f.sentence << ".\n";
+        }
+        md << "\n";
+    }
+    md << "## Error before and after\n\n| measure | before | after |\n|---|---|---|\n";
+    auto row = [&](const char* name, double b, double a, double scale, const char* f) {
+        md << "| " << name << " | " << g3(b * scale, f) << " | " << g3(a * scale, f) << " |\n";
+    };
+    const auto& b = r.error_before;
+    const auto& a = r.error_after;
+    row("residual RMS [N]", b.residual_rms_N, a.residual_rms_N, 1, "%.4g");
+    row("shooting RMS, 1 period [mm]", b.shooting_rms_1_m, a.shooting_rms_1_m, 1e3, "%.4g");
+    row("shooting RMS, 10 periods [mm]", b.shooting_rms_10_m, a.shooting_rms_10_m, 1e3, "%.4g");
+    if (b.impact.impacts > 0) {
+        row("impact law: kappa RMS error", b.impact.kappa_rms, a.impact.kappa_rms, 1, "%.3g");
+        row("impact law: dwell RMS error [ms]", b.impact.duration_rms_s, a.impact.duration_rms_s, 1e3, "%.3g");
+        row("impact law: bumper level offset [mm]", b.impact.level_offset_m, a.impact.level_offset_m, 1e3, "%.3g");
+    }
+    if (b.diagram_distance_m >= 0) row("diagram distance (mean per omega bin) [mm]", b.diagram_distance_m, a.diagram_distance_m, 1e3, "%.4g");
+    if (b.simulation_rms_m >= 0) row("free-run simulation RMS (as measured)", b.simulation_rms_m, a.simulation_rms_m, 1, "%.4g");
+    if (b.test_simulation_rms_m >= 0)
+        row("free-run simulation RMS on the test rows (as measured)", b.test_simulation_rms_m, a.test_simulation_rms_m, 1, "%.4g");
+    md << "\n" << b.impact.impacts << " impacts found in the data.\n\n";
+    md << "## Candidates (first round: each alone on the baseline residual)\n\n| id | share of residual | z | selected |\n|---|---|---|---|\n";
+    for (const auto& c : r.candidates)
+        md << "| " << c.id << " | " << g3(100 * c.gain, "%.2f") << " % | " << g3(c.z, "%.1f") << " | " << (c.selected ? "yes" : "") << " |\n";
+    md << "\nAn effect is kept when it lowers the 5-fold block cross-validated residual by at least the minimum share and its "
+          "coefficient stands out of the noise (z from serially-correlation-robust standard errors).\n\n";
+    if (!r.notes.empty()) {
+        md << "## Notes\n\n";
+        for (const auto& n : r.notes) md << "- " << n << "\n";
+        md << "\n";
+    }
+    md << "The model with the effects: `model_after.json` (use it with `--model`). Runtime " << g3(r.runtime_s) << " s.\n\n";
+    if (with_plots) {
+        md << "![residual against x](residual_x.png)\n\n![residual against v](residual_v.png)\n\n";
+        if (r.forcing.rfind("phi", 0) == 0) md << "![residual against phi](residual_phi.png)\n\n";
+        if (!r.trace.t.empty()) md << "![measured and simulated x(t)](x_t.png)\n\n";
+        if (r.impacts.size() >= 3) md << "![impact law](impacts.png)\n\n";
+        if (!r.diagram_measured.empty()) md << "![bifurcation diagrams](diagram.png)\n\n";
+    }
+    return md.str();
+}
+
+}  // namespace
+
+std::string report_json_text(const FitReport& r) {
+    json j;
+    j["data"] = {{"source", r.data_source},
+                 {"samples", r.samples},
+                 {"dt_s", r.dt},
+                 {"duration_s", r.duration},
+                 {"forcing", r.forcing},
+                 {"sigma_x_m", num(r.sigma_x)},
+                 {"omega_min", num(r.omega_min)},
+                 {"omega_max", num(r.omega_max)},
+                 {"drive_fit_rms_rad", num(r.drive_fit_rms_rad)},
+                 {"impacts", r.impacts.size()}};
+    j["model"] = r.before.p.name;
+    j["baseline"] = r.baseline;
+    j["analysis"] = {{"window_s", r.window_s}, {"rows_used", r.rows_used}, {"noise_floor_N", num(r.noise_floor_N)},
+                     {"period_s", num(r.period_s)}};
+    j["effects_found"] = json::array();
+    for (const auto& f : r.effects_found) {
+        json e;
+        e["id"] = f.id;
+        e["explained_fraction"] = num(f.explained_fraction);
+        e["parameters"] = json::object();
+        for (const auto& [k, v] : f.parameters) e["parameters"][k] = num(v);
+        e["uncertainty"] = json::object();
+        for (const auto& [k, v] : f.sigma) e["uncertainty"][k] = num(v);
+        e["z"] = num(f.z);
+        e["evidence"] = f.evidence;
+        e["sentence"] = f.sentence;
+        j["effects_found"].push_back(e);
+    }
+    j["candidates"] = json::array();
+    for (const auto& c : r.candidates)
+        j["candidates"].push_back({{"id", c.id}, {"explained_fraction_alone", num(c.gain)}, {"z", num(c.z)}, {"selected", c.selected}});
+    j["error_before"] = errors_json(r.error_before);
+    j["error_after"] = errors_json(r.error_after);
+    j["model_before"] = model_json(r.before);
+    j["model_after"] = model_json(r.after);
+    j["impacts"] = json::array();
+    for (const auto& im : r.impacts)
+        j["impacts"].push_back({{"t", im.t}, {"v_minus", im.v_minus}, {"v_plus", im.v_plus}, {"dwell_s", im.dwell}, {"level_m", im.level}});
+    j["notes"] = r.notes;
+    j["runtime_s"] = r.runtime_s;
+    return j.dump(2) + "\n";
+}
+
+void write_report(const FitReport& r, const std::string& dir, bool with_plots) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir)) throw std::runtime_error(dir + ": cannot create the report directory");
+    auto write = [&](const std::string& name, const std::string& text) {
+        std::ofstream out(fs::path(dir) / name);
+        out << text;
+        if (!out) throw std::runtime_error((fs::path(dir) / name).string() + ": write failed");
+    };
+    write("report.json", report_json_text(r));
+    write("model_after.json", params_to_json_text(r.after.p));
+    if (with_plots) plots(r, dir);
+    write("report.md", markdown(r, with_plots));
+}
+
+}  // namespace impactlab::identify

@@ -1,0 +1,228 @@
+// The weak-form equation error on free-flight samples: data preparation and evaluation.
+#include <algorithm>
+#include <cstdlib>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "identify/internal.hpp"
+#include "impactlab/forces.hpp"
+#include "impactlab/simulator.hpp"
+
+namespace impactlab::identify::detail {
+
+namespace {
+
+// Velocity reversals. Dry friction makes the acceleration jump by 2T/m where v changes sign, and a
+// Savitzky-Golay derivative smears that kink: it misplaces the reversal by milliseconds, and the friction
+// force T sign(v) with it. Around each sign change of the smoothed velocity, fit
+//   x = x0 + a1 s^2/2 + j s^3/6 + q s^4/24 (s = t - t0 < 0), a2 instead of a1 for s > 0,
+// with the reversal time t0 found by a sub-sample search, and take v from that fit near t0.
+void refine_reversals(const MeasuredData& d, Prep& pr) {
+    const std::size_t n = pr.n;
+    const int W = std::max(6, pr.Hv);
+    std::vector<double> v = pr.vs;
+    for (std::size_t c = static_cast<std::size_t>(W) + 1; c + static_cast<std::size_t>(W) + 2 < n; ++c) {
+        if (!(pr.vs[c] * pr.vs[c + 1] <= 0) || !std::isfinite(pr.vs[c]) || !std::isfinite(pr.vs[c + 1])) continue;
+        const std::size_t a = c - static_cast<std::size_t>(W), b = c + 1 + static_cast<std::size_t>(W);
+        const double tc = d.t[c];
+        double best = INFINITY, best_t0 = tc;
+        Eigen::Matrix<double, 5, 1> best_beta = Eigen::Matrix<double, 5, 1>::Zero();
+        for (double off = -3.0; off <= 4.0 + 1e-9; off += 0.1) {
+            const double t0 = tc + off * pr.dt;
+            Eigen::Matrix<double, 5, 5> G = Eigen::Matrix<double, 5, 5>::Zero();
+            Eigen::Matrix<double, 5, 1> r = Eigen::Matrix<double, 5, 1>::Zero();
+            double xx = 0;
+            for (std::size_t j = a; j <= b; ++j) {
+                const double s = d.t[j] - t0;
+                Eigen::Matrix<double, 5, 1> row;
+                row << 1.0, s < 0 ? 0.5 * s * s : 0.0, s < 0 ? 0.0 : 0.5 * s * s, s * s * s / 6.0, s * s * s * s / 24.0;
+                G.noalias() += row * row.transpose();
+                r.noalias() += row * d.x[j];
+                xx += d.x[j] * d.x[j];
+            }
+            const Eigen::Matrix<double, 5, 1> beta = G.ldlt().solve(r);
+            const double rss = xx - beta.dot(r);
+            if (rss < best) {
+                best = rss;
+                best_t0 = t0;
+                best_beta = beta;
+            }
+        }
+        // Replace the smoothed velocity near the reversal (where the smearing matters) by the fit's.
+        for (std::size_t j = a + 1; j < b; ++j) {
+            const double s = d.t[j] - best_t0;
+            v[j] = (s < 0 ? best_beta[1] : best_beta[2]) * s + 0.5 * best_beta[3] * s * s + best_beta[4] * s * s * s / 6.0;
+        }
+        c += static_cast<std::size_t>(W) / 2;
+    }
+    pr.vs.swap(v);
+}
+
+}  // namespace
+
+Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::vector<std::string>& notes) {
+    Prep pr;
+    pr.data = &d;
+    pr.n = d.size();
+    const std::size_t n = pr.n;
+    if (n < 200) throw DataError(d.source + ": only " + std::to_string(n) + " samples; impactlab fit needs at least 200");
+    pr.dt = (d.t.back() - d.t.front()) / static_cast<double>(n - 1);
+    for (std::size_t i = 1; i < n; ++i) {
+        const double step = d.t[i] - d.t[i - 1];
+        if (std::abs(step - pr.dt) > 0.01 * pr.dt) {
+            std::ostringstream msg;
+            msg << std::setprecision(6) << d.source << ": line " << d.line[i] << ": the time step " << step
+                << " s differs from the mean step " << pr.dt << " s by more than 1%; impactlab fit needs uniform sampling";
+            throw DataError(msg.str());
+        }
+    }
+    pr.sigma_x = noise_sigma(d.x);
+    pr.phi_forced = d.has_phi();
+    if (pr.phi_forced != (m.forcing == Forcing::Unbalance))
+        throw ParamError(pr.phi_forced ? "the data are forced through phi, but the model expects an input u"
+                                       : "the data carry an input u, but the model is forced by the unbalance angle phi");
+
+    double t_char;
+    pr.phi.assign(n, 0.0);
+    pr.omega.assign(n, 0.0);
+    pr.alpha.assign(n, 0.0);
+    if (pr.phi_forced) {
+        pr.drive = fit_drive(d.t, d.phi, o.knot_spacing, pr.drive_rms);
+        for (std::size_t i = 0; i < n; ++i) {
+            pr.phi[i] = pr.drive.phi(d.t[i]);
+            pr.omega[i] = pr.drive.omega(d.t[i]);
+            pr.alpha[i] = pr.drive.alpha(d.t[i]);
+        }
+        const double wmax = std::max(quantile(pr.omega, 0.99), 0.5);
+        t_char = kTwoPi / wmax;
+        pr.period = kTwoPi / std::max(median(pr.omega), 0.5);
+    } else {
+        pr.u = d.u;
+        pr.period = dominant_period(d.x, pr.dt);
+        t_char = pr.period;
+    }
+    int H = o.window > 0 ? static_cast<int>(std::lround(o.window / pr.dt))
+                         : static_cast<int>(std::lround(t_char / (12.0 * pr.dt)));
+    H = std::clamp(H, 6, 400);
+    pr.K = make_kernel(H, pr.dt);
+    pr.Hv = std::max(3, H / 2);
+    pr.xs = apply_fir(d.x, savgol(pr.Hv, 4, 0, pr.dt));
+    pr.vs = apply_fir(d.x, savgol(pr.Hv, 3, 1, pr.dt));
+
+    refine_reversals(d, pr);
+    pr.zone.assign(n, 0);
+    if (m.bumper) {
+        pr.impacts = find_impacts(d.t, d.x, pr.sigma_x, m.sensor_gain() * m.p.xI + m.sensor_offset());
+        // A margin of kMargin samples keeps the zone's edge away from the samples whose noise decided it
+        // (otherwise the windows next to it would be chosen by the noise they contain: a biased residual).
+        constexpr std::size_t kMargin = 10;
+        for (const auto& im : pr.impacts) {
+            const std::size_t a = im.i_first >= kMargin ? im.i_first - kMargin : 0, b = std::min(n - 1, im.i_last + kMargin);
+            for (std::size_t j = a; j <= b; ++j) pr.zone[j] = 1;
+        }
+    }
+    // Rows: window centres whose kernel (and the velocity estimates under it) stay clear of every impact,
+    // and that do not linger at v = 0: there the sign of the estimated velocity, and so the dry friction
+    // force, is unknown (a cart at rest or creeping).
+    const auto cv = savgol(pr.Hv, 3, 1, pr.dt);
+    double sv = 0;
+    for (double c : cv) sv += c * c;
+    const double slow = 3.0 * pr.sigma_x * std::sqrt(sv) + 1e-6;
+    // Grazing contacts too brief to fit as impacts: every sample at the bumper's level joins the zone.
+    if (m.bumper) {
+        std::vector<double> lev;
+        for (const auto& im : pr.impacts) lev.push_back(im.level);
+        const double level = lev.size() >= 3 ? median(lev) : m.sensor_gain() * m.p.xI + m.sensor_offset();
+        const double near = 8.0 * pr.sigma_x + 2e-6;
+        for (std::size_t i = 0; i < n; ++i)
+            if (d.x[i] >= level - near)
+                for (std::size_t j = i >= 10 ? i - 10 : 0; j <= std::min(n - 1, i + 10); ++j) pr.zone[j] = 1;
+    }
+    // Turning points where the other forces cannot overcome the dry friction: the cart may stick there for a
+    // while, and the smoothed velocity cannot tell; those stretches are left out too.
+    std::vector<char> stick(n, 0);
+    const double Tlim = 3.0 * m.p.T;
+    if (m.p.T > 0 && !getenv("NOSTICK")) {
+        for (std::size_t i = 0; i + 1 < n; ++i) {
+            if (!(pr.vs[i] * pr.vs[i + 1] <= 0) || !std::isfinite(pr.vs[i])) continue;
+            const double x = (d.x[i] - m.sensor_offset()) / m.sensor_gain();
+            double F = -spring_magnet(m.p, x).F;
+            if (pr.phi_forced) F += unbalance_force(m.p, pr.phi[i], pr.omega[i]);
+            else F += m.gain * pr.u[i];
+            if (std::abs(F) < Tlim) {
+                const std::size_t a = i >= static_cast<std::size_t>(pr.Hv) ? i - static_cast<std::size_t>(pr.Hv) : 0;
+                const std::size_t b = std::min(n - 1, i + static_cast<std::size_t>(pr.Hv) + 1);
+                for (std::size_t j = a; j <= b; ++j) stick[j] = 1;
+            }
+        }
+    }
+    std::vector<std::size_t> cum(n + 1, 0), cum_slow(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        cum[i + 1] = cum[i] + (pr.zone[i] || stick[i] ? 1 : 0);
+        cum_slow[i + 1] = cum_slow[i] + (std::abs(pr.vs[i]) < slow ? 1 : 0);
+    }
+    const std::size_t reach = static_cast<std::size_t>(H + pr.Hv);
+    const std::size_t stride = static_cast<std::size_t>(std::max(1, H / 4));
+    const std::size_t max_slow = static_cast<std::size_t>(std::max(1, (2 * H + 1) / 20));
+    for (std::size_t i = reach; i + reach < n; i += stride)
+        if (cum[i + reach + 1] - cum[i - reach] == 0 && (getenv("NOSLOW") || cum_slow[i + H + 1] - cum_slow[i - H] <= max_slow)) pr.rows.push_back(i);
+    if (pr.rows.size() < 20) throw DataError(d.source + ": too few free-flight stretches for the residual (" +
+                                             std::to_string(pr.rows.size()) + " windows)");
+    pr.j_lo = pr.rows.front() - static_cast<std::size_t>(H);
+    pr.j_hi = pr.rows.back() + static_cast<std::size_t>(H) + 1;
+    if (pr.phi_forced && pr.drive_rms > 0.05)
+        notes.push_back("the fitted omega(t) leaves a phase error of " + std::to_string(pr.drive_rms) +
+                        " rad RMS: phi is not a smooth rotation");
+    return pr;
+}
+
+void residual(const Prep& pr, const Model& m, Eigen::VectorXd& R, std::vector<double>& pw) {
+    const MeasuredData& d = *pr.data;
+    const double g = m.sensor_gain(), o = m.sensor_offset(), ig = 1.0 / g;
+    pw.resize(pr.n);
+    const bool input = !pr.phi_forced;
+    for (std::size_t j = pr.j_lo; j < pr.j_hi; ++j) {
+        const double x = (d.x[j] - o) * ig, v = pr.vs[j] * ig;
+        const ForceTerms f = force_terms(m.p, d.t[j], x, v, pr.phi[j], pr.omega[j], pr.alpha[j]);
+        double val = -f.net();
+        if (input) val -= m.gain * pr.u[j];
+        pw[j] = val;
+    }
+    const int H = pr.K.H;
+    const std::size_t len = static_cast<std::size_t>(2 * H + 1);
+    R.resize(static_cast<Eigen::Index>(pr.rows.size()));
+    for (std::size_t r = 0; r < pr.rows.size(); ++r) {
+        const std::size_t a = pr.rows[r] - static_cast<std::size_t>(H);
+        double acc = 0, frc = 0;
+        for (std::size_t k = 0; k < len; ++k) {
+            acc += pr.K.w2[k] * d.x[a + k];
+            frc += pr.K.w[k] * pw[a + k];
+        }
+        R[static_cast<Eigen::Index>(r)] = m.p.m * acc * ig + frc;
+    }
+}
+
+void effect_column(const Prep& pr, const Model& m, const EffectInstance& e, int k, double h, Eigen::Ref<Eigen::VectorXd> X,
+                   std::vector<double>& pw) {
+    const MeasuredData& d = *pr.data;
+    const double g = m.sensor_gain(), o = m.sensor_offset(), ig = 1.0 / g;
+    pw.resize(pr.n);
+    auto plus = e.p, minus = e.p;
+    plus[static_cast<std::size_t>(k)] += h;
+    minus[static_cast<std::size_t>(k)] -= h;
+    for (std::size_t j = pr.j_lo; j < pr.j_hi; ++j) {
+        const ForceContext c{d.t[j], (d.x[j] - o) * ig, pr.vs[j] * ig, pr.phi[j], pr.omega[j], pr.alpha[j], m.p.m0e, m.p.xI};
+        pw[j] = (e.law->force(plus.data(), c).F - e.law->force(minus.data(), c).F) / (2 * h);
+    }
+    const int H = pr.K.H;
+    const std::size_t len = static_cast<std::size_t>(2 * H + 1);
+    for (std::size_t r = 0; r < pr.rows.size(); ++r) {
+        const std::size_t a = pr.rows[r] - static_cast<std::size_t>(H);
+        double s = 0;
+        for (std::size_t q = 0; q < len; ++q) s += pr.K.w[q] * pw[a + q];
+        X[static_cast<Eigen::Index>(r)] = s;
+    }
+}
+
+}  // namespace impactlab::identify::detail

@@ -1,0 +1,407 @@
+// The simulation error: multiple shooting over windows of 1 and 10 forcing periods, free runs, and the
+// distance between measured and simulated bifurcation diagrams. Unbalance-forced data run on the core
+// Simulator with the drive fitted to phi; input-forced data on a small integrator of their own (the core
+// drives by phi only), RK4 or, with stiff friction terms, the L-stable two-stage Rosenbrock ROS2.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include "identify/internal.hpp"
+#include "impactlab/forces.hpp"
+#include "impactlab/simulator.hpp"
+
+namespace impactlab::identify::detail {
+
+namespace {
+
+// ---- input-forced integrator --------------------------------------------------------------------------
+struct InputRig {
+    const Prep& pr;
+    const Model& m;
+    bool stiff = false;
+
+    double u_at(double t) const {
+        const MeasuredData& d = *pr.data;
+        const double s = (t - d.t.front()) / pr.dt;
+        const auto i = static_cast<std::size_t>(std::clamp(std::floor(s), 0.0, static_cast<double>(pr.n - 2)));
+        const double f = std::clamp(s - static_cast<double>(i), 0.0, 1.0);
+        return pr.u[i] + f * (pr.u[i + 1] - pr.u[i]);
+    }
+    double force(double t, double x, double v, double& dFdx, double& dFdv) const {
+        const ForceAndSlope r = resistance(m.p, v), k = spring_magnet(m.p, x);
+        double F = m.gain * u_at(t) - r.F - k.F;
+        dFdx = -k.dF;
+        dFdv = -r.dF;
+        if (m.bumper && !m.p.rigid()) {
+            const ContactForce c = m.p.impact->contact(m.p.ip.data(), x - m.p.xI, v);
+            F -= c.F;
+            dFdx -= c.dF_dh;
+            dFdv -= c.dF_dhdot;
+        }
+        for (const auto& e : m.p.effects) {
+            const EffectForce f = e.law->force(e.p.data(), {t, x, v, 0.0, 0.0, 0.0, m.p.m0e, m.p.xI});
+            F += f.F;
+            dFdx += f.dF_dx;
+            dFdv += f.dF_dv;
+        }
+        return F;
+    }
+    void step(double t, double h, double& x, double& v) const {
+        double a, b;
+        if (!stiff) {
+            const double im = 1.0 / m.p.m;
+            const double k1x = v, k1v = force(t, x, v, a, b) * im;
+            const double k2x = v + 0.5 * h * k1v, k2v = force(t + 0.5 * h, x + 0.5 * h * k1x, v + 0.5 * h * k1v, a, b) * im;
+            const double k3x = v + 0.5 * h * k2v, k3v = force(t + 0.5 * h, x + 0.5 * h * k2x, v + 0.5 * h * k2v, a, b) * im;
+            const double k4x = v + h * k3v, k4v = force(t + h, x + h * k3x, v + h * k3v, a, b) * im;
+            x += h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
+            v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+            return;
+        }
+        // ROS2 (Verwer et al. 1999), gamma = 1 + 1/sqrt(2).
+        constexpr double g = 1.0 + 0.7071067811865476;
+        const double F0 = force(t, x, v, a, b);
+        Mat2 J;
+        J << 0.0, 1.0, a / m.p.m, b / m.p.m;
+        const Mat2 W = Mat2::Identity() - g * h * J;
+        const Eigen::PartialPivLU<Mat2> lu(W);
+        const Vec2 f0(v, F0 / m.p.m);
+        const Vec2 k1 = lu.solve(f0);
+        const double x1 = x + h * k1[0], v1 = v + h * k1[1];
+        const Vec2 f1(v1, force(t + h, x1, v1, a, b) / m.p.m);
+        const Vec2 k2 = lu.solve(f1 - 2.0 * k1);
+        x += h * (1.5 * k1[0] + 0.5 * k2[0]);
+        v += h * (1.5 * k1[1] + 0.5 * k2[1]);
+    }
+};
+
+bool stiff_model(const Model& m) {
+    if (m.p.T > 0 || (m.bumper && !m.p.rigid())) return true;
+    for (const auto& e : m.p.effects) {
+        const char* id = e.law->id;
+        if (!std::strcmp(id, "coulomb_friction") || !std::strcmp(id, "stribeck_friction") || !std::strcmp(id, "unexplained_x_signv"))
+            return true;
+    }
+    return false;
+}
+
+// Samples i0..i1 of an input-forced model from (x, v) at i0; true coordinates out.
+void run_input(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, double x, double v, std::vector<double>& out) {
+    InputRig rig{pr, m, stiff_model(m)};
+    const int sub = rig.stiff ? 8 : 4;
+    const double h = pr.dt / sub;
+    const MeasuredData& d = *pr.data;
+    const bool rigid = m.bumper && m.p.rigid();
+    double hold_until = -1;   // held at the bumper until then (regime II), or while pressed (III: +inf)
+    double v_release = 0;
+    out.assign(i1 - i0 + 1, 0.0);
+    if (rigid && x >= m.p.xI) {
+        x = m.p.xI;
+        v = 0;
+        hold_until = INFINITY;
+    }
+    out[0] = x;
+    for (std::size_t i = i0; i < i1; ++i) {
+        for (int s = 0; s < sub; ++s) {
+            const double t = d.t[i] + s * h;
+            if (hold_until >= t + h) {
+                if (std::isinf(hold_until)) {   // regime III: stays while the net force presses it on
+                    double a, b;
+                    if (rig.force(t + h, m.p.xI, 0.0, a, b) <= 0) {
+                        hold_until = -1;
+                        v = 0;
+                    }
+                }
+                continue;
+            }
+            if (hold_until > t) {   // the hold ends within this substep: leave with v+
+                hold_until = -1;
+                v = v_release;
+                x = m.p.xI;
+            }
+            const double xb = x, vb = v;
+            rig.step(t, h, x, v);
+            if (rigid && x > m.p.xI && !(xb > m.p.xI)) {
+                const double f = (m.p.xI - xb) / (x - xb);
+                const double vm = std::max(0.0, vb + f * (v - vb));
+                const double kappa = m.p.impact->restitution(m.p.ip.data(), vm);
+                const double T = m.p.impact->duration(m.p.ip.data(), vm);
+                v_release = -kappa * vm;
+                x = m.p.xI;
+                v = 0;
+                double a, b;
+                if (std::abs(v_release) < m.p.impact->eps_v && rig.force(t + h, m.p.xI, 0.0, a, b) > 0) {
+                    hold_until = INFINITY;
+                } else if (T > 0) {
+                    hold_until = t + f * h + T;
+                } else {
+                    v = v_release;
+                }
+            }
+        }
+        out[i + 1 - i0] = x;
+    }
+}
+
+// Samples i0..i1 of an unbalance-forced model on the core simulator; true coordinates out.
+class Collect : public Observer {
+public:
+    Collect(const Drive& d, double dt, double t0, std::vector<double>& out, std::size_t count)
+        : sampler_(d, dt, t0, [this](const Sample& s) {
+              if (k_ < out_.size()) out_[k_++] = s.x;
+          }),
+          out_(out) {
+        out_.assign(count, kNaN);
+    }
+    void on_piece(const Piece& p) override { sampler_.on_piece(p); }
+    std::size_t filled() const { return k_; }
+
+private:
+    UniformSampler sampler_;
+    std::vector<double>& out_;
+    std::size_t k_ = 0;
+};
+
+void run_phi(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, double x, double v, double rtol,
+             std::vector<double>& out) {
+    const MeasuredData& d = *pr.data;
+    Tolerances tol;
+    tol.rtol = rtol;
+    Simulator sim(tol);
+    State s;
+    s.t = d.t[i0];
+    s.x = x;
+    s.v = v;
+    Simulator::make_consistent(m.p, pr.drive, s);
+    Collect c(pr.drive, pr.dt, d.t[i0], out, i1 - i0 + 1);
+    sim.advance(m.p, pr.drive, s, d.t[i1] + 0.5 * pr.dt, &c);
+    // Samples the sampler could not reach (rounding at the end) repeat the last state.
+    for (std::size_t k = c.filled(); k < out.size(); ++k) out[k] = k ? out[k - 1] : s.x;
+}
+
+void run(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, double x, double v, double rtol,
+         std::vector<double>& out) {
+    if (pr.phi_forced) run_phi(pr, m, i0, i1, x, v, rtol, out);
+    else run_input(pr, m, i0, i1, x, v, out);
+}
+
+double sse(const Prep& pr, const Model& m, std::size_t i0, const std::vector<double>& sim, std::vector<double>* e) {
+    const double g = m.sensor_gain(), o = m.sensor_offset();
+    double s = 0;
+    if (e) e->resize(sim.size());
+    for (std::size_t k = 0; k < sim.size(); ++k) {
+        const double r = g * sim[k] + o - pr.data->x[i0 + k];
+        s += r * r;
+        if (e) (*e)[k] = r;
+    }
+    return std::isfinite(s) ? s : INFINITY;
+}
+
+// First sample at or after i where a window may start: clear of impacts, with smoothed estimates.
+std::size_t usable_start(const Prep& pr, std::size_t i, std::size_t limit) {
+    while (i < limit && (pr.zone[i] || !std::isfinite(pr.xs[i]) || !std::isfinite(pr.vs[i]))) ++i;
+    return i;
+}
+
+}  // namespace
+
+std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, bool refine, double rtol) {
+    std::vector<double> best;
+    if (i1 <= i0) return best;
+    const double g = m.sensor_gain(), o = m.sensor_offset();
+    double x = (pr.xs[i0] - o) / g, v = pr.vs[i0] / g;
+    run(pr, m, i0, i1, x, v, rtol, best);
+    double best_sse = sse(pr, m, i0, best, nullptr);
+    if (refine) {
+        const double dx = std::max(1e-7, 0.3 * pr.sigma_x), dv = dx / std::max(pr.dt * 10, 1e-4);
+        std::vector<double> sx, sv, trial, e;
+        for (int it = 0; it < 2; ++it) {
+            sse(pr, m, i0, best, &e);
+            run(pr, m, i0, i1, x + dx, v, rtol, sx);
+            run(pr, m, i0, i1, x, v + dv, rtol, sv);
+            Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
+            Eigen::Vector2d b = Eigen::Vector2d::Zero();
+            for (std::size_t k = 0; k < best.size(); ++k) {
+                const double jx = g * (sx[k] - best[k]) / dx, jv = g * (sv[k] - best[k]) / dv;
+                if (!std::isfinite(jx) || !std::isfinite(jv)) continue;
+                A(0, 0) += jx * jx;
+                A(0, 1) += jx * jv;
+                A(1, 1) += jv * jv;
+                b[0] -= jx * e[k];
+                b[1] -= jv * e[k];
+            }
+            A(1, 0) = A(0, 1);
+            A(0, 0) *= 1.0 + 1e-6;
+            A(1, 1) *= 1.0 + 1e-6;
+            if (!(A.determinant() > 0)) break;
+            const Eigen::Vector2d step = A.ldlt().solve(b);
+            // Trust region: a refinement corrects the estimate, it does not replace it.
+            const double sx_lim = 50 * std::max(pr.sigma_x, 1e-6), sv_lim = 50 * std::max(pr.sigma_x, 1e-6) / (pr.dt * 5);
+            const double nx = x + std::clamp(step[0], -sx_lim, sx_lim), nv = v + std::clamp(step[1], -sv_lim, sv_lim);
+            run(pr, m, i0, i1, nx, nv, rtol, trial);
+            const double s2 = sse(pr, m, i0, trial, nullptr);
+            if (!(s2 < best_sse)) break;
+            best.swap(trial);
+            best_sse = s2;
+            x = nx;
+            v = nv;
+        }
+    }
+    for (double& s : best) s = g * s + o;
+    return best;
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> windows(const Prep& pr, int periods) {
+    std::vector<std::pair<std::size_t, std::size_t>> out;
+    const MeasuredData& d = *pr.data;
+    const std::size_t n = pr.n;
+    std::vector<double> bounds;
+    if (pr.phi_forced) {
+        const double k0 = std::ceil(pr.drive.phi(d.t.front()) / kTwoPi);
+        for (double k = k0;; k += periods) {
+            const double tb = pr.drive.time_of_phase(kTwoPi * k);
+            if (!(tb <= d.t.back())) break;
+            bounds.push_back(tb);
+        }
+    } else {
+        const double len = pr.period * periods;
+        for (double tb = d.t.front(); tb <= d.t.back(); tb += len) bounds.push_back(tb);
+    }
+    for (std::size_t w = 0; w + 1 < bounds.size(); ++w) {
+        const double ta = bounds[w], tb = bounds[w + 1];
+        std::size_t a = static_cast<std::size_t>(std::max(0.0, std::ceil((ta - d.t.front()) / pr.dt - 1e-9)));
+        std::size_t b = static_cast<std::size_t>(std::max(0.0, std::floor((tb - d.t.front()) / pr.dt - 1e-9)));
+        b = std::min(b, n - 1);
+        a = usable_start(pr, a, b);
+        if (b > a + 3) out.emplace_back(a, b);
+    }
+    return out;
+}
+
+ShootOut shooting(const Prep& pr, const Model& m, const FitOptions& o) {
+    ShootOut s;
+    for (int periods : {1, 10}) {
+        double total = 0;
+        std::size_t count = 0, nw = 0;
+        for (const auto& [a, b] : windows(pr, periods)) {
+            const std::vector<double> sim = simulate_window(pr, m, a, b, o.refine_shooting, o.rtol);
+            if (sim.empty()) continue;
+            double e = 0;
+            for (std::size_t k = 0; k < sim.size(); ++k) {
+                const double r = sim[k] - pr.data->x[a + k];
+                e += r * r;
+            }
+            if (!std::isfinite(e)) continue;
+            total += e;
+            count += sim.size();
+            ++nw;
+            if (periods == 10) s.windows10.emplace_back(a, std::sqrt(e / static_cast<double>(sim.size())));
+        }
+        const double rms = count ? std::sqrt(total / static_cast<double>(count)) : kNaN;
+        if (periods == 1) {
+            s.rms1 = rms;
+            s.n1 = nw;
+        } else {
+            s.rms10 = rms;
+            s.n10 = nw;
+        }
+    }
+    return s;
+}
+
+std::vector<double> free_run(const Prep& pr, const Model& m, double rtol) {
+    std::vector<double> out(pr.n, kNaN);
+    const std::size_t a = usable_start(pr, 0, pr.n - 1);
+    if (a + 2 >= pr.n) return out;
+    const std::vector<double> sim = simulate_window(pr, m, a, pr.n - 1, false, rtol);
+    std::copy(sim.begin(), sim.end(), out.begin() + static_cast<long>(a));
+    return out;
+}
+
+namespace {
+class Sections : public Observer {
+public:
+    Sections(const Drive& d, std::vector<std::pair<double, double>>& out) : d_(d), out_(out) {}
+    void on_section(const SectionPoint& p) override { out_.emplace_back(d_.omega(p.t), p.x); }
+
+private:
+    const Drive& d_;
+    std::vector<std::pair<double, double>>& out_;
+};
+}  // namespace
+
+std::vector<std::pair<double, double>> free_run_sections(const Prep& pr, const Model& m, double rtol) {
+    std::vector<std::pair<double, double>> out;
+    if (!pr.phi_forced) return out;
+    const MeasuredData& d = *pr.data;
+    const std::size_t a = usable_start(pr, 0, pr.n - 1);
+    if (a + 2 >= pr.n) return out;
+    const double g = m.sensor_gain(), o = m.sensor_offset();
+    Tolerances tol;
+    tol.rtol = rtol;
+    Simulator sim(tol);
+    State s;
+    s.t = d.t[a];
+    s.x = (pr.xs[a] - o) / g;
+    s.v = pr.vs[a] / g;
+    Simulator::make_consistent(m.p, pr.drive, s);
+    Sections obs(pr.drive, out);
+    sim.advance(m.p, pr.drive, s, d.t.back(), &obs);
+    for (auto& [w, x] : out) x = g * x + o;
+    return out;
+}
+
+std::vector<std::pair<double, double>> measured_sections(const Prep& pr) {
+    std::vector<std::pair<double, double>> out;
+    if (!pr.phi_forced) return out;
+    const MeasuredData& d = *pr.data;
+    const double k0 = std::ceil(pr.drive.phi(d.t.front()) / kTwoPi);
+    for (double k = k0;; k += 1) {
+        const double tk = pr.drive.time_of_phase(kTwoPi * k);
+        if (!(tk < d.t.back())) break;
+        const auto i = static_cast<std::size_t>(std::floor((tk - d.t.front()) / pr.dt));
+        if (i + 1 >= pr.n) break;
+        const double f = (tk - d.t[i]) / pr.dt;
+        double x;
+        if (!pr.zone[i] && !pr.zone[i + 1] && std::isfinite(pr.xs[i]) && std::isfinite(pr.xs[i + 1])) {
+            // Cubic Hermite through the smoothed positions and velocities.
+            const double h00 = (1 + 2 * f) * (1 - f) * (1 - f), h10 = f * (1 - f) * (1 - f);
+            const double h01 = f * f * (3 - 2 * f), h11 = f * f * (f - 1);
+            x = h00 * pr.xs[i] + h10 * pr.dt * pr.vs[i] + h01 * pr.xs[i + 1] + h11 * pr.dt * pr.vs[i + 1];
+        } else {
+            x = d.x[i] + f * (d.x[i + 1] - d.x[i]);
+        }
+        out.emplace_back(pr.drive.omega(tk), x);
+    }
+    return out;
+}
+
+double diagram_distance(const std::vector<std::pair<double, double>>& a, const std::vector<std::pair<double, double>>& b,
+                        double bin, std::size_t& bins) {
+    bins = 0;
+    if (a.empty() || b.empty() || !(bin > 0)) return -1;
+    std::map<long, std::pair<std::vector<double>, std::vector<double>>> groups;
+    for (const auto& [w, x] : a) groups[std::lround(std::floor(w / bin))].first.push_back(x);
+    for (const auto& [w, x] : b) groups[std::lround(std::floor(w / bin))].second.push_back(x);
+    double total = 0;
+    for (auto& [key, g] : groups) {
+        auto& [p, q] = g;
+        if (p.size() < 5 || q.size() < 5) continue;
+        std::sort(p.begin(), p.end());
+        std::sort(q.begin(), q.end());
+        constexpr int kQ = 200;
+        double w1 = 0;
+        for (int k = 0; k < kQ; ++k) {
+            const double qq = (k + 0.5) / kQ;
+            const double xa = p[std::min(p.size() - 1, static_cast<std::size_t>(qq * static_cast<double>(p.size())))];
+            const double xb = q[std::min(q.size() - 1, static_cast<std::size_t>(qq * static_cast<double>(q.size())))];
+            w1 += std::abs(xa - xb);
+        }
+        total += w1 / kQ;
+        ++bins;
+    }
+    return bins ? total / static_cast<double>(bins) : -1;
+}
+
+}  // namespace impactlab::identify::detail
