@@ -184,6 +184,13 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
     if (!out) throw std::runtime_error(out_path + ": write failed");
     std::fprintf(stderr, "%s %s: %zu points, %.0f s simulated, %llu steps -> %s\n", p.name.c_str(), d.protocol.c_str(),
                  d.points.size(), d.simulated_seconds, static_cast<unsigned long long>(d.steps), out_path.c_str());
+    if (sweep != "ramp") {
+        const Transitions tr = find_transitions(d);
+        std::fprintf(stderr, "transitions (omega, rad/s): leaves x~0 %.3g, period 2 %.4g, chaos %.4g..%.4g, period 1 again %.4g",
+                     tr.jump, tr.period_doubling, tr.chaos_start, tr.chaos_end, tr.period1_return);
+        for (const auto& w : tr.windows) std::fprintf(stderr, ", window %.4g..%.4g", w.first, w.second);
+        std::fprintf(stderr, "\n");
+    }
     if (a.has("--png")) {
         save_diagram_png(d, a.str("--png", ""));
         std::fprintf(stderr, "plot -> %s\n", a.str("--png", "").c_str());

@@ -1,6 +1,7 @@
 #include "common.hpp"
 
 #include <cstdio>
+#include <unistd.h>
 
 #include "impactlab/params_json.hpp"
 
@@ -42,13 +43,22 @@ std::ofstream open_out(const std::string& path) {
 }
 
 ProgressBar::ProgressBar(const std::string& label, Progress& progress) : label_(label), progress_(progress) {
-    thread_ = std::thread([this] {
+    // On a terminal the bar redraws in place; into a log file it writes a line per 10 %.
+    const bool tty = isatty(fileno(stderr)) != 0;
+    thread_ = std::thread([this, tty] {
         const auto start = std::chrono::steady_clock::now();
+        int last_decile = -1;
         while (!done_.load()) {
             std::this_thread::sleep_for(std::chrono::milliseconds(100));
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (elapsed < 1.0 || done_.load()) continue;
             const double f = std::clamp(progress_.fraction.load(), 0.0, 1.0);
+            if (!tty) {
+                const int decile = static_cast<int>(f * 10);
+                if (decile != last_decile) std::fprintf(stderr, "%s: %3d%%  %5.0f s\n", label_.c_str(), decile * 10, elapsed);
+                last_decile = decile;
+                continue;
+            }
             const int width = 30, filled = static_cast<int>(f * width);
             std::fprintf(stderr, "\r%-28s [%s%s] %5.1f%%  %5.0f s", label_.c_str(), std::string(filled, '#').c_str(),
                          std::string(width - filled, '.').c_str(), 100 * f, elapsed);
@@ -62,6 +72,7 @@ void ProgressBar::finish() {
     if (done_.exchange(true)) return;
     thread_.join();
     if (drawn_) std::fprintf(stderr, "\r%-28s done%50s\n", label_.c_str(), "");
+    else if (!isatty(fileno(stderr))) std::fflush(stderr);
 }
 
 ProgressBar::~ProgressBar() { finish(); }

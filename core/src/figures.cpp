@@ -103,8 +103,8 @@ void save_figure3_png(const Figure3Data& f, const std::string& path) {
         plot::Panel p = diagram_panel(d, title);
         p.xmin = 0.0;
         p.xmax = wmax;
-        p.ymin = -20.0;
-        p.ymax = 2.0;
+        p.ymin = -27.0;   // the periodic windows of A1C1 and A1G reach -25 mm
+        p.ymax = 3.0;
         fig.panels.push_back(std::move(p));
     };
     add(f.ef, "Model A1C-EF");

@@ -55,9 +55,9 @@ Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress, co
             spec.steps == 1 ? spec.omega_min
                             : spec.omega_min + (spec.omega_max - spec.omega_min) * j / (spec.steps - 1);
     if (spec.direction == SweepDirection::Down) std::reverse(omegas.begin(), omegas.end());
-    // Progress weighted by simulated time, which goes as 1/omega.
-    double total = 0, done = 0;
-    for (double w : omegas) total += 1.0 / w;
+    // Progress counted in levels: the work per level is roughly constant (steps go with periods).
+    const double total = static_cast<double>(omegas.size());
+    double done = 0;
     diag.points.reserve(omegas.size() * static_cast<std::size_t>(spec.record));
 
     Simulator sim(tol);
@@ -76,7 +76,7 @@ Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress, co
         SectionCollector col(spec.transient + 1, progress);
         if (progress)
             col.on_section_progress = [&](const SectionPoint& sp) {
-                progress->fraction.store((done + (1.0 / w) * sp.n / n_total) / total, std::memory_order_relaxed);
+                progress->fraction.store((done + static_cast<double>(sp.n) / n_total) / total, std::memory_order_relaxed);
             };
         sim.advance(p, drive, s, drive.time_of_phase(kTwoPi * n_total), &col);
         if (cancelled(progress)) {
@@ -84,7 +84,7 @@ Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress, co
             break;
         }
         for (const auto& sp : col.points) diag.points.push_back({w, sp.x, sp.v});
-        done += 1.0 / w;
+        done += 1.0;
     }
     diag.simulated_seconds = s.t;
     diag.steps = s.steps;
@@ -124,6 +124,68 @@ int count_period(const std::vector<double>& xs, double tol, int max_period) {
     for (std::size_t i = 1; i < v.size(); ++i)
         if (v[i] - v[i - 1] > tol) ++clusters;
     return std::min(clusters, max_period + 1);
+}
+
+Transitions find_transitions(const Diagram& d, double cluster_tol) {
+    Transitions tr;
+    // Group the points by omega (consecutive equal omegas form one level).
+    std::vector<double> means;
+    for (std::size_t i = 0; i < d.points.size();) {
+        std::size_t j = i;
+        std::vector<double> xs;
+        double sum = 0;
+        while (j < d.points.size() && d.points[j].omega == d.points[i].omega) {
+            xs.push_back(d.points[j].x);
+            sum += std::abs(d.points[j].x);
+            ++j;
+        }
+        tr.omegas.push_back(d.points[i].omega);
+        tr.periods.push_back(count_period(xs, cluster_tol));
+        means.push_back(sum / static_cast<double>(xs.size()));
+        i = j;
+    }
+    const std::size_t n = tr.omegas.size();
+    auto chaotic = [&](std::size_t k) { return tr.periods[k] > 8; };
+    std::size_t k = 0;
+    while (k < n && means[k] <= 5e-3) ++k;
+    if (k == n) return tr;
+    tr.jump = tr.omegas[k];
+    for (std::size_t i = k; i < n; ++i)
+        if (tr.periods[i] == 2) {
+            tr.period_doubling = tr.omegas[i];
+            break;
+        }
+    // Chaos: runs of at least three consecutive levels with more than 8 distinct section values (a lone
+    // such level is a slow transient at a bifurcation point).
+    std::size_t first = n, last = n;
+    for (std::size_t i = k; i < n;) {
+        std::size_t j = i;
+        while (j < n && chaotic(j)) ++j;
+        if (j - i >= 3) {
+            if (first == n) first = i;
+            last = j - 1;
+        }
+        i = (j == i) ? i + 1 : j;
+    }
+    if (first == n) return tr;
+    tr.chaos_start = tr.omegas[first];
+    tr.chaos_end = tr.omegas[last];
+    for (std::size_t i = last + 1; i < n; ++i)
+        if (tr.periods[i] == 1) {
+            tr.period1_return = tr.omegas[i];
+            break;
+        }
+    for (std::size_t i = first; i <= last;) {
+        if (tr.periods[i] <= 4) {
+            std::size_t j = i;
+            while (j <= last && tr.periods[j] <= 4) ++j;
+            if (j - i >= 4) tr.windows.push_back({tr.omegas[i], tr.omegas[j - 1]});
+            i = j;
+        } else {
+            ++i;
+        }
+    }
+    return tr;
 }
 
 void write_diagram_csv(const Diagram& d, std::ostream& out) {

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
+#include <utility>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -59,6 +61,21 @@ std::vector<SectionPoint> poincare_section(const Params& p, double omega, int pe
 // Distinct values among the recorded section points at one omega (period detection, tests, README):
 // the number of clusters of x closer than `tol` [m]; returns record+1 if it exceeds max_period.
 int count_period(const std::vector<double>& xs, double tol, int max_period = 16);
+
+// The transitions of Fig. 3 read off a CF diagram (omega increasing or decreasing through the points):
+// where the cart leaves x ~ 0, where period 2 first appears, where chaos starts and ends, the periodic
+// windows inside the chaos, and the return to period 1. NaN where a transition does not occur.
+struct Transitions {
+    double jump = NAN;                       // first omega with |x| > 5 mm on the section
+    double period_doubling = NAN;            // first omega after the jump with period 2
+    double chaos_start = NAN;                // first omega with more than 8 distinct section values
+    double chaos_end = NAN;                  // last such omega
+    double period1_return = NAN;             // first period-1 omega after chaos_end
+    std::vector<std::pair<double, double>> windows;   // periodic (period <= 4) runs of >= 4 omegas inside the chaos
+    std::vector<int> periods;                // period per omega (record+1 means more than 16: chaos)
+    std::vector<double> omegas;
+};
+Transitions find_transitions(const Diagram& d, double cluster_tol = 1e-5);
 
 // omega,x,v rows with a header; the format the CLI writes and the GUI exports.
 void write_diagram_csv(const Diagram& d, std::ostream& out);

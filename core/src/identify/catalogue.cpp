@@ -194,7 +194,7 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
     // Extra friction (Fs > 0) below a speed vs the data can resolve: a reversal's timing is known to a fraction
     // of a millisecond, so speeds below a few mm/s are out of reach (a "negative Stribeck" there only
     // smooths the friction step and is not physics).
-    add("stribeck_friction", {0, 1}, {1.0, 1e-3 * vscale}, {0}, {0.005, 0.01, 0.03, 0.1});
+    add("stribeck_friction", {0, 1}, {1.0, 1e-3 * vscale}, {0}, {0.005, 0.0075, 0.01, 0.015, 0.02, 0.03, 0.05, 0.075, 0.1});
     if (!out.empty() && out.back().id == "stribeck_friction") out.back().positive = true;
     if (phi) add("phase_offset", {0}, {1e-4}, {0});
     if (phi && !fitted("m0e")) add("unbalance_scale", {0}, {1.0}, {0});
@@ -205,7 +205,7 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
     if (o.generic) {
         add("unexplained_x", {2, 3, 4, 5, 6, 7}, {1, 1, 1, 1, 1, 1}, {0, 1, 2, 3, 4, 5});
         add("unexplained_v", {2, 3, 4, 5, 6, 7}, {1, 1, 1, 1, 1, 1}, {0, 1, 2, 3, 4, 5});
-        if (m.p.T > 0 || true) add("unexplained_x_signv", {2, 3, 4, 5, 6, 7}, {1, 1, 1, 1, 1, 1}, {0, 1, 2, 3, 4, 5});
+        add("unexplained_x_signv", {2, 3, 4, 5, 6, 7}, {1, 1, 1, 1, 1, 1}, {0, 1, 2, 3, 4, 5});
         if (phi) add("unexplained_phi", {0, 1, 2, 3, 4, 5}, {1, 1, 1, 1, 1, 1}, {0, 1, 2, 3, 4, 5});
     }
     return out;
@@ -255,7 +255,6 @@ std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& nam
     std::vector<BaseParam> out;
     for (const auto& n : names) {
         double* p = nullptr;
-        double step = 1e-3;
         if (n == "c") p = &m.p.c;
         else if (n == "T") p = &m.p.T;
         else if (n == "k") p = &m.p.k;
@@ -269,8 +268,7 @@ std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& nam
         else if (n == "m") p = &m.p.m;
         else if (n == "xI") p = &m.p.xI;
         if (!p) throw ParamError("--fit-params: unknown parameter '" + n + "' (known: c, T, k, a1, a3, a5, b2, b4, m0e, gain, m, xI)");
-        step = std::max(1e-6 * std::abs(*p), 1e-9);
-        out.push_back({n, p, step});
+        out.push_back({n, p, std::max(1e-6 * std::abs(*p), 1e-9)});
     }
     return out;
 }
@@ -357,14 +355,24 @@ std::string sentence(const std::string& id, const Model& b, const std::vector<st
         return "the bumper stands " + pm(std::abs(dx), sig("dx"), 1e3) + " mm " + (dx > 0 ? "to the right (+x)" : "to the left (-x)") +
                " of the model's xI = " + fmt("%.3g", b.p.xI * 1e3) + " mm: the flat tops of the impacts sit there";
     }
-    if (id == "impact_duration")
+    if (id == "impact_duration") {
+        const std::string model_T = fmt("%.3g", b.p.rigid() ? b.p.ip[3] * 1e3 : 0.0);
+        if (val("a_T") == 0.0 || std::abs(val("Ti0") - val("Ti1")) < 1e-12)
+            return "each impact holds the cart at the bumper for " + pm(val("Ti0"), sig("Ti0"), 1e3) +
+                   " ms whatever its speed, where the model's law gives " + model_T + " ms: a finite impact duration";
         return "each impact holds the cart at the bumper for a finite time, T_imp = " + pm(val("Ti0"), sig("Ti0"), 1e3) +
-               " ms at low speed and " + pm(val("Ti1"), sig("Ti1"), 1e3) + " ms at high speed (the model's law gives " +
-               fmt("%.3g", b.p.rigid() ? b.p.ip[3] * 1e3 : 0.0) + " ms): a finite impact duration";
-    if (id == "restitution")
-        return "the restitution coefficient is " + pm(val("kappa0"), sig("kappa0")) + " at low and " +
-               pm(val("kappa1"), sig("kappa1")) + " at high impact speed (the model's law: " +
-               fmt("%.3g", b.p.rigid() ? b.p.ip[0] : 0.0) + " and " + fmt("%.3g", b.p.rigid() ? b.p.ip[1] : 0.0) + ")";
+               " ms at low speed falling to " + pm(val("Ti1"), sig("Ti1"), 1e3) + " ms at high speed (the model's law gives " +
+               model_T + " ms at low speed): a finite impact duration";
+    }
+    if (id == "restitution") {
+        const std::string model_k = fmt("%.3g", b.p.rigid() ? b.p.ip[0] : 0.0) + " at low and " +
+                                    fmt("%.3g", b.p.rigid() ? b.p.ip[1] : 0.0) + " at high speed";
+        if (val("a_kappa") == 0.0 || std::abs(val("kappa0") - val("kappa1")) < 1e-12)
+            return "the bumper returns " + pm(val("kappa0"), sig("kappa0")) + " of the impact speed whatever the speed (the model's law: " +
+                   model_k + "): a different restitution";
+        return "the restitution coefficient is " + pm(val("kappa0"), sig("kappa0")) + " at low and " + pm(val("kappa1"), sig("kappa1")) +
+               " at high impact speed (the model's law: " + model_k + ")";
+    }
     if (id.rfind("unexplained_", 0) == 0) {
         const std::string var = id == "unexplained_x" ? "the position x"
                                 : id == "unexplained_v" ? "the velocity v"

@@ -77,6 +77,63 @@ void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_ite
     }
 }
 
+// Levenberg-Marquardt on the free-run simulation error (input-forced data only: there a free run over the
+// record is meaningful, and it weighs the resonance the way the benchmark's simulation error does).
+void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_iter, double rtol) {
+    const auto p = static_cast<Eigen::Index>(knobs.size());
+    if (p == 0) return;
+    const MeasuredData& d = *pr.data;
+    auto err = [&](Eigen::VectorXd& e) {
+        const std::vector<double> fr = free_run(pr, m, rtol);
+        e.resize(static_cast<Eigen::Index>(pr.n));
+        double ss = 0;
+        for (std::size_t i = 0; i < pr.n; ++i) {
+            const double r = std::isfinite(fr[i]) ? fr[i] - d.x[i] : 0.0;
+            e[static_cast<Eigen::Index>(i)] = r;
+            ss += r * r;
+        }
+        return std::isfinite(ss) ? ss : INFINITY;
+    };
+    Eigen::VectorXd e, et;
+    double ss = err(e), lambda = 1e-3;
+    Eigen::MatrixXd J(e.size(), p);
+    for (int it = 0; it < max_iter; ++it) {
+        for (Eigen::Index k = 0; k < p; ++k) {
+            Knob& kb = knobs[static_cast<std::size_t>(k)];
+            const double v0 = *kb.value;
+            const double h = std::max(1e-5 * std::abs(v0), kb.step);
+            *kb.value = v0 + h;
+            err(et);
+            *kb.value = v0;
+            J.col(k) = (et - e) / h;
+        }
+        const Eigen::MatrixXd A = J.transpose() * J;
+        const Eigen::VectorXd g = J.transpose() * e;
+        bool improved = false;
+        for (int tries = 0; tries < 8; ++tries) {
+            Eigen::MatrixXd Ad = A;
+            for (Eigen::Index k = 0; k < p; ++k) Ad(k, k) += lambda * A(k, k) + 1e-300;
+            const Eigen::VectorXd dlt = Ad.ldlt().solve(-g);
+            std::vector<double> old(knobs.size());
+            for (std::size_t k = 0; k < knobs.size(); ++k) {
+                old[k] = *knobs[k].value;
+                *knobs[k].value = std::clamp(old[k] + dlt[static_cast<Eigen::Index>(k)], knobs[k].lo, knobs[k].hi);
+            }
+            const double ss_new = err(et);
+            if (ss_new < ss) {
+                improved = (ss - ss_new) > 1e-7 * ss;
+                ss = ss_new;
+                e.swap(et);
+                lambda = std::max(lambda / 4, 1e-9);
+                break;
+            }
+            for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = old[k];
+            lambda *= 8;
+        }
+        if (!improved) break;
+    }
+}
+
 // Small LM for the impact laws: minimises sum f(theta)^2 with bounds; returns the covariance scale (J'J)^-1.
 Eigen::MatrixXd lm_small(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, Eigen::VectorXd& th,
                          const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
@@ -199,6 +256,12 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         }
         // A first pass from the starting values (linear parameters converge in one step), then refine.
         lm_residual(pr, base, knobs, 40, R0, Jtmp);
+        // Input-forced data: refine by the simulation error, which the equation error at a few samples per
+        // period of the resonance cannot match.
+        if (!pr.phi_forced) {
+            lm_simulation(pr, base, knobs, 30, o.rtol);
+            rep.notes.push_back("baseline refined on the free-run simulation error (output error)");
+        }
     }
     residual(pr, base, R0, pw);
     rep.before = base;
@@ -352,61 +415,8 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             if (cs.id == cands[g.cand].id) cs.selected = true;
     }
 
-    // ---- 4. the model with the effects: linear estimates, then joint nonlinear refinement ----------------
-    Model after = base;
-    {
-        double cv, in;
-        Eigen::VectorXd beta;
-        cv_sse(folds, cur, cv, in, &beta);
-        std::size_t pos = 0;
-        for (std::size_t k = 0; k < bparams.size(); ++k) ++pos;   // base parameters: refit below
-        for (std::size_t gi : chosen) {
-            const Group& g = groups[gi];
-            EffectInstance inst = g.inst;
-            const Candidate& c = cands[g.cand];
-            for (int li : c.linear) inst.p[static_cast<std::size_t>(c.free[static_cast<std::size_t>(li)])] += beta[static_cast<Eigen::Index>(pos++)];
-            after.p.effects.push_back(inst);
-        }
-    }
-    std::vector<Knob> knobs;
-    std::vector<std::pair<std::size_t, std::size_t>> knob_of_effect;   // (effect index in after.p.effects, param)
-    const std::size_t first_new = base.p.effects.size();
-    if (o.fit_baseline) {
-        for (const auto& b : base_params(after, base_names)) {
-            double lo = -1e12;
-            if (b.name == "c" || b.name == "T" || b.name == "m0e" || b.name == "m") lo = 0;
-            if (b.name == "b2") lo = -50;
-            knobs.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6), lo, 1e12, b.name});
-        }
-    }
-    const std::size_t n_base_knobs = knobs.size();
-    for (std::size_t k = 0; k < chosen.size(); ++k) {
-        const Candidate& c = cands[groups[chosen[k]].cand];
-        EffectInstance& inst = after.p.effects[first_new + k];
-        for (std::size_t li = 0; li < c.free.size(); ++li) {
-            const auto pi = static_cast<std::size_t>(c.free[li]);
-            double lo = -1e12, hi = 1e12;
-            if (c.id == "stribeck_friction") lo = pi == 1 ? 0.005 : 0.0;
-            if (c.id == "sensor_gain") {
-                lo = 0.5;
-                hi = 2.0;
-            }
-            knobs.push_back({&inst.p[pi], c.step[li], lo, hi, c.law->names[pi]});
-            knob_of_effect.emplace_back(first_new + k, pi);
-        }
-    }
-    Eigen::VectorXd R1;
-    Eigen::MatrixXd J1;
-    lm_residual(pr, after, knobs, knobs.empty() ? 0 : 30, R1, J1);
-    if (knobs.empty()) residual(pr, after, R1, pw);
-
-    // Uncertainties (HAC) and significance of each found effect at the final model.
-    std::vector<double> knob_sigma(knobs.size(), 0.0);
-    Eigen::MatrixXd V;
-    if (!knobs.empty()) {
-        V = hac_cov(-J1, R1, hac_lag);
-        for (std::size_t k = 0; k < knobs.size(); ++k) knob_sigma[k] = std::sqrt(std::max(0.0, V(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k))));
-    }
+    // ---- 4. the model with the effects: linear estimates, then joint nonlinear refinement; an effect whose
+    //         significance does not survive the joint fit is dropped and the rest refitted ------------------
     SentenceContext sc;
     {
         std::vector<double> av, ax;
@@ -414,13 +424,75 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             av.push_back(std::abs(pr.vs[r]));
             ax.push_back(std::abs(data.x[r]));
         }
-        sc.v_typ = quantile(av, 0.5) > 0 ? std::sqrt(std::accumulate(av.begin(), av.end(), 0.0, [](double s, double v) { return s + v * v; }) /
-                                                     static_cast<double>(av.size()))
-                                         : 0.0;
+        double s = 0;
+        for (double v : av) s += v * v;
+        sc.v_typ = av.empty() ? 0.0 : std::sqrt(s / static_cast<double>(av.size()));
         sc.x_typ = quantile(ax, 0.9);
         sc.m = base.p.m;
     }
-    {
+    Model after = base;
+    std::vector<FoundEffect> force_found;
+    const std::size_t first_new = base.p.effects.size();
+    for (;;) {
+        after = base;
+        {
+            std::vector<int> cols = base_cols;
+            for (std::size_t gi : chosen) cols.insert(cols.end(), groups[gi].cols.begin(), groups[gi].cols.end());
+            double cv, in;
+            Eigen::VectorXd beta;
+            cv_sse(folds, cols, cv, in, &beta);
+            std::size_t pos = base_cols.size();   // base parameters: refitted below
+            for (std::size_t gi : chosen) {
+                const Group& g = groups[gi];
+                EffectInstance inst = g.inst;
+                const Candidate& c = cands[g.cand];
+                for (int li : c.linear)
+                    inst.p[static_cast<std::size_t>(c.free[static_cast<std::size_t>(li)])] += beta[static_cast<Eigen::Index>(pos++)];
+                after.p.effects.push_back(inst);
+            }
+        }
+        std::vector<Knob> knobs;
+        if (o.fit_baseline) {
+            for (const auto& b : base_params(after, base_names)) {
+                double lo = -1e12;
+                if (b.name == "c" || b.name == "T" || b.name == "m0e" || b.name == "m") lo = 0;
+                if (b.name == "b2") lo = -50;
+                knobs.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6), lo, 1e12, b.name});
+            }
+        }
+        const std::size_t n_base_knobs = knobs.size();
+        for (std::size_t k = 0; k < chosen.size(); ++k) {
+            const Candidate& c = cands[groups[chosen[k]].cand];
+            EffectInstance& inst = after.p.effects[first_new + k];
+            for (std::size_t li = 0; li < c.free.size(); ++li) {
+                const auto pi = static_cast<std::size_t>(c.free[li]);
+                double lo = -1e12, hi = 1e12;
+                if (c.id == "stribeck_friction") lo = pi == 1 ? 0.005 : 0.0;
+                if (c.id == "sensor_gain") {
+                    lo = 0.5;
+                    hi = 2.0;
+                }
+                knobs.push_back({&inst.p[pi], c.step[li], lo, hi, c.law->names[pi]});
+            }
+        }
+        Eigen::VectorXd R1;
+        Eigen::MatrixXd J1;
+        if (knobs.empty()) residual(pr, after, R1, pw);
+        else lm_residual(pr, after, knobs, 30, R1, J1);
+        if (!pr.phi_forced && !knobs.empty()) {
+            lm_simulation(pr, after, knobs, 30, o.rtol);
+            lm_residual(pr, after, knobs, 0, R1, J1);   // residual and Jacobian at the refined point
+        }
+
+        // Uncertainties (HAC) and significance of each found effect at the joint fit.
+        std::vector<double> knob_sigma(knobs.size(), 0.0);
+        Eigen::MatrixXd V;
+        if (!knobs.empty()) {
+            V = hac_cov(-J1, R1, hac_lag);
+            for (std::size_t k = 0; k < knobs.size(); ++k)
+                knob_sigma[k] = std::sqrt(std::max(0.0, V(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k))));
+        }
+        force_found.clear();
         std::size_t kk = n_base_knobs;
         for (std::size_t k = 0; k < chosen.size(); ++k) {
             const Candidate& c = cands[groups[chosen[k]].cand];
@@ -452,9 +524,21 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
                 f.z = chi2_to_z(d.dot(Vs.ldlt().solve(d)), static_cast<int>(q));
             }
             f.sentence = sentence(c.id, base, f.parameters, f.sigma, sc);
-            rep.effects_found.push_back(std::move(f));
+            force_found.push_back(std::move(f));
         }
+        // Backward elimination: the weakest effect below the threshold goes, the rest are refitted.
+        std::size_t weakest = chosen.size();
+        for (std::size_t k = 0; k < force_found.size(); ++k)
+            if (force_found[k].z < o.z_threshold && (weakest == chosen.size() || force_found[k].z < force_found[weakest].z)) weakest = k;
+        if (weakest == chosen.size()) break;
+        for (auto& cs : rep.candidates)
+            if (cs.id == force_found[weakest].id) cs.selected = false;
+        rep.notes.push_back("dropped " + force_found[weakest].id + ": its significance fell to z = " +
+                            std::to_string(force_found[weakest].z) + " in the joint fit");
+        chosen.erase(chosen.begin() + static_cast<long>(weakest));
+        step_gain.erase(step_gain.begin() + static_cast<long>(weakest));
     }
+    for (auto& f : force_found) rep.effects_found.push_back(std::move(f));
 
     // ---- 5. the impact law: bumper position, impact duration, restitution ----------------------------------
     if (after.bumper && pr.impacts.size() >= 3) {
@@ -510,15 +594,31 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             double mean = 0;
             for (double v : obs) mean += v;
             mean /= static_cast<double>(n);
+            // A constant first; the full law (value at low speed, at high speed, decay rate) only if the data
+            // clearly ask for it.
             Eigen::VectorXd th(3), lo(3), hi(3);
-            th << mean, mean, 1.0;
-            lo << 0, 0, 0;
-            hi << (dur ? 1.0 : 1.0), (dur ? 1.0 : 1.0), 50.0;
-            const Eigen::MatrixXd C = lm_small(law, th, lo, hi);
-            const Eigen::VectorXd ra = law(th);
+            th << mean, mean, 0.0;
+            double ss_const = 0;
+            for (double v : obs) ss_const += (v - mean) * (v - mean);
+            Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3, 3);
+            C(0, 0) = C(1, 1) = C(0, 1) = C(1, 0) = 1.0 / static_cast<double>(n);
+            double sa = ss_const;
+            if (n >= 8) {
+                Eigen::VectorXd full(3);
+                full << mean, mean, 1.0;
+                lo << 0, 0, 0;
+                hi << 1.0, 1.0, 50.0;
+                const Eigen::MatrixXd Cf = lm_small(law, full, lo, hi);
+                const double sf = law(full).squaredNorm();
+                const double s2f = std::max(sf / (static_cast<double>(n) - 3.0), dur ? std::pow(0.05 * pr.dt, 2) : 1e-4);
+                if (chi2_to_z((ss_const - sf) / s2f, 2) >= 3.0) {
+                    th = full;
+                    C = Cf;
+                    sa = sf;
+                }
+            }
             double sb = 0;
             for (Eigen::Index i = 0; i < n; ++i) sb += std::pow(obs[static_cast<std::size_t>(i)] - model_pred[i], 2);
-            const double sa = ra.squaredNorm();
             const double floor_var = dur ? std::pow(0.05 * pr.dt, 2) : 1e-4;
             const double s2 = std::max(sa / std::max<double>(1.0, static_cast<double>(n) - 3.0), floor_var);
             const double z = chi2_to_z((sb - sa) / s2, 3);
@@ -548,6 +648,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     rep.after = after;
 
     // ---- 6. errors before and after ------------------------------------------------------------------------
+    Eigen::VectorXd R1;
     residual(pr, after, R1, pw);
     auto errors = [&](const Model& m, const Eigen::VectorXd& R, ErrorSummary& e, ShootOut& so) {
         e.residual_rms_N = rms_of(R);

@@ -1,6 +1,5 @@
 // The weak-form equation error on free-flight samples: data preparation and evaluation.
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -143,7 +142,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     // while, and the smoothed velocity cannot tell; those stretches are left out too.
     std::vector<char> stick(n, 0);
     const double Tlim = 3.0 * m.p.T;
-    if (m.p.T > 0 && !getenv("NOSTICK")) {
+    if (m.p.T > 0) {
         for (std::size_t i = 0; i + 1 < n; ++i) {
             if (!(pr.vs[i] * pr.vs[i + 1] <= 0) || !std::isfinite(pr.vs[i])) continue;
             const double x = (d.x[i] - m.sensor_offset()) / m.sensor_gain();
@@ -166,7 +165,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     const std::size_t stride = static_cast<std::size_t>(std::max(1, H / 4));
     const std::size_t max_slow = static_cast<std::size_t>(std::max(1, (2 * H + 1) / 20));
     for (std::size_t i = reach; i + reach < n; i += stride)
-        if (cum[i + reach + 1] - cum[i - reach] == 0 && (getenv("NOSLOW") || cum_slow[i + H + 1] - cum_slow[i - H] <= max_slow)) pr.rows.push_back(i);
+        if (cum[i + reach + 1] - cum[i - reach] == 0 && cum_slow[i + H + 1] - cum_slow[i - H] <= max_slow) pr.rows.push_back(i);
     if (pr.rows.size() < 20) throw DataError(d.source + ": too few free-flight stretches for the residual (" +
                                              std::to_string(pr.rows.size()) + " windows)");
     pr.j_lo = pr.rows.front() - static_cast<std::size_t>(H);

@@ -1,0 +1,162 @@
+// impactlab fit: close the loop with measured data (see core/include/impactlab/identify.hpp).
+#include <cstdio>
+#include <sstream>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "impactlab/identify.hpp"
+
+namespace impactlab::cli {
+
+namespace {
+
+constexpr const char* kFitHelp =
+    "usage: impactlab fit DATA.csv[.gz] --model A1H --report DIR [options]\n\n"
+    "Runs the whole loop on a measured run: the residual of the model (equation error on free flight, impact law,\n"
+    "multiple-shooting simulation error, bifurcation-diagram distance), the missing effect it traces to (a library\n"
+    "of named effects, or a generic smooth force named by its variable), the model with it, the error before and\n"
+    "after. Writes DIR/report.json, DIR/report.md, DIR/model_after.json and PNG plots.\n\n"
+    "Model:\n"
+    "  --model NAME|FILE.json  version (A1H, A1G, ...), a parameter file, or 'duffing' (m y''+d y'+k y+k3 y^3 = gain u)\n"
+    "  --xI X, --m0e M         override the bumper position [m] / the unbalance [kg m]\n"
+    "  --baseline fixed|fit    validate the parameters as given (default; 'duffing' always fits) or fit them\n"
+    "  --fit-params LIST       base parameters to fit, comma-separated (c,T,k,a1,a3,b2,b4,m0e,gain,m,xI)\n"
+    "  --gain G                starting gain of the input u [N per unit of u] (default 1)\n"
+    "Data (MODEL.md layout: t,x and phi or u; '#' comments):\n"
+    "  --t-col C, --x-col C, --phi-col C, --u-col C   map a column by header name or 1-based number\n"
+    "  --rate HZ               sample rate of a file without a time column\n"
+    "  --x-scale S, --u-scale S, --phi-scale S, --t-scale S   unit factors (e.g. --x-scale 1e-3 for mm)\n"
+    "  --rows A:B              use data rows A..B-1 (0-based); the whole file is still checked\n"
+    "  --test-rows A:B         rows held out: their free-run simulation error is reported before and after\n"
+    "Analysis:\n"
+    "  --window S              half-width of the residual's averaging window [s] (default: 1/12 of the shortest\n"
+    "                          forcing period, at least 6 samples)\n"
+    "  --z Z                   significance an effect needs (default 5)\n"
+    "  --min-gain F            least share of the residual an effect must explain (default 0.01)\n"
+    "  --max-effects N         at most N force effects (default 4)\n"
+    "  --only LIST, --exclude LIST   restrict the library (ids, comma-separated)\n"
+    "  --no-generic            never fall back to the generic fits (unexplained_x, _v, _phi, _x_signv)\n"
+    "  --no-refine             shooting: use the smoothed initial states as they are\n"
+    "  --knots S               knot spacing of the omega(t) fitted to phi [s] (default 0.5)\n"
+    "  --omega-bin W           omega bin of the diagram distance [rad/s] (default 0.25)\n"
+    "  --rtol R                integrator tolerance of the simulations (default 1e-8)\n"
+    "  --no-plots              skip the PNGs\n";
+
+std::vector<std::string> split_list(const std::string& s) {
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, ','))
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+}  // namespace
+
+int cmd_fit(const std::vector<std::string>& argv) {
+    for (const auto& a : argv)
+        if (a == "--help" || a == "-h") {
+            std::printf("%s", kFitHelp);
+            return 0;
+        }
+    const Args a("fit", argv,
+                 {"--model", "--xI", "--m0e", "--rtol", "--report", "--baseline", "--fit-params", "--gain", "--t-col", "--x-col",
+                  "--phi-col", "--u-col", "--rate", "--x-scale", "--u-scale", "--phi-scale", "--t-scale", "--rows", "--test-rows",
+                  "--window", "--z", "--min-gain", "--max-effects", "--only", "--exclude", "--knots", "--omega-bin"},
+                 {"--no-generic", "--no-refine", "--no-plots"});
+    if (a.positional().size() != 1) throw UsageError("fit: give exactly one data file (see impactlab fit --help)");
+    const std::string path = a.positional()[0];
+    const std::string dir = a.required("--report");
+
+    identify::LoadOptions lo;
+    lo.columns.t = a.str("--t-col", "");
+    lo.columns.x = a.str("--x-col", "");
+    lo.columns.phi = a.str("--phi-col", "");
+    lo.columns.u = a.str("--u-col", "");
+    lo.rate = a.num("--rate", 0.0, 1e-6, 1e9);
+    lo.x_scale = a.num("--x-scale", 1.0, -1e9, 1e9);
+    lo.u_scale = a.num("--u-scale", 1.0, -1e12, 1e12);
+    lo.phi_scale = a.num("--phi-scale", 1.0, -1e9, 1e9);
+    lo.t_scale = a.num("--t-scale", 1.0, 1e-12, 1e9);
+    identify::MeasuredData data, test;
+    bool has_test = false;
+    try {
+        if (a.has("--rows")) identify::parse_row_range(a.str("--rows", ""), lo.row_begin, lo.row_end);
+        data = identify::load_measured(path, lo);
+        if (a.has("--test-rows")) {
+            identify::LoadOptions lt = lo;
+            identify::parse_row_range(a.str("--test-rows", ""), lt.row_begin, lt.row_end);
+            test = identify::load_measured(path, lt);
+            has_test = true;
+        }
+    } catch (const identify::DataError& e) {
+        throw UsageError(e.what());
+    }
+
+    const std::string model_name = a.str("--model", "A1H");
+    identify::Model model;
+    try {
+        model = identify::resolve_fit_model(model_name, data.has_phi() ? identify::Forcing::Unbalance : identify::Forcing::Input);
+    } catch (const ParamError& e) {
+        throw UsageError(std::string("--model: ") + e.what());
+    }
+    if (a.has("--xI")) model.p.xI = a.num("--xI", 0.0, -0.1, 0.1);
+    if (a.has("--m0e")) model.p.m0e = a.num("--m0e", model.p.m0e, 0.0, 10.0);
+    model.gain = a.num("--gain", 1.0, -1e12, 1e12);
+    if (!data.has_phi()) model.forcing = identify::Forcing::Input;
+
+    identify::FitOptions o;
+    const std::string baseline = a.str("--baseline", model.bumper ? "fixed" : "fit");
+    if (baseline != "fixed" && baseline != "fit") throw UsageError("fit: --baseline must be 'fixed' or 'fit'");
+    o.fit_baseline = baseline == "fit";
+    o.fit_params = split_list(a.str("--fit-params", ""));
+    if (!o.fit_params.empty()) o.fit_baseline = true;
+    o.window = a.num("--window", 0.0, 0.0, 100.0);
+    o.z_threshold = a.num("--z", 5.0, 0.0, 1e6);
+    o.min_gain = a.num("--min-gain", 0.01, 0.0, 1.0);
+    o.max_effects = a.integer("--max-effects", 4, 0, 20);
+    o.only = split_list(a.str("--only", ""));
+    o.exclude = split_list(a.str("--exclude", ""));
+    o.generic = !a.has("--no-generic");
+    o.refine_shooting = !a.has("--no-refine");
+    o.knot_spacing = a.num("--knots", 0.5, 1e-3, 1e6);
+    o.omega_bin = a.num("--omega-bin", 0.25, 1e-6, 1e3);
+    o.rtol = a.num("--rtol", 1e-8, 1e-13, 1e-2);
+    o.plots = !a.has("--no-plots");
+    for (const auto& id : o.only)
+        if (!identify::find_catalogue_effect(id)) throw UsageError("fit: --only: unknown effect '" + id + "'");
+    for (const auto& id : o.exclude)
+        if (!identify::find_catalogue_effect(id)) throw UsageError("fit: --exclude: unknown effect '" + id + "'");
+
+    identify::FitReport r;
+    try {
+        r = identify::run_fit(data, model, o, has_test ? &test : nullptr);
+    } catch (const identify::DataError& e) {
+        throw UsageError(e.what());
+    }
+    identify::write_report(r, dir, o.plots);
+
+    std::printf("%s: %zu samples, model %s (%s), noise %.3g um\n", path.c_str(), r.samples, r.before.p.name.c_str(),
+                r.baseline.c_str(), r.sigma_x * 1e6);
+    if (r.effects_found.empty()) std::printf("effects found: none\n");
+    for (const auto& f : r.effects_found)
+        std::printf("effect %-22s explains %5.1f %%  z = %6.1f  %s\n", f.id.c_str(), 100 * f.explained_fraction, f.z, f.sentence.c_str());
+    const auto& b = r.error_before;
+    const auto& e = r.error_after;
+    std::printf("%-34s %14s %14s\n", "", "before", "after");
+    std::printf("%-34s %14.5g %14.5g\n", "residual RMS [N]", b.residual_rms_N, e.residual_rms_N);
+    std::printf("%-34s %14.5g %14.5g\n", "shooting RMS 1 period [m]", b.shooting_rms_1_m, e.shooting_rms_1_m);
+    std::printf("%-34s %14.5g %14.5g\n", "shooting RMS 10 periods [m]", b.shooting_rms_10_m, e.shooting_rms_10_m);
+    if (b.impact.impacts)
+        std::printf("%-34s %7.3g/%-6.3g %7.3g/%-6.3g\n", "impact law kappa / dwell [-/ms]", b.impact.kappa_rms,
+                    b.impact.duration_rms_s * 1e3, e.impact.kappa_rms, e.impact.duration_rms_s * 1e3);
+    if (b.diagram_distance_m >= 0)
+        std::printf("%-34s %14.5g %14.5g\n", "diagram distance [m]", b.diagram_distance_m, e.diagram_distance_m);
+    if (b.simulation_rms_m >= 0) std::printf("%-34s %14.5g %14.5g\n", "free-run simulation RMS", b.simulation_rms_m, e.simulation_rms_m);
+    if (b.test_simulation_rms_m >= 0)
+        std::printf("%-34s %14.5g %14.5g\n", "free-run simulation RMS (test)", b.test_simulation_rms_m, e.test_simulation_rms_m);
+    std::printf("report: %s/report.json, report.md (%.2f s)\n", dir.c_str(), r.runtime_s);
+    return 0;
+}
+
+}  // namespace impactlab::cli

@@ -1,0 +1,181 @@
+// impactlab synth: synthetic measured data with effects, sensor noise and quantisation.
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "impactlab/identify.hpp"
+#include "impactlab/params_json.hpp"
+
+namespace impactlab::cli {
+
+namespace {
+
+constexpr const char* kSynthHelp =
+    "usage: impactlab synth --model A1H [--effect ID=VALUE ...] --out FILE.csv[.gz] [options]\n\n"
+    "Simulates the model with extra effects and writes t,x,phi in the MODEL.md layout, x with sensor noise and\n"
+    "quantisation, phi quantised to an encoder's counts; samples are exact integrator stops.\n"
+    "  --model NAME|FILE.json  model version or parameter file (default A1H); --xI X, --m0e M override\n"
+    "  --effect ID=VALUE       add an effect, VALUE for its first parameter; ID.PARAM=VALUE sets another one.\n"
+    "                          Repeat the flag or separate with commas. IDs: impactlab fit's library, e.g.\n"
+    "                          constant_force=-0.3, quadratic_damping=4, bumper_offset=5e-4, sensor_offset=2e-4,\n"
+    "                          impact_duration=6e-3, stribeck_friction=0.5 --effect stribeck_friction.vs=0.01\n"
+    "  --out FILE              output CSV (FILE.gz: gzip)\n"
+    "  --duration S            simulated time [s] (default 60)\n"
+    "  --rate HZ               sample rate (default 1000)\n"
+    "  --noise M               sensor noise sigma [m] (default 3e-6)\n"
+    "  --quantum M             x resolution [m] (default 1e-6; 0: none)\n"
+    "  --phi-counts N          encoder counts per revolution (default 4096; 0: exact)\n"
+    "  omega profile (default: steps 9,13.5,16,18 rad/s):\n"
+    "  --omega LIST            constant steps [rad/s], with --plateau S (default duration / steps) and --ramp S (default 2)\n"
+    "  --ef WMAX:TRAMP         the EF ramp omega = WMAX t / TRAMP\n"
+    "  --omega-knots t:w,...   omega piecewise linear through knots\n"
+    "  --x0 X, --v0 V          initial state (default -0.01 m, 0)\n"
+    "  --seed N                noise seed (default 1)\n"
+    "  --rtol R                integrator tolerance (default 1e-10)\n";
+
+std::vector<double> numbers(const std::string& flag, const std::string& s) {
+    std::vector<double> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        char* end = nullptr;
+        const double v = std::strtod(item.c_str(), &end);
+        if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v))
+            throw UsageError("synth: " + flag + ": '" + item + "' is not a number");
+        out.push_back(v);
+    }
+    if (out.empty()) throw UsageError("synth: " + flag + ": empty list");
+    return out;
+}
+
+double number(const std::string& what, const std::string& s) {
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v))
+        throw UsageError("synth: " + what + ": '" + s + "' is not a finite number");
+    return v;
+}
+
+}  // namespace
+
+int cmd_synth(const std::vector<std::string>& argv_in) {
+    for (const auto& a : argv_in)
+        if (a == "--help" || a == "-h") {
+            std::printf("%s", kSynthHelp);
+            return 0;
+        }
+    // --effect may repeat: take those out before the strict parser sees them.
+    std::vector<std::string> argv, effects;
+    for (std::size_t i = 0; i < argv_in.size(); ++i) {
+        const std::string& s = argv_in[i];
+        if (s == "--effect") {
+            if (i + 1 >= argv_in.size()) throw UsageError("synth: option '--effect' needs a value");
+            effects.push_back(argv_in[++i]);
+        } else if (s.rfind("--effect=", 0) == 0) {
+            effects.push_back(s.substr(9));
+        } else {
+            argv.push_back(s);
+        }
+    }
+    const Args a("synth", argv,
+                 {"--model", "--xI", "--m0e", "--out", "--duration", "--rate", "--noise", "--quantum", "--phi-counts", "--omega",
+                  "--plateau", "--ramp", "--ef", "--omega-knots", "--x0", "--v0", "--seed", "--rtol"});
+    if (!a.positional().empty()) throw UsageError("synth: unexpected argument '" + a.positional()[0] + "'");
+    const std::string out_path = a.required("--out");
+    identify::Model model;
+    try {
+        model = identify::resolve_fit_model(a.str("--model", "A1H"), identify::Forcing::Unbalance);
+    } catch (const ParamError& e) {
+        throw UsageError(std::string("--model: ") + e.what());
+    }
+    if (!model.bumper || model.forcing != identify::Forcing::Unbalance)
+        throw UsageError("synth: --model must be an unbalance-forced rig model (a version or a parameter file)");
+    if (a.has("--xI")) model.p.xI = a.num("--xI", 0.0, -0.1, 0.1);
+    if (a.has("--m0e")) model.p.m0e = a.num("--m0e", model.p.m0e, 0.0, 10.0);
+    for (const auto& spec_list : effects) {
+        std::stringstream ss(spec_list);
+        std::string spec;
+        while (std::getline(ss, spec, ',')) {
+            const auto eq = spec.find('=');
+            if (eq == std::string::npos || eq == 0) throw UsageError("synth: --effect '" + spec + "': expected ID=VALUE or ID.PARAM=VALUE");
+            std::string id = spec.substr(0, eq), param;
+            const auto dot = id.find('.');
+            if (dot != std::string::npos) {
+                param = id.substr(dot + 1);
+                id = id.substr(0, dot);
+            }
+            const double v = number("--effect " + spec, spec.substr(eq + 1));
+            try {
+                identify::apply_effect(model, id, {{param, v}});
+            } catch (const ParamError& e) {
+                throw UsageError(std::string("synth: --effect: ") + e.what());
+            }
+        }
+    }
+    try {
+        validate(model.p, "synth model");
+    } catch (const ParamError& e) {
+        throw UsageError(std::string("synth: ") + e.what());
+    }
+
+    identify::SynthOptions o;
+    o.duration = a.num("--duration", 60.0, 1e-3, 1e6);
+    o.rate = a.num("--rate", 1000.0, 1.0, 1e7);
+    o.noise = a.num("--noise", 3e-6, 0.0, 1.0);
+    o.quantum = a.num("--quantum", 1e-6, 0.0, 1.0);
+    o.phi_counts = a.integer("--phi-counts", 4096, 0, 1 << 30);
+    o.x0 = a.num("--x0", -0.01, -0.1, 0.1);
+    o.v0 = a.num("--v0", 0.0, -10.0, 10.0);
+    o.seed = static_cast<unsigned>(a.integer("--seed", 1, 0, 1 << 30));
+    o.rtol = a.num("--rtol", 1e-10, 1e-13, 1e-3);
+    const int profiles = (a.has("--omega") ? 1 : 0) + (a.has("--ef") ? 1 : 0) + (a.has("--omega-knots") ? 1 : 0);
+    if (profiles > 1) throw UsageError("synth: give one of --omega, --ef, --omega-knots");
+    if (a.has("--ef")) {
+        const std::string s = a.str("--ef", "");
+        const auto colon = s.find(':');
+        if (colon == std::string::npos) throw UsageError("synth: --ef: expected WMAX:TRAMP");
+        const double wmax = number("--ef", s.substr(0, colon)), tr = number("--ef", s.substr(colon + 1));
+        if (!(wmax > 0) || !(tr > 0)) throw UsageError("synth: --ef: WMAX and TRAMP must be positive");
+        o.knot_t = {0.0, tr};
+        o.knot_omega = {0.0, wmax};
+    } else if (a.has("--omega-knots")) {
+        o.knot_t.clear();
+        o.knot_omega.clear();
+        std::stringstream ss(a.str("--omega-knots", ""));
+        std::string item;
+        while (std::getline(ss, item, ',')) {
+            const auto colon = item.find(':');
+            if (colon == std::string::npos) throw UsageError("synth: --omega-knots: expected t:w pairs, got '" + item + "'");
+            o.knot_t.push_back(number("--omega-knots", item.substr(0, colon)));
+            o.knot_omega.push_back(number("--omega-knots", item.substr(colon + 1)));
+        }
+        if (o.knot_t.empty()) throw UsageError("synth: --omega-knots: empty");
+    } else {
+        const std::vector<double> w = a.has("--omega") ? numbers("--omega", a.str("--omega", "")) : std::vector<double>{9, 13.5, 16, 18};
+        const double ramp = a.num("--ramp", 2.0, 0.0, 1e6);
+        const double nstep = static_cast<double>(w.size());
+        const double plateau = a.num("--plateau", std::max(0.1, (o.duration - ramp * (nstep - 1)) / nstep), 1e-3, 1e6);
+        identify::steps_profile(w, plateau, ramp, o.knot_t, o.knot_omega);
+    }
+    for (std::size_t i = 0; i < o.knot_omega.size(); ++i)
+        if (o.knot_omega[i] < 0) throw UsageError("synth: omega must not be negative");
+    for (std::size_t i = 1; i < o.knot_t.size(); ++i)
+        if (o.knot_t[i] < o.knot_t[i - 1]) throw UsageError("synth: the omega knots' times must not decrease");
+
+    const identify::MeasuredData d = identify::synthesize(model, o);
+    std::ostringstream text;
+    identify::write_measured_csv(text, d);
+    std::ofstream out(out_path, std::ios::binary);
+    if (!out) throw UsageError("synth: " + out_path + ": cannot open for writing");
+    const bool gz = out_path.size() > 3 && out_path.substr(out_path.size() - 3) == ".gz";
+    out << (gz ? identify::gzip_stored(text.str()) : text.str());
+    if (!out) throw std::runtime_error(out_path + ": write failed");
+    std::fprintf(stderr, "synth: %s, %zu samples over %.6g s, %s impacts, effects: %s -> %s\n", model.p.name.c_str(), d.size(),
+                 o.duration, d.meta.at("impacts").c_str(), d.meta.at("effects").c_str(), out_path.c_str());
+    return 0;
+}
+
+}  // namespace impactlab::cli

@@ -1,0 +1,511 @@
+#include "app.hpp"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <numbers>
+
+#include "gl_util.hpp"
+#include "impactlab/forces.hpp"
+#include "theme.hpp"
+
+namespace impactlab::gui {
+
+namespace {
+
+void glfw_error(int code, const char* text) { std::fprintf(stderr, "impactlab-gui: GLFW error %d: %s\n", code, text); }
+
+int index_of_stiffness(const std::string& id) {
+    const auto& all = stiffness_sets();
+    for (std::size_t i = 0; i < all.size(); ++i)
+        if (id == all[i].id) return static_cast<int>(i);
+    return 0;
+}
+
+int index_of_impact(const ImpactModel* m) {
+    const auto& all = impact_models();
+    for (std::size_t i = 0; i < all.size(); ++i)
+        if (&all[i] == m || (m && std::string(all[i].id) == m->id)) return static_cast<int>(i);
+    return 0;
+}
+
+std::string timestamp() {
+    const std::time_t t = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&t));
+    return buf;
+}
+
+}  // namespace
+
+App::App(const Options& opt) : opt_(opt) {
+    params_ = make_version(opt.model);
+    stiffness_ = index_of_stiffness(params_.stiffness_id);
+    impact_ = index_of_impact(params_.impact);
+    omega_ = opt.omega;
+    xI_ = opt.xI;
+    params_.xI = xI_;
+    speed_ = opt.speed;
+    paused_ = opt.paused;
+    x0_ = opt.x0;
+    dark_ = !opt.light;
+    bif_steps_ = opt.bif_steps;
+    if (opt.bifurcation == "cf-down") bif_protocol_ = 1;
+    else if (opt.bifurcation == "ef") bif_protocol_ = 2;
+    bench_mode_ = opt.bench_plot;
+}
+
+App::~App() { shutdown(); }
+
+double App::now_s() const { return glfwGetTime(); }
+
+std::string App::model_name() const {
+    return std::string(stiffness_sets()[static_cast<std::size_t>(stiffness_)].id) +
+           impact_models()[static_cast<std::size_t>(impact_)].id;
+}
+
+bool App::init(std::string& error) {
+    glfwSetErrorCallback(glfw_error);
+    if (!glfwInit()) {
+        error = "cannot initialise GLFW (no display? run under xvfb-run for headless use)";
+        return false;
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_SAMPLES, 0);
+    win_ = glfwCreateWindow(opt_.width, opt_.height, "impactlab - forced impact oscillator", nullptr, nullptr);
+    if (!win_) {
+        error = "cannot create an OpenGL 3.3 core window";
+        return false;
+    }
+    glfwMakeContextCurrent(win_);
+    // Headless runs (frames, benchmarks) measure and finish as fast as they can; people get vsync.
+    glfwSwapInterval(opt_.frames > 0 || opt_.bench_plot ? 0 : 1);
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;   // the layout is computed, nothing to remember
+    ImGui_ImplGlfw_InitForOpenGL(win_, true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+    imgui_ready_ = true;
+
+    if (opt_.ui_scale > 0) ui_scale_ = static_cast<float>(opt_.ui_scale);
+    else {
+        float sx = 1, sy = 1;
+        glfwGetWindowContentScale(win_, &sx, &sy);
+        ui_scale_ = std::clamp(sx, 1.0f, 3.0f);
+    }
+    fonts_dirty_ = true;
+    rebuild_fonts();
+
+    if (!rig_.init(error)) return false;
+
+    EngineConfig cfg;
+    cfg.model = model_name();
+    cfg.omega = omega_;
+    cfg.xI = xI_;
+    cfg.x0 = x0_;
+    cfg.v0 = opt_.v0;
+    cfg.speed = speed_;
+    cfg.paused = paused_ || bench_mode_;
+    sim_ = std::make_unique<SimThread>(cfg);
+    sim_->start();
+    if (!opt_.bifurcation.empty()) start_bifurcation();
+    last_frame_time_ = now_s();
+    return true;
+}
+
+void App::shutdown() {
+    bif_.cancel();
+    if (sim_) sim_->stop();
+    if (imgui_ready_) {
+        if (bif_tex_) {
+            const GLuint t = bif_tex_;
+            glDeleteTextures(1, &t);
+            bif_tex_ = 0;
+        }
+        rig_.shutdown();
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+        imgui_ready_ = false;
+    }
+    if (win_) {
+        glfwDestroyWindow(win_);
+        win_ = nullptr;
+        glfwTerminate();
+    }
+}
+
+void App::rebuild_fonts() {
+    if (!fonts_dirty_) return;
+    fonts_dirty_ = false;
+    ImGuiIO& io = ImGui::GetIO();
+    io.Fonts->Clear();
+    ImFontConfig cfg;
+    cfg.OversampleH = 2;
+    cfg.OversampleV = 1;
+    const float size = std::round(14.5f * ui_scale_);
+    if (!io.Fonts->AddFontFromFileTTF(IMPACTLAB_FONT_PATH, size, &cfg)) {
+        std::fprintf(stderr, "impactlab-gui: font %s not found, using ImGui's default\n", IMPACTLAB_FONT_PATH);
+        ImFontConfig d;
+        d.SizePixels = 13.0f * ui_scale_;
+        io.Fonts->AddFontDefault(&d);
+    }
+    io.Fonts->Build();
+    ImGui_ImplOpenGL3_DestroyFontsTexture();
+    ImGui_ImplOpenGL3_CreateFontsTexture();
+    apply_theme(dark_, ui_scale_);
+    bif_dirty_ = true;
+}
+
+void App::toast(const std::string& msg) {
+    toast_ = msg;
+    toast_until_ = now_s() + 4.0;
+    std::fprintf(stderr, "impactlab-gui: %s\n", msg.c_str());
+}
+
+// ---- actions: each one updates the UI's intent and sends a command -------------------------------------
+
+void App::set_omega(double w) {
+    omega_ = std::clamp(w, 0.0, kMaxOmega);
+    sim_->send(SimCommand::omega(omega_));
+}
+
+void App::set_xi(double xI) {
+    xI_ = std::clamp(xI, -kMaxAbsXI, kMaxAbsXI);
+    params_.xI = xI_;
+    sim_->send(SimCommand::xi(xI_));
+}
+
+void App::set_model(int stiffness, int impact) {
+    stiffness_ = std::clamp(stiffness, 0, static_cast<int>(stiffness_sets().size()) - 1);
+    impact_ = std::clamp(impact, 0, static_cast<int>(impact_models().size()) - 1);
+    params_ = make_version(model_name());
+    params_.xI = xI_;
+    sim_->send(SimCommand::set_model(model_name()));
+}
+
+void App::set_paused(bool p) {
+    paused_ = p;
+    sim_->send(SimCommand::paused(p));
+}
+
+void App::step_period() {
+    paused_ = true;
+    sim_->send(SimCommand::step_period());
+}
+
+void App::reset() {
+    sim_->send(SimCommand::reset(x0_, 0.0));
+}
+
+void App::set_speed(double s) {
+    speed_ = std::clamp(s, kMinSpeed, kMaxSpeed);
+    sim_->send(SimCommand::speed(speed_));
+}
+
+void App::apply_preset(const Preset& p) {
+    if (xI_ != 0.0) set_xi(0.0);
+    omega_ = p.omega;
+    x0_ = p.x0;
+    sim_->send(SimCommand::omega(omega_));
+    sim_->send(SimCommand::reset(x0_, 0.0));
+    if (paused_) set_paused(false);
+    toast(model_name() + ": " + p.label + " (omega = " + std::to_string(p.omega).substr(0, 5) + " rad/s)");
+}
+
+void App::start_bifurcation() {
+    BifRequest req;
+    req.params = params_;
+    req.protocol = static_cast<BifProtocol>(bif_protocol_);
+    req.steps = bif_steps_;
+    bif_.start(req);
+    bif_started_ = now_s();
+}
+
+void App::screenshot(const std::string& path) { pending_shot_ = path; }
+
+void App::export_csv() {
+    const std::string base = "impactlab-" + model_name() + "-" + timestamp();
+    const bool a = write_trajectory_csv(base + "-trajectory.csv", traj_, model_name());
+    const bool b = write_sections_csv(base + "-sections.csv", sections_, model_name());
+    if (a && b) toast("exported " + base + "-trajectory.csv (" + std::to_string(traj_.size()) + " samples) and -sections.csv (" +
+                      std::to_string(sections_.size()) + " points)");
+    else toast("export failed: cannot write " + base + "-*.csv in the current folder");
+}
+
+// ---- per frame -------------------------------------------------------------------------------------------
+
+void App::drain_samples() {
+    frame_max_force_ = 0;
+    const double phi_before = have_last_ ? last_.phi : 0.0;
+    sim_->samples().drain([&](const SimMsg& m) {
+        if (m.epoch != epoch_) {
+            // The dynamics changed: the Poincare map of the old attractor no longer applies.
+            sections_.clear();
+            impacts_seen_ = 0;
+            if (have_last_ && m.t < last_.t) traj_.clear();   // a reset: time starts over
+            epoch_ = m.epoch;
+        }
+        switch (m.kind) {
+            case MsgKind::Sample:
+                traj_.push(m);
+                last_ = m;
+                have_last_ = true;
+                ++samples_seen_;
+                frame_max_force_ = std::max(frame_max_force_, m.force);
+                break;
+            case MsgKind::Section:
+                sections_.push(m);
+                break;
+            case MsgKind::Impact:
+                ++impacts_seen_;
+                last_impact_v_ = m.force;
+                flash_ = std::max(flash_, std::clamp(m.force / 0.25, 0.25, 1.0));
+                break;
+        }
+    });
+    phi_prev_ = phi_before;
+}
+
+void App::poll_bifurcation() {
+    if (auto d = bif_.take_result()) {
+        if (!d->points.empty()) {
+            diagram_ = std::move(*d);
+            bif_dirty_ = true;
+            double lo = 1e9, hi = -1e9, wmax = 0;
+            for (const auto& p : diagram_->points) {
+                lo = std::min(lo, p.x);
+                hi = std::max(hi, p.x);
+                wmax = std::max(wmax, p.omega);
+            }
+            const double pad = 0.06 * std::max(hi - lo, 1e-3);
+            bif_y_ = {lo - pad, hi + pad};
+            bif_x_ = {0.0, std::max(wmax, 1.0)};
+            toast(std::string("bifurcation diagram ") + (diagram_->cancelled ? "(cancelled, partial): " : "done: ") +
+                  std::to_string(diagram_->points.size()) + " points in " +
+                  std::to_string(static_cast<int>(now_s() - bif_started_)) + " s");
+        } else if (d->cancelled) {
+            toast("bifurcation diagram cancelled");
+        }
+    }
+}
+
+void App::handle_keys() {
+    ImGuiIO& io = ImGui::GetIO();
+    if (io.WantTextInput) return;
+    auto pressed = [](int key, bool repeat = false) { return ImGui::IsKeyPressed(key, repeat); };
+    const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
+    if (pressed(GLFW_KEY_SPACE)) set_paused(!paused_);
+    if (pressed(GLFW_KEY_N, true) || pressed(GLFW_KEY_PERIOD, true)) step_period();
+    if (pressed(GLFW_KEY_R) && !ctrl) reset();
+    if (pressed(GLFW_KEY_RIGHT, true)) set_omega(omega_ + (shift ? 1.0 : 0.1));
+    if (pressed(GLFW_KEY_LEFT, true)) set_omega(omega_ - (shift ? 1.0 : 0.1));
+    if (pressed(GLFW_KEY_UP, true)) set_xi(xI_ + (shift ? 2e-3 : 5e-4));
+    if (pressed(GLFW_KEY_DOWN, true)) set_xi(xI_ - (shift ? 2e-3 : 5e-4));
+    if (pressed(GLFW_KEY_RIGHT_BRACKET, true) || (!ctrl && pressed(GLFW_KEY_KP_ADD, true))) set_speed(speed_ * 2.0);
+    if (pressed(GLFW_KEY_LEFT_BRACKET, true) || (!ctrl && pressed(GLFW_KEY_KP_SUBTRACT, true))) set_speed(speed_ / 2.0);
+    if (pressed(GLFW_KEY_M)) set_model(stiffness_, (impact_ + 1) % static_cast<int>(impact_models().size()));
+    if (pressed(GLFW_KEY_K)) set_model((stiffness_ + 1) % static_cast<int>(stiffness_sets().size()), impact_);
+    if (pressed(GLFW_KEY_C) && !ctrl) sections_.clear();
+    if (pressed(GLFW_KEY_B)) {
+        if (bif_.running()) bif_.cancel();
+        else start_bifurcation();
+    }
+    if (pressed(GLFW_KEY_T)) {
+        dark_ = !dark_;
+        apply_theme(dark_, ui_scale_);
+        bif_dirty_ = true;
+    }
+    if (pressed(GLFW_KEY_F1) || (pressed(GLFW_KEY_SLASH) && shift)) show_help_ = !show_help_;
+    if (pressed(GLFW_KEY_H)) show_help_ = !show_help_;
+    if (pressed(GLFW_KEY_F12) || (ctrl && pressed(GLFW_KEY_S))) screenshot("impactlab-" + timestamp() + ".png");
+    if (ctrl && pressed(GLFW_KEY_E)) export_csv();
+    if (ctrl && (pressed(GLFW_KEY_EQUAL) || pressed(GLFW_KEY_KP_ADD))) {
+        ui_scale_ = std::min(3.0f, ui_scale_ + 0.25f);
+        fonts_dirty_ = true;
+    }
+    if (ctrl && (pressed(GLFW_KEY_MINUS) || pressed(GLFW_KEY_KP_SUBTRACT))) {
+        ui_scale_ = std::max(0.5f, ui_scale_ - 0.25f);
+        fonts_dirty_ = true;
+    }
+    if (ctrl && pressed(GLFW_KEY_Q)) glfwSetWindowShouldClose(win_, GLFW_TRUE);
+    for (int i = 0; i < 4; ++i) {
+        if (pressed(GLFW_KEY_1 + i)) {
+            const auto list = presets_for(model_name());
+            if (static_cast<std::size_t>(i) < list.size()) apply_preset(list[static_cast<std::size_t>(i)]);
+        }
+    }
+}
+
+void App::frame() {
+    glfwPollEvents();
+    rebuild_fonts();
+    const double t = now_s();
+    frame_dt_ = std::clamp(t - last_frame_time_, 1e-4, 0.25);
+    last_frame_time_ = t;
+    fps_ = fps_ <= 0 ? 1.0 / frame_dt_ : fps_ + (1.0 / frame_dt_ - fps_) * 0.05;
+    flash_ *= std::exp(-frame_dt_ / 0.22);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    if (!bench_mode_) drain_samples();
+    poll_bifurcation();
+    handle_keys();
+    layout_and_draw();
+    ImGui::Render();
+
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(win_, &fw, &fh);
+    glViewport(0, 0, fw, fh);
+    const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+    glClearColor(bg.x * 0.8f, bg.y * 0.8f, bg.z * 0.8f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (!pending_shot_.empty()) {
+        glReadBuffer(GL_BACK);
+        std::string err;
+        if (save_framebuffer_png(pending_shot_, fw, fh, err)) toast("screenshot saved: " + pending_shot_);
+        else {
+            toast("screenshot failed: " + err);
+            if (opt_.frames > 0) exit_code_ = 1;
+        }
+        pending_shot_.clear();
+    }
+    glfwSwapBuffers(win_);
+    ++frame_count_;
+}
+
+void App::fill_bench_data(int points) {
+    // Real trajectory for the phase portrait and x(t): the engine, headless, at omega = 18 (chaos).
+    struct Into final : MsgSink {
+        App* app;
+        void put(const SimMsg& m) override {
+            if (m.kind == MsgKind::Sample) app->traj_.push(m);
+        }
+    } into;
+    into.app = this;
+    EngineConfig cfg;
+    cfg.model = model_name();
+    cfg.omega = 18.0;
+    cfg.speed = 100.0;   // 1 ms samples
+    SimEngine eng(cfg, &into);
+    traj_.clear();
+    eng.advance_to(points * eng.sample_dt() * 1.0001);
+    last_ = traj_.back();
+    have_last_ = true;
+    omega_ = 18.0;
+    // Synthetic section points and diagram (shapes like the real ones; the draw cost is what is measured).
+    sections_.clear();
+    double a = 0.1, b = 0.2;
+    for (int i = 0; i < points; ++i) {   // a Henon map, scaled into the left well
+        const double na = 1.0 - 1.4 * a * a + b;
+        b = 0.3 * a;
+        a = na;
+        SimMsg m;
+        m.kind = MsgKind::Section;
+        m.x = -0.010 + 0.005 * a;
+        m.v = 0.12 * b / 0.4;
+        m.t = i;
+        sections_.push(m);
+    }
+    Diagram d;
+    d.model = model_name();
+    d.protocol = "bench";
+    for (int i = 0; i < points; ++i) {   // a logistic-map cascade over omega
+        const double w = 25.0 * (i / 70) / (points / 70.0);
+        double r = 2.8 + 1.2 * w / 25.0, x = 0.4;
+        for (int k = 0; k < 60 + i % 70; ++k) x = r * x * (1 - x);
+        d.points.push_back({w, -0.018 + 0.014 * x, 0.0});
+    }
+    diagram_ = std::move(d);
+    bif_x_ = {0, 25};
+    bif_y_ = {-0.019, -0.003};
+    bif_dirty_ = true;
+    bench_all_points_ = true;
+}
+
+int App::run() {
+    std::string error;
+    if (!init(error)) {
+        std::fprintf(stderr, "impactlab-gui: error: %s\n", error.c_str());
+        return 1;
+    }
+    if (bench_mode_) {
+        fill_bench_data(opt_.bench_points);
+        constexpr int kWarm = 20, kFrames = 200;
+        double t0 = 0;
+        std::size_t verts = 0;
+        for (int i = 0; i < kWarm + kFrames && !glfwWindowShouldClose(win_); ++i) {
+            if (i == kWarm) {
+                glFinish();
+                t0 = now_s();
+                Plot::reset_stats();
+            }
+            frame();
+            if (i >= kWarm) verts = std::max(verts, ImGui::GetDrawData()->TotalVtxCount > 0 ?
+                                                         static_cast<std::size_t>(ImGui::GetDrawData()->TotalVtxCount) : 0);
+        }
+        glFinish();
+        const double s = now_s() - t0;
+        int fw = 0, fh = 0;
+        glfwGetFramebufferSize(win_, &fw, &fh);
+        std::printf("plot benchmark: %dx%d, %d points on each plot (phase portrait, x(t), Poincare map, "
+                    "bifurcation): %.1f fps (%.2f ms/frame, %zu ImGui vertices/frame, renderer: %s)\n",
+                    fw, fh, opt_.bench_points, kFrames / s, 1e3 * s / kFrames, verts,
+                    reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
+        return 0;
+    }
+
+    while (!glfwWindowShouldClose(win_)) {
+        frame();
+        if (opt_.frames <= 0) continue;
+        // Headless run: with a diagram requested, the frames are counted once it is done.
+        const bool waiting = !opt_.bifurcation.empty() && (bif_.running() || !diagram_);
+        if (waiting) {
+            if (frame_count_ % 600 == 0 && frame_count_ > 0)
+                std::fprintf(stderr, "impactlab-gui: waiting for the bifurcation diagram (%.0f%%)\n", 100 * bif_.progress());
+            continue;
+        }
+        ++counted_frames_;
+        if (!switched_ && counted_frames_ >= opt_.frames / 2) {
+            switched_ = true;
+            // Switch the model once, live: to --switch-model, or H <-> G with the same stiffness.
+            std::string target = opt_.switch_model;
+            if (target.empty()) {
+                const std::string imp = impact_models()[static_cast<std::size_t>(impact_)].id;
+                target = std::string(stiffness_sets()[static_cast<std::size_t>(stiffness_)].id) + (imp == "H" ? "G" : "H");
+            }
+            const Params p = make_version(target);
+            set_model(index_of_stiffness(p.stiffness_id), index_of_impact(p.impact));
+        }
+        if (counted_frames_ >= opt_.frames) {
+            if (!opt_.screenshot.empty()) {
+                screenshot(opt_.screenshot);
+                frame();   // renders once more and reads that frame back
+            }
+            break;
+        }
+    }
+    const SimStatus st = sim_->status();
+    const double t_reached = have_last_ ? last_.t : st.sim_time;
+    std::printf("impactlab-gui: frames=%ld model=%s sim_time=%.6f samples=%llu dropped=%llu epoch=%u\n", frame_count_,
+                model_name().c_str(), t_reached, static_cast<unsigned long long>(samples_seen_),
+                static_cast<unsigned long long>(st.dropped), epoch_);
+    std::fflush(stdout);
+    return exit_code_;
+}
+
+}  // namespace impactlab::gui

@@ -1,0 +1,133 @@
+// The visualiser's UI thread: GLFW window, OpenGL 3.3 core context, Dear ImGui, and the panels.
+// It owns nothing of the simulation: it sends commands to the SimThread and drains its samples each frame
+// into its own histories (History<SimMsg>). Drawing and physics stay apart: the only core calls here are
+// the model's registry, the potential V(x) and the force laws for display.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bifurcation_job.hpp"
+#include "history.hpp"
+#include "impactlab/params.hpp"
+#include "impactlab/sweep.hpp"
+#include "options.hpp"
+#include "plot2d.hpp"
+#include "presets.hpp"
+#include "rig_view.hpp"
+#include "sim_thread.hpp"
+
+struct GLFWwindow;
+
+namespace impactlab::gui {
+
+class App {
+public:
+    explicit App(const Options& opt);
+    ~App();
+    App(const App&) = delete;
+    App& operator=(const App&) = delete;
+    // Runs until the window closes (or --frames / --bench-plot is done). Returns the exit code.
+    int run();
+
+private:
+    // app.cpp: life cycle, frame, input, actions
+    bool init(std::string& error);
+    void shutdown();
+    void rebuild_fonts();
+    void frame();
+    void drain_samples();
+    void poll_bifurcation();
+    void handle_keys();
+    void set_omega(double w);
+    void set_xi(double xI);
+    void set_model(int stiffness, int impact);
+    void set_paused(bool p);
+    void step_period();
+    void reset();
+    void set_speed(double s);
+    void apply_preset(const Preset& p);
+    void start_bifurcation();
+    void screenshot(const std::string& path);
+    void export_csv();
+    void toast(const std::string& msg);
+    std::string model_name() const;
+    double now_s() const;
+    void fill_bench_data(int points);
+
+    // panels.cpp: one function per window
+    void layout_and_draw();
+    void draw_menu();
+    void draw_controls();
+    void draw_rig();
+    void draw_phase();
+    void draw_poincare();
+    void draw_potential();
+    void draw_strip();
+    void draw_bifurcation();
+    void draw_status();
+    void draw_help();
+    void draw_toast();
+    void update_density_texture(int w, int h);
+
+    Options opt_;
+    GLFWwindow* win_ = nullptr;
+    std::unique_ptr<SimThread> sim_;
+    BifurcationJob bif_;
+    RigView rig_;
+    bool imgui_ready_ = false;
+
+    // What the user asked for (the sim thread follows within a few milliseconds).
+    int stiffness_ = 0, impact_ = 3;   // indices into stiffness_sets() / impact_models()
+    double omega_ = 9.0, xI_ = 0.0, speed_ = 1.0, x0_ = -0.011;
+    bool paused_ = false;
+    Params params_;                    // the UI's copy, for V(x) and the display of forces
+
+    // What the simulation published.
+    History<SimMsg> traj_{std::size_t{1} << 18};
+    History<SimMsg> sections_{std::size_t{1} << 18};
+    SimMsg last_{};
+    bool have_last_ = false;
+    std::uint32_t epoch_ = 0;
+    std::uint64_t samples_seen_ = 0, impacts_seen_ = 0;
+    double frame_max_force_ = 0;
+    double flash_ = 0;
+    double last_impact_v_ = 0;
+    double phi_prev_ = 0;
+
+    // Bifurcation diagram.
+    std::optional<Diagram> diagram_;
+    int bif_protocol_ = 0, bif_steps_ = 300;
+    unsigned bif_tex_ = 0;
+    int bif_tex_w_ = 0, bif_tex_h_ = 0;
+    bool bif_dirty_ = true;
+    Range bif_x_{0, 25}, bif_y_{-0.02, 0.005};
+    double bif_started_ = 0;
+
+    // View.
+    bool dark_ = true;
+    float ui_scale_ = 1.0f;
+    bool fonts_dirty_ = true;
+    bool show_help_ = false;
+    float trail_periods_ = 8.0f;
+    float strip_window_ = 6.0f;
+    AutoRange phase_x_, phase_v_, pc_x_, pc_v_, strip_y_;
+    std::vector<double> potential_x_, potential_v_;   // V(x) of the current stiffness
+    std::string potential_for_;
+    double last_frame_time_ = 0, fps_ = 0, frame_dt_ = 1.0 / 60;
+
+    // Screenshot / toast / modes.
+    std::string pending_shot_;
+    std::string toast_;
+    double toast_until_ = 0;
+    long frame_count_ = 0;
+    long counted_frames_ = 0;
+    bool switched_ = false;
+    bool bench_mode_ = false;
+    bool bench_all_points_ = false;
+    int exit_code_ = 0;
+};
+
+}  // namespace impactlab::gui

@@ -1,0 +1,127 @@
+#include "options.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+#include "impactlab/params.hpp"
+
+namespace impactlab::gui {
+
+const char* usage_text() {
+    return "usage: impactlab-gui [options]\n"
+           "\n"
+           "Interactive visualiser of the forced impact oscillator: the rig animated, phase portrait,\n"
+           "Poincare map, potential well, x(t) and bifurcation diagrams, all live.\n"
+           "\n"
+           "  --model NAME       model version: A1C, A1C1, A1G, A1H, A3C, A3C1, A3G, A3H (default A1H)\n"
+           "  --omega W          forcing frequency [rad/s], 0..30 (default 9)\n"
+           "  --xI X             bumper position [m], -0.02..0.02 (default 0)\n"
+           "  --x0 X, --v0 V     initial state [m], [m/s] (default -0.011, 0: the left well)\n"
+           "  --speed S          simulated seconds per real second, 0.01..100 (default 1)\n"
+           "  --paused           start paused\n"
+           "  --theme dark|light colour theme (default dark)\n"
+           "  --scale S          UI scale, 0.5..3 (default: the monitor's content scale)\n"
+           "  --size WxH         window size in pixels (default 1280x800)\n"
+           "  --bifurcation P    compute a bifurcation diagram at start: cf-up, cf-down or ef\n"
+           "  --bif-steps N      omega steps of a CF sweep, 10..2000 (default 300)\n"
+           "\n"
+           "Headless checks and benchmarks:\n"
+           "  --frames N         render N frames, switch the model once half-way, save --screenshot, print\n"
+           "                     the simulated time reached and exit (with --bifurcation: counted after\n"
+           "                     the diagram is done)\n"
+           "  --screenshot FILE  PNG written after --frames\n"
+           "  --switch-model M   the version switched to half-way (default: H <-> G, same stiffness)\n"
+           "  --bench-plot       frames per second with --points points on every plot (needs a display)\n"
+           "  --points N         points per plot for --bench-plot (default 100000)\n"
+           "  --bench-ring       samples per second through the SPSC ring buffer (two threads)\n"
+           "  --bench-sim        the simulation's real-time factor, A1H and A1C at omega = 18\n"
+           "  --help             this text\n"
+           "\n"
+           "Keys: space pause, N step one period, R reset, left/right omega, up/down xI, [ ] speed,\n"
+           "      M impact model, K stiffness, B bifurcation, C clear Poincare map, F1 help (all in the app).\n";
+}
+
+namespace {
+
+double number(const std::string& flag, const std::string& text, double lo, double hi) {
+    errno = 0;
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v))
+        throw OptionsError(flag + ": '" + text + "' is not a number");
+    if (v < lo || v > hi)
+        throw OptionsError(flag + ": " + text + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return v;
+}
+
+int integer(const std::string& flag, const std::string& text, int lo, int hi) {
+    errno = 0;
+    char* end = nullptr;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
+        throw OptionsError(flag + ": '" + text + "' is not an integer");
+    if (v < lo || v > hi)
+        throw OptionsError(flag + ": " + text + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return static_cast<int>(v);
+}
+
+std::string version(const std::string& flag, const std::string& name) {
+    try {
+        return make_version(name).name;
+    } catch (const ParamError&) {
+        std::string all;
+        for (const auto& n : version_names()) all += (all.empty() ? "" : ", ") + n;
+        throw OptionsError(flag + ": unknown model version '" + name + "' (one of " + all + ")");
+    }
+}
+
+}  // namespace
+
+Options parse_options(const std::vector<std::string>& args) {
+    Options o;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> const std::string& {
+            if (i + 1 >= args.size()) throw OptionsError(a + ": missing value");
+            return args[++i];
+        };
+        if (a == "--help" || a == "-h") o.help = true;
+        else if (a == "--model") o.model = version(a, value());
+        else if (a == "--omega") o.omega = number(a, value(), 0.0, 30.0);
+        else if (a == "--xI" || a == "--xi") o.xI = number(a, value(), -0.02, 0.02);
+        else if (a == "--x0") o.x0 = number(a, value(), -0.05, 0.05);
+        else if (a == "--v0") o.v0 = number(a, value(), -2.0, 2.0);
+        else if (a == "--speed") o.speed = number(a, value(), 0.01, 100.0);
+        else if (a == "--paused") o.paused = true;
+        else if (a == "--theme") {
+            const std::string& t = value();
+            if (t != "dark" && t != "light") throw OptionsError("--theme: '" + t + "' is neither dark nor light");
+            o.light = t == "light";
+        } else if (a == "--scale") o.ui_scale = number(a, value(), 0.5, 3.0);
+        else if (a == "--size") {
+            const std::string& s = value();
+            const auto x = s.find('x');
+            if (x == std::string::npos) throw OptionsError("--size: '" + s + "' is not WIDTHxHEIGHT");
+            o.width = integer(a, s.substr(0, x), 320, 8192);
+            o.height = integer(a, s.substr(x + 1), 240, 8192);
+        } else if (a == "--frames") o.frames = integer(a, value(), 1, 10000000);
+        else if (a == "--screenshot") o.screenshot = value();
+        else if (a == "--switch-model") o.switch_model = version(a, value());
+        else if (a == "--bifurcation") {
+            const std::string& p = value();
+            if (p != "cf-up" && p != "cf-down" && p != "ef")
+                throw OptionsError("--bifurcation: '" + p + "' is not one of cf-up, cf-down, ef");
+            o.bifurcation = p;
+        } else if (a == "--bif-steps") o.bif_steps = integer(a, value(), 10, 2000);
+        else if (a == "--bench-plot") o.bench_plot = true;
+        else if (a == "--bench-ring") o.bench_ring = true;
+        else if (a == "--bench-sim") o.bench_sim = true;
+        else if (a == "--points") o.bench_points = integer(a, value(), 1, 10000000);
+        else throw OptionsError("unknown option '" + a + "' (see impactlab-gui --help)");
+    }
+    if (!o.screenshot.empty() && o.frames == 0) throw OptionsError("--screenshot needs --frames N");
+    return o;
+}
+
+}  // namespace impactlab::gui

@@ -1,0 +1,38 @@
+// Command-line options of impactlab-gui. GL-free. Bad flags: OptionsError (main prints it and exits 2).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace impactlab::gui {
+
+struct OptionsError : std::runtime_error { using std::runtime_error::runtime_error; };
+
+struct Options {
+    std::string model = "A1H";
+    double omega = 9.0;          // [rad/s]
+    double xI = 0.0;             // [m]
+    double x0 = -0.011, v0 = 0;  // [m], [m/s]: the left well
+    double speed = 1.0;
+    bool paused = false;
+    bool light = false;          // theme
+    double ui_scale = 0;         // 0: from the monitor's content scale
+    int width = 1280, height = 800;
+
+    int frames = 0;              // > 0: render this many frames, save the screenshot, print the sim time, exit
+    std::string screenshot;      // with --frames: the PNG to write
+    std::string switch_model;    // with --frames: the version switched to half-way ("" = swap G and H)
+    std::string bifurcation;     // "", "cf-up", "cf-down", "ef": start computing at launch
+    int bif_steps = 300;
+
+    bool bench_plot = false, bench_ring = false, bench_sim = false;
+    int bench_points = 100000;
+    bool help = false;
+};
+
+// argv without the program name. Throws OptionsError naming the flag and the problem.
+Options parse_options(const std::vector<std::string>& args);
+const char* usage_text();
+
+}  // namespace impactlab::gui

@@ -1,0 +1,777 @@
+// The windows of the visualiser, tiled over the main viewport: controls on the left; the rig and the
+// bifurcation diagram on top; phase portrait, Poincare map and potential well in the middle; x(t) below.
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "app.hpp"
+#include "gl_util.hpp"
+#include "impactlab/forces.hpp"
+#include "impactlab/sweep.hpp"
+#include "theme.hpp"
+
+namespace impactlab::gui {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr ImGuiWindowFlags kTile = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus;
+
+struct XY {
+    double x, y;
+};
+
+bool begin_tile(const char* name, ImVec2 pos, ImVec2 size, ImGuiWindowFlags extra = 0) {
+    ImGui::SetNextWindowPos(pos);
+    ImGui::SetNextWindowSize(size);
+    return ImGui::Begin(name, nullptr, kTile | extra);
+}
+
+void section(const char* label) {
+    ImGui::Spacing();
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_SliderGrab]);
+    ImGui::TextUnformatted(label);
+    ImGui::PopStyleColor();
+    ImGui::Separator();
+}
+
+void tooltip(const char* text) {
+    if (ImGui::IsItemHovered()) {
+        ImGui::BeginTooltip();
+        ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);
+        ImGui::TextUnformatted(text);
+        ImGui::PopTextWrapPos();
+        ImGui::EndTooltip();
+    }
+}
+
+const char* regime_long(Regime r) {
+    switch (r) {
+        case Regime::Free: return "I  free flight";
+        case Regime::Sticking: return "II  sticking (impact)";
+        case Regime::Contact: return "III  permanent contact";
+    }
+    return "?";
+}
+
+// A small text with a dark/light plate behind it, for labels over the rig.
+void plate_text(ImDrawList* dl, ImVec2 p, const char* text, ImU32 col, ImVec2 align = ImVec2(0, 0)) {
+    const ImVec2 ts = ImGui::CalcTextSize(text);
+    const ImVec2 a(std::round(p.x - ts.x * align.x), std::round(p.y - ts.y * align.y));
+    const ImU32 bg = palette().dark ? IM_COL32(10, 12, 16, 150) : IM_COL32(255, 255, 255, 170);
+    dl->AddRectFilled(ImVec2(a.x - 3, a.y - 1), ImVec2(a.x + ts.x + 3, a.y + ts.y + 1), bg, 3.0f);
+    dl->AddText(a, col, text);
+}
+
+}  // namespace
+
+void App::layout_and_draw() {
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    draw_menu();
+    const float menu_h = ImGui::GetFrameHeight();
+    const float status_h = std::round(ImGui::GetFrameHeight() + 6.0f * ui_scale_);
+    const float left_w = std::round(std::clamp(292.0f * ui_scale_, 240.0f, vp->Size.x * 0.42f));
+    const float x0 = vp->Pos.x + left_w, y0 = vp->Pos.y + menu_h;
+    const float W = vp->Size.x - left_w, H = vp->Size.y - menu_h - status_h;
+    const float row1 = std::round(H * 0.41f), row2 = std::round(H * 0.34f), row3 = H - row1 - row2;
+    const float rig_w = std::round(W * 0.58f);
+    const float third = std::round(W / 3.0f);
+
+    if (begin_tile("Controls", ImVec2(vp->Pos.x, y0), ImVec2(left_w, H))) draw_controls();
+    ImGui::End();
+
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(4.0f * ui_scale_, 4.0f * ui_scale_));
+    if (begin_tile("Rig (top view, to scale)", ImVec2(x0, y0), ImVec2(rig_w, row1),
+                   ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse))
+        draw_rig();
+    ImGui::End();
+    if (begin_tile("Bifurcation diagram", ImVec2(x0 + rig_w, y0), ImVec2(W - rig_w, row1),
+                   ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse))
+        draw_bifurcation();
+    ImGui::End();
+    const float y1 = y0 + row1;
+    if (begin_tile("Phase portrait (x, v)", ImVec2(x0, y1), ImVec2(third, row2), ImGuiWindowFlags_NoScrollbar))
+        draw_phase();
+    ImGui::End();
+    if (begin_tile("Poincare map (phi = 2 pi n)", ImVec2(x0 + third, y1), ImVec2(third, row2), ImGuiWindowFlags_NoScrollbar))
+        draw_poincare();
+    ImGui::End();
+    if (begin_tile("Potential well V(x)", ImVec2(x0 + 2 * third, y1), ImVec2(W - 2 * third, row2),
+                   ImGuiWindowFlags_NoScrollbar))
+        draw_potential();
+    ImGui::End();
+    if (begin_tile("Displacement x(t)", ImVec2(x0, y1 + row2), ImVec2(W, row3), ImGuiWindowFlags_NoScrollbar))
+        draw_strip();
+    ImGui::End();
+    ImGui::PopStyleVar();
+
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8.0f * ui_scale_, 3.0f * ui_scale_));
+    if (begin_tile("##status", ImVec2(vp->Pos.x, vp->Pos.y + vp->Size.y - status_h), ImVec2(vp->Size.x, status_h),
+                   ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar))
+        draw_status();
+    ImGui::End();
+    ImGui::PopStyleVar();
+
+    if (show_help_) draw_help();
+    draw_toast();
+}
+
+void App::draw_menu() {
+    if (!ImGui::BeginMainMenuBar()) return;
+    if (ImGui::BeginMenu("File")) {
+        if (ImGui::MenuItem("Screenshot (PNG)", "F12")) screenshot("impactlab-" + model_name() + "-screenshot.png");
+        if (ImGui::MenuItem("Export trajectory + sections (CSV)", "Ctrl+E")) export_csv();
+        ImGui::Separator();
+        if (ImGui::MenuItem("Quit", "Ctrl+Q")) glfwSetWindowShouldClose(win_, 1);
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Simulation")) {
+        if (ImGui::MenuItem(paused_ ? "Play" : "Pause", "Space")) set_paused(!paused_);
+        if (ImGui::MenuItem("Step one forcing period", "N")) step_period();
+        if (ImGui::MenuItem("Reset (t = 0, from x0 at rest)", "R")) reset();
+        ImGui::Separator();
+        if (ImGui::MenuItem("Faster x2", "]")) set_speed(speed_ * 2);
+        if (ImGui::MenuItem("Slower /2", "[")) set_speed(speed_ / 2);
+        if (ImGui::MenuItem("Real time (1x)")) set_speed(1.0);
+        ImGui::Separator();
+        if (ImGui::MenuItem("Clear Poincare map", "C")) sections_.clear();
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("View")) {
+        if (ImGui::MenuItem("Dark theme", "T", dark_)) {
+            dark_ = !dark_;
+            apply_theme(dark_, ui_scale_);
+            bif_dirty_ = true;
+        }
+        if (ImGui::BeginMenu("UI scale")) {
+            for (float s : {0.75f, 1.0f, 1.25f, 1.5f, 2.0f, 2.5f, 3.0f}) {
+                char label[16];
+                std::snprintf(label, sizeof label, "%.0f%%", s * 100);
+                if (ImGui::MenuItem(label, nullptr, std::abs(ui_scale_ - s) < 0.01f)) {
+                    ui_scale_ = s;
+                    fonts_dirty_ = true;
+                }
+            }
+            ImGui::EndMenu();
+        }
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Help")) {
+        if (ImGui::MenuItem("Keyboard shortcuts", "F1")) show_help_ = true;
+        ImGui::EndMenu();
+    }
+    // Right side: model, omega, fps.
+    char right[96];
+    std::snprintf(right, sizeof right, "%s   omega %.2f rad/s   %.0f fps", model_name().c_str(), omega_, fps_);
+    const float w = ImGui::CalcTextSize(right).x;
+    ImGui::SameLine(ImGui::GetWindowWidth() - w - 14.0f * ui_scale_);
+    ImGui::TextDisabled("%s", right);
+    ImGui::EndMainMenuBar();
+}
+
+void App::draw_controls() {
+    const auto& stiff = stiffness_sets();
+    const auto& imps = impact_models();
+    const float full = ImGui::GetContentRegionAvail().x;
+
+    // Model: title and the two live combos.
+    ImGui::TextUnformatted("Model");
+    ImGui::SameLine();
+    ImGui::TextColored(ImGui::GetStyle().Colors[ImGuiCol_SliderGrab], "%s", model_name().c_str());
+    ImGui::SameLine();
+    ImGui::TextDisabled("(live: keeps x, v, phi)");
+    ImGui::SetNextItemWidth(full * 0.40f);
+    if (ImGui::BeginCombo("##stiffness", stiff[static_cast<std::size_t>(stiffness_)].id)) {
+        for (std::size_t i = 0; i < stiff.size(); ++i) {
+            if (ImGui::Selectable(stiff[i].id, static_cast<int>(i) == stiffness_)) set_model(static_cast<int>(i), impact_);
+            tooltip(stiff[i].summary);
+        }
+        ImGui::EndCombo();
+    }
+    tooltip("Stiffness version (Table 1): springs, magnets, bearing resistance, unbalance.  K cycles.");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::BeginCombo("##impact", imps[static_cast<std::size_t>(impact_)].id)) {
+        for (std::size_t i = 0; i < imps.size(); ++i) {
+            char label[96];
+            std::snprintf(label, sizeof label, "%-3s %s", imps[i].id,
+                          imps[i].kind == ImpactKind::Rigid ? "rigid, event-driven" : "compliant Hunt-Crossley");
+            if (ImGui::Selectable(label, static_cast<int>(i) == impact_)) set_model(stiffness_, static_cast<int>(i));
+            tooltip(imps[i].summary);
+        }
+        ImGui::EndCombo();
+    }
+    tooltip("Impact model (Tables 2, 3): C, C1 compliant; G instantaneous; H finite duration.  M cycles.");
+
+    section("Forcing and bumper");
+    float w = static_cast<float>(omega_);
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::SliderFloat("##omega", &w, 0.0f, 30.0f, "omega = %.2f rad/s")) set_omega(w);
+    tooltip("Speed of the unbalance (Left/Right: -/+0.1, with Shift: 1). Drag it from 9 to 13 to watch the "
+            "period-doubling cascade.");
+    if (ImGui::Button("-1")) set_omega(omega_ - 1);
+    ImGui::SameLine();
+    if (ImGui::Button("-.1")) set_omega(omega_ - 0.1);
+    ImGui::SameLine();
+    if (ImGui::Button("+.1")) set_omega(omega_ + 0.1);
+    ImGui::SameLine();
+    if (ImGui::Button("+1")) set_omega(omega_ + 1);
+    ImGui::SameLine();
+    if (omega_ > 0) ImGui::TextDisabled("%.3f Hz, T %.3f s", omega_ / kTwoPi, kTwoPi / omega_);
+    float xi_mm = static_cast<float>(xI_ * 1e3);
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::SliderFloat("##xI", &xi_mm, -20.0f, 20.0f, "bumper x_I = %.1f mm")) set_xi(xi_mm * 1e-3);
+    tooltip("Position of the one-sided bumper (Up/Down: +/-0.5 mm). x = 0 is the hilltop between the wells. "
+            "Moving it onto the cart pushes the cart back to the contact point.");
+
+    section("Run");
+    const float bw = (full - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
+    if (ImGui::Button(paused_ ? "Play" : "Pause", ImVec2(bw, 0))) set_paused(!paused_);
+    tooltip("Space");
+    ImGui::SameLine();
+    if (ImGui::Button("Step period", ImVec2(bw, 0))) step_period();
+    tooltip("N: run to the next Poincare section, then pause");
+    ImGui::SameLine();
+    if (ImGui::Button("Reset", ImVec2(bw, 0))) reset();
+    tooltip("R: t = 0, phi = 0, the cart at rest at x0 (the left well)");
+    float sp = static_cast<float>(speed_);
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::SliderFloat("##speed", &sp, 0.01f, 100.0f, "speed %.2fx real time", ImGuiSliderFlags_Logarithmic))
+        set_speed(sp);
+    tooltip("Simulated seconds per real second ( [ and ] halve and double ).");
+
+    section("Presets (keys 1-4)");
+    const auto list = presets_for(model_name());
+    const float pw = (full - ImGui::GetStyle().ItemSpacing.x) / 2.0f;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        char label[64];
+        std::snprintf(label, sizeof label, "%zu  %s", i + 1, list[i].label);
+        if (ImGui::Button(label, ImVec2(pw, 0))) apply_preset(list[i]);
+        char tip[256];
+        std::snprintf(tip, sizeof tip, "%s\nomega = %.2f rad/s, from rest at x = %.1f mm, xI = 0", list[i].note,
+                      list[i].omega, list[i].x0 * 1e3);
+        tooltip(tip);
+        if (i % 2 == 0 && i + 1 < list.size()) ImGui::SameLine();
+    }
+
+    section("Display");
+    ImGui::SetNextItemWidth(full * 0.55f);
+    ImGui::SliderFloat("trail", &trail_periods_, 1.0f, 60.0f, "%.0f periods");
+    ImGui::SetNextItemWidth(full * 0.55f);
+    ImGui::SliderFloat("x(t) window", &strip_window_, 0.5f, 60.0f, "%.1f s", ImGuiSliderFlags_Logarithmic);
+    if (ImGui::Checkbox("dark theme", &dark_)) {
+        apply_theme(dark_, ui_scale_);
+        bif_dirty_ = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Clear map")) sections_.clear();
+    // The scale applies when the slider is released (rebuilding the font under the mouse would jump).
+    static bool editing = false;
+    static float scale_edit = 1.0f;
+    if (!editing) scale_edit = ui_scale_;
+    ImGui::SetNextItemWidth(full * 0.55f);
+    ImGui::SliderFloat("UI scale", &scale_edit, 0.75f, 3.0f, "%.2f");
+    editing = ImGui::IsItemActive();
+    if (ImGui::IsItemDeactivatedAfterEdit()) {
+        ui_scale_ = std::round(scale_edit * 4.0f) / 4.0f;
+        fonts_dirty_ = true;
+    }
+    if (ImGui::Button("Screenshot", ImVec2(pw, 0))) screenshot("impactlab-" + model_name() + "-screenshot.png");
+    tooltip("F12: the whole window as PNG, in the current folder");
+    ImGui::SameLine();
+    if (ImGui::Button("Export CSV", ImVec2(pw, 0))) export_csv();
+    tooltip("Ctrl+E: the trajectory in memory and the Poincare points as CSV files");
+
+    section("State");
+    if (ImGui::BeginTable("state", 2, ImGuiTableFlags_SizingStretchProp)) {
+        auto row = [](const char* k, const char* fmt, double v) {
+            ImGui::TableNextRow();
+            ImGui::TableSetColumnIndex(0);
+            ImGui::TextDisabled("%s", k);
+            ImGui::TableSetColumnIndex(1);
+            ImGui::Text(fmt, v);
+        };
+        row("t", "%.3f s", last_.t);
+        row("x", "%+.3f mm", last_.x * 1e3);
+        row("v", "%+.4f m/s", last_.v);
+        row("phi mod 2pi", "%.3f rad", std::fmod(last_.phi, kTwoPi));
+        row("energy", "%+.3f mJ", last_.energy * 1e3);
+        row("bumper force", "%.2f N", last_.force);
+        ImGui::TableNextRow();
+        ImGui::TableSetColumnIndex(0);
+        ImGui::TextDisabled("regime");
+        ImGui::TableSetColumnIndex(1);
+        ImGui::TextUnformatted(regime_long(last_.regime));
+        row("impacts (epoch)", "%.0f", static_cast<double>(impacts_seen_));
+        ImGui::EndTable();
+    }
+
+    section("Forces on the cart [N]");
+    // The terms of Eq. (1) at this instant (core's force_terms), signed as they push the cart.
+    const ForceTerms f = force_terms(params_, last_.t, last_.x, last_.v, last_.phi, last_.omega, 0.0);
+    const double magnets = -(f.spring_magnet - params_.k * last_.x), springs = -params_.k * last_.x;
+    const double bumper = -std::max(last_.force, f.impact);
+    struct Bar { const char* name; double value; };
+    const Bar bars[] = {{"unbalance", f.unbalance}, {"springs", springs}, {"magnets", magnets},
+                        {"resistance", -f.resistance}, {"bumper", bumper}};
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const Palette& pal = palette();
+    const float label_w = ImGui::CalcTextSize("resistance ").x;
+    const float bar_w = ImGui::GetContentRegionAvail().x - label_w - ImGui::CalcTextSize("-00.0").x - 8;
+    const double full_scale = 20.0;   // [N] at the end of a bar (longer bars are clipped)
+    for (const Bar& b : bars) {
+        ImGui::TextDisabled("%s", b.name);
+        ImGui::SameLine(label_w);
+        const ImVec2 p = ImGui::GetCursorScreenPos();
+        const float h = ImGui::GetTextLineHeight();
+        const float mid = p.x + 0.5f * bar_w;
+        const float len = static_cast<float>(std::clamp(b.value / full_scale, -1.0, 1.0)) * 0.5f * bar_w;
+        dl->AddRectFilled(ImVec2(p.x, p.y + 2), ImVec2(p.x + bar_w, p.y + h - 2), pal.plot_bg, 2.0f);
+        dl->AddRectFilled(ImVec2(std::min(mid, mid + len), p.y + 3), ImVec2(std::max(mid, mid + len), p.y + h - 3),
+                          b.value >= 0 ? pal.trace : pal.trace2, 2.0f);
+        dl->AddLine(ImVec2(mid, p.y + 1), ImVec2(mid, p.y + h - 1), pal.plot_frame);
+        ImGui::Dummy(ImVec2(bar_w, h));
+        ImGui::SameLine();
+        ImGui::Text("%+.1f", b.value);
+    }
+}
+
+void App::draw_rig() {
+    const Palette& pal = palette();
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const int w = std::max(16, static_cast<int>(avail.x)), h = std::max(16, static_cast<int>(avail.y));
+    RigState st;
+    st.x = last_.x;
+    st.v = last_.v;
+    st.phi = last_.phi;
+    st.phi_span = have_last_ ? last_.phi - phi_prev_ : 0.0;
+    st.xI = xI_;
+    st.bumper_force = std::max(frame_max_force_, last_.force);
+    st.flash = flash_;
+    st.magnet_force = -(spring_magnet(params_, last_.x).F - params_.k * last_.x);
+    st.spring_force = -params_.k * last_.x;
+    st.in_contact = last_.regime != Regime::Free || last_.force > 0;
+    const GLuint tex = rig_.render(w, h, st, pal);
+    const ImVec2 p0 = ImGui::GetCursorScreenPos();
+    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(tex)), ImVec2(static_cast<float>(w), static_cast<float>(h)),
+                 ImVec2(0, 1), ImVec2(1, 0));
+
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImU32 text = pal.title_text, dim = pal.axis_text;
+    auto at = [&](double x, double y) {
+        const ImVec2 q = rig_.to_image(x, y);
+        return ImVec2(p0.x + q.x, p0.y + q.y);
+    };
+    char buf[128];
+    // Ruler numbers.
+    for (int mm = -20; mm <= 20; mm += 20) {
+        std::snprintf(buf, sizeof buf, "%d", mm);
+        const ImVec2 q = at(mm * 1e-3, rig::kRulerY + 0.0058);
+        const ImVec2 ts = ImGui::CalcTextSize(buf);
+        dl->AddText(ImVec2(q.x - ts.x * 0.5f, q.y - ts.y), dim, buf);
+    }
+    std::snprintf(buf, sizeof buf, "x = %+.2f mm", last_.x * 1e3);
+    plate_text(dl, at(0.029, rig::kRulerY + 0.0025), buf, text, ImVec2(0, 0.5f));
+    // Parts.
+    std::snprintf(buf, sizeof buf, "springs  k = %.0f N/m", params_.k);
+    plate_text(dl, at(-rig::kWallX + 0.012, rig::kSpringY + 0.0115), buf, dim, ImVec2(0, 1));
+    std::snprintf(buf, sizeof buf, "magnets repel: %+.2f N", st.magnet_force);
+    plate_text(dl, at(0.014, rig::kMagnetFixedY - 0.001), buf, dim, ImVec2(0, 0.5f));
+    const double face = xI_ + rig::kCartHalfW;
+    std::snprintf(buf, sizeof buf, "bumper  x_I = %+.1f mm", xI_ * 1e3);
+    plate_text(dl, at(face + 0.004, rig::kBumperY - rig::kBumperHalfH - 0.003), buf, dim, ImVec2(0, 0));
+    if (st.bumper_force > 0.01 || flash_ > 0.05) {
+        if (st.bumper_force > 0.01) std::snprintf(buf, sizeof buf, "F = %.1f N", st.bumper_force);
+        else std::snprintf(buf, sizeof buf, "impact  v- = %.3f m/s", last_impact_v_);
+        plate_text(dl, at(face + 0.004, rig::kBumperY + rig::kBumperHalfH + 0.0025), buf,
+                   heat_color(static_cast<float>(0.5 + 0.5 * std::max(flash_, std::min(1.0, st.bumper_force / 100)))),
+                   ImVec2(0, 1));
+    }
+    // Legend: scale bar and the forcing.
+    const float fs = ImGui::GetFontSize();
+    const ImVec2 lg(p0.x + fs * 0.6f, p0.y + h - fs * 0.8f);
+    const float ten_mm = 0.010f * rig_.px_per_m();
+    dl->AddLine(ImVec2(lg.x, lg.y), ImVec2(lg.x + ten_mm, lg.y), text, 2.0f);
+    dl->AddLine(ImVec2(lg.x, lg.y - 4), ImVec2(lg.x, lg.y + 4), text, 1.5f);
+    dl->AddLine(ImVec2(lg.x + ten_mm, lg.y - 4), ImVec2(lg.x + ten_mm, lg.y + 4), text, 1.5f);
+    dl->AddText(ImVec2(lg.x + ten_mm + 6, lg.y - fs * 0.55f), dim, "10 mm");
+    const double om = last_.omega;
+    std::snprintf(buf, sizeof buf, "t = %.2f s", last_.t);
+    const ImVec2 ts = ImGui::CalcTextSize(buf);
+    dl->AddText(ImVec2(p0.x + w - ts.x - fs * 0.6f, lg.y - fs * 0.55f), dim, buf);
+    std::snprintf(buf, sizeof buf, "unbalance  m0e omega^2 = %.2f N", params_.m0e * om * om);
+    const ImVec2 us = ImGui::CalcTextSize(buf);
+    plate_text(dl, ImVec2(p0.x + w - us.x - fs * 0.6f, p0.y + fs * 0.5f), buf, dim);
+    // Regime badge.
+    const char* badge = regime_long(last_.regime);
+    const ImU32 badge_col = last_.regime == Regime::Free ? pal.energy : pal.bumper;
+    const ImVec2 bs = ImGui::CalcTextSize(badge);
+    const ImVec2 bp(p0.x + fs * 0.6f, p0.y + fs * 0.5f);
+    dl->AddRectFilled(ImVec2(bp.x - 4, bp.y - 2), ImVec2(bp.x + bs.x + 4, bp.y + bs.y + 2),
+                      pal.dark ? IM_COL32(0, 0, 0, 140) : IM_COL32(255, 255, 255, 190), 4.0f);
+    dl->AddText(bp, badge_col, badge);
+    if (paused_) {
+        const char* p = sim_->status().paused ? "PAUSED" : "STEPPING";
+        const ImVec2 ps = ImGui::CalcTextSize(p);
+        dl->AddText(ImVec2(p0.x + w - ps.x - fs * 0.6f, bp.y + fs * 1.4f), pal.warn, p);
+    }
+}
+
+void App::draw_phase() {
+    const Palette& pal = palette();
+    const std::size_t n = traj_.size();
+    const double period = kTwoPi / std::max(omega_, 0.5);
+    std::size_t first = 0;
+    if (n && !bench_all_points_) {
+        const double t_from = traj_.back().t - trail_periods_ * period;
+        first = traj_.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
+    }
+    // Auto-fit to the trail (and keep the bumper in view when it is near).
+    double xl = 1e9, xh = -1e9, vl = 1e9, vh = -1e9;
+    for (std::size_t i = first; i < n; ++i) {
+        const SimMsg& m = traj_[i];
+        xl = std::min(xl, m.x);
+        xh = std::max(xh, m.x);
+        vl = std::min(vl, m.v);
+        vh = std::max(vh, m.v);
+    }
+    if (first >= n) {
+        xl = xh = last_.x;
+        vl = vh = 0;
+    }
+    if (xI_ > xh && xI_ - xh < 0.004) xh = xI_;
+    const double dt = frame_dt_;
+    phase_x_.track({xl, xh}, 0.08, 0.004, dt);
+    phase_v_.track({vl, vh}, 0.08, 0.04, dt);
+    Plot plot;
+    Axes ax;
+    ax.x_label = "x [mm]";
+    ax.y_label = "v [m/s]";
+    ax.x_scale = 1e3;
+    if (!plot.begin("##phase", ImGui::GetContentRegionAvail(), phase_x_.cur, phase_v_.cur, ax)) return;
+    plot.shade_right_of(xI_, pal.bumper);
+    plot.vline(xI_, pal.bumper, 1.5f, true);
+    plot.hline(0.0, pal.grid, 1.0f);
+    plot.path(n - first, [&](std::size_t i) { const SimMsg& m = traj_[first + i]; return XY{m.x, m.v}; }, pal.trace, 1.6f,
+              true);
+    // The latest section points on the orbit, and the cart now.
+    const std::size_t ns = sections_.size(), s0 = ns > 64 ? ns - 64 : 0;
+    plot.scatter(ns - s0, [&](std::size_t i) { const SimMsg& m = sections_[s0 + i]; return XY{m.x, m.v}; }, pal.section, 4.0f);
+    const ImVec2 c = plot.to_px(last_.x, last_.v);
+    plot.draw()->AddCircleFilled(c, 4.5f * ui_scale_, pal.trail_head);
+    plot.draw()->AddCircle(c, 7.0f * ui_scale_, pal.trace, 0, 1.5f);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "trail %.0f periods", static_cast<double>(trail_periods_));
+    plot.draw()->AddText(ImVec2(plot.area_min().x + 6, plot.area_min().y + 4), pal.axis_text, buf);
+    plot.end();
+}
+
+void App::draw_poincare() {
+    const Palette& pal = palette();
+    const std::size_t n = sections_.size();
+    double xl = 1e9, xh = -1e9, vl = 1e9, vh = -1e9;
+    for (std::size_t i = 0; i < n; ++i) {
+        xl = std::min(xl, sections_[i].x);
+        xh = std::max(xh, sections_[i].x);
+        vl = std::min(vl, sections_[i].v);
+        vh = std::max(vh, sections_[i].v);
+    }
+    if (n == 0) {
+        pc_x_ = phase_x_;
+        pc_v_ = phase_v_;
+    } else {
+        pc_x_.track({xl, xh}, 0.10, 0.002, frame_dt_);
+        pc_v_.track({vl, vh}, 0.10, 0.02, frame_dt_);
+    }
+    Plot plot;
+    Axes ax;
+    ax.x_label = "x [mm]";
+    ax.y_label = "v [m/s]";
+    ax.x_scale = 1e3;
+    if (!plot.begin("##poincare", ImGui::GetContentRegionAvail(), pc_x_.cur, pc_v_.cur, ax)) return;
+    plot.shade_right_of(xI_, pal.bumper);
+    plot.vline(xI_, pal.bumper, 1.5f, true);
+    const float dot = std::max(2.0f, 2.5f * ui_scale_);
+    plot.scatter(n, [&](std::size_t i) { return XY{sections_[i].x, sections_[i].v}; }, pal.section, dot);
+    if (n) {
+        const ImVec2 c = plot.to_px(sections_.back().x, sections_.back().v);
+        plot.draw()->AddCircle(c, 6.0f * ui_scale_, pal.section_new, 0, 2.0f);
+    }
+    // Period of the latest points (the core's cluster count).
+    char buf[96];
+    if (n >= 24) {
+        std::vector<double> xs;
+        const std::size_t k0 = n > 64 ? n - 64 : 0;
+        for (std::size_t i = k0; i < n; ++i) xs.push_back(sections_[i].x);
+        const int per = count_period(xs, 2e-5, 16);
+        if (per <= 16) std::snprintf(buf, sizeof buf, "%zu points   period %d", n, per);
+        else std::snprintf(buf, sizeof buf, "%zu points   no period <= 16 (chaos?)", n);
+    } else {
+        std::snprintf(buf, sizeof buf, "%zu points%s", n, n ? "   (transient...)" : "   (one per forcing period)");
+    }
+    plot.draw()->AddText(ImVec2(plot.area_min().x + 6, plot.area_min().y + 4), pal.title_text, buf);
+    plot.end();
+}
+
+void App::draw_potential() {
+    const Palette& pal = palette();
+    const std::string key = params_.stiffness_id;
+    if (potential_for_ != key) {
+        potential_for_ = key;
+        potential_x_.clear();
+        potential_v_.clear();
+        for (int i = 0; i <= 400; ++i) {
+            const double x = -0.026 + 0.052 * i / 400.0;
+            potential_x_.push_back(x);
+            potential_v_.push_back(spring_magnet_potential(params_, x));
+        }
+    }
+    const double vmin = *std::min_element(potential_v_.begin(), potential_v_.end());
+    const Range xr{-0.026, 0.026};
+    const Range yr{vmin * 1.18, -vmin * 1.6};
+    Plot plot;
+    Axes ax;
+    ax.x_label = "x [mm]";
+    ax.y_label = "V(x), E [mJ]";
+    ax.x_scale = 1e3;
+    ax.y_scale = 1e3;
+    if (!plot.begin("##potential", ImGui::GetContentRegionAvail(), xr, yr, ax)) return;
+    plot.shade_right_of(xI_, pal.bumper);
+    plot.vline(xI_, pal.bumper, 1.5f, true);
+    plot.path(potential_x_.size(), [&](std::size_t i) { return XY{potential_x_[i], potential_v_[i]}; }, pal.trace2, 2.0f);
+    // Total mechanical energy as a level: where it cuts V(x) are the turning points.
+    plot.hline(last_.energy, pal.energy, 1.2f, true);
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "E = %.2f mJ", last_.energy * 1e3);
+    plot.text(xr.lo + 0.001, last_.energy, buf, pal.energy, ImVec2(0, 1.05f));
+    const double vx = spring_magnet_potential(params_, last_.x);
+    const ImVec2 c = plot.to_px(last_.x, vx);
+    plot.draw()->AddCircleFilled(c, 6.0f * ui_scale_, pal.trace);
+    plot.draw()->AddCircle(c, 6.0f * ui_scale_, pal.trail_head, 0, 1.5f);
+    plot.text(xI_, yr.hi, " bumper", pal.bumper, ImVec2(0, -0.2f));
+    plot.end();
+}
+
+void App::draw_strip() {
+    const Palette& pal = palette();
+    const std::size_t n = traj_.size();
+    const double t_now = n ? traj_.back().t : 0.0;
+    const double window = bench_all_points_ && n ? std::max(1e-3, t_now - traj_[0].t) : strip_window_;
+    const double t_from = t_now - window;
+    const std::size_t first = traj_.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
+    double lo = 1e9, hi = -1e9;
+    for (std::size_t i = first; i < n; ++i) {
+        lo = std::min(lo, traj_[i].x);
+        hi = std::max(hi, traj_[i].x);
+    }
+    if (first >= n) lo = hi = last_.x;
+    strip_y_.track({lo, hi}, 0.08, 0.004, frame_dt_);
+    Plot plot;
+    Axes ax;
+    ax.x_label = "t [s]";
+    ax.y_label = "x [mm]";
+    ax.y_scale = 1e3;
+    if (!plot.begin("##strip", ImGui::GetContentRegionAvail(), {t_from, t_now}, strip_y_.cur, ax)) return;
+    plot.hline(xI_, pal.bumper, 1.5f, true);
+    plot.hline(0.0, pal.grid, 1.0f);
+    plot.series(n - first, [&](std::size_t i) { const SimMsg& m = traj_[first + i]; return XY{m.t, m.x}; }, pal.trace, 1.5f);
+    const std::size_t s0 = sections_.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
+    plot.scatter(sections_.size() - s0, [&](std::size_t i) { const SimMsg& m = sections_[s0 + i]; return XY{m.t, m.x}; },
+                 pal.section, 4.0f);
+    const char* legend = "dots: Poincare sections (phi = 2 pi n)    dashed: bumper x_I";
+    const ImVec2 ls = ImGui::CalcTextSize(legend);
+    plate_text(plot.draw(), ImVec2(plot.area_max().x - ls.x - 8, plot.area_max().y - ls.y - 5), legend, pal.axis_text);
+    plot.end();
+}
+
+void App::update_density_texture(int w, int h) {
+    if (!diagram_ || w <= 0 || h <= 0) return;
+    if (!bif_dirty_ && w == bif_tex_w_ && h == bif_tex_h_) return;
+    bif_dirty_ = false;
+    bif_tex_w_ = w;
+    bif_tex_h_ = h;
+    std::vector<float> count(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0.0f);
+    // Each omega column of a CF sweep is splatted over its share of the width, so the diagram has no gaps.
+    std::size_t distinct = 1;
+    for (std::size_t i = 1; i < diagram_->points.size(); ++i)
+        if (diagram_->points[i].omega != diagram_->points[i - 1].omega) ++distinct;
+    const bool cf = diagram_->protocol != "ef";
+    const int splat = cf ? std::clamp(static_cast<int>(w / std::max<double>(1, distinct) * (bif_x_.span() / 25.0)), 1, 6) : 1;
+    for (const auto& p : diagram_->points) {
+        const double fx = (p.omega - bif_x_.lo) / bif_x_.span(), fy = (bif_y_.hi - p.x) / bif_y_.span();
+        const int ix = static_cast<int>(fx * w), iy = static_cast<int>(fy * h);
+        if (iy < 0 || iy >= h) continue;
+        for (int k = 0; k < splat; ++k) {
+            const int x = ix + k - splat / 2;
+            if (x < 0 || x >= w) continue;
+            count[static_cast<std::size_t>(iy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] += 1.0f;
+        }
+    }
+    float mx = 0;
+    for (float c : count) mx = std::max(mx, c);
+    const float norm = 1.0f / std::log1p(std::max(mx, 1.0f));
+    std::vector<unsigned char> rgba(count.size() * 4, 0);
+    for (std::size_t i = 0; i < count.size(); ++i) {
+        if (count[i] <= 0) continue;
+        density_color(palette().dark, std::log1p(count[i]) * norm, &rgba[i * 4]);
+    }
+    bif_tex_ = upload_rgba_texture(static_cast<GLuint>(bif_tex_), w, h, rgba.data());
+}
+
+void App::draw_bifurcation() {
+    const Palette& pal = palette();
+    // Header row: protocol, steps, compute/cancel, progress.
+    const char* protos[] = {"CF up", "CF down", "EF ramp"};
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.2f);
+    ImGui::Combo("##proto", &bif_protocol_, protos, 3);
+    tooltip("CF: constant omega steps, 20 transient + 70 recorded periods each, every step starting where the last "
+            "ended. EF: the experiment's slow ramp of omega over 2800 s.");
+    ImGui::SameLine();
+    ImGui::BeginDisabled(bif_protocol_ == 2);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.0f);
+    ImGui::SliderInt("##steps", &bif_steps_, 25, 600, "%d steps");
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (bif_.running()) {
+        if (ImGui::Button("Cancel")) bif_.cancel();
+        ImGui::SameLine();
+        char over[32];
+        std::snprintf(over, sizeof over, "%.0f%%", 100.0 * bif_.progress());
+        ImGui::ProgressBar(static_cast<float>(bif_.progress()), ImVec2(-1, 0), over);
+    } else {
+        char label[48];
+        std::snprintf(label, sizeof label, "Compute for %s", model_name().c_str());
+        if (ImGui::Button(label)) start_bifurcation();
+        tooltip("B: runs on a worker thread; the animation goes on.");
+    }
+
+    Plot plot;
+    Axes ax;
+    ax.x_label = "omega [rad/s]";
+    ax.y_label = "x at sections [mm]";
+    ax.y_scale = 1e3;
+    if (!plot.begin("##bif", ImGui::GetContentRegionAvail(), bif_x_, bif_y_, ax)) return;
+    const ImVec2 a = plot.area_min(), b = plot.area_max();
+    if (diagram_) {
+        update_density_texture(static_cast<int>(b.x - a.x), static_cast<int>(b.y - a.y));
+        if (bif_tex_) plot.draw()->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(bif_tex_)), a, b);
+        char info[96];
+        std::snprintf(info, sizeof info, "%s  %s%s  %zu points", diagram_->model.c_str(), diagram_->protocol.c_str(),
+                      diagram_->cancelled ? " (cancelled)" : "", diagram_->points.size());
+        plate_text(plot.draw(), ImVec2(a.x + 6, b.y - ImGui::GetTextLineHeight() - 6), info, pal.axis_text);
+    } else {
+        const char* hint = bif_.running() ? "computing on a worker thread..." : "press B (or Compute) for a diagram";
+        const ImVec2 ts = ImGui::CalcTextSize(hint);
+        plot.draw()->AddText(ImVec2(0.5f * (a.x + b.x - ts.x), 0.5f * (a.y + b.y - ts.y)), pal.axis_text, hint);
+    }
+    plot.hline(xI_, pal.bumper, 1.0f, true);
+    // The current omega, and the one under the mouse (a click sets it).
+    plot.vline(omega_, pal.cursor, 2.0f);
+    char buf[48];
+    std::snprintf(buf, sizeof buf, " %.2f", omega_);
+    plot.text(omega_, bif_y_.hi, buf, pal.title_text, ImVec2(0, -0.1f));
+    if (plot.hovered()) {
+        const double w = std::clamp(plot.x_at(ImGui::GetIO().MousePos.x), 0.0, kMaxOmega);
+        plot.vline(w, pal.trace, 1.0f, true);
+        ImGui::SetTooltip("omega = %.2f rad/s  (click to set)", w);
+        if (plot.clicked()) set_omega(w);
+    }
+    plot.end();
+}
+
+void App::draw_status() {
+    const SimStatus st = sim_->status();
+    const Palette& pal = palette();
+    ImGui::Text("t = %.2f s", last_.t);
+    ImGui::SameLine(0, 18);
+    ImGui::TextDisabled("|");
+    ImGui::SameLine(0, 18);
+    if (st.paused) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "paused");
+    else if (st.lagging)
+        ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "speed %.2fx asked, %.2fx achieved (model too slow)",
+                           speed_, st.achieved_speed);
+    else ImGui::Text("speed %.2fx (achieved %.2fx)", speed_, st.achieved_speed);
+    ImGui::SameLine(0, 18);
+    ImGui::TextDisabled("|");
+    ImGui::SameLine(0, 18);
+    ImGui::Text("epoch %u", epoch_);
+    ImGui::SameLine(0, 18);
+    ImGui::TextDisabled("|");
+    ImGui::SameLine(0, 18);
+    ImGui::Text("samples %.2fM, dropped %llu", static_cast<double>(samples_seen_) / 1e6,
+                static_cast<unsigned long long>(st.dropped));
+    ImGui::SameLine(0, 18);
+    ImGui::TextDisabled("|");
+    ImGui::SameLine(0, 18);
+    ImGui::Text("%s", regime_long(last_.regime));
+    const char* help = "F1: shortcuts";
+    ImGui::SameLine(ImGui::GetWindowWidth() - ImGui::CalcTextSize(help).x - 12.0f * ui_scale_);
+    ImGui::TextDisabled("%s", help);
+}
+
+void App::draw_help() {
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y * 0.5f), ImGuiCond_Appearing,
+                            ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowFocus();
+    if (ImGui::Begin("Keyboard shortcuts", &show_help_,
+                     ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
+        static const char* keys[][2] = {
+            {"Space", "play / pause"},
+            {"N  or  .", "step one forcing period (to the next Poincare section)"},
+            {"R", "reset: t = 0, cart at rest in the left well"},
+            {"Left / Right", "omega -/+ 0.1 rad/s (Shift: 1 rad/s)"},
+            {"Up / Down", "bumper xI +/- 0.5 mm (Shift: 2 mm)"},
+            {"[  /  ]", "speed / 2, x 2 (0.01x .. 100x)"},
+            {"M", "next impact model (C, C1, G, H), live"},
+            {"K", "next stiffness (A1, A3), live"},
+            {"1 .. 4", "presets: period 1, period 2, chaos, periodic window"},
+            {"B", "compute (or cancel) the bifurcation diagram"},
+            {"click diagram", "set omega there"},
+            {"C", "clear the Poincare map"},
+            {"T", "dark / light theme"},
+            {"Ctrl + / Ctrl -", "UI scale"},
+            {"F12, Ctrl+S", "screenshot (PNG)"},
+            {"Ctrl+E", "export trajectory and sections (CSV)"},
+            {"F1, H", "this window"},
+            {"Ctrl+Q", "quit"},
+        };
+        if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+            for (const auto& k : keys) {
+                ImGui::TableNextRow();
+                ImGui::TableSetColumnIndex(0);
+                ImGui::TextColored(ImGui::GetStyle().Colors[ImGuiCol_SliderGrab], "%s", k[0]);
+                ImGui::TableSetColumnIndex(1);
+                ImGui::TextUnformatted(k[1]);
+            }
+            ImGui::EndTable();
+        }
+        ImGui::Spacing();
+        ImGui::TextDisabled("impactlab %s  -  Dear ImGui %s", IMPACTLAB_VERSION, IMGUI_VERSION);
+    }
+    ImGui::End();
+}
+
+void App::draw_toast() {
+    if (toast_.empty() || now_s() > toast_until_ || opt_.frames > 0) return;
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    const float pad = 14.0f * ui_scale_;
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - pad, vp->Pos.y + vp->Size.y - pad - ImGui::GetFrameHeight() * 1.5f),
+                            ImGuiCond_Always, ImVec2(1, 1));
+    ImGui::SetNextWindowBgAlpha(0.92f);
+    if (ImGui::Begin("##toast", nullptr,
+                     ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
+                         ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav))
+        ImGui::TextUnformatted(toast_.c_str());
+    ImGui::End();
+}
+
+}  // namespace impactlab::gui

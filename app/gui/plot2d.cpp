@@ -1,0 +1,200 @@
+#include "plot2d.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "theme.hpp"
+
+namespace impactlab::gui {
+
+namespace {
+std::size_t g_vertices = 0;
+
+// Digits after the point for tick labels at this step.
+int decimals_for(double step) {
+    const int d = static_cast<int>(std::ceil(-std::log10(step) - 1e-9));
+    return std::clamp(d, 0, 6);
+}
+
+void format_tick(char* buf, std::size_t n, double v, int decimals) {
+    if (std::abs(v) < 1e-12) v = 0;   // no "-0"
+    std::snprintf(buf, n, "%.*f", decimals, v);
+}
+
+// Text rotated 90 degrees counter-clockwise, centred on `center` (the y-axis label).
+void add_text_vertical(ImDrawList* dl, ImVec2 center, ImU32 col, const char* text) {
+    const ImVec2 ts = ImGui::CalcTextSize(text);
+    const int v0 = dl->VtxBuffer.Size;
+    // AddText drops glyphs outside the clip rect before we rotate them: lay the text out unclipped.
+    dl->PushClipRectFullScreen();
+    dl->AddText(ImVec2(center.x - ts.x * 0.5f, center.y - ts.y * 0.5f), col, text);
+    dl->PopClipRect();
+    for (int i = v0; i < dl->VtxBuffer.Size; ++i) {
+        ImVec2& p = dl->VtxBuffer[i].pos;
+        const float dx = p.x - center.x, dy = p.y - center.y;
+        p = ImVec2(center.x + dy, center.y - dx);
+    }
+}
+}  // namespace
+
+double nice_step(double span, int wanted) {
+    if (!(span > 0) || wanted < 1) return 1.0;
+    const double raw = span / wanted;
+    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+    const double f = raw / mag;
+    const double m = f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0;
+    return m * mag;
+}
+
+void AutoRange::snap(Range target, double pad, double min_span) {
+    init = false;
+    track(target, pad, min_span, 0.0);
+}
+
+void AutoRange::track(Range t, double pad, double min_span, double dt_s) {
+    if (!t.valid()) {
+        const double c = 0.5 * (t.lo + t.hi);
+        t = {c - 0.5 * min_span, c + 0.5 * min_span};
+    }
+    double span = std::max(t.span(), min_span);
+    const double c = 0.5 * (t.lo + t.hi);
+    span *= 1.0 + 2.0 * pad;
+    const Range want{c - 0.5 * span, c + 0.5 * span};
+    if (!init || !std::isfinite(cur.lo) || !std::isfinite(cur.hi)) {
+        cur = want;
+        init = true;
+        return;
+    }
+    // Grow at once to include the data; shrink towards the target over about a second.
+    const double k = 1.0 - std::exp(-dt_s / 0.6);
+    cur.lo = want.lo < cur.lo ? want.lo : cur.lo + (want.lo - cur.lo) * k;
+    cur.hi = want.hi > cur.hi ? want.hi : cur.hi + (want.hi - cur.hi) * k;
+}
+
+std::size_t Plot::emitted_vertices() { return g_vertices; }
+void Plot::reset_stats() { g_vertices = 0; }
+
+bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes) {
+    const Palette& pal = palette();
+    dl_ = ImGui::GetWindowDrawList();
+    const ImVec2 p0 = ImGui::GetCursorScreenPos();
+    if (size.x < 80 || size.y < 60) {
+        ImGui::Dummy(size);
+        return false;
+    }
+    ImGui::InvisibleButton(id, size);
+    hovered_ = ImGui::IsItemHovered();
+    clicked_ = hovered_ && ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
+               ImGui::GetIO().MouseDragMaxDistanceSqr[0] < 16.0f;
+    dragging_ = ImGui::IsItemActive();
+    const ImVec2 p1(p0.x + size.x, p0.y + size.y);
+
+    const float fs = ImGui::GetFontSize();
+    const float left = fs * 3.6f, bottom = fs * 2.35f, top = fs * 0.45f, right = fs * 0.8f;
+    min_ = ImVec2(std::floor(p0.x + left), std::floor(p0.y + top));
+    max_ = ImVec2(std::floor(p1.x - right), std::floor(p1.y - bottom));
+    x_ = x.valid() ? x : Range{x.lo - 0.5, x.lo + 0.5};
+    y_ = y.valid() ? y : Range{y.lo - 0.5, y.lo + 0.5};
+    bx_ = (max_.x - min_.x) / x_.span();
+    ax_ = min_.x - bx_ * x_.lo;
+    by_ = -(max_.y - min_.y) / y_.span();
+    ay_ = max_.y - by_ * y_.lo;
+
+    dl_->AddRectFilled(min_, max_, pal.plot_bg);
+
+    // Ticks and grid.
+    char buf[32];
+    const int nx = std::max(2, static_cast<int>((max_.x - min_.x) / (fs * 5.0f)));
+    const int ny = std::max(2, static_cast<int>((max_.y - min_.y) / (fs * 2.6f)));
+    const double sx = nice_step(x_.span() * axes.x_scale, nx) / axes.x_scale;
+    const double sy = nice_step(y_.span() * axes.y_scale, ny) / axes.y_scale;
+    const int dx = decimals_for(sx * axes.x_scale), dy = decimals_for(sy * axes.y_scale);
+    for (double v = std::ceil(x_.lo / sx) * sx; v <= x_.hi + 1e-9 * sx; v += sx) {
+        const float px = std::round(to_px(v, 0).x) + 0.5f;
+        dl_->AddLine(ImVec2(px, min_.y), ImVec2(px, max_.y), pal.grid);
+        dl_->AddLine(ImVec2(px, max_.y), ImVec2(px, max_.y + fs * 0.3f), pal.plot_frame);
+        format_tick(buf, sizeof buf, v * axes.x_scale, dx);
+        const ImVec2 ts = ImGui::CalcTextSize(buf);
+        dl_->AddText(ImVec2(px - ts.x * 0.5f, max_.y + fs * 0.35f), pal.axis_text, buf);
+    }
+    for (double v = std::ceil(y_.lo / sy) * sy; v <= y_.hi + 1e-9 * sy; v += sy) {
+        const float py = std::round(to_px(0, v).y) + 0.5f;
+        dl_->AddLine(ImVec2(min_.x, py), ImVec2(max_.x, py), pal.grid);
+        dl_->AddLine(ImVec2(min_.x - fs * 0.3f, py), ImVec2(min_.x, py), pal.plot_frame);
+        format_tick(buf, sizeof buf, v * axes.y_scale, dy);
+        const ImVec2 ts = ImGui::CalcTextSize(buf);
+        dl_->AddText(ImVec2(min_.x - fs * 0.4f - ts.x, py - ts.y * 0.5f), pal.axis_text, buf);
+    }
+    dl_->AddRect(ImVec2(min_.x - 0.5f, min_.y - 0.5f), ImVec2(max_.x + 0.5f, max_.y + 0.5f), pal.plot_frame);
+    // Labels: x centred below the ticks, y rotated along the left edge.
+    if (axes.x_label && *axes.x_label) {
+        const ImVec2 ts = ImGui::CalcTextSize(axes.x_label);
+        dl_->AddText(ImVec2(0.5f * (min_.x + max_.x) - 0.5f * ts.x, max_.y + fs * 1.25f), pal.title_text, axes.x_label);
+    }
+    if (axes.y_label && *axes.y_label)
+        add_text_vertical(dl_, ImVec2(p0.x + fs * 0.6f, 0.5f * (min_.y + max_.y)), pal.title_text, axes.y_label);
+
+    dl_->PushClipRect(min_, max_, true);
+    return true;
+}
+
+void Plot::end() { dl_->PopClipRect(); }
+
+void Plot::flush(std::vector<ImVec2>& pts, ImU32 color, float thickness) {
+    // ImDrawList indexes with 16 bits: keep each polyline well under 64k vertices (AA lines emit up to
+    // 4 per point), overlapping chunks by one point.
+    constexpr std::size_t kChunk = 4000;
+    const std::size_t n = pts.size();
+    if (n < 2) return;
+    for (std::size_t s = 0; s + 1 < n; s += kChunk) {
+        const std::size_t len = std::min(kChunk + 1, n - s);
+        dl_->AddPolyline(pts.data() + s, static_cast<int>(len), color, ImDrawFlags_None, thickness);
+        g_vertices += len;
+    }
+}
+
+void Plot::vline(double x, ImU32 color, float thickness, bool dashed) {
+    const float px = to_px(x, 0).x;
+    if (!dashed) {
+        dl_->AddLine(ImVec2(px, min_.y), ImVec2(px, max_.y), color, thickness);
+        return;
+    }
+    const float dash = ImGui::GetFontSize() * 0.35f;
+    for (float y = min_.y; y < max_.y; y += 2 * dash)
+        dl_->AddLine(ImVec2(px, y), ImVec2(px, std::min(y + dash, max_.y)), color, thickness);
+}
+
+void Plot::hline(double y, ImU32 color, float thickness, bool dashed) {
+    const float py = to_px(0, y).y;
+    if (!dashed) {
+        dl_->AddLine(ImVec2(min_.x, py), ImVec2(max_.x, py), color, thickness);
+        return;
+    }
+    const float dash = ImGui::GetFontSize() * 0.35f;
+    for (float x = min_.x; x < max_.x; x += 2 * dash)
+        dl_->AddLine(ImVec2(x, py), ImVec2(std::min(x + dash, max_.x), py), color, thickness);
+}
+
+void Plot::text(double x, double y, const char* s, ImU32 color, ImVec2 align) {
+    const ImVec2 ts = ImGui::CalcTextSize(s);
+    const ImVec2 p = to_px(x, y);
+    dl_->AddText(ImVec2(p.x - ts.x * align.x, p.y - ts.y * align.y), color, s);
+}
+
+void Plot::shade_right_of(double x0, ImU32 color) {
+    const float px = std::max(to_px(x0, 0).x, min_.x);
+    if (px >= max_.x) return;
+    ImVec4 c = ImGui::ColorConvertU32ToFloat4(color);
+    c.w *= 0.12f;
+    dl_->AddRectFilled(ImVec2(px, min_.y), max_, ImGui::ColorConvertFloat4ToU32(c));
+    c.w = ImGui::ColorConvertU32ToFloat4(color).w * 0.35f;
+    const ImU32 hatch = ImGui::ColorConvertFloat4ToU32(c);
+    const float step = ImGui::GetFontSize() * 0.6f;
+    const float h = max_.y - min_.y;
+    dl_->PushClipRect(ImVec2(px, min_.y), max_, true);
+    for (float x = px - h; x < max_.x; x += step) dl_->AddLine(ImVec2(x, max_.y), ImVec2(x + h, min_.y), hatch);
+    dl_->PopClipRect();
+}
+
+}  // namespace impactlab::gui

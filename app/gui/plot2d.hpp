@@ -1,0 +1,183 @@
+// A small 2-D plotting layer on ImDrawList (ImPlot is not in Debian): a frame with axes, nice ticks and
+// labels, a clipped data area, and three primitives that bound their draw cost by the pixels they cover,
+// not by the number of points:
+//   series  - y(x) with x increasing: per-pixel-column decimation (first, min, max, last in each column);
+//   path    - a general curve (phase portraits): points closer than ~0.7 px to the last one are skipped,
+//             with an optional fade from old (transparent) to new (opaque);
+//   scatter - dots: one per covered pixel (a bitmap of the area, cleared per call).
+// UI thread only.
+#pragma once
+
+#include <imgui.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace impactlab::gui {
+
+struct Range {
+    double lo = 0, hi = 1;
+    double span() const { return hi - lo; }
+    bool valid() const { return hi > lo; }
+};
+
+// An axis range that follows its data smoothly (grows fast, shrinks slowly), so auto-fit never jitters.
+struct AutoRange {
+    Range cur;
+    bool init = false;
+    // target: the data's extent; pad: fraction of span added either side; min_span: the smallest span.
+    void track(Range target, double pad, double min_span, double dt_s);
+    void snap(Range target, double pad, double min_span);
+};
+
+struct Axes {
+    const char* x_label = "";
+    const char* y_label = "";
+    double x_scale = 1, y_scale = 1;   // data units -> tick label units (e.g. 1e3 for m -> mm)
+};
+
+class Plot {
+public:
+    // Lays the plot out at the cursor (an InvisibleButton of `size` takes the mouse). Returns false if the
+    // plot is too small to draw (nothing to end() then).
+    bool begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes);
+    void end();   // pops the clip rect
+
+    ImVec2 to_px(double x, double y) const {
+        return ImVec2(static_cast<float>(ax_ + bx_ * x), static_cast<float>(ay_ + by_ * y));
+    }
+    double x_at(float px) const { return (px - ax_) / bx_; }
+    double y_at(float py) const { return (py - ay_) / by_; }
+    ImDrawList* draw() const { return dl_; }
+    ImVec2 area_min() const { return min_; }
+    ImVec2 area_max() const { return max_; }
+    bool hovered() const { return hovered_; }
+    bool clicked() const { return clicked_; }   // left click released on the data area
+    bool dragging() const { return dragging_; }
+    Range x_range() const { return x_; }
+    Range y_range() const { return y_; }
+
+    // Points are fetched by get(i) -> ImPlotPoint-like {double x, y} for i in [0, n).
+    template <class Get>
+    void series(std::size_t n, Get&& get, ImU32 color, float thickness = 1.5f);
+    template <class Get>
+    void path(std::size_t n, Get&& get, ImU32 color, float thickness = 1.5f, bool fade = false);
+    template <class Get>
+    void scatter(std::size_t n, Get&& get, ImU32 color, float size = 2.0f);
+
+    void vline(double x, ImU32 color, float thickness = 1.0f, bool dashed = false);
+    void hline(double y, ImU32 color, float thickness = 1.0f, bool dashed = false);
+    void text(double x, double y, const char* s, ImU32 color, ImVec2 align = ImVec2(0, 0));
+    // Fills the part of the area with x > x0 (a forbidden region), hatched.
+    void shade_right_of(double x0, ImU32 color);
+
+    // Statistics of the last frame (benchmark)
+    static std::size_t emitted_vertices();
+    static void reset_stats();
+
+private:
+    void flush(std::vector<ImVec2>& pts, ImU32 color, float thickness);
+    ImDrawList* dl_ = nullptr;
+    ImVec2 min_, max_;
+    Range x_, y_;
+    double ax_ = 0, bx_ = 1, ay_ = 0, by_ = 1;
+    bool hovered_ = false, clicked_ = false, dragging_ = false;
+    std::vector<ImVec2> buf_;
+    std::vector<std::uint64_t> bitmap_;
+};
+
+// Nice tick step for a span and a wanted number of ticks (1, 2, 5 x 10^k).
+double nice_step(double span, int wanted);
+
+// ---- templates -------------------------------------------------------------------------------------
+
+template <class Get>
+void Plot::series(std::size_t n, Get&& get, ImU32 color, float thickness) {
+    if (n == 0) return;
+    buf_.clear();
+    // Per pixel column: keep first, min, max, last (M4 decimation): exact extremes, O(columns) vertices.
+    constexpr int kNone = std::numeric_limits<int>::min();
+    int col = kNone;
+    ImVec2 first{}, lo{}, hi{}, last{};
+    auto emit = [&] {
+        buf_.push_back(first);
+        if (lo.y != first.y && lo.y != last.y) buf_.push_back(lo);
+        if (hi.y != first.y && hi.y != last.y) buf_.push_back(hi);
+        if (last.x != first.x || last.y != first.y) buf_.push_back(last);
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto p = get(i);
+        const ImVec2 q = to_px(p.x, p.y);
+        const int c = static_cast<int>(q.x);
+        if (c != col) {
+            if (col != kNone) emit();
+            col = c;
+            first = lo = hi = last = q;
+        } else {
+            if (q.y < lo.y) lo = q;
+            if (q.y > hi.y) hi = q;
+            last = q;
+        }
+    }
+    emit();
+    flush(buf_, color, thickness);
+}
+
+template <class Get>
+void Plot::path(std::size_t n, Get&& get, ImU32 color, float thickness, bool fade) {
+    if (n < 2) return;
+    // Fading: the curve is split into kBands runs of rising opacity (one AddPolyline each).
+    constexpr int kBands = 24;
+    const int bands = fade ? kBands : 1;
+    const ImVec4 base = ImGui::ColorConvertU32ToFloat4(color);
+    std::size_t start = 0;
+    for (int b = 0; b < bands; ++b) {
+        const std::size_t stop = (b + 1 == bands) ? n : n * static_cast<std::size_t>(b + 1) / static_cast<std::size_t>(bands);
+        if (stop <= start) continue;
+        buf_.clear();
+        ImVec2 prev = to_px(get(start).x, get(start).y);
+        buf_.push_back(prev);
+        for (std::size_t i = start + 1; i < stop; ++i) {
+            const auto p = get(i);
+            const ImVec2 q = to_px(p.x, p.y);
+            const float dx = q.x - prev.x, dy = q.y - prev.y;
+            if (dx * dx + dy * dy < 0.5f && i + 1 != stop) continue;
+            buf_.push_back(q);
+            prev = q;
+        }
+        ImVec4 c = base;
+        if (fade) {
+            const float f = static_cast<float>(b + 1) / static_cast<float>(bands);
+            c.w *= f * f;
+        }
+        flush(buf_, ImGui::ColorConvertFloat4ToU32(c), thickness);
+        start = stop - 1;   // bands share their end point: no gaps
+    }
+}
+
+template <class Get>
+void Plot::scatter(std::size_t n, Get&& get, ImU32 color, float size) {
+    if (n == 0) return;
+    const int w = static_cast<int>(max_.x - min_.x) + 1, h = static_cast<int>(max_.y - min_.y) + 1;
+    if (w <= 0 || h <= 0) return;
+    const std::size_t bits = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+    bitmap_.assign((bits + 63) / 64, 0);
+    const float r = 0.5f * size;
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto p = get(i);
+        const ImVec2 q = to_px(p.x, p.y);
+        const int ix = static_cast<int>(q.x - min_.x), iy = static_cast<int>(q.y - min_.y);
+        if (ix < 0 || iy < 0 || ix >= w || iy >= h) continue;
+        const std::size_t k = static_cast<std::size_t>(iy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(ix);
+        std::uint64_t& word = bitmap_[k >> 6];
+        const std::uint64_t bit = std::uint64_t{1} << (k & 63);
+        if (word & bit) continue;
+        word |= bit;
+        dl_->AddRectFilled(ImVec2(q.x - r, q.y - r), ImVec2(q.x + r, q.y + r), color);
+    }
+}
+
+}  // namespace impactlab::gui

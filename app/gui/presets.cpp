@@ -1,0 +1,49 @@
+#include "presets.hpp"
+
+namespace impactlab::gui {
+
+// Every omega below was checked with
+//   impactlab poincare --model M --omega W --periods 128 --transient 400 --x0 -0.011
+// counting distinct section points (clusters closer than 20 um): 1, 2, >50 (chaos), and the window's period.
+// A1: period 1 up to ~10.9, period 2 from ~11 to ~12.9, chaos ~13..19.4, then an inverse cascade
+//     (period 4 at 19.5, period 2 from 20, period 1 from 22.25). A1G and A1C1 have the paper's wide
+//     window (period 1, the cart far left, ~14.25..14.75 / 14.25..15.0); A1H and A1C only narrow period-3
+//     windows (16.40..16.45 and 16.50..16.55).
+// A3: period 1 up to ~10.5, period 2 from ~10.75 to ~12.75, chaos ~13..18.2, period 4 near 18.3, period 2
+//     from 18.5; narrow windows: A3H period 5 at 15.35, A3C period 3 at 15.5, A3G period 3 at 15.70,
+//     A3C1 period 3 at 15.75.
+std::vector<Preset> presets_for(const std::string& model) {
+    const bool a3 = model.rfind("A3", 0) == 0;
+    const std::string imp = model.size() > 2 ? model.substr(2) : "H";
+    constexpr double x0 = -0.011;   // at rest in the left well
+    std::vector<Preset> p;
+    p.push_back({"Period 1", 9.0, x0, "period 1: one Poincare point; the cart swings in the left well, clear of the bumper"});
+    p.push_back({"Period 2", 12.0, x0, "after the first period doubling: two Poincare points"});
+    p.push_back({"Chaos", a3 ? 16.0 : 18.0, x0,
+                 "a strange attractor: the cart keeps hitting the bumper at the hilltop x = 0"});
+    double w = 16.45;
+    const char* note = "a narrow period-3 window inside the chaotic range";
+    if (!a3) {
+        if (imp == "G" || imp == "C1") {
+            w = 14.5;
+            note = "the wide periodic window of A1G and A1C1 (the paper's Fig. 3): period 1 far in the left well";
+        } else if (imp == "C") {
+            w = 16.55;
+        }
+    } else {
+        if (imp == "H") {
+            w = 15.35;
+            note = "a narrow period-5 window inside the chaotic range";
+        } else if (imp == "C") {
+            w = 15.5;
+        } else if (imp == "G") {
+            w = 15.70;
+        } else {
+            w = 15.75;
+        }
+    }
+    p.push_back({"Window", w, x0, note});
+    return p;
+}
+
+}  // namespace impactlab::gui

@@ -1,0 +1,346 @@
+#include "rig_view.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "embedded_shaders.hpp"
+#include "gl_util.hpp"
+
+namespace impactlab::gui {
+
+using namespace rig;
+
+namespace {
+constexpr double kViewHalfW = 0.150, kViewTop = 0.061, kViewBottom = -0.081;
+constexpr double kPlateX0 = -0.146, kPlateX1 = 0.146, kPlateY0 = -0.078, kPlateY1 = 0.058;
+
+const float kWhite[3] = {1, 1, 1};
+const float kBlack[3] = {0, 0, 0};
+const float kDark[3] = {0.10f, 0.11f, 0.13f};
+const float kRubber[3] = {0.16f, 0.16f, 0.17f};
+const float kBrass[3] = {0.78f, 0.62f, 0.30f};
+
+void mix3(const float* a, const float* b, float t, float* out) {
+    for (int i = 0; i < 3; ++i) out[i] = a[i] + (b[i] - a[i]) * t;
+}
+}  // namespace
+
+bool RigView::init(std::string& error) {
+    shapes_prog_ = build_program(shaders::rig_shapes_vert, shaders::rig_shapes_frag, "rig_shapes", error);
+    if (!shapes_prog_) return false;
+    backdrop_prog_ = build_program(shaders::rig_backdrop_vert, shaders::rig_backdrop_frag, "rig_backdrop", error);
+    if (!backdrop_prog_) return false;
+
+    glGenVertexArrays(1, &vao_);
+    glGenBuffers(1, &vbo_);
+    glBindVertexArray(vao_);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+    const GLsizei stride = sizeof(Shape);
+    auto attrib = [&](GLuint loc, GLint n, std::size_t offset) {
+        glEnableVertexAttribArray(loc);
+        glVertexAttribPointer(loc, n, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset));
+        glVertexAttribDivisor(loc, 1);
+    };
+    attrib(0, 2, offsetof(Shape, p0));
+    attrib(1, 2, offsetof(Shape, p1));
+    attrib(2, 2, offsetof(Shape, p2));
+    attrib(3, 4, offsetof(Shape, shape));
+    attrib(4, 4, offsetof(Shape, fill));
+    attrib(5, 4, offsetof(Shape, line));
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glGenVertexArrays(1, &empty_vao_);
+    return true;
+}
+
+void RigView::shutdown() {
+    if (color_) glDeleteTextures(1, &color_);
+    if (fbo_) glDeleteFramebuffers(1, &fbo_);
+    if (vbo_) glDeleteBuffers(1, &vbo_);
+    if (vao_) glDeleteVertexArrays(1, &vao_);
+    if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
+    if (shapes_prog_) glDeleteProgram(shapes_prog_);
+    if (backdrop_prog_) glDeleteProgram(backdrop_prog_);
+    color_ = fbo_ = vbo_ = vao_ = empty_vao_ = shapes_prog_ = backdrop_prog_ = 0;
+}
+
+ImVec2 RigView::to_image(double x, double y) const {
+    return ImVec2(static_cast<float>(0.5 * fb_w_ + (x - cx_) * px_per_m_),
+                  static_cast<float>(0.5 * fb_h_ - (y - cy_) * px_per_m_));
+}
+
+void RigView::capsule(double ax, double ay, double bx, double by, double r, const float* rgb, float a, int style,
+                      double outline, const float* line, double glow) {
+    Shape s{};
+    s.p0[0] = static_cast<float>(ax);
+    s.p0[1] = static_cast<float>(ay);
+    s.p1[0] = static_cast<float>(bx);
+    s.p1[1] = static_cast<float>(by);
+    s.p2[0] = static_cast<float>(glow);
+    s.shape[0] = 0;
+    s.shape[1] = static_cast<float>(r);
+    s.shape[2] = static_cast<float>(outline);
+    s.shape[3] = static_cast<float>(style);
+    for (int i = 0; i < 3; ++i) s.fill[i] = rgb[i];
+    s.fill[3] = a;
+    const float* l = line ? line : kBlack;
+    for (int i = 0; i < 3; ++i) s.line[i] = l[i];
+    s.line[3] = 1;
+    shapes_.push_back(s);
+}
+
+void RigView::box(double cx, double cy, double hx, double hy, double corner, const float* rgb, float a, int style,
+                  double outline, const float* line, double glow) {
+    Shape s{};
+    s.p0[0] = static_cast<float>(cx);
+    s.p0[1] = static_cast<float>(cy);
+    s.p1[0] = static_cast<float>(hx);
+    s.p1[1] = static_cast<float>(hy);
+    s.p2[0] = static_cast<float>(glow);
+    s.shape[0] = 1;
+    s.shape[1] = static_cast<float>(corner);
+    s.shape[2] = static_cast<float>(outline);
+    s.shape[3] = static_cast<float>(style);
+    for (int i = 0; i < 3; ++i) s.fill[i] = rgb[i];
+    s.fill[3] = a;
+    const float* l = line ? line : kBlack;
+    for (int i = 0; i < 3; ++i) s.line[i] = l[i];
+    s.line[3] = 1;
+    shapes_.push_back(s);
+}
+
+void RigView::disc(double cx, double cy, double r, double inner, const float* rgb, float a, int style, double outline,
+                   const float* line, double glow) {
+    Shape s{};
+    s.p0[0] = static_cast<float>(cx);
+    s.p0[1] = static_cast<float>(cy);
+    s.p1[0] = static_cast<float>(inner);
+    s.p2[0] = static_cast<float>(glow);
+    s.shape[0] = 2;
+    s.shape[1] = static_cast<float>(r);
+    s.shape[2] = static_cast<float>(outline);
+    s.shape[3] = static_cast<float>(style);
+    for (int i = 0; i < 3; ++i) s.fill[i] = rgb[i];
+    s.fill[3] = a;
+    const float* l = line ? line : kBlack;
+    for (int i = 0; i < 3; ++i) s.line[i] = l[i];
+    s.line[3] = 1;
+    shapes_.push_back(s);
+}
+
+void RigView::triangle(double ax, double ay, double bx, double by, double cx, double cy, const float* rgb, float a) {
+    Shape s{};
+    s.p0[0] = static_cast<float>(ax);
+    s.p0[1] = static_cast<float>(ay);
+    s.p1[0] = static_cast<float>(bx);
+    s.p1[1] = static_cast<float>(by);
+    s.p2[0] = static_cast<float>(cx);
+    s.p2[1] = static_cast<float>(cy);
+    s.shape[0] = 3;
+    for (int i = 0; i < 3; ++i) s.fill[i] = rgb[i];
+    s.fill[3] = a;
+    shapes_.push_back(s);
+}
+
+void RigView::spring(double x0, double x1, double y, const Palette& pal) {
+    // A helix seen from above: back half-turns dark, front half-turns bright; the pitch follows the length.
+    constexpr int kCoils = 9;
+    constexpr double kAmp = 0.0068, kWire = 0.00115, kLead = 0.005;
+    const double a = x0 + kLead, b = x1 - kLead;
+    const double pitch = (b - a) / kCoils;
+    capsule(x0, y, a, y - kAmp, kWire, pal.spring, 1, 1);
+    for (int i = 0; i < kCoils; ++i) {
+        const double s = a + pitch * i;
+        capsule(s + 0.5 * pitch, y + kAmp, s + pitch, y - kAmp, kWire * 0.85, pal.spring_back, 1, 0);
+    }
+    for (int i = 0; i < kCoils; ++i) {
+        const double s = a + pitch * i;
+        capsule(s, y - kAmp, s + 0.5 * pitch, y + kAmp, kWire, pal.spring, 1, 1);
+    }
+    capsule(b, y - kAmp, x1, y, kWire, pal.spring, 1, 1);
+}
+
+void RigView::build(const RigState& st, const Palette& pal) {
+    shapes_.clear();
+    const double x = st.x;
+    const double wall_in = kWallX - 0.004;
+
+    // Frame: the two end blocks (hatched: fixed to the ground) and the rails.
+    float hatch[3];
+    mix3(pal.wall, kBlack, 0.45f, hatch);
+    box(-kWallX - 0.005, -0.010, 0.008, 0.055, 0.002, pal.wall, 1, 4, 0, hatch);
+    box(kWallX + 0.005, -0.010, 0.008, 0.055, 0.002, pal.wall, 1, 4, 0, hatch);
+    for (double ry : {kRailY, -kRailY}) {
+        capsule(-kRailHalfLen, ry, kRailHalfLen, ry, 0.0034, pal.rail, 1, 1);
+        for (double bx : {-kRailHalfLen + 0.006, kRailHalfLen - 0.006}) disc(bx, ry, 0.0022, 0, kDark, 1, 0);
+    }
+
+    // Ruler fixed to the frame, with the cart's pointer (numbers are drawn over the image).
+    float tick[3];
+    mix3(pal.rig_grid, pal.text, 0.5f, tick);
+    capsule(-0.025, kRulerY, 0.025, kRulerY, 0.0004, tick, 0.9f, 0);
+    for (int mm = -25; mm <= 25; ++mm) {
+        const double len = (mm % 10 == 0) ? 0.0050 : (mm % 5 == 0) ? 0.0034 : 0.0020;
+        const double xx = mm * 1e-3;
+        capsule(xx, kRulerY, xx, kRulerY + len, mm % 10 == 0 ? 0.00032 : 0.00020, tick, 0.9f, 0);
+    }
+
+    // Bumper: a block on a threaded rod from the right end, rubber face at the contact plane xI + half cart.
+    const double face = st.xI + kCartHalfW;
+    const double F = std::max(0.0, st.bumper_force);
+    const double heat = std::clamp(std::max(st.flash, std::log10(1.0 + F) / 3.0), 0.0, 1.0);
+    capsule(face + kBumperLen, kBumperY, wall_in, kBumperY, 0.0028, kBrass, 1, 1);
+    for (int i = 0; i < 2; ++i) {   // lock nuts
+        const double nx = face + kBumperLen + 0.006 + 0.006 * i;
+        box(nx, kBumperY, 0.0022, 0.0052, 0.0006, pal.rail, 1, 1, 0.0004, kDark);
+    }
+    box(face + 0.5 * kBumperLen + 0.002, kBumperY, 0.5 * kBumperLen - 0.002, kBumperHalfH, 0.0015, pal.bumper_body, 1, 1,
+        0.0006, kDark);
+    float pad[3];
+    mix3(kRubber, pal.hot, static_cast<float>(heat), pad);
+    if (heat > 0.02) {
+        float glow[3];
+        mix3(pal.hot, kWhite, static_cast<float>(0.4 * heat), glow);
+        box(face + 0.002, kBumperY, 0.002, kBumperHalfH, 0.0012, glow, static_cast<float>(0.85 * heat), 3, 0, nullptr,
+            0.004 + 0.014 * heat);
+    }
+    box(face + 0.002, kBumperY, 0.002, kBumperHalfH, 0.0012, pad, 1, 0, 0.0005, kDark);
+
+    // Fixed magnet on its bracket under the rail, at x = 0.
+    box(0.0, kMagnetFixedY - 0.0095, 0.016, 0.0028, 0.001, pal.wall, 1, 4, 0, hatch);
+    box(0.0, kMagnetFixedY + 0.5 * kMagnetHalf, kMagnetHalf, 0.5 * kMagnetHalf, 0.0008, pal.magnet_n, 1, 1);
+    box(0.0, kMagnetFixedY - 0.5 * kMagnetHalf, kMagnetHalf, 0.5 * kMagnetHalf, 0.0008, pal.magnet_s, 1, 1);
+
+    // Springs from the end blocks to the cart's ends.
+    spring(-wall_in, x - kCartHalfW, kSpringY, pal);
+    spring(x + kCartHalfW, wall_in, kSpringY, pal);
+
+    // Cart: body with wheels over the rails, the moving magnet under it (N facing the fixed N).
+    float body_edge[3];
+    mix3(pal.cart, kBlack, 0.55f, body_edge);
+    for (double wy : {kRailY, -kRailY})
+        for (double wx : {-0.026, 0.026}) box(x + wx, wy, 0.0070, 0.0045, 0.002, kDark, 1, 1);
+    box(x, 0.0, kCartHalfW, kCartHalfH, 0.004, pal.cart, 1, 2, 0.0012, body_edge);
+    box(x, kMagnetCartY + 0.0015 - 0.5 * kMagnetHalf, kMagnetHalf, 0.5 * kMagnetHalf, 0.0008, pal.magnet_n, 1, 1);
+    box(x, kMagnetCartY + 0.0015 + 0.5 * kMagnetHalf, kMagnetHalf, 0.5 * kMagnetHalf, 0.0008, pal.magnet_s, 1, 1);
+    // Cart contact plate on the bumper side, and the hook plates of the springs.
+    box(x + kCartHalfW - 0.0015, kBumperY, 0.0015, kBumperHalfH * 0.8, 0.0005, pal.rail, 1, 1);
+    box(x - kCartHalfW + 0.0015, kSpringY, 0.0015, 0.004, 0.0005, pal.rail, 1, 1);
+    box(x + kCartHalfW - 0.0015, kSpringY, 0.0015, 0.004, 0.0005, pal.rail, 1, 1);
+
+    // Magnetic force on the cart: an arrow at its magnet (0.9 mm per newton, capped).
+    if (std::abs(st.magnet_force) > 0.05) {
+        const double L = std::clamp(st.magnet_force * 0.0009, -0.03, 0.03);
+        const double y = kMagnetCartY - 0.0005;
+        const double x0 = x + (L > 0 ? kMagnetHalf : -kMagnetHalf);
+        const double x1 = x0 + L;
+        const double head = std::min(0.0045, std::abs(L));
+        const double dir = L > 0 ? 1.0 : -1.0;
+        capsule(x0, y, x1 - dir * head * 0.8, y, 0.0009, pal.field, 0.95f, 0);
+        triangle(x1, y, x1 - dir * head, y + 0.0028, x1 - dir * head, y - 0.0028, pal.field, 0.95f);
+    }
+
+    // Unbalance: the motor's disc spinning on the cart, its eccentric mass at angle phi; x-offset e*sin(phi)
+    // (the forcing m0e phi'^2 sin(phi) points along the mass's arm).
+    const double dcx = x - 0.004, dcy = 0.002;
+    float disc_col[3], disc_dark[3];
+    mix3(pal.disc, kBlack, 0.25f, disc_col);
+    mix3(pal.disc, kBlack, 0.65f, disc_dark);
+    disc(dcx, dcy, kDiscR + 0.0015, 0, kDark, 0.6f, 0);
+    disc(dcx, dcy, kDiscR, 0, disc_col, 1, 2, 0.0008, disc_dark);
+    // Motion blur: when the disc turns a lot between two frames, ghosts along the arc.
+    const double span = std::min(std::abs(st.phi_span), 2.0 * 3.14159265358979);
+    const int ghosts = span > 0.35 ? std::min(10, static_cast<int>(span / 0.35)) : 0;
+    for (int g = ghosts; g >= 1; --g) {
+        const double a = st.phi - span * g / (ghosts + 1);
+        const float alpha = static_cast<float>(0.35 * (1.0 - static_cast<double>(g) / (ghosts + 1)));
+        capsule(dcx, dcy, dcx + kMassOrbit * std::sin(a), dcy + kMassOrbit * std::cos(a), 0.0016, disc_dark, alpha, 0);
+        disc(dcx + kMassOrbit * std::sin(a), dcy + kMassOrbit * std::cos(a), 0.0055, 0, pal.mass, alpha, 0);
+    }
+    const double mx = dcx + kMassOrbit * std::sin(st.phi), my = dcy + kMassOrbit * std::cos(st.phi);
+    capsule(dcx, dcy, mx, my, 0.0018, disc_dark, 1, 1);
+    capsule(dcx, dcy, dcx - 0.55 * kMassOrbit * std::sin(st.phi), dcy - 0.55 * kMassOrbit * std::cos(st.phi), 0.0012,
+            disc_dark, 1, 1);
+    disc(dcx, dcy, 0.0042, 0, pal.rail, 1, 2, 0.0006, kDark);
+    disc(mx, my, 0.0058, 0, pal.mass, 1, 2, 0.0006, kDark);
+
+    // The ruler's pointer on the cart's centre line.
+    triangle(x, kRulerY - 0.0005, x - 0.0022, kRulerY - 0.0055, x + 0.0022, kRulerY - 0.0055, pal.hot, 1);
+    capsule(x, kRulerY - 0.0055, x, kCartHalfH, 0.0004, pal.hot, 0.8f, 0);
+}
+
+GLuint RigView::render(int w, int h, const RigState& s, const Palette& pal) {
+    w = std::max(w, 16);
+    h = std::max(h, 16);
+    if (!fbo_ || w != fb_w_ || h != fb_h_) {
+        if (!fbo_) glGenFramebuffers(1, &fbo_);
+        color_ = upload_rgba_texture(color_, w, h, nullptr);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_, 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        fb_w_ = w;
+        fb_h_ = h;
+    }
+    // Fit the rig (to scale: one zoom for both axes).
+    px_per_m_ = static_cast<float>(std::min(w / (2.0 * kViewHalfW), h / (kViewTop - kViewBottom)));
+    cx_ = 0.0;
+    cy_ = 0.5 * (kViewTop + kViewBottom);
+
+    build(s, pal);
+
+    GLint prev_fbo = 0, prev_vp[4];
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &prev_fbo);
+    glGetIntegerv(GL_VIEWPORT, prev_vp);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glViewport(0, 0, w, h);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+
+    const float view_h = static_cast<float>(h / px_per_m_);
+    const auto set_common = [&](GLuint prog) {
+        glUseProgram(prog);
+        glUniform2f(glGetUniformLocation(prog, "u_center"), static_cast<float>(cx_), static_cast<float>(cy_));
+        glUniform1f(glGetUniformLocation(prog, "u_px_per_m"), px_per_m_);
+        glUniform2f(glGetUniformLocation(prog, "u_viewport"), static_cast<float>(w), static_cast<float>(h));
+    };
+
+    // Backdrop (opaque).
+    glDisable(GL_BLEND);
+    set_common(backdrop_prog_);
+    const GLuint bp = backdrop_prog_;
+    glUniform3fv(glGetUniformLocation(bp, "u_bg_top"), 1, pal.bg_top);
+    glUniform3fv(glGetUniformLocation(bp, "u_bg_bottom"), 1, pal.bg_bottom);
+    glUniform3fv(glGetUniformLocation(bp, "u_grid"), 1, pal.rig_grid);
+    glUniform3fv(glGetUniformLocation(bp, "u_field"), 1, pal.field);
+    glUniform4f(glGetUniformLocation(bp, "u_plate"), static_cast<float>(kPlateX0), static_cast<float>(kPlateY0),
+                static_cast<float>(kPlateX1), static_cast<float>(kPlateY1));
+    glUniform2f(glGetUniformLocation(bp, "u_mag_cart"), static_cast<float>(s.x), static_cast<float>(kMagnetCartY));
+    glUniform2f(glGetUniformLocation(bp, "u_mag_fixed"), 0.0f, static_cast<float>(kMagnetFixedY));
+    glUniform1f(glGetUniformLocation(bp, "u_field_gain"),
+                static_cast<float>(std::clamp(std::abs(s.magnet_force) / 8.0, 0.0, 1.0)));
+    glUniform1f(glGetUniformLocation(bp, "u_view_top"), static_cast<float>(cy_ + 0.5 * view_h));
+    glUniform1f(glGetUniformLocation(bp, "u_view_bottom"), static_cast<float>(cy_ - 0.5 * view_h));
+    glBindVertexArray(empty_vao_);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+
+    // Shapes, premultiplied alpha, in the order built.
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    set_common(shapes_prog_);
+    glBindVertexArray(vao_);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(shapes_.size() * sizeof(Shape)), shapes_.data(),
+                 GL_STREAM_DRAW);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(shapes_.size()));
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glUseProgram(0);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(prev_fbo));
+    glViewport(prev_vp[0], prev_vp[1], prev_vp[2], prev_vp[3]);
+    return color_;
+}
+
+}  // namespace impactlab::gui

@@ -1,0 +1,80 @@
+// The rig, animated and drawn to scale (top view, metres) with the shaders of shaders/: rail, cart, the two
+// coil springs, the repelling magnets with their field lines, the bumper at xI glowing with the contact
+// force, the spinning unbalance disc. Rendered into its own framebuffer texture that an ImGui window
+// shows; labels are added on top with ImDrawList. Main (GL) thread only.
+#pragma once
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <imgui.h>
+
+#include <string>
+#include <vector>
+
+#include "theme.hpp"
+
+namespace impactlab::gui {
+
+// What the rig shows this frame (from the latest sample and the UI's own parameters).
+struct RigState {
+    double x = 0, v = 0;          // cart [m], [m/s]
+    double phi = 0;               // unbalance angle [rad]
+    double phi_span = 0;          // how far phi turned since the last frame [rad] (motion blur)
+    double xI = 0;                // bumper [m]
+    double bumper_force = 0;      // [N]
+    double flash = 0;             // 0..1: recent impact
+    double magnet_force = 0;      // force of the magnets on the cart, along x [N]
+    double spring_force = 0;      // force of the springs on the cart [N]
+    bool in_contact = false;      // regime II or III, or a compliant bumper pressed
+};
+
+// Geometry of the rig [m] (top view; x along the rail, y across it).
+namespace rig {
+inline constexpr double kCartHalfW = 0.040, kCartHalfH = 0.036;
+inline constexpr double kRailY = 0.027, kRailHalfLen = 0.133;
+inline constexpr double kWallX = 0.136;
+inline constexpr double kSpringY = 0.017;
+inline constexpr double kBumperY = -0.017, kBumperLen = 0.018, kBumperHalfH = 0.0085;
+inline constexpr double kMagnetCartY = -0.043, kMagnetFixedY = -0.0655, kMagnetHalf = 0.0075;
+inline constexpr double kDiscR = 0.022, kMassOrbit = 0.016;
+inline constexpr double kRulerY = 0.047;
+}  // namespace rig
+
+class RigView {
+public:
+    // Compiles the shaders; false with a message if the driver refuses them.
+    bool init(std::string& error);
+    void shutdown();
+    // Draws into the view's framebuffer at w x h pixels and returns its colour texture.
+    GLuint render(int w, int h, const RigState& s, const Palette& pal);
+    // Image pixel (top-left origin) of a world point, for the labels drawn over the image.
+    ImVec2 to_image(double x, double y) const;
+    float px_per_m() const { return px_per_m_; }
+
+private:
+    struct Shape {
+        float p0[2], p1[2], p2[2];
+        float shape[4];   // kind, radius, outline, style
+        float fill[4];
+        float line[4];
+    };
+    void build(const RigState& s, const Palette& pal);
+    void capsule(double ax, double ay, double bx, double by, double r, const float* rgb, float a = 1, int style = 1,
+                 double outline = 0, const float* line = nullptr, double glow = 0);
+    void box(double cx, double cy, double hx, double hy, double corner, const float* rgb, float a = 1, int style = 0,
+             double outline = 0, const float* line = nullptr, double glow = 0);
+    void disc(double cx, double cy, double r, double inner, const float* rgb, float a = 1, int style = 2,
+              double outline = 0, const float* line = nullptr, double glow = 0);
+    void triangle(double ax, double ay, double bx, double by, double cx, double cy, const float* rgb, float a = 1);
+    void spring(double x0, double x1, double y, const Palette& pal);
+
+    GLuint shapes_prog_ = 0, backdrop_prog_ = 0;
+    GLuint vao_ = 0, vbo_ = 0, empty_vao_ = 0;
+    GLuint fbo_ = 0, color_ = 0;
+    int fb_w_ = 0, fb_h_ = 0;
+    float px_per_m_ = 1000;
+    double cx_ = 0, cy_ = 0;
+    std::vector<Shape> shapes_;
+};
+
+}  // namespace impactlab::gui

@@ -1,0 +1,77 @@
+// The simulation thread: the only owner of the simulator state (a SimEngine) once started. It paces the
+// simulation against the wall clock at a chosen real-time factor, with a cap on the work done per
+// iteration so commands are handled within milliseconds even when the model runs slower than asked.
+//
+//   UI thread --SimCommand--> [SpscRing commands_] --> sim thread   (UI produces, sim consumes)
+//   sim thread --SimMsg-----> [SpscRing samples_]  --> UI thread    (sim produces, UI consumes)
+//
+// Besides the rings, a few relaxed atomics report status (sim time, achieved speed) for the status bar.
+// GL-free.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <thread>
+
+#include "sim_engine.hpp"
+#include "spsc_ring.hpp"
+
+namespace impactlab::gui {
+
+struct SimStatus {
+    double sim_time = 0;          // [s]
+    double achieved_speed = 0;    // measured real-time factor over the last ~0.5 s
+    bool paused = false;
+    bool lagging = false;         // the model cannot keep up with the requested speed
+    std::uint64_t dropped = 0;    // samples refused by a full ring
+    std::uint64_t commands_dropped = 0;
+};
+
+class SimThread {
+public:
+    static constexpr std::size_t kSampleCapacity = std::size_t{1} << 17;   // ~1.3 s at 100x
+    static constexpr std::size_t kCommandCapacity = 256;
+    // Work per iteration before the loop checks its commands again [ms].
+    static constexpr int kWorkCapMs = 6;
+
+    // UI thread. Builds the engine (throws ParamError for an unknown model); call start() to run it.
+    explicit SimThread(const EngineConfig& cfg);
+    ~SimThread();   // UI thread: stops and joins
+    SimThread(const SimThread&) = delete;
+    SimThread& operator=(const SimThread&) = delete;
+
+    // UI thread.
+    void start();
+    // UI thread. Idempotent.
+    void stop();
+    // UI thread (the commands ring's only producer). False if the ring is full (the command is dropped).
+    bool send(const SimCommand& c);
+    // UI thread (the samples ring's only consumer) drains this.
+    SpscRing<SimMsg>& samples() { return samples_; }
+    // Any thread.
+    SimStatus status() const;
+
+private:
+    class RingSink final : public MsgSink {
+    public:
+        explicit RingSink(SpscRing<SimMsg>& r) : ring_(r) {}
+        void put(const SimMsg& m) override { ring_.try_push(m); }   // sim thread (the producer)
+    private:
+        SpscRing<SimMsg>& ring_;
+    };
+
+    void run();   // sim thread
+
+    SpscRing<SimMsg> samples_{kSampleCapacity};
+    SpscRing<SimCommand> commands_{kCommandCapacity};
+    RingSink sink_{samples_};
+    SimEngine engine_;   // touched by the UI thread only before start()
+    std::thread thread_;
+    std::atomic<bool> quit_{false};
+    std::atomic<double> sim_time_{0.0};
+    std::atomic<double> achieved_{0.0};
+    std::atomic<bool> paused_{false};
+    std::atomic<bool> lagging_{false};
+};
+
+}  // namespace impactlab::gui

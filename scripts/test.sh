@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The test job (CI runs exactly this): install what is missing, then
+#  1. build the headless core, CLI and tests with the GUI OFF (the core must not need GL) and run them;
+#  2. build everything (GUI and benchmarks included) and run the GUI smoke test under Xvfb.
+# Release builds, -Wall -Wextra warnings as errors.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install_deps.sh
+jobs="$(nproc)"
+
+cmake -S . -B build-ci-core -DCMAKE_BUILD_TYPE=Release -DIMPACTLAB_WERROR=ON \
+      -DIMPACTLAB_BUILD_APP=OFF -DIMPACTLAB_BUILD_BENCH=OFF -DIMPACTLAB_BUILD_TESTS=ON
+cmake --build build-ci-core -j"$jobs"
+ctest --test-dir build-ci-core --output-on-failure
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DIMPACTLAB_WERROR=ON \
+      -DIMPACTLAB_BUILD_APP=ON -DIMPACTLAB_BUILD_BENCH=ON -DIMPACTLAB_BUILD_TESTS=ON
+cmake --build build -j"$jobs"
+ctest --test-dir build --output-on-failure -L gui
