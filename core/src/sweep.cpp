@@ -146,22 +146,24 @@ Transitions find_transitions(const Diagram& d, double cluster_tol) {
     }
     const std::size_t n = tr.omegas.size();
     auto chaotic = [&](std::size_t k) { return tr.periods[k] > 8; };
+    // The jump off the hilltop exists only if the sweep starts there (CF up does; CF down starts in a well).
     std::size_t k = 0;
     while (k < n && means[k] <= 5e-3) ++k;
     if (k == n) return tr;
-    tr.jump = tr.omegas[k];
+    if (k > 0) tr.jump = tr.omegas[k];
     for (std::size_t i = k; i < n; ++i)
         if (tr.periods[i] == 2) {
             tr.period_doubling = tr.omegas[i];
             break;
         }
-    // Chaos: runs of at least three consecutive levels with more than 8 distinct section values (a lone
-    // such level is a slow transient at a bifurcation point).
+    // Chaos: runs of at least five consecutive levels (0.4 rad/s in the paper's sweep) with more than 8
+    // distinct section values; shorter runs are slow transients at a bifurcation point, where 20 transient
+    // periods are not enough to settle.
     std::size_t first = n, last = n;
     for (std::size_t i = k; i < n;) {
         std::size_t j = i;
         while (j < n && chaotic(j)) ++j;
-        if (j - i >= 3) {
+        if (j - i >= 5) {
             if (first == n) first = i;
             last = j - 1;
         }

@@ -66,10 +66,10 @@ int count_period(const std::vector<double>& xs, double tol, int max_period = 16)
 // where the cart leaves x ~ 0, where period 2 first appears, where chaos starts and ends, the periodic
 // windows inside the chaos, and the return to period 1. NaN where a transition does not occur.
 struct Transitions {
-    double jump = NAN;                       // first omega with |x| > 5 mm on the section
+    double jump = NAN;                       // first omega with |x| > 5 mm on the section (if it starts near 0)
     double period_doubling = NAN;            // first omega after the jump with period 2
-    double chaos_start = NAN;                // first omega with more than 8 distinct section values
-    double chaos_end = NAN;                  // last such omega
+    double chaos_start = NAN;                // first omega of a run of >= 5 levels with > 8 distinct section values
+    double chaos_end = NAN;                  // last omega of the last such run
     double period1_return = NAN;             // first period-1 omega after chaos_end
     std::vector<std::pair<double, double>> windows;   // periodic (period <= 4) runs of >= 4 omegas inside the chaos
     std::vector<int> periods;                // period per omega (record+1 means more than 16: chaos)
