@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "impactlab/forces.hpp"
@@ -216,6 +217,9 @@ bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_st
     // Stiffness switching: Dormand-Prince where h * rate stays inside its stability region, RODAS4 where
     // the friction (|v| within a few eps of 0: sticking, creeping) or a compliant contact is stiff.
     const double rate = sys.stiffness(y0);
+    // The smallest step that still moves t (at t ~ 4e4 s one ulp is 7e-12 s): below it a step is forced.
+    const double h_min = std::max(tol_.h_min, 16.0 * std::numeric_limits<double>::epsilon() * std::abs(t0));
+    h = std::max(h, std::min(h_min, t_stop - t0));
     double err = 0;
     bool explicit_step = false;
     for (;;) {
@@ -227,10 +231,10 @@ bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_st
             work_.take(sys, t0, y0, h);
         }
         err = work_.error_norm(tol_);
-        if (err <= 1.0 || h <= tol_.h_min) break;
+        if (err <= 1.0 || h <= h_min) break;
         ++s.rejected;
         h = std::isfinite(err) ? next_step_size(h, err, false, explicit_step ? 5 : 4) : 0.25 * h;
-        h = std::max(h, tol_.h_min);
+        h = std::max(h, h_min);
         truncated = false;
     }
     ++s.steps;
@@ -284,12 +288,12 @@ bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_st
     // Newton on the step length. For a compliant bumper the crossing is only a restart point at the
     // kink of h^n1, so the interpolated time is enough.
     for (int it = 0; it < (p.rigid() ? 4 : 1); ++it) {
-        const double h_ev = std::max(t_ev - t0, tol_.h_min);
+        const double h_ev = std::max(t_ev - t0, h_min);
         if (explicit_step) retry_.take_explicit(sys, t0, y0, h_ev, sys.rhs(t0, y0));
         else retry_.take(sys, t0, y0, h_ev);
         const double miss = retry_.y1[0] - xI;
         if (!p.rigid() || std::abs(miss) <= 1e-14 || retry_.y1[1] <= 0.0) break;
-        const double t_new = std::clamp(t_ev - miss / retry_.y1[1], t0 + tol_.h_min, t0 + h);
+        const double t_new = std::clamp(t_ev - miss / retry_.y1[1], t0 + h_min, t0 + h);
         if (std::abs(t_new - t_ev) <= 1e-15 * std::max(1.0, std::abs(t_ev))) break;
         t_ev = t_new;
     }
