@@ -15,10 +15,12 @@
 namespace impactlab::cli {
 
 namespace {
-bool wants_help(const std::vector<std::string>& args, const char* text) {
+// Prints the command's help (and the model flags it shares, if any) when asked.
+bool wants_help(const std::vector<std::string>& args, const char* text, const char* shared = nullptr) {
     for (const auto& a : args)
         if (a == "--help" || a == "-h") {
             std::printf("%s", text);
+            if (shared) std::printf("%s", shared);
             return true;
         }
     return false;
@@ -69,8 +71,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
                          "  --duration D     simulated time [s] (required)\n"
                          "  --out FILE       CSV output (required)\n"
                          "  --dt DT          output sample step [s] (default 1e-3)\n"
-                         "  --x0 X, --v0 V   initial state [m], [m/s] (default 0, 0)\n" ) ||
-        wants_help(argv, kModelHelp))
+                         "  --x0 X, --v0 V   initial state [m], [m/s] (default 0, 0)\n", kModelHelp))
         return 0;
     const Args a("simulate", argv, with_model_flags({"--omega", "--duration", "--out", "--dt", "--x0", "--v0"}));
     const Params p = model_from(a);
@@ -113,8 +114,7 @@ int cmd_poincare(const std::vector<std::string>& argv) {
                          "  --periods N      section points to record (required)\n"
                          "  --transient N    periods discarded first (default 0)\n"
                          "  --out FILE       CSV output (required)\n"
-                         "  --x0 X, --v0 V   initial state (default 0, 0)\n") ||
-        wants_help(argv, kModelHelp))
+                         "  --x0 X, --v0 V   initial state (default 0, 0)\n", kModelHelp))
         return 0;
     const Args a("poincare", argv, with_model_flags({"--omega", "--periods", "--transient", "--out", "--x0", "--v0"}));
     const Params p = model_from(a);
@@ -147,8 +147,7 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
                    "  --omega-min W, --omega-max W, --steps N, --transient N, --record N   override the CF defaults\n"
                    "                   (for ramp: --omega-max is the final omega, --ramp-time T its duration)\n"
                    "  --out FILE       CSV output with columns omega,x,v (required)\n"
-                   "  --png FILE       also plot the diagram\n") ||
-        wants_help(argv, kModelHelp))
+                   "  --png FILE       also plot the diagram\n", kModelHelp))
         return 0;
     const Args a("bifurcation", argv,
                  with_model_flags({"--sweep", "--out", "--png", "--omega-min", "--omega-max", "--steps", "--transient",

@@ -59,11 +59,18 @@ double Drive::phi(double t) const {
 double Drive::time_of_phase(double phase) const {
     const double inf = std::numeric_limits<double>::infinity();
     if (phase <= phi_[0]) {
-        if (w_[0] <= 0) return phase == phi_[0] ? t_[0] : -inf;
-        return t_[0] + (phase - phi_[0]) / w_[0];
+        if (phase == phi_[0]) return t_[0];
+        return w_[0] > 0 ? t_[0] + (phase - phi_[0]) / w_[0] : -inf;
     }
-    const std::size_t i =
-        static_cast<std::size_t>(std::upper_bound(phi_.begin(), phi_.end(), phase) - phi_.begin()) - 1;
+    // The first knot with phi >= phase: the phase is reached exactly there, or inside the segment before.
+    const std::size_t k = static_cast<std::size_t>(std::lower_bound(phi_.begin(), phi_.end(), phase) - phi_.begin());
+    if (k < phi_.size() && phi_[k] == phase) {
+        // phi may rest at this value (omega = 0 on a stretch): the first time it gets there.
+        std::size_t first = k;
+        while (first > 0 && phi_[first - 1] == phase) --first;
+        return t_[first];
+    }
+    const std::size_t i = k - 1;
     const double dphi = phase - phi_[i];
     if (i + 1 >= t_.size()) return w_[i] > 0 ? t_[i] + dphi / w_[i] : inf;
     const double a = (w_[i + 1] - w_[i]) / (t_[i + 1] - t_[i]);
@@ -71,7 +78,7 @@ double Drive::time_of_phase(double phase) const {
     const double disc = std::max(0.0, w_[i] * w_[i] + 2.0 * a * dphi);
     const double denom = w_[i] + std::sqrt(disc);
     if (denom <= 0) return inf;
-    return t_[i] + 2.0 * dphi / denom;
+    return std::min(t_[i] + 2.0 * dphi / denom, t_[i + 1]);
 }
 
 double Drive::next_knot(double t) const {

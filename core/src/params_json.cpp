@@ -54,25 +54,91 @@ void read_coeffs(const json& obj, const std::string& key, std::array<double, 4>&
     for (std::size_t i = 0; i < arr.size(); ++i) out[i] = number(arr[i], key + "[" + std::to_string(i) + "]", src);
 }
 
+// A SAX pass that only tracks where it is ("impact.a_T", "b[0]"), to name the key at fault when the DOM
+// parser stops with an error that carries only a byte position (an overflowing number, a syntax error).
+class KeyPathSax : public nlohmann::json_sax<json> {
+public:
+    std::string path;   // the key path at the error
+    std::string what;   // nlohmann's message
+    std::size_t byte = 0;
+    bool null() override { return value(); }
+    bool boolean(bool) override { return value(); }
+    bool number_integer(number_integer_t) override { return value(); }
+    bool number_unsigned(number_unsigned_t) override { return value(); }
+    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool string(string_t&) override { return value(); }
+    bool binary(binary_t&) override { return value(); }
+    bool start_object(std::size_t) override {
+        frames_.push_back({false, 0, ""});
+        return true;
+    }
+    bool key(string_t& k) override {
+        frames_.back().key = k;
+        return true;
+    }
+    bool end_object() override { return end(); }
+    bool start_array(std::size_t) override {
+        frames_.push_back({true, 0, ""});
+        return true;
+    }
+    bool end_array() override { return end(); }
+    bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& ex) override {
+        byte = position;
+        what = ex.what();
+        for (const auto& f : frames_) {
+            if (f.array) {
+                path.append("[").append(std::to_string(f.index)).append("]");
+            } else if (!f.key.empty()) {
+                if (!path.empty()) path.append(".");
+                path.append(f.key);
+            }
+        }
+        return false;
+    }
+
+private:
+    struct Frame { bool array; std::size_t index; std::string key; };
+    bool value() {
+        if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+        return true;
+    }
+    bool end() {
+        frames_.pop_back();
+        return value();
+    }
+    std::vector<Frame> frames_;
+};
+
+std::string line_and_column(const std::string& text, std::size_t byte) {
+    std::size_t line = 1, col = 1;
+    for (std::size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            col = 1;
+        } else {
+            ++col;
+        }
+    }
+    return "line " + std::to_string(line) + ", column " + std::to_string(col);
+}
+
 }  // namespace
 
 Params params_from_json_text(const std::string& text, const std::string& src) {
     json j;
     try {
         j = json::parse(text);
-    } catch (const json::parse_error& e) {
-        // nlohmann reports a byte offset; turn it into line and column.
-        std::size_t line = 1, col = 1;
-        for (std::size_t i = 0; i < std::min<std::size_t>(e.byte ? e.byte - 1 : 0, text.size()); ++i) {
-            if (text[i] == '\n') {
-                ++line;
-                col = 1;
-            } else {
-                ++col;
-            }
-        }
-        fail(src, "line " + std::to_string(line) + ", column " + std::to_string(col) + ": invalid JSON (" +
-                      std::string(e.what()) + ")");
+    } catch (const json::exception&) {
+        // Parse again with a SAX pass to learn where: line, column and the key being read.
+        KeyPathSax where;
+        json::sax_parse(text, &where);
+        std::string msg = line_and_column(text, where.byte) + ": ";
+        if (where.what.find("number overflow") != std::string::npos)
+            msg += "key '" + where.path + "': the number is out of range (not finite)";
+        else
+            msg += "invalid JSON" + (where.path.empty() ? std::string() : " at key '" + where.path + "'") + " (" +
+                   where.what + ")";
+        fail(src, msg);
     }
     if (!j.is_object()) fail(src, "expected a JSON object at the top level");
     check_keys(j, {"name", "base", "stiffness", "m", "m0e", "k", "c", "T", "eps", "a", "b", "xI", "impact", "effects"},

@@ -303,6 +303,12 @@ std::string sentence(const std::string& id, const Model& b, const std::vector<st
                      const std::vector<std::pair<std::string, double>>& s, const SentenceContext& c) {
     auto val = [&](const char* k) { return get(v, k); };
     auto sig = [&](const char* k) { return get(s, k); };
+    if (id == "constant_force" && !b.bumper)
+        return "a constant force of " + pm(val("F0"), sig("F0")) +
+               " (in the model's force units): an offset of the input or of the system's equilibrium";
+    if (id == "even_stiffness" && !b.bumper)
+        return "an even (quadratic) restoring term -k2 y^2 with k2 = " + pm(val("k2"), sig("k2")) +
+               ": an asymmetric nonlinearity, the even-order distortion";
     if (id == "constant_force") {
         const double F = val("F0"), tilt = std::asin(std::min(1.0, std::abs(F) / (c.m * c.g_earth))) * 180.0 / kPi;
         return "a constant force of " + pm(F, sig("F0")) + " N along the rail (" + (F > 0 ? "towards +x" : "towards -x") +

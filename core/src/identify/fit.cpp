@@ -77,18 +77,29 @@ void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_ite
     }
 }
 
+// The output-error fit uses samples [a, end]; the rest of the record validates it.
+std::size_t oe_fit_end(const Prep& pr, std::size_t a, std::size_t max_samples) {
+    return std::min(pr.n - 1, a + std::min(max_samples, (pr.n - a) / 2));
+}
+
 // Levenberg-Marquardt on the free-run simulation error (input-forced data only: there a free run over the
 // record is meaningful, and it weighs the resonance the way the benchmark's simulation error does).
 void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_iter, double rtol) {
     const auto p = static_cast<Eigen::Index>(knobs.size());
     if (p == 0) return;
     const MeasuredData& d = *pr.data;
+    // The fit runs on the first stretch of at most kOeSamples samples (a free run is sequential; this bounds the
+    // cost of each Jacobian), from the first usable sample.
+    constexpr std::size_t kOeSamples = 30000;
+    std::size_t a = 0;
+    while (a + 2 < pr.n && (pr.zone[a] || !std::isfinite(pr.xs[a]) || !std::isfinite(pr.vs[a]))) ++a;
+    const std::size_t b = oe_fit_end(pr, a, kOeSamples);
     auto err = [&](Eigen::VectorXd& e) {
-        const std::vector<double> fr = free_run(pr, m, rtol);
-        e.resize(static_cast<Eigen::Index>(pr.n));
+        const std::vector<double> fr = simulate_window(pr, m, a, b, false, rtol);
+        e.resize(static_cast<Eigen::Index>(b - a + 1));
         double ss = 0;
-        for (std::size_t i = 0; i < pr.n; ++i) {
-            const double r = std::isfinite(fr[i]) ? fr[i] - d.x[i] : 0.0;
+        for (std::size_t i = 0; i + a <= b; ++i) {
+            const double r = i < fr.size() && std::isfinite(fr[i]) ? fr[i] - d.x[a + i] : 0.0;
             e[static_cast<Eigen::Index>(i)] = r;
             ss += r * r;
         }
@@ -479,10 +490,6 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         Eigen::MatrixXd J1;
         if (knobs.empty()) residual(pr, after, R1, pw);
         else lm_residual(pr, after, knobs, 30, R1, J1);
-        if (!pr.phi_forced && !knobs.empty()) {
-            lm_simulation(pr, after, knobs, 30, o.rtol);
-            lm_residual(pr, after, knobs, 0, R1, J1);   // residual and Jacobian at the refined point
-        }
 
         // Uncertainties (HAC) and significance of each found effect at the joint fit.
         std::vector<double> knob_sigma(knobs.size(), 0.0);
@@ -537,6 +544,64 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
                             std::to_string(force_found[weakest].z) + " in the joint fit");
         chosen.erase(chosen.begin() + static_cast<long>(weakest));
         step_gain.erase(step_gain.begin() + static_cast<long>(weakest));
+    }
+    // Input-forced data: the simulation error decides. Refit everything on it, then keep an effect only if
+    // the refitted model without it simulates the validation part clearly worse (1 %).
+    if (!pr.phi_forced && o.fit_baseline && !chosen.empty()) {
+        auto oe_fit = [&](Model& m, std::size_t skip, int iters) {
+            std::vector<Knob> kn;
+            for (const auto& b : base_params(m, base_names)) {
+                double lo = -1e12;
+                if (b.name == "c" || b.name == "T" || b.name == "m0e" || b.name == "m") lo = 0;
+                kn.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6), lo, 1e12, b.name});
+            }
+            for (std::size_t k = 0, e = 0; k < chosen.size(); ++k) {
+                if (k == skip) continue;
+                const Candidate& c = cands[groups[chosen[k]].cand];
+                EffectInstance& inst = m.p.effects[first_new + e++];
+                for (std::size_t li = 0; li < c.free.size(); ++li) {
+                    const auto pi = static_cast<std::size_t>(c.free[li]);
+                    kn.push_back({&inst.p[pi], c.step[li], c.id == "stribeck_friction" ? (pi == 1 ? 0.005 : 0.0) : -1e12,
+                                  c.id == "sensor_gain" ? 2.0 : 1e12, c.law->names[pi]});
+                }
+            }
+            lm_simulation(pr, m, kn, iters, o.rtol);
+            // Judged out of sample: on the part of the record the fit did not use.
+            const std::vector<double> fr = free_run(pr, m, o.rtol);
+            std::size_t first = 0;
+            while (first < pr.n && !std::isfinite(fr[first])) ++first;
+            const std::size_t fit_end = oe_fit_end(pr, first, 30000);
+            double s = 0;
+            std::size_t cnt = 0;
+            for (std::size_t i = fit_end + 1; i < pr.n; ++i)
+                if (std::isfinite(fr[i])) {
+                    s += (fr[i] - data.x[i]) * (fr[i] - data.x[i]);
+                    ++cnt;
+                }
+            return cnt ? std::sqrt(s / static_cast<double>(cnt)) : INFINITY;
+        };
+        double rms_all = oe_fit(after, chosen.size(), 20);
+        for (std::size_t k = chosen.size(); k-- > 0;) {
+            Model without = after;
+            without.p.effects.erase(without.p.effects.begin() + static_cast<long>(first_new + k));
+            const double rms_without = oe_fit(without, k, 10);
+            if (rms_without <= 1.01 * rms_all) {
+                rms_all = std::min(rms_all, rms_without);
+                rep.notes.push_back("dropped " + force_found[k].id + ": without it the refitted model simulates the validation part as well (" +
+                                    std::to_string(rms_without) + " against " + std::to_string(rms_all) + ")");
+                for (auto& cs : rep.candidates)
+                    if (cs.id == force_found[k].id) cs.selected = false;
+                after = without;
+                chosen.erase(chosen.begin() + static_cast<long>(k));
+                force_found.erase(force_found.begin() + static_cast<long>(k));
+            }
+        }
+        // The reported values are the simulation-error fit's; their uncertainties stay the equation error's.
+        for (std::size_t k = 0; k < force_found.size(); ++k) {
+            force_found[k].parameters = named(after.p.effects[first_new + k]);
+            force_found[k].sentence = sentence(force_found[k].id, base, force_found[k].parameters, force_found[k].sigma, sc);
+        }
+        rep.notes.push_back("effects refitted on the free-run simulation error (output error)");
     }
     for (auto& f : force_found) rep.effects_found.push_back(std::move(f));
 

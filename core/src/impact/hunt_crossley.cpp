@@ -20,9 +20,11 @@ ContactForce contact(const double* p, double h, double hdot) {
     const double F = kI * (hn1 + b * hn2 * avn3 * sgn);
     if (F <= 0.0) return {0.0, 0.0, 0.0};   // the bumper never pulls
     const double dF_dh = kI * (n1 * hn1 / h + b * n2 * hn2 / h * avn3 * sgn);
-    // Bounded slope: the exact n3 |h'|^(n3-1) is infinite at h' = 0 and would stall the implicit method.
+    // Secant slope F_damping / h' in the Newton matrix (MODEL.md): the exact n3 |h'|^(n3-1) is infinite at
+    // h' = 0 and underestimates the damping at creep speeds, which stalls the implicit method when the cart
+    // rests on the bumper; the secant keeps the steps long and leaves the force itself unchanged.
     const double av_slope = std::max(av, kSlopeFloorVelocity);
-    const double dF_dhdot = kI * b * hn2 * n3 * std::pow(av_slope, n3 - 1.0);
+    const double dF_dhdot = kI * b * hn2 * std::pow(av_slope, n3 - 1.0);
     return {F, dF_dh, dF_dhdot};
 }
 

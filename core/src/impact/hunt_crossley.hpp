@@ -5,6 +5,6 @@
 namespace impactlab::hunt_crossley {
 // Parameter order: kI [N/m^n1], b [(s/m)^n3], n1, n2, n3.
 ContactForce contact(const double* p, double h, double hdot);
-// |h'| below this enters the Newton matrix as this value: d|h'|^n3/dh' is infinite at 0 (MODEL.md).
-inline constexpr double kSlopeFloorVelocity = 1e-3;   // [m/s]
+// |h'| below this enters the secant slope as this value (the slope grows without bound as h' -> 0).
+inline constexpr double kSlopeFloorVelocity = 1e-12;   // [m/s]
 }  // namespace impactlab::hunt_crossley

@@ -1,0 +1,106 @@
+# Command-line behaviour of the impactlab program: exit codes (0 success, 1 runtime failure, 2 usage error),
+# error messages that name the culprit, and the files a run writes. Each test runs the program once in a
+# scratch directory through run_cli_test.sh (see there for the checks).
+if(NOT TARGET impactlab)
+  return()
+endif()
+
+set(IMPACTLAB_CLI_DRIVER ${CMAKE_CURRENT_LIST_DIR}/run_cli_test.sh)
+
+# impactlab_cli_test(NAME CHECKS... -- ARGS...)
+function(impactlab_cli_test name)
+  add_test(NAME cli.${name} COMMAND bash ${IMPACTLAB_CLI_DRIVER} $<TARGET_FILE:impactlab> ${ARGN})
+  set_tests_properties(cli.${name} PROPERTIES LABELS cli TIMEOUT 60)
+endfunction()
+
+# --- the command table -----------------------------------------------------------------------------------
+impactlab_cli_test(no_command --rc 2 --match "usage: impactlab COMMAND" --)
+impactlab_cli_test(help --rc 0 --match "commands:" --match "simulate" --match "bifurcation" -- --help)
+impactlab_cli_test(unknown_command --rc 2 --match "unknown command 'frobnicate'" -- frobnicate)
+foreach(cmd models simulate poincare bifurcation figure3)
+  impactlab_cli_test(help_${cmd} --rc 0 --match "usage: impactlab ${cmd}" -- ${cmd} --help)
+endforeach()
+impactlab_cli_test(help_short_flag --rc 0 --match "usage: impactlab poincare" -- poincare -h)
+
+# --- flags -----------------------------------------------------------------------------------------------
+impactlab_cli_test(unknown_flag --rc 2 --match "unknown option '--frobnicate'"
+                   -- simulate --omega 18 --duration 2 --out x.csv --frobnicate 3)
+impactlab_cli_test(unknown_short_flag --rc 2 --match "unknown option '-q'"
+                   -- poincare --omega 18 --periods 5 --out x.csv -q)
+impactlab_cli_test(non_numeric_value --rc 2 --match "'--omega'" --match "'abc' is not a finite number"
+                   -- simulate --omega abc --duration 2 --out x.csv)
+impactlab_cli_test(trailing_garbage_value --rc 2 --match "'--duration'" --match "'2s'"
+                   -- simulate --omega 18 --duration 2s --out x.csv)
+impactlab_cli_test(non_integer_value --rc 2 --match "'--periods'" --match "not an integer"
+                   -- poincare --omega 18 --periods 2.5 --out x.csv)
+impactlab_cli_test(value_out_of_range --rc 2 --match "'--omega'" --match "outside"
+                   -- simulate --omega -5 --duration 2 --out x.csv)
+impactlab_cli_test(infinite_value --rc 2 --match "'--rtol'" -- simulate --omega 18 --duration 2 --rtol inf --out x.csv)
+impactlab_cli_test(flag_without_value --rc 2 --match "'--out' needs a value" -- simulate --omega 18 --duration 2 --out)
+impactlab_cli_test(flag_twice --rc 2 --match "'--omega' given twice"
+                   -- simulate --omega 18 --omega 19 --duration 2 --out x.csv)
+impactlab_cli_test(sweep_bogus --rc 2 --match "'--sweep'" --match "bogus" --absent d.csv
+                   -- bifurcation --sweep bogus --out d.csv)
+impactlab_cli_test(omega_range_inverted --rc 2 --match "--omega-max"
+                   -- bifurcation --sweep up --omega-min 6 --omega-max 5 --steps 2 --out d.csv)
+
+# --- required flags --------------------------------------------------------------------------------------
+impactlab_cli_test(simulate_missing_out --rc 2 --match "'--out'" -- simulate --omega 18 --duration 2)
+impactlab_cli_test(simulate_missing_omega --rc 2 --match "'--omega'" -- simulate --duration 2 --out x.csv)
+impactlab_cli_test(simulate_missing_duration --rc 2 --match "'--duration'" -- simulate --omega 18 --out x.csv)
+impactlab_cli_test(poincare_missing_out --rc 2 --match "'--out'" -- poincare --omega 18 --periods 5)
+impactlab_cli_test(poincare_missing_periods --rc 2 --match "'--periods'" -- poincare --omega 18 --out x.csv)
+impactlab_cli_test(bifurcation_missing_out --rc 2 --match "'--out'" -- bifurcation --sweep up --steps 2)
+impactlab_cli_test(figure3_missing_out --rc 2 --match "'--out'" -- figure3 --steps 2)
+
+# --- models and parameter files --------------------------------------------------------------------------
+impactlab_cli_test(model_unknown --rc 2 --match "nonexistent" --match "A1C1"
+                   -- simulate --model nonexistent --omega 18 --duration 2 --out x.csv)
+impactlab_cli_test(model_bad_json_key --rc 2 --match "bad\\.json" --match "unknown key 'kappa'"
+                   --write bad.json "{\"base\": \"A1H\", \"kappa\": 0.5}"
+                   -- simulate --model bad.json --omega 18 --duration 2 --out x.csv)
+impactlab_cli_test(model_bad_json_value --rc 2 --match "impact\\.kappa0"
+                   --write bad.json "{\"base\": \"A1H\", \"impact\": {\"model\": \"H\", \"kappa0\": 1.5}}"
+                   -- poincare --model bad.json --omega 18 --periods 5 --out x.csv)
+impactlab_cli_test(model_bad_json_syntax --rc 2 --match "broken\\.json" --match "line 2, column"
+                   --write broken.json "{\"base\": \"A1H\",\n  \"m\": }"
+                   -- bifurcation --model broken.json --sweep up --steps 2 --out d.csv)
+impactlab_cli_test(model_json_not_found --rc 2 --match "no_such_file\\.json"
+                   -- simulate --model no_such_file.json --omega 18 --duration 2 --out x.csv)
+# A non-finite number in a parameter file is a usage error (2) naming the file and the key.
+impactlab_cli_test(model_json_non_finite --rc 2 --match "inf\\.json" --match "'k'"
+                   --write inf.json "{\"base\": \"A1H\", \"k\": 1e999}"
+                   -- simulate --model inf.json --omega 18 --duration 2 --out x.csv)
+impactlab_cli_test(model_json_ok --rc 0 --csv x.csv "n,x,v" 3 3
+                   --write ok.json "{\"base\": \"A1G\", \"name\": \"tilted\", \"xI\": 0.002}"
+                   -- poincare --model ok.json --omega 18 --periods 3 --out x.csv)
+impactlab_cli_test(xI_out_of_range --rc 2 --match "'--xI'" -- simulate --xI 0.2 --omega 18 --duration 2 --out x.csv)
+impactlab_cli_test(models_list --rc 0 --match "A1C1" --match "kappa0" --match "constant_force" -- models)
+impactlab_cli_test(models_json --rc 0 --match "\"model\": \"H\"" --match "\"kappa0\"" -- models --json A1H)
+impactlab_cli_test(models_json_unknown --rc 2 --match "--json" --match "Q9" -- models --json Q9)
+
+# --- output files ----------------------------------------------------------------------------------------
+impactlab_cli_test(unwritable_out --rc nonzero --match "/nonexistent_dir_for_impactlab/x\\.csv"
+                   -- simulate --model A1H --omega 18 --duration 0.01 --out /nonexistent_dir_for_impactlab/x.csv)
+impactlab_cli_test(unwritable_out_bifurcation --rc nonzero --match "/nonexistent_dir_for_impactlab/d\\.csv"
+                   -- bifurcation --sweep up --steps 2 --omega-min 5 --omega-max 6 --transient 1 --record 1
+                      --out /nonexistent_dir_for_impactlab/d.csv)
+
+# --- happy paths -----------------------------------------------------------------------------------------
+impactlab_cli_test(simulate_csv --rc 0 --csv X.csv "t,x,v,phi,regime" 2000 2002 --match "X\\.csv"
+                   -- simulate --model A1H --omega 18 --duration 2 --out X.csv)
+impactlab_cli_test(simulate_negative_x0 --rc 0 --csv X.csv "t,x,v,phi,regime" 100 102
+                   -- simulate --model A1C --omega 9 --duration 1 --dt 0.01 --x0 -0.011 --v0 -0.05 --out X.csv)
+impactlab_cli_test(poincare_csv --rc 0 --csv P.csv "n,x,v" 5 5
+                   -- poincare --model A1H --omega 18 --periods 5 --out P.csv)
+impactlab_cli_test(bifurcation_csv --rc 0 --csv B.csv "omega,x,v" 9 9
+                   -- bifurcation --sweep up --steps 3 --omega-min 5 --omega-max 6 --transient 2 --record 3
+                      --out B.csv)
+impactlab_cli_test(bifurcation_ramp_csv --rc 0 --csv R.csv "omega,x,v" 9 9
+                   -- bifurcation --model A1G --sweep ramp --omega-max 2 --ramp-time 60 --out R.csv)
+
+# Every simulating command's --help should document the model flags it accepts (--model, --xI, --m0e,
+# --rtol).
+foreach(cmd simulate poincare bifurcation)
+  impactlab_cli_test(help_${cmd}_model_flags --rc 0 --match "--rtol R" --match "--m0e M" -- ${cmd} --help)
+endforeach()

@@ -1,0 +1,11 @@
+# Core unit tests (paths relative to tests/).
+set(IMPACTLAB_CORE_TEST_SOURCES
+  core/forces_test.cpp
+  core/drive_test.cpp
+  core/params_test.cpp
+  core/params_json_test.cpp
+  core/simulator_test.cpp
+  core/impact_test.cpp
+  core/sweep_test.cpp
+  core/plot_test.cpp
+)
