@@ -18,6 +18,8 @@ int cmd_simulate(const std::vector<std::string>& args);
 int cmd_poincare(const std::vector<std::string>& args);
 int cmd_bifurcation(const std::vector<std::string>& args);
 int cmd_figure3(const std::vector<std::string>& args);
+int cmd_fit(const std::vector<std::string>& args);
+int cmd_synth(const std::vector<std::string>& args);
 
 const std::vector<Command>& commands();
 

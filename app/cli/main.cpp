@@ -17,6 +17,8 @@ const std::vector<Command>& commands() {
         {"poincare", "Poincare section at constant omega, write n,x,v as CSV", cmd_poincare},
         {"bifurcation", "CF sweep up or down, or the EF ramp: omega,x,v as CSV (and a PNG)", cmd_bifurcation},
         {"figure3", "the paper's Fig. 3 as one PNG", cmd_figure3},
+        {"fit", "close the loop with measured data: residual, missing effect, model with it, error before/after", cmd_fit},
+        {"synth", "synthetic measured data with effects, sensor noise and quantisation (t,x,phi CSV)", cmd_synth},
     };
     return table;
 }

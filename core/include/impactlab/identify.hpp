@@ -6,7 +6,10 @@
 // The equation error is taken in weak form: r_K(t_i) = sum_j K(t_j - t_i) [m x'' + F_R + F_SA + F_I -
 // forcing - effects](t_j), a local average over a smooth bump K of half-width `window`, with m x'' moved
 // onto K'' by parts (so no acceleration is differentiated out of noisy x) and v from a Savitzky-Golay
-// derivative where a force is nonlinear in v. Samples whose window touches an impact are left out.
+// derivative where a force is nonlinear in v (refined at velocity reversals, where dry friction kinks the
+// motion). Samples whose window touches an impact, or a turning point where the cart may stick, are left out.
+// Input-forced data (u) with fitted parameters are refined on the free-run simulation error as well, and an
+// effect is kept there only if it improves the simulation of the part of the record the fit did not use.
 #pragma once
 
 #include <cstddef>
@@ -82,6 +85,7 @@ struct ErrorSummary {
     ImpactLawError impact;
     double diagram_distance_m = -1;   // mean per omega bin of the Wasserstein distance; < 0: not computed
     std::size_t diagram_bins = 0;
+    std::vector<std::pair<double, double>> diagram_per_bin;   // (omega at the bin's centre, distance [m])
     double simulation_rms_m = -1;     // free run over the whole record (input-forced data); < 0: not computed
     double test_simulation_rms_m = -1;// the same on the test rows, if given
 };
@@ -130,6 +134,10 @@ struct FitReport {
 // The whole loop. `test` (optional): data held out for the simulation error (same layout as `data`).
 FitReport run_fit(const MeasuredData& data, const Model& model, const FitOptions& options = {},
                   const MeasuredData* test = nullptr);
+
+// The errors of one given model on the data (no selection, no fitting): what a panel that switches effects
+// on and off shows. Diagram distance only when omega spans more than two bins.
+ErrorSummary evaluate_model(const MeasuredData& data, const Model& model, const FitOptions& options = {});
 
 // DIR/report.json, DIR/report.md, DIR/model_after.json and the PNGs. Throws std::runtime_error.
 void write_report(const FitReport& report, const std::string& dir, bool plots = true);

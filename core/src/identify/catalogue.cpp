@@ -2,6 +2,7 @@
 // the plain sentence that reports it. Force laws live in core/src/effects (one file each); this file only
 // says how to look for them.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -198,10 +199,9 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
     if (!out.empty() && out.back().id == "stribeck_friction") out.back().positive = true;
     if (phi) add("phase_offset", {0}, {1e-4}, {0});
     if (phi && !fitted("m0e")) add("unbalance_scale", {0}, {1.0}, {0});
-    if (!fitted("gain")) {
-        add("sensor_offset", {0}, {1e-3 * xscale}, {0});
-        add("sensor_gain", {0}, {1e-3}, {0});
-    }
+    if (!fitted("gain")) add("sensor_offset", {0}, {1e-3 * xscale}, {0});
+    // A gain error rescales every term of the equation: with fitted base parameters it is not identifiable.
+    if (!o.fit_baseline) add("sensor_gain", {0}, {1e-3}, {0});
     if (o.generic) {
         add("unexplained_x", {2, 3, 4, 5, 6, 7}, {1, 1, 1, 1, 1, 1}, {0, 1, 2, 3, 4, 5});
         add("unexplained_v", {2, 3, 4, 5, 6, 7}, {1, 1, 1, 1, 1, 1}, {0, 1, 2, 3, 4, 5});
@@ -383,9 +383,32 @@ std::string sentence(const std::string& id, const Model& b, const std::vector<st
         const std::string var = id == "unexplained_x" ? "the position x"
                                 : id == "unexplained_v" ? "the velocity v"
                                 : id == "unexplained_phi" ? "the unbalance angle phi"
-                                                          : "the position x with the sign of v (a position-dependent friction)";
-        return "no library effect explains this part of the residual; a smooth force of " + var +
-               " does (see the residual plots for its shape): the missing physics depends on " + var;
+                                                          : "the position x, with the sign of v";
+        // Where the fitted force is largest.
+        const EffectLaw* law = find_effect(id);
+        std::array<double, kMaxLawParams> p{};
+        for (std::size_t k = 0; k < kMaxLawParams && law && law->names[k]; ++k) p[k] = val(law->names[k]);
+        const bool periodic = id == "unexplained_phi";
+        const double lo = periodic ? 0.0 : p[0], hi = periodic ? 2 * kPi : p[1];
+        double best = 0, at = lo;
+        for (int k = 0; k <= 200 && law; ++k) {
+            const double q = lo + (hi - lo) * k / 200.0;
+            ForceContext ctx{0.0, 0.0, 1.0, 0.0, 0.0, 0.0, b.p.m0e, b.p.xI};
+            if (id == "unexplained_v") ctx.v = q;
+            else if (periodic) ctx.phi = q;
+            else ctx.x = q;
+            const double F = law->force(p.data(), ctx).F;
+            if (std::abs(F) > std::abs(best)) {
+                best = F;
+                at = q;
+            }
+        }
+        const std::string where = id == "unexplained_v" ? "v = " + fmt("%.3g", at) + " m/s"
+                                  : periodic           ? "phi = " + fmt("%.2f", at) + " rad"
+                                                       : "x = " + fmt("%.3g", at * 1e3) + " mm";
+        return "no library effect explains this part of the residual; a smooth force of " + var + " does, up to " +
+               fmt("%.2g", best) + " N at " + where + (id == "unexplained_x_signv" ? " (for v > 0; reversed for v < 0)" : "") +
+               ": the missing physics depends on " + var;
     }
     return "";
 }

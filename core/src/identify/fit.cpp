@@ -189,6 +189,42 @@ Eigen::MatrixXd lm_small(const std::function<Eigen::VectorXd(const Eigen::Vector
     return A.ldlt().solve(Eigen::MatrixXd::Identity(p, p));
 }
 
+// Integrated correlation time of a residual series, by batch means over blocks of B rows (1 for white noise).
+double corr_time(const Eigen::VectorXd& e, int B) {
+    const Eigen::Index n = e.size(), b = std::max(1, B);
+    double blocks = 0;
+    for (Eigen::Index a = 0; a < n; a += b) {
+        const double s = e.segment(a, std::min(b, n - a)).sum();
+        blocks += s * s;
+    }
+    const double all = e.squaredNorm();
+    return all > 0 ? std::max(1.0, blocks / all) : 1.0;
+}
+
+// Significance of a group of columns by the rise of the sum of squares if they were held at their null
+// values and the others refitted (linearised: delta' S delta with S the Schur complement), against the
+// residual's variance and correlation time. Robust where the group is nearly collinear with the rest.
+double group_z_dss(const Eigen::MatrixXd& J, const Eigen::VectorXd& R, const std::vector<int>& sub, const Eigen::VectorXd& delta, int B) {
+    const Eigen::Index p = J.cols(), q = static_cast<Eigen::Index>(sub.size());
+    std::vector<int> others;
+    for (Eigen::Index k = 0; k < p; ++k)
+        if (std::find(sub.begin(), sub.end(), static_cast<int>(k)) == sub.end()) others.push_back(static_cast<int>(k));
+    Eigen::MatrixXd Jg(J.rows(), q), Jo(J.rows(), static_cast<Eigen::Index>(others.size()));
+    for (Eigen::Index i = 0; i < q; ++i) Jg.col(i) = J.col(sub[static_cast<std::size_t>(i)]);
+    for (std::size_t i = 0; i < others.size(); ++i) Jo.col(static_cast<Eigen::Index>(i)) = J.col(others[i]);
+    Eigen::MatrixXd S = Jg.transpose() * Jg;
+    if (!others.empty()) {
+        Eigen::MatrixXd Goo = Jo.transpose() * Jo;
+        for (Eigen::Index i = 0; i < Goo.rows(); ++i) Goo(i, i) += 1e-10 * Goo(i, i) + 1e-300;
+        const Eigen::MatrixXd Gog = Jo.transpose() * Jg;
+        S -= Gog.transpose() * Goo.ldlt().solve(Gog);
+    }
+    const double dss = std::max(0.0, delta.dot(S * delta));
+    const double s2 = R.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(1, R.size()));
+    const double tau = corr_time(R, B);
+    return chi2_to_z(dss / std::max(s2 * tau, 1e-300), static_cast<int>(q));
+}
+
 ImpactLawError impact_error(const Prep& pr, const Model& m) {
     ImpactLawError e;
     if (!m.bumper || pr.impacts.empty()) return e;
@@ -352,7 +388,8 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         }
         for (Eigen::Index i = 0; i < q; ++i) Vs(i, i) += 1e-12 * Vs(i, i) + 1e-300;
         const double W = bs.dot(Vs.ldlt().solve(bs));
-        return chi2_to_z(W, static_cast<int>(q));
+        const double z_hac = std::isfinite(W) ? chi2_to_z(W, static_cast<int>(q)) : 0.0;
+        return std::min(z_hac, group_z_dss(Xs, e, sub, bs, 2 * hac_lag));
     };
 
     // ---- 3. greedy selection ------------------------------------------------------------------------------
@@ -369,9 +406,13 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             double gain_cv, gain_in, z = 0;
         };
         std::vector<Eval> best_per_cand(cands.size(), {0, -INFINITY, 0, 0});
+        bool generic_chosen = false;
+        for (std::size_t gi : chosen) generic_chosen = generic_chosen || cands[groups[gi].cand].generic;
         for (std::size_t gi = 0; gi < groups.size(); ++gi) {
             const Group& g = groups[gi];
             if (cand_used[g.cand]) continue;
+            // After a generic smooth force, a sensor calibration is no longer identifiable against it.
+            if (generic_chosen && cands[g.cand].sensor) continue;
             std::vector<int> cols = cur;
             cols.insert(cols.end(), g.cols.begin(), g.cols.end());
             double cv, in;
@@ -526,9 +567,11 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             }
             if (c.id == "stribeck_friction") {   // the speed scale has no null value: test Fs alone
                 f.z = std::abs(inst.p[0]) / std::max(knob_sigma[static_cast<std::size_t>(sub[0])], 1e-300);
+                f.z = std::min(f.z, group_z_dss(J1, R1, {sub[0]}, d.head(1), 2 * hac_lag));
             } else {
                 for (Eigen::Index i = 0; i < q; ++i) Vs(i, i) += 1e-12 * Vs(i, i) + 1e-300;
-                f.z = chi2_to_z(d.dot(Vs.ldlt().solve(d)), static_cast<int>(q));
+                const double W = d.dot(Vs.ldlt().solve(d));
+                f.z = std::min(std::isfinite(W) ? chi2_to_z(W, static_cast<int>(q)) : 0.0, group_z_dss(J1, R1, sub, d, 2 * hac_lag));
             }
             f.sentence = sentence(c.id, base, f.parameters, f.sigma, sc);
             force_found.push_back(std::move(f));
@@ -602,6 +645,29 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             force_found[k].sentence = sentence(force_found[k].id, base, force_found[k].parameters, force_found[k].sigma, sc);
         }
         rep.notes.push_back("effects refitted on the free-run simulation error (output error)");
+    }
+    // A sensor offset moves the measured bumper level too: if the impacts' flat tops contradict it, the
+    // offset is an artefact of the free-flight fit and goes (the impact stage then sees the level as it is).
+    if (after.bumper && pr.impacts.size() >= 3) {
+        for (std::size_t k = 0; k < force_found.size(); ++k) {
+            if (force_found[k].id != "sensor_offset") continue;
+            std::vector<double> lev;
+            for (const auto& im : pr.impacts) lev.push_back(im.level);
+            const double o_imp = median(lev) - after.sensor_gain() * after.p.xI;
+            const double o_fit = after.sensor_offset(), so = force_found[k].sigma.empty() ? 0.0 : force_found[k].sigma[0].second;
+            if (std::abs(o_fit - o_imp) > std::max(5.0 * so, 5.0 * pr.sigma_x + 1e-6)) {
+                rep.notes.push_back("dropped sensor_offset: the impacts' flat tops put the bumper where the uncorrected sensor does");
+                for (auto& cs : rep.candidates)
+                    if (cs.id == "sensor_offset") cs.selected = false;
+                for (auto it = after.p.effects.begin(); it != after.p.effects.end(); ++it)
+                    if (std::string(it->law->id) == "sensor_offset") {
+                        after.p.effects.erase(it);
+                        break;
+                    }
+                force_found.erase(force_found.begin() + static_cast<long>(k));
+                break;
+            }
+        }
     }
     for (auto& f : force_found) rep.effects_found.push_back(std::move(f));
 
@@ -741,9 +807,11 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         rep.diagram_before = free_run_sections(pr, base, o.rtol);
         rep.diagram_after = free_run_sections(pr, after, o.rtol);
         rep.error_before.diagram_distance_m =
-            diagram_distance(rep.diagram_measured, rep.diagram_before, o.omega_bin, rep.error_before.diagram_bins);
+            diagram_distance(rep.diagram_measured, rep.diagram_before, o.omega_bin, rep.error_before.diagram_bins,
+                             &rep.error_before.diagram_per_bin);
         rep.error_after.diagram_distance_m =
-            diagram_distance(rep.diagram_measured, rep.diagram_after, o.omega_bin, rep.error_after.diagram_bins);
+            diagram_distance(rep.diagram_measured, rep.diagram_after, o.omega_bin, rep.error_after.diagram_bins,
+                             &rep.error_after.diagram_per_bin);
     }
     if (test) {
         std::vector<std::string> tnotes;
@@ -791,6 +859,38 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     if (rep.effects_found.empty()) rep.notes.push_back("no missing effect: the residual is at the level of the noise and the model's own error");
     rep.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
     return rep;
+}
+
+ErrorSummary evaluate_model(const MeasuredData& data, const Model& model, const FitOptions& o) {
+    std::vector<std::string> notes;
+    validate(model.p, "model");
+    const Prep pr = prepare(data, model, o, notes);
+    ErrorSummary e;
+    Eigen::VectorXd R;
+    std::vector<double> pw;
+    residual(pr, model, R, pw);
+    e.residual_rms_N = rms_of(R);
+    const ShootOut so = shooting(pr, model, o);
+    e.shooting_rms_1_m = so.rms1;
+    e.shooting_rms_10_m = so.rms10;
+    e.impact = impact_error(pr, model);
+    if (pr.phi_forced) {
+        const auto [wmin, wmax] = std::minmax_element(pr.omega.begin(), pr.omega.end());
+        if (*wmax - *wmin > 2 * o.omega_bin)
+            e.diagram_distance_m = diagram_distance(measured_sections(pr), free_run_sections(pr, model, o.rtol), o.omega_bin,
+                                                    e.diagram_bins, &e.diagram_per_bin);
+    } else {
+        const std::vector<double> fr = free_run(pr, model, o.rtol);
+        double s = 0;
+        std::size_t c = 0;
+        for (std::size_t i = 0; i < pr.n; ++i)
+            if (std::isfinite(fr[i])) {
+                s += (fr[i] - data.x[i]) * (fr[i] - data.x[i]);
+                ++c;
+            }
+        e.simulation_rms_m = c ? std::sqrt(s / static_cast<double>(c)) : -1;
+    }
+    return e;
 }
 
 }  // namespace impactlab::identify

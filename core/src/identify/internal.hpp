@@ -124,7 +124,7 @@ std::vector<std::pair<double, double>> free_run_sections(const Prep& pr, const M
 std::vector<std::pair<double, double>> measured_sections(const Prep& pr);
 // Mean over omega bins of the 1-D Wasserstein distance between two (omega, x) clouds.
 double diagram_distance(const std::vector<std::pair<double, double>>& a, const std::vector<std::pair<double, double>>& b,
-                        double bin, std::size_t& bins);
+                        double bin, std::size_t& bins, std::vector<std::pair<double, double>>* per_bin = nullptr);
 
 }  // namespace impactlab::identify::detail
 

@@ -29,6 +29,8 @@ json errors_json(const ErrorSummary& e) {
                        {"level_offset_m", num(e.impact.level_offset_m)}};
     j["diagram_distance_m"] = e.diagram_distance_m >= 0 ? num(e.diagram_distance_m) : json(nullptr);
     j["diagram_bins"] = e.diagram_bins;
+    j["diagram_per_bin"] = json::array();
+    for (const auto& [w, dist] : e.diagram_per_bin) j["diagram_per_bin"].push_back({{"omega", w}, {"distance_m", num(dist)}});
     if (e.simulation_rms_m >= 0) j["simulation_rms_m"] = num(e.simulation_rms_m);
     if (e.test_simulation_rms_m >= 0) j["test_simulation_rms_m"] = num(e.test_simulation_rms_m);
     return j;

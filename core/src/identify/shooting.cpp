@@ -378,8 +378,9 @@ std::vector<std::pair<double, double>> measured_sections(const Prep& pr) {
 }
 
 double diagram_distance(const std::vector<std::pair<double, double>>& a, const std::vector<std::pair<double, double>>& b,
-                        double bin, std::size_t& bins) {
+                        double bin, std::size_t& bins, std::vector<std::pair<double, double>>* per_bin) {
     bins = 0;
+    if (per_bin) per_bin->clear();
     if (a.empty() || b.empty() || !(bin > 0)) return -1;
     std::map<long, std::pair<std::vector<double>, std::vector<double>>> groups;
     for (const auto& [w, x] : a) groups[std::lround(std::floor(w / bin))].first.push_back(x);
@@ -400,6 +401,7 @@ double diagram_distance(const std::vector<std::pair<double, double>>& a, const s
         }
         total += w1 / kQ;
         ++bins;
+        if (per_bin) per_bin->emplace_back((static_cast<double>(key) + 0.5) * bin, w1 / kQ);
     }
     return bins ? total / static_cast<double>(bins) : -1;
 }

@@ -1,6 +1,7 @@
 // Synthetic measured data: the model (with its effects) sampled at exact integrator stops, with sensor
 // noise and quantisation, as the rig's Hall sensor and encoder would deliver it.
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <sstream>
 
@@ -71,14 +72,19 @@ MeasuredData synthesize(const Model& m, const SynthOptions& o) {
     for (std::size_t i = 0; i < kt.size(); ++i) prof << (i ? " " : "") << kt[i] << ":" << kw[i];
     d.meta["generated_by"] = "impactlab synth";
     d.meta["model"] = m.p.name;
-    d.meta["xI_m"] = std::to_string(m.p.xI);
+    auto g6 = [](double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.6g", v);
+        return std::string(buf);
+    };
+    d.meta["xI_m"] = g6(m.p.xI);
     d.meta["effects"] = eff.str().empty() ? "none" : eff.str();
-    d.meta["noise_m"] = std::to_string(o.noise);
-    d.meta["quantum_m"] = std::to_string(o.quantum);
+    d.meta["noise_m"] = g6(o.noise);
+    d.meta["quantum_m"] = g6(o.quantum);
     d.meta["phi_counts"] = std::to_string(o.phi_counts);
-    d.meta["rate_hz"] = std::to_string(o.rate);
+    d.meta["rate_hz"] = g6(o.rate);
     d.meta["omega_knots"] = prof.str();
-    d.meta["x0_m"] = std::to_string(o.x0);
+    d.meta["x0_m"] = g6(o.x0);
     d.meta["seed"] = std::to_string(o.seed);
     d.meta["impacts"] = std::to_string(s.impacts);
     return d;

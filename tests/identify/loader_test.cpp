@@ -1,0 +1,131 @@
+// The measured-data loader: MODEL.md's CSV conventions, column mapping, gzip, and every refusal.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "impactlab/identify_data.hpp"
+
+namespace id = impactlab::identify;
+
+namespace {
+
+std::string rows(int n, double dt = 1e-3) {
+    std::string s;
+    for (int i = 0; i < n; ++i) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "%.6f,%.7f,%.6f\n", i * dt, 0.001 * std::sin(i * 0.01), 0.01 * i);
+        s += buf;
+    }
+    return s;
+}
+
+// The DataError message of parsing `text`, or "" if it parses.
+std::string refusal(const std::string& text, const id::LoadOptions& o = {}) {
+    try {
+        id::parse_measured(text, "f.csv", o);
+    } catch (const id::DataError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("loader: the MODEL.md layout with comments, metadata and CRLF") {
+    const std::string text = "# sample_rate: 1000\r\n# operator: someone\r\nt,x,phi\r\n" + rows(50);
+    const id::MeasuredData d = id::parse_measured(text, "f.csv");
+    CHECK(d.size() == 50);
+    CHECK(d.has_phi());
+    CHECK_FALSE(d.has_u());
+    CHECK(d.meta.at("operator") == "someone");
+    CHECK(d.line.front() == 4);
+    CHECK(d.t[10] == doctest::Approx(0.010));
+    CHECK(d.phi[3] == doctest::Approx(0.03));
+}
+
+TEST_CASE("loader: columns mapped by name or number, a sample rate, scales and a row range") {
+    std::string text = "\"V1\",\"V2\",\n";
+    for (int i = 0; i < 100; ++i) text += std::to_string(0.001 * i) + "," + std::to_string(0.5 * i) + ",\n";
+    id::LoadOptions o;
+    o.columns.x = "V2";
+    o.columns.u.push_back('1');   // (a one-character literal trips a GCC 12 -Wrestrict false positive)
+    o.rate = 100.0;
+    o.x_scale = 1e-3;
+    o.row_begin = 10;
+    o.row_end = 60;
+    const id::MeasuredData d = id::parse_measured(text, "silverbox-like.csv", o);
+    REQUIRE(d.size() == 50);
+    CHECK(d.has_u());
+    CHECK(d.t.front() == doctest::Approx(0.10));
+    CHECK(d.x.front() == doctest::Approx(5e-3));
+    CHECK(d.u.back() == doctest::Approx(0.059));
+}
+
+TEST_CASE("loader: every broken file is refused with its line and the problem") {
+    const std::string good = "t,x,phi\n" + rows(40);
+    CHECK(refusal(good).empty());
+    CHECK(has(refusal("t,phi\n" + rows(40)), "no position column 'x'"));
+    CHECK(has(refusal("x,phi\n1,2\n"), "no time column"));
+    CHECK(has(refusal("t,x\n" + rows(40)), "no forcing column"));
+    CHECK(has(refusal("t,x,phi,u\n0,0,0,0\n"), "both a 'phi' and a 'u'"));
+    std::string text_in_number = good;
+    text_in_number.replace(text_in_number.find("0.000000,0.0000000"), 18, "0.000000,abc");
+    CHECK(has(refusal(text_in_number), "line 2: column 'x' (x): 'abc' is not a number"));
+    std::string with_nan = "t,x,phi\n" + rows(5) + "0.005,nan,0.05\n" + rows(40).substr(0);
+    CHECK(has(refusal(with_nan), "line 7"));
+    CHECK(has(refusal(with_nan), "not a finite number"));
+    CHECK(has(refusal("t,x,phi\n0,0,0\n1,0,0\n1,0,0\n" + rows(40)), "line 4: time does not increase"));
+    CHECK(has(refusal("t,x,phi\n" + rows(5)), "only 5 samples"));
+    id::LoadOptions nothing;
+    nothing.columns.x = "position";
+    CHECK(has(refusal(good, nothing), "names no column"));
+    id::LoadOptions beyond;
+    beyond.columns.x = "7";
+    CHECK(has(refusal(good, beyond), "names no column"));
+    CHECK(has(refusal("t,x,phi\n0,0,0\n0.001,0\n"), "line 3: 2 fields, but the header (line 1) has 3"));
+    CHECK(has(refusal("t,x,phi\n0,0,0\n0.001,0,5\n"), "line 3: phi jumps"));
+    CHECK(has(refusal("t,x,phi\n0,,0\n"), "line 2: column 'x' (x) is empty"));
+    CHECK(has(refusal("t,x,x\n0,0,0\n"), "appears twice"));
+    CHECK(has(refusal("# only a comment\n"), "no header row"));
+    CHECK(has(refusal("t,x,phi\n"), "no data rows"));
+    id::LoadOptions both;
+    both.rate = 1000;
+    CHECK(has(refusal(good, both), "both a time column and a sample rate"));
+    id::LoadOptions range;
+    range.row_begin = 100;
+    CHECK(has(refusal(good, range), "outside the file's 40 data rows"));
+}
+
+TEST_CASE("loader: gzip read directly, corrupt gzip refused") {
+    const std::string text = "t,x,phi\n" + rows(300);
+    const std::string gz = id::gzip_stored(text);
+    CHECK(id::is_gzip(gz));
+    CHECK(id::gunzip(gz, "a.gz") == text);
+    std::string bad = gz;
+    bad[bad.size() - 12] ^= 0x5a;   // a byte of the data: the CRC no longer matches
+    CHECK_THROWS_AS(id::gunzip(bad, "bad.gz"), id::DataError);
+    CHECK_THROWS_AS(id::gunzip(gz.substr(0, gz.size() - 5), "short.gz"), id::DataError);
+    const auto path = std::filesystem::temp_directory_path() / "impactlab_loader_test.csv.gz";
+    {
+        std::ofstream out(path, std::ios::binary);
+        out << gz;
+    }
+    const id::MeasuredData d = id::load_measured(path.string());
+    CHECK(d.size() == 300);
+    std::filesystem::remove(path);
+    CHECK_THROWS_AS(id::load_measured("/nonexistent/file.csv"), id::DataError);
+}
+
+TEST_CASE("loader: real deflate streams (the shared data files)") {
+    const std::string f = std::string(IMPACTLAB_SHARED_DIR) + "/data/synthetic/s3_noise_only.csv.gz";
+    if (!std::filesystem::exists(f)) return;
+    const std::string text = id::read_data_file(f);   // checks the CRC of the whole member
+    CHECK(text.rfind("t,x,phi\n0.000000,", 0) == 0);
+    CHECK(std::count(text.begin(), text.end(), '\n') == 126002);
+}

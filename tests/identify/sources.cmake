@@ -1,0 +1,7 @@
+# impactlab fit: loader, effect laws, the loop on synthetic and shared data (paths relative to tests/).
+set(IMPACTLAB_IDENTIFY_TEST_SOURCES
+  identify/loader_test.cpp
+  identify/effect_laws_test.cpp
+  identify/loop_test.cpp
+  identify/shared_data_test.cpp
+)
