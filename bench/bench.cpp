@@ -1,0 +1,134 @@
+// bench: impactlab's throughput on the paper's diagrams, single-threaded.
+//   CF diagram (run_cf_sweep, default CfSpec: 300 omegas x (20 + 70) periods) of A1C, A1C1, A3C, A1G, A1H,
+//   EF ramp (run_ef_ramp, 0 -> 25.1 rad/s in 2800 s) of A1C and A1H.
+// For each: wall seconds, simulated seconds, simulated seconds per wall second, accepted steps, impacts.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "impactlab/params.hpp"
+#include "impactlab/sweep.hpp"
+
+namespace {
+
+struct Options {
+    bool quick = false;
+    bool cf = true, ef = true;
+    std::vector<std::string> only;   // empty: the paper's versions
+    impactlab::Tolerances tol;
+};
+
+[[noreturn]] void usage(int rc) {
+    std::printf(
+        "usage: bench [--quick] [--only VERSION]... [--rtol R] [--cf-only | --ef-only]\n"
+        "  --quick       CF with 60 omegas instead of 300, EF ramp 5x faster (560 s instead of 2800 s)\n"
+        "  --only V      this version only (repeatable; any XY name, e.g. A1H, A3G)\n"
+        "  --rtol R      relative tolerance of the integrator (default %g)\n"
+        "  --cf-only     skip the EF ramps;  --ef-only  skip the CF diagrams\n",
+        impactlab::Tolerances{}.rtol);
+    std::exit(rc);
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) usage(2);
+            return argv[++i];
+        };
+        if (a == "--quick") o.quick = true;
+        else if (a == "--only") o.only.push_back(value());
+        else if (a == "--rtol") o.tol.rtol = std::stod(value());
+        else if (a == "--cf-only") o.ef = false;
+        else if (a == "--ef-only") o.cf = false;
+        else if (a == "-h" || a == "--help") usage(0);
+        else {
+            std::fprintf(stderr, "bench: unknown option '%s'\n", a.c_str());
+            usage(2);
+        }
+    }
+    if (!(o.tol.rtol > 0)) {
+        std::fprintf(stderr, "bench: --rtol must be positive\n");
+        std::exit(2);
+    }
+    return o;
+}
+
+// Wall and process CPU seconds of f() (the machine may be shared: CPU time is the steadier number).
+struct Times { double wall, cpu; };
+template <class F>
+Times timed(F&& f) {
+    const auto w0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
+    f();
+    return {std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count(),
+            double(std::clock() - c0) / CLOCKS_PER_SEC};
+}
+
+
+void header() {
+    std::printf("%-6s %-6s %9s %9s %10s %10s %11s %8s %8s %7s\n", "model", "run", "wall[s]", "cpu[s]", "sim[s]",
+                "sim/wall", "steps", "impacts", "ns/step", "points");
+}
+
+void row(const impactlab::Diagram& d, Times t) {
+    std::printf("%-6s %-6s %9.3f %9.3f %10.1f %10.1f %11llu %8llu %8.1f %7zu\n", d.model.c_str(), d.protocol.c_str(),
+                t.wall, t.cpu, d.simulated_seconds, d.simulated_seconds / t.wall,
+                static_cast<unsigned long long>(d.steps), static_cast<unsigned long long>(d.impacts),
+                1e9 * t.cpu / std::max(1.0, double(d.steps)), d.points.size());
+    std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Options o = parse(argc, argv);
+    try {
+        const std::vector<std::string> cf_versions =
+            o.only.empty() ? std::vector<std::string>{"A1C", "A1C1", "A3C", "A1G", "A1H"} : o.only;
+        const std::vector<std::string> ef_versions = o.only.empty() ? std::vector<std::string>{"A1C", "A1H"} : o.only;
+        impactlab::CfSpec cf;
+        impactlab::EfSpec ef;
+        if (o.quick) {
+            cf.steps = 60;
+            ef.t_ramp = 560.0;
+        }
+        std::printf("impactlab bench, single thread, rtol %g\n", o.tol.rtol);
+        if (o.cf)
+            std::printf("CF: %d omegas in [%.4g, %.4g] rad/s x (%d + %d) periods\n", cf.steps, cf.omega_min,
+                        cf.omega_max, cf.transient, cf.record);
+        if (o.ef) std::printf("EF: omega 0 -> %.4g rad/s in %.0f s\n", ef.omega_max, ef.t_ramp);
+        std::printf("\n");
+        header();
+        Times total{0, 0};
+        if (o.cf)
+            for (const auto& name : cf_versions) {
+                const impactlab::Params p = impactlab::make_version(name);
+                impactlab::Diagram d;
+                const Times t = timed([&] { d = impactlab::run_cf_sweep(p, cf, nullptr, o.tol); });
+                total.wall += t.wall;
+                total.cpu += t.cpu;
+                row(d, t);
+            }
+        if (o.ef)
+            for (const auto& name : ef_versions) {
+                const impactlab::Params p = impactlab::make_version(name);
+                impactlab::Diagram d;
+                const Times t = timed([&] { d = impactlab::run_ef_ramp(p, ef, nullptr, o.tol); });
+                total.wall += t.wall;
+                total.cpu += t.cpu;
+                row(d, t);
+            }
+        std::printf("\ntotal wall %.3f s, cpu %.3f s\n", total.wall, total.cpu);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
