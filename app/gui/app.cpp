@@ -4,6 +4,7 @@
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
+#include <stb_image.h>   // libstb exports the implementation
 
 #include <algorithm>
 #include <chrono>
@@ -13,6 +14,7 @@
 #include <numbers>
 
 #include "gl_util.hpp"
+#include "plot_gpu.hpp"
 #include "impactlab/forces.hpp"
 #include "theme.hpp"
 
@@ -60,6 +62,9 @@ App::App(const Options& opt) : opt_(opt) {
     if (opt.bifurcation == "cf-down") bif_protocol_ = 1;
     else if (opt.bifurcation == "ef") bif_protocol_ = 2;
     bench_mode_ = opt.bench_plot;
+    show_help_ = opt.show_help;
+    set_plot_backend(opt.plot_backend == "gpu" ? PlotBackend::Gpu
+                     : opt.plot_backend == "imgui" ? PlotBackend::DrawList : PlotBackend::Raster);
 }
 
 App::~App() { shutdown(); }
@@ -77,6 +82,7 @@ bool App::init(std::string& error) {
         error = "cannot initialise GLFW (no display? run under xvfb-run for headless use)";
         return false;
     }
+    glfw_ready_ = true;
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -88,6 +94,13 @@ bool App::init(std::string& error) {
         return false;
     }
     glfwMakeContextCurrent(win_);
+    // Window icon (assets/icons; a missing file only costs the icon).
+    int iw = 0, ih = 0, in = 0;
+    if (unsigned char* icon = stbi_load(IMPACTLAB_ICON_PATH, &iw, &ih, &in, 4)) {
+        const GLFWimage img{iw, ih, icon};
+        glfwSetWindowIcon(win_, 1, &img);
+        stbi_image_free(icon);
+    }
     // Headless runs (frames, benchmarks) measure and finish as fast as they can; people get vsync.
     glfwSwapInterval(opt_.frames > 0 || opt_.bench_plot ? 0 : 1);
 
@@ -109,6 +122,8 @@ bool App::init(std::string& error) {
     rebuild_fonts();
 
     if (!rig_.init(error)) return false;
+    if (std::string perr; !plot_gpu::init(perr))
+        std::fprintf(stderr, "impactlab-gui: GPU plot shaders refused, drawing plots with ImDrawList: %s\n", perr.c_str());
 
     EngineConfig cfg;
     cfg.model = model_name();
@@ -116,8 +131,13 @@ bool App::init(std::string& error) {
     cfg.xI = xI_;
     cfg.x0 = x0_;
     cfg.v0 = opt_.v0;
+    warming_ = opt_.warmup > 0 && !bench_mode_;
+    if (warming_) {
+        speed_ = kMaxSpeed;
+        paused_ = false;
+    }
     cfg.speed = speed_;
-    cfg.paused = paused_ || bench_mode_;
+    cfg.paused = (paused_ && !warming_) || bench_mode_;
     sim_ = std::make_unique<SimThread>(cfg);
     sim_->start();
     if (!opt_.bifurcation.empty()) start_bifurcation();
@@ -135,6 +155,8 @@ void App::shutdown() {
             bif_tex_ = 0;
         }
         rig_.shutdown();
+        plot_gpu::shutdown();
+        release_plot_canvases();
         ImGui_ImplOpenGL3_Shutdown();
         ImGui_ImplGlfw_Shutdown();
         ImGui::DestroyContext();
@@ -143,7 +165,10 @@ void App::shutdown() {
     if (win_) {
         glfwDestroyWindow(win_);
         win_ = nullptr;
+    }
+    if (glfw_ready_) {
         glfwTerminate();
+        glfw_ready_ = false;
     }
 }
 
@@ -235,6 +260,8 @@ void App::start_bifurcation() {
 }
 
 void App::screenshot(const std::string& path) { pending_shot_ = path; }
+
+std::string App::screenshot_name() const { return "impactlab-" + model_name() + "-" + timestamp() + ".png"; }
 
 void App::export_csv() {
     const std::string base = "impactlab-" + model_name() + "-" + timestamp();
@@ -330,7 +357,7 @@ void App::handle_keys() {
     }
     if (pressed(GLFW_KEY_F1) || (pressed(GLFW_KEY_SLASH) && shift)) show_help_ = !show_help_;
     if (pressed(GLFW_KEY_H)) show_help_ = !show_help_;
-    if (pressed(GLFW_KEY_F12) || (ctrl && pressed(GLFW_KEY_S))) screenshot("impactlab-" + timestamp() + ".png");
+    if (pressed(GLFW_KEY_F12) || (ctrl && pressed(GLFW_KEY_S))) screenshot(screenshot_name());
     if (ctrl && pressed(GLFW_KEY_E)) export_csv();
     if (ctrl && (pressed(GLFW_KEY_EQUAL) || pressed(GLFW_KEY_KP_ADD))) {
         ui_scale_ = std::min(3.0f, ui_scale_ + 0.25f);
@@ -361,11 +388,19 @@ void App::frame() {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
+    plot_gpu::begin_frame();
     if (!bench_mode_) drain_samples();
+    if (warming_ && have_last_ && last_.t >= opt_.warmup) {
+        warming_ = false;
+        set_speed(opt_.speed);
+        if (opt_.paused) set_paused(true);
+    }
     poll_bifurcation();
     handle_keys();
     layout_and_draw();
     ImGui::Render();
+    plot_gpu::upload();
+    const double t_built = now_s();
 
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(win_, &fw, &fh);
@@ -383,6 +418,12 @@ void App::frame() {
             if (opt_.frames > 0) exit_code_ = 1;
         }
         pending_shot_.clear();
+    }
+    if (bench_mode_) {
+        glFinish();
+        const double t_done = now_s();
+        bench_build_s_ += t_built - t;
+        bench_render_s_ += t_done - t_built;
     }
     glfwSwapBuffers(win_);
     ++frame_count_;
@@ -453,19 +494,25 @@ int App::run() {
                 glFinish();
                 t0 = now_s();
                 Plot::reset_stats();
+                bench_build_s_ = bench_render_s_ = 0;
+                for (double& p : panel_s_) p = 0;
             }
             frame();
-            if (i >= kWarm) verts = std::max(verts, ImGui::GetDrawData()->TotalVtxCount > 0 ?
-                                                         static_cast<std::size_t>(ImGui::GetDrawData()->TotalVtxCount) : 0);
+            if (i >= kWarm) verts = std::max(verts, static_cast<std::size_t>(ImGui::GetDrawData()->TotalVtxCount) +
+                                                         plot_gpu::queued_points());
         }
         glFinish();
         const double s = now_s() - t0;
         int fw = 0, fh = 0;
         glfwGetFramebufferSize(win_, &fw, &fh);
-        std::printf("plot benchmark: %dx%d, %d points on each plot (phase portrait, x(t), Poincare map, "
-                    "bifurcation): %.1f fps (%.2f ms/frame, %zu ImGui vertices/frame, renderer: %s)\n",
-                    fw, fh, opt_.bench_points, kFrames / s, 1e3 * s / kFrames, verts,
+        std::printf("plot benchmark (%s backend): %dx%d, %d points on each plot (phase portrait, x(t), Poincare map, "
+                    "bifurcation): %.1f fps (%.2f ms/frame, %zu vertices/frame, renderer: %s)\n",
+                    opt_.plot_backend.c_str(), fw, fh, opt_.bench_points, kFrames / s, 1e3 * s / kFrames, verts,
                     reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
+        std::printf("plot benchmark: per frame %.2f ms building the UI (ImGui, decimation, rig geometry), %.2f ms "
+                    "rendering (GL, glFinish); panels [ms]:", 1e3 * bench_build_s_ / kFrames, 1e3 * bench_render_s_ / kFrames);
+        for (std::size_t i = 0; i < 7; ++i) std::printf(" %s %.2f", kPanelNames[i], 1e3 * panel_s_[i] / kFrames);
+        std::printf("; %zu points reached the renderer per frame after decimation\n", Plot::emitted_vertices() / kFrames);
         return 0;
     }
 
@@ -473,7 +520,7 @@ int App::run() {
         frame();
         if (opt_.frames <= 0) continue;
         // Headless run: with a diagram requested, the frames are counted once it is done.
-        const bool waiting = !opt_.bifurcation.empty() && (bif_.running() || !diagram_);
+        const bool waiting = (!opt_.bifurcation.empty() && (bif_.running() || !diagram_)) || warming_;
         if (waiting) {
             if (frame_count_ % 600 == 0 && frame_count_ > 0)
                 std::fprintf(stderr, "impactlab-gui: waiting for the bifurcation diagram (%.0f%%)\n", 100 * bif_.progress());

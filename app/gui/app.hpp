@@ -51,6 +51,7 @@ private:
     void apply_preset(const Preset& p);
     void start_bifurcation();
     void screenshot(const std::string& path);
+    std::string screenshot_name() const;
     void export_csv();
     void toast(const std::string& msg);
     std::string model_name() const;
@@ -71,6 +72,10 @@ private:
     void draw_help();
     void draw_toast();
     void update_density_texture(int w, int h);
+    template <class F>
+    void timed(int slot, F&& draw);
+    static constexpr const char* kPanelNames[7] = {"controls", "rig", "bifurcation", "phase", "poincare", "potential", "x(t)"};
+    double panel_s_[7] = {};
 
     Options opt_;
     GLFWwindow* win_ = nullptr;
@@ -78,6 +83,7 @@ private:
     BifurcationJob bif_;
     RigView rig_;
     bool imgui_ready_ = false;
+    bool glfw_ready_ = false;
 
     // What the user asked for (the sim thread follows within a few milliseconds).
     int stiffness_ = 0, impact_ = 3;   // indices into stiffness_sets() / impact_models()
@@ -86,7 +92,7 @@ private:
     Params params_;                    // the UI's copy, for V(x) and the display of forces
 
     // What the simulation published.
-    History<SimMsg> traj_{std::size_t{1} << 18};
+    History<SimMsg> traj_{std::size_t{1} << 19};   // 9 min at 1x, 5 s at 100x
     History<SimMsg> sections_{std::size_t{1} << 18};
     SimMsg last_{};
     bool have_last_ = false;
@@ -126,7 +132,9 @@ private:
     long counted_frames_ = 0;
     bool switched_ = false;
     bool bench_mode_ = false;
+    bool warming_ = false;   // --warmup: at 100x until the sim time reaches opt_.warmup
     bool bench_all_points_ = false;
+    double bench_build_s_ = 0, bench_render_s_ = 0;
     int exit_code_ = 0;
 };
 

@@ -25,7 +25,10 @@ struct File {
 bool write_trajectory_csv(const std::string& path, const History<SimMsg>& h, const std::string& model) {
     File out(path);
     if (!out.f) return false;
-    std::fprintf(out.f, "# impactlab-gui trajectory\n# model: %s\n# units: SI (s, m, m/s, rad, rad/s, N, J)\n",
+    std::fprintf(out.f,
+                 "# impactlab-gui trajectory\n# model: %s (at export; the epoch column changes with every change of "
+                 "model, omega or x_I and at every reset)\n# units: SI (s, m, m/s, rad, rad/s, N, J); regime: 1 free "
+                 "flight, 2 sticking, 3 permanent contact\n",
                  model.c_str());
     std::fprintf(out.f, "t,x,v,phi,omega,regime,bumper_force,energy,epoch\n");
     for (std::size_t i = 0; i < h.size(); ++i) {

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include "impactlab/params.hpp"
@@ -20,20 +21,24 @@ const char* usage_text() {
            "  --x0 X, --v0 V     initial state [m], [m/s] (default -0.011, 0: the left well)\n"
            "  --speed S          simulated seconds per real second, 0.01..100 (default 1)\n"
            "  --paused           start paused\n"
+           "  --warmup S         first run S simulated seconds at 100x (the Poincare map fills), then --speed\n"
            "  --theme dark|light colour theme (default dark)\n"
            "  --scale S          UI scale, 0.5..3 (default: the monitor's content scale)\n"
            "  --size WxH         window size in pixels (default 1280x800)\n"
+           "  --show-help        open the keyboard shortcuts window at start\n"
            "  --bifurcation P    compute a bifurcation diagram at start: cf-up, cf-down or ef\n"
            "  --bif-steps N      omega steps of a CF sweep, 10..2000 (default 300)\n"
            "\n"
            "Headless checks and benchmarks:\n"
            "  --frames N         render N frames, switch the model once half-way, save --screenshot, print\n"
-           "                     the simulated time reached and exit (with --bifurcation: counted after\n"
-           "                     the diagram is done)\n"
+           "                     the simulated time reached and exit (with --bifurcation or --warmup:\n"
+           "                     counted once the diagram is done and the warm-up is over)\n"
            "  --screenshot FILE  PNG written after --frames\n"
            "  --switch-model M   the version switched to half-way (default: H <-> G, same stiffness)\n"
            "  --bench-plot       frames per second with --points points on every plot (needs a display)\n"
            "  --points N         points per plot for --bench-plot (default 100000)\n"
+           "  --plot-backend B   how dense curves are drawn: raster (CPU, default), gpu (instanced\n"
+           "                     shaders), imgui (ImDrawList polylines)\n"
            "  --bench-ring       samples per second through the SPSC ring buffer (two threads)\n"
            "  --bench-sim        the simulation's real-time factor, A1H and A1C at omega = 18\n"
            "  --help             this text\n"
@@ -44,6 +49,12 @@ const char* usage_text() {
 
 namespace {
 
+std::string fmt(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
 double number(const std::string& flag, const std::string& text, double lo, double hi) {
     errno = 0;
     char* end = nullptr;
@@ -51,7 +62,7 @@ double number(const std::string& flag, const std::string& text, double lo, doubl
     if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v))
         throw OptionsError(flag + ": '" + text + "' is not a number");
     if (v < lo || v > hi)
-        throw OptionsError(flag + ": " + text + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        throw OptionsError(flag + ": " + text + " is out of range [" + fmt(lo) + ", " + fmt(hi) + "]");
     return v;
 }
 
@@ -94,6 +105,8 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--v0") o.v0 = number(a, value(), -2.0, 2.0);
         else if (a == "--speed") o.speed = number(a, value(), 0.01, 100.0);
         else if (a == "--paused") o.paused = true;
+        else if (a == "--show-help") o.show_help = true;
+        else if (a == "--warmup") o.warmup = number(a, value(), 0.0, 1e5);
         else if (a == "--theme") {
             const std::string& t = value();
             if (t != "dark" && t != "light") throw OptionsError("--theme: '" + t + "' is neither dark nor light");
@@ -118,6 +131,12 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--bench-ring") o.bench_ring = true;
         else if (a == "--bench-sim") o.bench_sim = true;
         else if (a == "--points") o.bench_points = integer(a, value(), 1, 10000000);
+        else if (a == "--plot-backend") {
+            const std::string& b = value();
+            if (b != "raster" && b != "gpu" && b != "imgui")
+                throw OptionsError("--plot-backend: '" + b + "' is not one of raster, gpu, imgui");
+            o.plot_backend = b;
+        }
         else throw OptionsError("unknown option '" + a + "' (see impactlab-gui --help)");
     }
     if (!o.screenshot.empty() && o.frames == 0) throw OptionsError("--screenshot needs --frames N");

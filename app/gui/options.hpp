@@ -16,6 +16,7 @@ struct Options {
     double x0 = -0.011, v0 = 0;  // [m], [m/s]: the left well
     double speed = 1.0;
     bool paused = false;
+    double warmup = 0;           // [s] of simulated time run at 100x first (a populated Poincare map at once)
     bool light = false;          // theme
     double ui_scale = 0;         // 0: from the monitor's content scale
     int width = 1280, height = 800;
@@ -28,7 +29,9 @@ struct Options {
 
     bool bench_plot = false, bench_ring = false, bench_sim = false;
     int bench_points = 100000;
+    std::string plot_backend = "raster";   // raster, gpu, imgui
     bool help = false;
+    bool show_help = false;      // open the shortcuts window at start
 };
 
 // argv without the program name. Throws OptionsError naming the flag and the problem.

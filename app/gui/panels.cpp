@@ -4,6 +4,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -73,6 +74,18 @@ void plate_text(ImDrawList* dl, ImVec2 p, const char* text, ImU32 col, ImVec2 al
 
 }  // namespace
 
+// Runs one panel, timing it in benchmark mode (App::panel_s_).
+template <class F>
+void App::timed(int slot, F&& draw) {
+    if (!bench_mode_) {
+        draw();
+        return;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    draw();
+    panel_s_[static_cast<std::size_t>(slot)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 void App::layout_and_draw() {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     draw_menu();
@@ -85,31 +98,32 @@ void App::layout_and_draw() {
     const float rig_w = std::round(W * 0.58f);
     const float third = std::round(W / 3.0f);
 
-    if (begin_tile("Controls", ImVec2(vp->Pos.x, y0), ImVec2(left_w, H))) draw_controls();
+    if (begin_tile("Controls", ImVec2(vp->Pos.x, y0), ImVec2(left_w, H))) timed(0, [&] { draw_controls(); });
     ImGui::End();
 
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(4.0f * ui_scale_, 4.0f * ui_scale_));
     if (begin_tile("Rig (top view, to scale)", ImVec2(x0, y0), ImVec2(rig_w, row1),
                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse))
-        draw_rig();
+        timed(1, [&] { draw_rig(); });
     ImGui::End();
     if (begin_tile("Bifurcation diagram", ImVec2(x0 + rig_w, y0), ImVec2(W - rig_w, row1),
                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse))
-        draw_bifurcation();
+        timed(2, [&] { draw_bifurcation(); });
     ImGui::End();
     const float y1 = y0 + row1;
     if (begin_tile("Phase portrait (x, v)", ImVec2(x0, y1), ImVec2(third, row2), ImGuiWindowFlags_NoScrollbar))
-        draw_phase();
+        timed(3, [&] { draw_phase(); });
     ImGui::End();
     if (begin_tile("Poincare map (phi = 2 pi n)", ImVec2(x0 + third, y1), ImVec2(third, row2), ImGuiWindowFlags_NoScrollbar))
-        draw_poincare();
+        timed(4, [&] { draw_poincare(); });
     ImGui::End();
     if (begin_tile("Potential well V(x)", ImVec2(x0 + 2 * third, y1), ImVec2(W - 2 * third, row2),
                    ImGuiWindowFlags_NoScrollbar))
-        draw_potential();
+        timed(5, [&] { draw_potential(); });
     ImGui::End();
-    if (begin_tile("Displacement x(t)", ImVec2(x0, y1 + row2), ImVec2(W, row3), ImGuiWindowFlags_NoScrollbar))
-        draw_strip();
+    if (begin_tile("Displacement x(t)        dots: Poincare sections (phi = 2 pi n)    dashed: bumper x_I###strip",
+                   ImVec2(x0, y1 + row2), ImVec2(W, row3), ImGuiWindowFlags_NoScrollbar))
+        timed(6, [&] { draw_strip(); });
     ImGui::End();
     ImGui::PopStyleVar();
 
@@ -127,7 +141,7 @@ void App::layout_and_draw() {
 void App::draw_menu() {
     if (!ImGui::BeginMainMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
-        if (ImGui::MenuItem("Screenshot (PNG)", "F12")) screenshot("impactlab-" + model_name() + "-screenshot.png");
+        if (ImGui::MenuItem("Screenshot (PNG)", "F12")) screenshot(screenshot_name());
         if (ImGui::MenuItem("Export trajectory + sections (CSV)", "Ctrl+E")) export_csv();
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) glfwSetWindowShouldClose(win_, 1);
@@ -225,7 +239,7 @@ void App::draw_controls() {
     ImGui::SameLine();
     if (ImGui::Button("+1")) set_omega(omega_ + 1);
     ImGui::SameLine();
-    if (omega_ > 0) ImGui::TextDisabled("%.3f Hz, T %.3f s", omega_ / kTwoPi, kTwoPi / omega_);
+    if (omega_ > 0) ImGui::TextDisabled("T = %.3f s", kTwoPi / omega_);
     float xi_mm = static_cast<float>(xI_ * 1e3);
     ImGui::SetNextItemWidth(-1);
     if (ImGui::SliderFloat("##xI", &xi_mm, -20.0f, 20.0f, "bumper x_I = %.1f mm")) set_xi(xi_mm * 1e-3);
@@ -255,70 +269,88 @@ void App::draw_controls() {
         char label[64];
         std::snprintf(label, sizeof label, "%zu  %s", i + 1, list[i].label);
         if (ImGui::Button(label, ImVec2(pw, 0))) apply_preset(list[i]);
-        char tip[256];
-        std::snprintf(tip, sizeof tip, "%s\nomega = %.2f rad/s, from rest at x = %.1f mm, xI = 0", list[i].note,
-                      list[i].omega, list[i].x0 * 1e3);
+        char tip[320];
+        char per[32];
+        if (list[i].period > 0) std::snprintf(per, sizeof per, "period %d", list[i].period);
+        else std::snprintf(per, sizeof per, "chaotic");
+        std::snprintf(tip, sizeof tip, "%s\nomega = %.2f rad/s, from rest at x = %.1f mm, x_I = 0: %s after ~400 periods",
+                      list[i].note, list[i].omega, list[i].x0 * 1e3, per);
         tooltip(tip);
         if (i % 2 == 0 && i + 1 < list.size()) ImGui::SameLine();
     }
 
     section("Display");
-    ImGui::SetNextItemWidth(full * 0.55f);
-    ImGui::SliderFloat("trail", &trail_periods_, 1.0f, 60.0f, "%.0f periods");
-    ImGui::SetNextItemWidth(full * 0.55f);
-    ImGui::SliderFloat("x(t) window", &strip_window_, 0.5f, 60.0f, "%.1f s", ImGuiSliderFlags_Logarithmic);
-    if (ImGui::Checkbox("dark theme", &dark_)) {
+    const float half = (full - ImGui::GetStyle().ItemSpacing.x) / 2.0f;
+    ImGui::SetNextItemWidth(half);
+    ImGui::SliderFloat("##trail", &trail_periods_, 1.0f, 60.0f, "trail %.0f periods");
+    tooltip("Length of the fading trail in the phase portrait, in forcing periods.");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(half);
+    ImGui::SliderFloat("##window", &strip_window_, 0.5f, 60.0f, "x(t) %.1f s", ImGuiSliderFlags_Logarithmic);
+    tooltip("Time span of the scrolling x(t) strip.");
+    if (ImGui::Checkbox("dark", &dark_)) {
         apply_theme(dark_, ui_scale_);
         bif_dirty_ = true;
     }
+    tooltip("T: dark or light theme (light reads better on a projector).");
     ImGui::SameLine();
-    if (ImGui::Button("Clear map")) sections_.clear();
     // The scale applies when the slider is released (rebuilding the font under the mouse would jump).
     static bool editing = false;
     static float scale_edit = 1.0f;
     if (!editing) scale_edit = ui_scale_;
-    ImGui::SetNextItemWidth(full * 0.55f);
-    ImGui::SliderFloat("UI scale", &scale_edit, 0.75f, 3.0f, "%.2f");
+    ImGui::SetNextItemWidth(-1);
+    ImGui::SliderFloat("##scale", &scale_edit, 0.75f, 3.0f, "UI scale %.2f");
     editing = ImGui::IsItemActive();
     if (ImGui::IsItemDeactivatedAfterEdit()) {
         ui_scale_ = std::round(scale_edit * 4.0f) / 4.0f;
         fonts_dirty_ = true;
     }
-    if (ImGui::Button("Screenshot", ImVec2(pw, 0))) screenshot("impactlab-" + model_name() + "-screenshot.png");
+    tooltip("Ctrl + / Ctrl -: size of text and controls, for projectors.");
+    const float tw = (full - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
+    if (ImGui::Button("Clear map", ImVec2(tw, 0))) sections_.clear();
+    tooltip("C: clear the Poincare map");
+    ImGui::SameLine();
+    if (ImGui::Button("Screenshot", ImVec2(tw, 0))) screenshot(screenshot_name());
     tooltip("F12: the whole window as PNG, in the current folder");
     ImGui::SameLine();
-    if (ImGui::Button("Export CSV", ImVec2(pw, 0))) export_csv();
+    if (ImGui::Button("Export CSV", ImVec2(tw, 0))) export_csv();
     tooltip("Ctrl+E: the trajectory in memory and the Poincare points as CSV files");
 
     section("State");
-    if (ImGui::BeginTable("state", 2, ImGuiTableFlags_SizingStretchProp)) {
-        auto row = [](const char* k, const char* fmt, double v) {
-            ImGui::TableNextRow();
-            ImGui::TableSetColumnIndex(0);
+    if (ImGui::BeginTable("state", 4, ImGuiTableFlags_SizingStretchProp)) {
+        auto cell = [](const char* k, const char* text) {
+            ImGui::TableNextColumn();
             ImGui::TextDisabled("%s", k);
-            ImGui::TableSetColumnIndex(1);
-            ImGui::Text(fmt, v);
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(text);
         };
-        row("t", "%.3f s", last_.t);
-        row("x", "%+.3f mm", last_.x * 1e3);
-        row("v", "%+.4f m/s", last_.v);
-        row("phi mod 2pi", "%.3f rad", std::fmod(last_.phi, kTwoPi));
-        row("energy", "%+.3f mJ", last_.energy * 1e3);
-        row("bumper force", "%.2f N", last_.force);
+        char b1[48];
         ImGui::TableNextRow();
-        ImGui::TableSetColumnIndex(0);
-        ImGui::TextDisabled("regime");
-        ImGui::TableSetColumnIndex(1);
-        ImGui::TextUnformatted(regime_long(last_.regime));
-        row("impacts (epoch)", "%.0f", static_cast<double>(impacts_seen_));
+        std::snprintf(b1, sizeof b1, "%.3f s", last_.t);
+        cell("t", b1);
+        std::snprintf(b1, sizeof b1, "%+.3f mm", last_.x * 1e3);
+        cell("x", b1);
+        ImGui::TableNextRow();
+        std::snprintf(b1, sizeof b1, "%.3f rad", std::fmod(last_.phi, kTwoPi));
+        cell("phi", b1);
+        std::snprintf(b1, sizeof b1, "%+.4f m/s", last_.v);
+        cell("v", b1);
+        ImGui::TableNextRow();
+        std::snprintf(b1, sizeof b1, "%+.2f mJ", last_.energy * 1e3);
+        cell("E", b1);
+        std::snprintf(b1, sizeof b1, "%llu", static_cast<unsigned long long>(impacts_seen_));
+        cell("impacts", b1);
         ImGui::EndTable();
     }
+    ImGui::TextDisabled("regime");
+    ImGui::SameLine();
+    ImGui::TextUnformatted(regime_long(last_.regime));
 
     section("Forces on the cart [N]");
     // The terms of Eq. (1) at this instant (core's force_terms), signed as they push the cart.
     const ForceTerms f = force_terms(params_, last_.t, last_.x, last_.v, last_.phi, last_.omega, 0.0);
     const double magnets = -(f.spring_magnet - params_.k * last_.x), springs = -params_.k * last_.x;
-    const double bumper = -std::max(last_.force, f.impact);
+    const double bumper = std::max(last_.force, f.impact) > 0 ? -std::max(last_.force, f.impact) : 0.0;
     struct Bar { const char* name; double value; };
     const Bar bars[] = {{"unbalance", f.unbalance}, {"springs", springs}, {"magnets", magnets},
                         {"resistance", -f.resistance}, {"bumper", bumper}};
@@ -327,9 +359,10 @@ void App::draw_controls() {
     const float label_w = ImGui::CalcTextSize("resistance ").x;
     const float bar_w = ImGui::GetContentRegionAvail().x - label_w - ImGui::CalcTextSize("-00.0").x - 8;
     const double full_scale = 20.0;   // [N] at the end of a bar (longer bars are clipped)
+    const float line_x = ImGui::GetCursorPosX();
     for (const Bar& b : bars) {
         ImGui::TextDisabled("%s", b.name);
-        ImGui::SameLine(label_w);
+        ImGui::SameLine(line_x + label_w);
         const ImVec2 p = ImGui::GetCursorScreenPos();
         const float h = ImGui::GetTextLineHeight();
         const float mid = p.x + 0.5f * bar_w;
@@ -340,7 +373,7 @@ void App::draw_controls() {
         dl->AddLine(ImVec2(mid, p.y + 1), ImVec2(mid, p.y + h - 1), pal.plot_frame);
         ImGui::Dummy(ImVec2(bar_w, h));
         ImGui::SameLine();
-        ImGui::Text("%+.1f", b.value);
+        ImGui::Text("%+.1f", std::abs(b.value) < 0.05 ? 0.0 : b.value);   // no "-0.0"
     }
 }
 
@@ -359,7 +392,9 @@ void App::draw_rig() {
     st.magnet_force = -(spring_magnet(params_, last_.x).F - params_.k * last_.x);
     st.spring_force = -params_.k * last_.x;
     st.in_contact = last_.regime != Regime::Free || last_.force > 0;
-    const GLuint tex = rig_.render(w, h, st, pal);
+    // Rendered at the framebuffer's resolution (sharp on high-DPI screens), shown at display size.
+    const float fbs = std::max(1.0f, ImGui::GetIO().DisplayFramebufferScale.x);
+    const GLuint tex = rig_.render(static_cast<int>(w * fbs), static_cast<int>(h * fbs), st, pal);
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(tex)), ImVec2(static_cast<float>(w), static_cast<float>(h)),
                  ImVec2(0, 1), ImVec2(1, 0));
@@ -368,7 +403,7 @@ void App::draw_rig() {
     const ImU32 text = pal.title_text, dim = pal.axis_text;
     auto at = [&](double x, double y) {
         const ImVec2 q = rig_.to_image(x, y);
-        return ImVec2(p0.x + q.x, p0.y + q.y);
+        return ImVec2(p0.x + q.x / fbs, p0.y + q.y / fbs);
     };
     char buf[128];
     // Ruler numbers.
@@ -384,7 +419,7 @@ void App::draw_rig() {
     std::snprintf(buf, sizeof buf, "springs  k = %.0f N/m", params_.k);
     plate_text(dl, at(-rig::kWallX + 0.012, rig::kSpringY + 0.0115), buf, dim, ImVec2(0, 1));
     std::snprintf(buf, sizeof buf, "magnets repel: %+.2f N", st.magnet_force);
-    plate_text(dl, at(0.014, rig::kMagnetFixedY - 0.001), buf, dim, ImVec2(0, 0.5f));
+    plate_text(dl, at(-0.014, rig::kMagnetFixedY - 0.001), buf, dim, ImVec2(1, 0.5f));
     const double face = xI_ + rig::kCartHalfW;
     std::snprintf(buf, sizeof buf, "bumper  x_I = %+.1f mm", xI_ * 1e3);
     plate_text(dl, at(face + 0.004, rig::kBumperY - rig::kBumperHalfH - 0.003), buf, dim, ImVec2(0, 0));
@@ -398,21 +433,19 @@ void App::draw_rig() {
     // Legend: scale bar and the forcing.
     const float fs = ImGui::GetFontSize();
     const ImVec2 lg(p0.x + fs * 0.6f, p0.y + h - fs * 0.8f);
-    const float ten_mm = 0.010f * rig_.px_per_m();
+    const float ten_mm = 0.010f * rig_.px_per_m() / fbs;
     dl->AddLine(ImVec2(lg.x, lg.y), ImVec2(lg.x + ten_mm, lg.y), text, 2.0f);
     dl->AddLine(ImVec2(lg.x, lg.y - 4), ImVec2(lg.x, lg.y + 4), text, 1.5f);
     dl->AddLine(ImVec2(lg.x + ten_mm, lg.y - 4), ImVec2(lg.x + ten_mm, lg.y + 4), text, 1.5f);
     dl->AddText(ImVec2(lg.x + ten_mm + 6, lg.y - fs * 0.55f), dim, "10 mm");
     const double om = last_.omega;
-    std::snprintf(buf, sizeof buf, "t = %.2f s", last_.t);
-    const ImVec2 ts = ImGui::CalcTextSize(buf);
-    dl->AddText(ImVec2(p0.x + w - ts.x - fs * 0.6f, lg.y - fs * 0.55f), dim, buf);
     std::snprintf(buf, sizeof buf, "unbalance  m0e omega^2 = %.2f N", params_.m0e * om * om);
     const ImVec2 us = ImGui::CalcTextSize(buf);
-    plate_text(dl, ImVec2(p0.x + w - us.x - fs * 0.6f, p0.y + fs * 0.5f), buf, dim);
-    // Regime badge.
-    const char* badge = regime_long(last_.regime);
-    const ImU32 badge_col = last_.regime == Regime::Free ? pal.energy : pal.bumper;
+    plate_text(dl, ImVec2(p0.x + w - us.x - fs * 0.6f, lg.y - fs * 0.55f), buf, dim);
+    // Regime badge (a compliant bumper has no regimes II/III: contact is free flight with F_I > 0).
+    const bool pressed = !params_.rigid() && last_.force > 0;
+    const char* badge = pressed ? "I  on the compliant bumper" : regime_long(last_.regime);
+    const ImU32 badge_col = last_.regime == Regime::Free && !pressed ? pal.energy : pal.bumper;
     const ImVec2 bs = ImGui::CalcTextSize(badge);
     const ImVec2 bp(p0.x + fs * 0.6f, p0.y + fs * 0.5f);
     dl->AddRectFilled(ImVec2(bp.x - 4, bp.y - 2), ImVec2(bp.x + bs.x + 4, bp.y + bs.y + 2),
@@ -421,7 +454,7 @@ void App::draw_rig() {
     if (paused_) {
         const char* p = sim_->status().paused ? "PAUSED" : "STEPPING";
         const ImVec2 ps = ImGui::CalcTextSize(p);
-        dl->AddText(ImVec2(p0.x + w - ps.x - fs * 0.6f, bp.y + fs * 1.4f), pal.warn, p);
+        dl->AddText(ImVec2(p0.x + w - ps.x - fs * 0.6f, bp.y), pal.warn, p);
     }
 }
 
@@ -499,7 +532,7 @@ void App::draw_poincare() {
     if (!plot.begin("##poincare", ImGui::GetContentRegionAvail(), pc_x_.cur, pc_v_.cur, ax)) return;
     plot.shade_right_of(xI_, pal.bumper);
     plot.vline(xI_, pal.bumper, 1.5f, true);
-    const float dot = std::max(2.0f, 2.5f * ui_scale_);
+    const float dot = std::max(2.5f, 3.0f * ui_scale_);
     plot.scatter(n, [&](std::size_t i) { return XY{sections_[i].x, sections_[i].v}; }, pal.section, dot);
     if (n) {
         const ImVec2 c = plot.to_px(sections_.back().x, sections_.back().v);
@@ -513,7 +546,7 @@ void App::draw_poincare() {
         for (std::size_t i = k0; i < n; ++i) xs.push_back(sections_[i].x);
         const int per = count_period(xs, 2e-5, 16);
         if (per <= 16) std::snprintf(buf, sizeof buf, "%zu points   period %d", n, per);
-        else std::snprintf(buf, sizeof buf, "%zu points   no period <= 16 (chaos?)", n);
+        else std::snprintf(buf, sizeof buf, "%zu points   no period <= 16", n);
     } else {
         std::snprintf(buf, sizeof buf, "%zu points%s", n, n ? "   (transient...)" : "   (one per forcing period)");
     }
@@ -536,7 +569,7 @@ void App::draw_potential() {
     }
     const double vmin = *std::min_element(potential_v_.begin(), potential_v_.end());
     const Range xr{-0.026, 0.026};
-    const Range yr{vmin * 1.18, -vmin * 1.6};
+    const Range yr{vmin * 1.18, -vmin * 2.3};   // room for the energy level of a chaotic orbit
     Plot plot;
     Axes ax;
     ax.x_label = "x [mm]";
@@ -565,7 +598,8 @@ void App::draw_strip() {
     const std::size_t n = traj_.size();
     const double t_now = n ? traj_.back().t : 0.0;
     const double window = bench_all_points_ && n ? std::max(1e-3, t_now - traj_[0].t) : strip_window_;
-    const double t_from = t_now - window;
+    // Scrolls once the history covers the window; before that the axis starts at the first sample.
+    const double t_from = n ? std::min(std::max(t_now - window, traj_[0].t), t_now - 0.5) : t_now - window;
     const std::size_t first = traj_.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
     double lo = 1e9, hi = -1e9;
     for (std::size_t i = first; i < n; ++i) {
@@ -586,9 +620,6 @@ void App::draw_strip() {
     const std::size_t s0 = sections_.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
     plot.scatter(sections_.size() - s0, [&](std::size_t i) { const SimMsg& m = sections_[s0 + i]; return XY{m.t, m.x}; },
                  pal.section, 4.0f);
-    const char* legend = "dots: Poincare sections (phi = 2 pi n)    dashed: bumper x_I";
-    const ImVec2 ls = ImGui::CalcTextSize(legend);
-    plate_text(plot.draw(), ImVec2(plot.area_max().x - ls.x - 8, plot.area_max().y - ls.y - 5), legend, pal.axis_text);
     plot.end();
 }
 
@@ -694,7 +725,8 @@ void App::draw_status() {
     ImGui::SameLine(0, 18);
     ImGui::TextDisabled("|");
     ImGui::SameLine(0, 18);
-    if (st.paused) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "paused");
+    if (warming_) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "warming up at 100x to t = %.0f s", opt_.warmup);
+    else if (st.paused) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "paused");
     else if (st.lagging)
         ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "speed %.2fx asked, %.2fx achieved (model too slow)",
                            speed_, st.achieved_speed);
@@ -721,7 +753,6 @@ void App::draw_help() {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y * 0.5f), ImGuiCond_Appearing,
                             ImVec2(0.5f, 0.5f));
-    ImGui::SetNextWindowFocus();
     if (ImGui::Begin("Keyboard shortcuts", &show_help_,
                      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
         static const char* keys[][2] = {
@@ -729,7 +760,7 @@ void App::draw_help() {
             {"N  or  .", "step one forcing period (to the next Poincare section)"},
             {"R", "reset: t = 0, cart at rest in the left well"},
             {"Left / Right", "omega -/+ 0.1 rad/s (Shift: 1 rad/s)"},
-            {"Up / Down", "bumper xI +/- 0.5 mm (Shift: 2 mm)"},
+            {"Up / Down", "bumper x_I +/- 0.5 mm (Shift: 2 mm)"},
             {"[  /  ]", "speed / 2, x 2 (0.01x .. 100x)"},
             {"M", "next impact model (C, C1, G, H), live"},
             {"K", "next stiffness (A1, A3), live"},

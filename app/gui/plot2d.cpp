@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <memory>
+#include <unordered_map>
 
 #include "theme.hpp"
 
@@ -72,8 +75,52 @@ void AutoRange::track(Range t, double pad, double min_span, double dt_s) {
     cur.hi = want.hi > cur.hi ? want.hi : cur.hi + (want.hi - cur.hi) * k;
 }
 
+std::size_t& g_stat_points() { return g_vertices; }
+
+namespace {
+PlotBackend g_backend = PlotBackend::Raster;
+// One canvas per plot (by ImGui id), kept between frames with its texture.
+std::unordered_map<ImGuiID, std::unique_ptr<RasterCanvas>>& canvases() {
+    static std::unordered_map<ImGuiID, std::unique_ptr<RasterCanvas>> map;
+    return map;
+}
+}  // namespace
+
+void set_plot_backend(PlotBackend b) { g_backend = b; }
+PlotBackend plot_backend() { return g_backend; }
+void release_plot_canvases() { canvases().clear(); }
+
+RasterCanvas* Plot::canvas() {
+    if (!canvas_) {
+        auto& slot = canvases()[id_];
+        if (!slot) slot = std::make_unique<RasterCanvas>();
+        canvas_ = slot.get();
+    }
+    if (!canvas_->active()) {
+        canvas_->begin(min_, max_);
+        dl_->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(canvas_->texture())), min_, max_);
+    }
+    return canvas_;
+}
+
+void Plot::flush_raster(ImU32 color, float thickness) {
+    if (gbuf_.size() < 2) return;
+    RasterCanvas* cv = canvas();
+    cv->layer(color);
+    for (std::size_t i = 1; i < gbuf_.size(); ++i) {
+        const auto& a = gbuf_[i - 1];
+        const auto& b = gbuf_[i];
+        cv->segment(ImVec2(a.x, a.y), ImVec2(b.x, b.y), thickness, a.alpha, b.alpha);
+    }
+    g_vertices += gbuf_.size();
+}
 std::size_t Plot::emitted_vertices() { return g_vertices; }
 void Plot::reset_stats() { g_vertices = 0; }
+
+void Plot::flush_gpu(ImU32 color, float thickness) {
+    plot_gpu::add_lines(dl_, gbuf_.data(), gbuf_.size(), color, thickness);
+    g_vertices += gbuf_.size();
+}
 
 bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes) {
     const Palette& pal = palette();
@@ -83,7 +130,9 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
         ImGui::Dummy(size);
         return false;
     }
+    id_ = ImGui::GetID(id);
     ImGui::InvisibleButton(id, size);
+    canvas_ = nullptr;
     hovered_ = ImGui::IsItemHovered();
     clicked_ = hovered_ && ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
                ImGui::GetIO().MouseDragMaxDistanceSqr[0] < 16.0f;
@@ -116,6 +165,7 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
         dl_->AddLine(ImVec2(px, max_.y), ImVec2(px, max_.y + fs * 0.3f), pal.plot_frame);
         format_tick(buf, sizeof buf, v * axes.x_scale, dx);
         const ImVec2 ts = ImGui::CalcTextSize(buf);
+        if (px - ts.x * 0.5f < p0.x || px + ts.x * 0.5f > p1.x) continue;   // a label would leave the plot
         dl_->AddText(ImVec2(px - ts.x * 0.5f, max_.y + fs * 0.35f), pal.axis_text, buf);
     }
     for (double v = std::ceil(y_.lo / sy) * sy; v <= y_.hi + 1e-9 * sy; v += sy) {
@@ -139,7 +189,11 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
     return true;
 }
 
-void Plot::end() { dl_->PopClipRect(); }
+void Plot::end() {
+    if (canvas_ && canvas_->active()) canvas_->finish();
+    canvas_ = nullptr;
+    dl_->PopClipRect();
+}
 
 void Plot::flush(std::vector<ImVec2>& pts, ImU32 color, float thickness) {
     // ImDrawList indexes with 16 bits: keep each polyline well under 64k vertices (AA lines emit up to

@@ -5,6 +5,8 @@
 //   path    - a general curve (phase portraits): points closer than ~0.7 px to the last one are skipped,
 //             with an optional fade from old (transparent) to new (opaque);
 //   scatter - dots: one per covered pixel (a bitmap of the area, cleared per call).
+// The decimated curves and dots go to the GPU (plot_gpu: one instanced draw per call, in an ImDrawList
+// callback); without it (shaders refused) they fall back to ImDrawList polylines and rectangles.
 // UI thread only.
 #pragma once
 
@@ -15,6 +17,9 @@
 #include <limits>
 #include <string>
 #include <vector>
+
+#include "plot_gpu.hpp"
+#include "plot_raster.hpp"
 
 namespace impactlab::gui {
 
@@ -32,6 +37,16 @@ struct AutoRange {
     void track(Range target, double pad, double min_span, double dt_s);
     void snap(Range target, double pad, double min_span);
 };
+
+// How dense curves and markers are drawn (the axes, text and overlays always use ImDrawList):
+//   Raster   - on the CPU into one texture per plot (default: cheapest on software OpenGL);
+//   Gpu      - instanced antialiased quads from plot_gpu's shaders (cheapest on a real GPU);
+//   DrawList - ImGui's own polylines (the reference).
+enum class PlotBackend { Raster, Gpu, DrawList };
+void set_plot_backend(PlotBackend b);
+PlotBackend plot_backend();
+// Frees the raster canvases' textures (before the GL context goes).
+void release_plot_canvases();
 
 struct Axes {
     const char* x_label = "";
@@ -80,14 +95,23 @@ public:
 
 private:
     void flush(std::vector<ImVec2>& pts, ImU32 color, float thickness);
+    void flush_gpu(ImU32 color, float thickness);
+    void flush_raster(ImU32 color, float thickness);
+    RasterCanvas* canvas();   // the plot's canvas, begun and placed in the draw order on first use
+    RasterCanvas* canvas_ = nullptr;
+    ImGuiID id_ = 0;
     ImDrawList* dl_ = nullptr;
     ImVec2 min_, max_;
     Range x_, y_;
     double ax_ = 0, bx_ = 1, ay_ = 0, by_ = 1;
     bool hovered_ = false, clicked_ = false, dragging_ = false;
     std::vector<ImVec2> buf_;
+    std::vector<plot_gpu::Vtx> gbuf_;
     std::vector<std::uint64_t> bitmap_;
 };
+
+// Points handed to the renderer this frame (benchmark statistics).
+std::size_t& g_stat_points();
 
 // Nice tick step for a span and a wanted number of ticks (1, 2, 5 x 10^k).
 double nice_step(double span, int wanted);
@@ -123,12 +147,40 @@ void Plot::series(std::size_t n, Get&& get, ImU32 color, float thickness) {
         }
     }
     emit();
-    flush(buf_, color, thickness);
+    if (plot_backend() == PlotBackend::DrawList || (plot_backend() == PlotBackend::Gpu && !plot_gpu::ready())) {
+        flush(buf_, color, thickness);
+        return;
+    }
+    gbuf_.clear();
+    for (const ImVec2& q : buf_) gbuf_.push_back({q.x, q.y, 1.0f, 0.0f});
+    if (plot_backend() == PlotBackend::Gpu) flush_gpu(color, thickness);
+    else flush_raster(color, thickness);
 }
 
 template <class Get>
 void Plot::path(std::size_t n, Get&& get, ImU32 color, float thickness, bool fade) {
     if (n < 2) return;
+    if (plot_backend() == PlotBackend::Raster || (plot_backend() == PlotBackend::Gpu && plot_gpu::ready())) {
+        // One instanced draw (or one raster layer); the fade is a per-point opacity, old to new.
+        // Steps under 1.5 px add nothing visible to a 1.6 px line: the raster skips them.
+        const float min_step2 = plot_backend() == PlotBackend::Raster ? 2.25f : 0.5f;
+        gbuf_.clear();
+        const float inv = 1.0f / static_cast<float>(n);
+        ImVec2 prev = to_px(get(0).x, get(0).y);
+        gbuf_.push_back({prev.x, prev.y, fade ? inv * inv : 1.0f, 0.0f});
+        for (std::size_t i = 1; i < n; ++i) {
+            const auto p = get(i);
+            const ImVec2 q = to_px(p.x, p.y);
+            const float dx = q.x - prev.x, dy = q.y - prev.y;
+            if (dx * dx + dy * dy < min_step2 && i + 1 != n) continue;
+            const float f = static_cast<float>(i + 1) * inv;
+            gbuf_.push_back({q.x, q.y, fade ? f * f : 1.0f, 0.0f});
+            prev = q;
+        }
+        if (plot_backend() == PlotBackend::Gpu) flush_gpu(color, thickness);
+        else flush_raster(color, thickness);
+        return;
+    }
     // Fading: the curve is split into kBands runs of rising opacity (one AddPolyline each).
     constexpr int kBands = 24;
     const int bands = fade ? kBands : 1;
@@ -166,6 +218,10 @@ void Plot::scatter(std::size_t n, Get&& get, ImU32 color, float size) {
     const std::size_t bits = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     bitmap_.assign((bits + 63) / 64, 0);
     const float r = 0.5f * size;
+    const bool gpu = plot_backend() == PlotBackend::Gpu && plot_gpu::ready();
+    RasterCanvas* cv = plot_backend() == PlotBackend::Raster ? canvas() : nullptr;
+    if (cv) cv->layer(color);
+    gbuf_.clear();
     for (std::size_t i = 0; i < n; ++i) {
         const auto p = get(i);
         const ImVec2 q = to_px(p.x, p.y);
@@ -176,8 +232,15 @@ void Plot::scatter(std::size_t n, Get&& get, ImU32 color, float size) {
         const std::uint64_t bit = std::uint64_t{1} << (k & 63);
         if (word & bit) continue;
         word |= bit;
-        dl_->AddRectFilled(ImVec2(q.x - r, q.y - r), ImVec2(q.x + r, q.y + r), color);
+        if (cv) cv->dot(q, size);
+        else if (gpu) gbuf_.push_back({q.x, q.y, 1.0f, 0.0f});
+        else dl_->AddRectFilled(ImVec2(q.x - r, q.y - r), ImVec2(q.x + r, q.y + r), color);
     }
+    if (gpu) {
+        plot_gpu::add_points(dl_, gbuf_.data(), gbuf_.size(), color, size);
+        g_stat_points() += gbuf_.size();
+    }
+    if (cv) g_stat_points() += n;
 }
 
 }  // namespace impactlab::gui

@@ -17,15 +17,17 @@ std::vector<Preset> presets_for(const std::string& model) {
     const std::string imp = model.size() > 2 ? model.substr(2) : "H";
     constexpr double x0 = -0.011;   // at rest in the left well
     std::vector<Preset> p;
-    p.push_back({"Period 1", 9.0, x0, "period 1: one Poincare point; the cart swings in the left well, clear of the bumper"});
-    p.push_back({"Period 2", 12.0, x0, "after the first period doubling: two Poincare points"});
-    p.push_back({"Chaos", a3 ? 16.0 : 18.0, x0,
+    p.push_back({"Period 1", 9.0, x0, 1, "period 1: one Poincare point; the cart swings in the left well, clear of the bumper"});
+    p.push_back({"Period 2", 12.0, x0, 2, "after the first period doubling: two Poincare points"});
+    p.push_back({"Chaos", a3 ? 16.0 : 18.0, x0, 0,
                  "a strange attractor: the cart keeps hitting the bumper at the hilltop x = 0"});
     double w = 16.45;
+    int period = 3;
     const char* note = "a narrow period-3 window inside the chaotic range";
     if (!a3) {
         if (imp == "G" || imp == "C1") {
             w = 14.5;
+            period = 1;
             note = "the wide periodic window of A1G and A1C1 (the paper's Fig. 3): period 1 far in the left well";
         } else if (imp == "C") {
             w = 16.55;
@@ -33,6 +35,7 @@ std::vector<Preset> presets_for(const std::string& model) {
     } else {
         if (imp == "H") {
             w = 15.35;
+            period = 5;
             note = "a narrow period-5 window inside the chaotic range";
         } else if (imp == "C") {
             w = 15.5;
@@ -42,7 +45,7 @@ std::vector<Preset> presets_for(const std::string& model) {
             w = 15.75;
         }
     }
-    p.push_back({"Window", w, x0, note});
+    p.push_back({"Window", w, x0, period, note});
     return p;
 }
 

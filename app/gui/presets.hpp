@@ -13,6 +13,7 @@ struct Preset {
     const char* label;    // "Period 1", ...
     double omega;         // [rad/s]
     double x0;            // [m]
+    int period;           // distinct Poincare points on the attractor; 0 for chaos
     const char* note;     // one line shown as a tooltip
 };
 

@@ -189,7 +189,7 @@ void RigView::build(const RigState& st, const Palette& pal) {
     // Bumper: a block on a threaded rod from the right end, rubber face at the contact plane xI + half cart.
     const double face = st.xI + kCartHalfW;
     const double F = std::max(0.0, st.bumper_force);
-    const double heat = std::clamp(std::max(st.flash, std::log10(1.0 + F) / 3.0), 0.0, 1.0);
+    const double heat = std::clamp(std::max(st.flash, std::log10(1.0 + F) / 2.2), 0.0, 1.0);   // 1 at ~160 N
     capsule(face + kBumperLen, kBumperY, wall_in, kBumperY, 0.0028, kBrass, 1, 1);
     for (int i = 0; i < 2; ++i) {   // lock nuts
         const double nx = face + kBumperLen + 0.006 + 0.006 * i;
@@ -202,8 +202,8 @@ void RigView::build(const RigState& st, const Palette& pal) {
     if (heat > 0.02) {
         float glow[3];
         mix3(pal.hot, kWhite, static_cast<float>(0.4 * heat), glow);
-        box(face + 0.002, kBumperY, 0.002, kBumperHalfH, 0.0012, glow, static_cast<float>(0.85 * heat), 3, 0, nullptr,
-            0.004 + 0.014 * heat);
+        box(face + 0.002, kBumperY, 0.002, kBumperHalfH, 0.0012, glow, static_cast<float>(std::min(1.0, 0.35 + heat)), 3, 0,
+            nullptr, 0.005 + 0.016 * heat);
     }
     box(face + 0.002, kBumperY, 0.002, kBumperHalfH, 0.0012, pad, 1, 0, 0.0005, kDark);
 
@@ -249,8 +249,12 @@ void RigView::build(const RigState& st, const Palette& pal) {
     mix3(pal.disc, kBlack, 0.65f, disc_dark);
     disc(dcx, dcy, kDiscR + 0.0015, 0, kDark, 0.6f, 0);
     disc(dcx, dcy, kDiscR, 0, disc_col, 1, 2, 0.0008, disc_dark);
-    // Motion blur: when the disc turns a lot between two frames, ghosts along the arc.
-    const double span = std::min(std::abs(st.phi_span), 2.0 * 3.14159265358979);
+    // Motion blur: when the disc turns a lot between two frames, ghosts along the arc; a full turn or more
+    // per frame shows as a blurred ring, as a camera would see it.
+    constexpr double kTurn = 2.0 * 3.14159265358979;
+    if (std::abs(st.phi_span) >= kTurn)
+        disc(dcx, dcy, kMassOrbit + 0.0055, kMassOrbit - 0.0055, pal.mass, 0.28f, 0);
+    const double span = std::abs(st.phi_span) >= kTurn ? 0.0 : std::abs(st.phi_span);
     const int ghosts = span > 0.35 ? std::min(10, static_cast<int>(span / 0.35)) : 0;
     for (int g = ghosts; g >= 1; --g) {
         const double a = st.phi - span * g / (ghosts + 1);

@@ -126,7 +126,10 @@ bool SimEngine::apply(const SimCommand& c) {
             // Same phase, new rate from now on: phi stays continuous.
             d_ = Drive(w, s_.t, d_.phi(s_.t));
             Simulator::sync_sections(d_, s_);
-            if (stepping_) step_target_ = std::min(step_target_, s_.t + 1.0);
+            if (stepping_) {   // the period being stepped ends at the next section of the new drive
+                const double t_sec = d_.time_of_phase(kTwoPi * static_cast<double>(s_.next_section));
+                step_target_ = std::isfinite(t_sec) ? t_sec : s_.t + 1.0;
+            }
             bump();
             emit_now();
             return true;
@@ -154,6 +157,7 @@ bool SimEngine::apply(const SimCommand& c) {
             } catch (const ParamError&) {
                 return false;
             }
+            if (np.name == p_.name) return true;   // the same version: nothing changes, no new epoch
             np.xI = p_.xI;
             p_ = std::move(np);
             // x, v and phi carry over; only the hybrid bookkeeping is made consistent with the new law.

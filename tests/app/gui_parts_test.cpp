@@ -1,0 +1,114 @@
+// The visualiser's other GL-free parts: the UI's history ring and CSV export, command-line options, and
+// the presets (each must land on the attractor it names).
+#include <doctest/doctest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "../../app/gui/history.hpp"
+#include "../../app/gui/options.hpp"
+#include "../../app/gui/presets.hpp"
+#include "impactlab/params.hpp"
+#include "impactlab/sweep.hpp"
+
+using namespace impactlab;
+using namespace impactlab::gui;
+
+TEST_CASE("history: overwrites the oldest, indexes oldest first, finds times") {
+    History<int> h(4);
+    CHECK(h.empty());
+    for (int i = 0; i < 6; ++i) h.push(i);
+    CHECK(h.size() == 4);
+    CHECK(h[0] == 2);
+    CHECK(h.back() == 5);
+    CHECK(h.lower_bound(4.0, [](int v) { return static_cast<double>(v); }) == 2);
+    CHECK(h.lower_bound(9.0, [](int v) { return static_cast<double>(v); }) == 4);
+    h.clear();
+    CHECK(h.size() == 0);
+}
+
+TEST_CASE("history: trajectory and section CSV files have a header and one row per record") {
+    History<SimMsg> traj(8), secs(8);
+    for (int i = 0; i < 3; ++i) {
+        SimMsg m;
+        m.t = 0.001 * i;
+        m.x = -0.01;
+        traj.push(m);
+    }
+    SimMsg s;
+    s.kind = MsgKind::Section;
+    s.phi = 2 * 3.141592653589793 * 7;
+    secs.push(s);
+    const auto dir = std::filesystem::temp_directory_path();
+    const std::string a = (dir / "impactlab_gui_test_traj.csv").string(), b = (dir / "impactlab_gui_test_secs.csv").string();
+    REQUIRE(write_trajectory_csv(a, traj, "A1H"));
+    REQUIRE(write_sections_csv(b, secs, "A1H"));
+    auto lines = [](const std::string& path) {
+        std::ifstream in(path);
+        std::vector<std::string> out;
+        for (std::string l; std::getline(in, l);)
+            if (!l.empty() && l[0] != '#') out.push_back(l);
+        return out;
+    };
+    const auto ta = lines(a), tb = lines(b);
+    REQUIRE(ta.size() == 4);
+    CHECK(ta[0] == "t,x,v,phi,omega,regime,bumper_force,energy,epoch");
+    REQUIRE(tb.size() == 2);
+    CHECK(tb[0] == "n,t,x,v,omega,regime");
+    CHECK(tb[1].rfind("7,", 0) == 0);
+    std::remove(a.c_str());
+    std::remove(b.c_str());
+    CHECK_FALSE(write_trajectory_csv("/nonexistent-dir/x.csv", traj, "A1H"));
+}
+
+TEST_CASE("options: the fixed flags, values, and clear errors for bad ones") {
+    const Options o = parse_options({"--frames", "120", "--screenshot", "out.png", "--model", "A1G", "--omega", "18",
+                                     "--xI", "-0.004", "--size", "800x600", "--theme", "light"});
+    CHECK(o.frames == 120);
+    CHECK(o.screenshot == "out.png");
+    CHECK(o.model == "A1G");
+    CHECK(o.omega == 18.0);
+    CHECK(o.xI == -0.004);
+    CHECK(o.width == 800);
+    CHECK(o.height == 600);
+    CHECK(o.light);
+    CHECK_THROWS_AS(parse_options({"--bogus"}), OptionsError);
+    CHECK_THROWS_AS(parse_options({"--omega"}), OptionsError);
+    CHECK_THROWS_AS(parse_options({"--omega", "fast"}), OptionsError);
+    CHECK_THROWS_AS(parse_options({"--omega", "31"}), OptionsError);
+    CHECK_THROWS_AS(parse_options({"--model", "A2Q"}), OptionsError);
+    CHECK_THROWS_AS(parse_options({"--size", "big"}), OptionsError);
+    CHECK_THROWS_AS(parse_options({"--screenshot", "x.png"}), OptionsError);   // needs --frames
+    try {
+        parse_options({"--speed", "1000"});
+        FAIL("accepted --speed 1000");
+    } catch (const OptionsError& e) {
+        CHECK(std::string(e.what()).find("--speed") != std::string::npos);
+    }
+}
+
+TEST_CASE("presets: every model's presets land on the attractor they name") {
+    for (const char* name : {"A1H", "A1G", "A1C", "A1C1", "A3H", "A3G", "A3C", "A3C1"}) {
+        const std::string model = name;
+        const Params p = make_version(model);
+        const auto list = presets_for(model);
+        REQUIRE(list.size() == 4);
+        for (const Preset& pr : list) {
+            CAPTURE(model);
+            CAPTURE(pr.label);
+            State s;
+            s.x = pr.x0;
+            // As the app's reset does: from rest at x0, t = 0, phi = 0.
+            const auto pts = poincare_section(p, pr.omega, 64, 400, s);
+            std::vector<double> xs;
+            for (const auto& sp : pts) xs.push_back(sp.x);
+            const int period = count_period(xs, 2e-5, 16);
+            if (pr.period > 0) CHECK(period == pr.period);
+            else CHECK(period > 16);
+        }
+    }
+}
