@@ -63,6 +63,10 @@ App::App(const Options& opt) : opt_(opt) {
     else if (opt.bifurcation == "ef") bif_protocol_ = 2;
     bench_mode_ = opt.bench_plot;
     show_help_ = opt.show_help;
+    if (!opt.data.empty()) {
+        show_data_ = true;
+        data_panel_.load(opt.data, true);
+    }
     set_plot_backend(opt.plot_backend == "gpu" ? PlotBackend::Gpu
                      : opt.plot_backend == "imgui" ? PlotBackend::DrawList : PlotBackend::Raster);
 }
@@ -520,14 +524,16 @@ int App::run() {
         frame();
         if (opt_.frames <= 0) continue;
         // Headless run: with a diagram requested, the frames are counted once it is done.
-        const bool waiting = (!opt_.bifurcation.empty() && (bif_.running() || !diagram_)) || warming_;
+        const bool waiting = (!opt_.bifurcation.empty() && (bif_.running() || !diagram_)) || warming_ ||
+                             (!opt_.data.empty() && data_panel_.busy());
         if (waiting) {
             if (frame_count_ % 600 == 0 && frame_count_ > 0)
                 std::fprintf(stderr, "impactlab-gui: waiting for the bifurcation diagram (%.0f%%)\n", 100 * bif_.progress());
             continue;
         }
         ++counted_frames_;
-        if (!switched_ && counted_frames_ >= opt_.frames / 2) {
+        // With --data the fit is for the start model: no switch unless one is asked for.
+        if (!switched_ && counted_frames_ >= opt_.frames / 2 && (opt_.data.empty() || !opt_.switch_model.empty())) {
             switched_ = true;
             // Switch the model once, live: to --switch-model, or H <-> G with the same stiffness.
             std::string target = opt_.switch_model;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bifurcation_job.hpp"
+#include "data_panel.hpp"
 #include "history.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/sweep.hpp"
@@ -71,6 +72,7 @@ private:
     void draw_status();
     void draw_help();
     void draw_toast();
+    DataPanelContext data_context() const;
     void update_density_texture(int w, int h);
     template <class F>
     void timed(int slot, F&& draw);
@@ -81,6 +83,8 @@ private:
     GLFWwindow* win_ = nullptr;
     std::unique_ptr<SimThread> sim_;
     BifurcationJob bif_;
+    DataPanel data_panel_;             // "Measured data": load, fit, effects on and off
+    bool show_data_ = false;
     RigView rig_;
     bool imgui_ready_ = false;
     bool glfw_ready_ = false;

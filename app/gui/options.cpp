@@ -28,6 +28,9 @@ const char* usage_text() {
            "  --show-help        open the keyboard shortcuts window at start\n"
            "  --bifurcation P    compute a bifurcation diagram at start: cf-up, cf-down or ef\n"
            "  --bif-steps N      omega steps of a CF sweep, 10..2000 (default 300)\n"
+           "  --data FILE        load a measured run (CSV, plain or gzip) into the Measured data window\n"
+           "                     and fit the model to it (with --frames: counted once the fit is done,\n"
+           "                     and no model switch unless --switch-model is given)\n"
            "\n"
            "Headless checks and benchmarks:\n"
            "  --frames N         render N frames, switch the model once half-way, save --screenshot, print\n"
@@ -106,6 +109,7 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--speed") o.speed = number(a, value(), 0.01, 100.0);
         else if (a == "--paused") o.paused = true;
         else if (a == "--show-help") o.show_help = true;
+        else if (a == "--data") o.data = value();
         else if (a == "--warmup") o.warmup = number(a, value(), 0.0, 1e5);
         else if (a == "--theme") {
             const std::string& t = value();

@@ -32,6 +32,7 @@ struct Options {
     std::string plot_backend = "raster";   // raster, gpu, imgui
     bool help = false;
     bool show_help = false;      // open the shortcuts window at start
+    std::string data;            // a measured run to load into the "Measured data" window at start (and fit)
 };
 
 // argv without the program name. Throws OptionsError naming the flag and the problem.

@@ -134,8 +134,18 @@ void App::layout_and_draw() {
     ImGui::End();
     ImGui::PopStyleVar();
 
+    data_panel_.poll(data_context());
+    if (show_data_) data_panel_.draw(&show_data_, data_context());
     if (show_help_) draw_help();
     draw_toast();
+}
+
+DataPanelContext App::data_context() const {
+    DataPanelContext c;
+    c.model = model_name();
+    c.xI = xI_;
+    c.ui_scale = ui_scale_;
+    return c;
 }
 
 void App::draw_menu() {
@@ -143,6 +153,8 @@ void App::draw_menu() {
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("Screenshot (PNG)", "F12")) screenshot(screenshot_name());
         if (ImGui::MenuItem("Export trajectory + sections (CSV)", "Ctrl+E")) export_csv();
+        ImGui::Separator();
+        if (ImGui::MenuItem("Measured data (load, fit, effects)...", nullptr, show_data_)) show_data_ = !show_data_;
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) glfwSetWindowShouldClose(win_, 1);
         ImGui::EndMenu();

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "../../app/gui/data_job.hpp"
+#include "../../app/gui/options.hpp"
 
 using namespace impactlab;
 using namespace impactlab::gui;
@@ -35,11 +36,9 @@ TEST_CASE("data panel: column fields map onto the loader's options") {
     CHECK(o.columns.u.empty());
     CHECK(o.rate == 0.0);
 
-    c.x = "pos";
-    c.forcing = "3";
-    c.rate = 500.0;
-    c.x_scale = 1e-3;
-    o = load_options_from(c);
+    // (Built whole: GCC 12's -Wrestrict misfires on assigning a literal to a std::string member at -O3.)
+    const DataColumns mapped{std::string(), std::string("pos"), std::string("3"), false, 500.0, 1e-3};
+    o = load_options_from(mapped);
     CHECK(o.columns.x == "pos");
     CHECK(o.columns.phi == "3");
     CHECK(o.rate == 500.0);
@@ -65,8 +64,8 @@ TEST_CASE("data panel: column fields map onto the loader's options") {
     CHECK(model_for_data("A1H", du).forcing == identify::Forcing::Input);
 
     // A mapping that names nothing is refused by the loader, with the problem.
-    cu.x = "nope";
-    o = load_options_from(cu);
+    const DataColumns nothing{std::string(), std::string("nope"), std::string(), true, 0.0, 1.0};
+    o = load_options_from(nothing);
     CHECK_THROWS_AS(identify::parse_measured("t,x,u\n0,0,1\n", "mem.csv", o), identify::DataError);
 }
 
@@ -173,4 +172,10 @@ TEST_CASE("data panel: the worker hands results over whole, once; cancelled ones
     REQUIRE(r);
     CHECK(r->mask == 0u);
     CHECK(r->errors.residual_rms_N == doctest::Approx(report->error_before.residual_rms_N).epsilon(0.05));
+}
+
+TEST_CASE("data panel: --data FILE on the command line") {
+    CHECK(parse_options({"--data", "run.csv.gz"}).data == "run.csv.gz");
+    CHECK(parse_options({}).data.empty());
+    CHECK_THROWS_AS(parse_options({"--data"}), OptionsError);
 }
