@@ -136,16 +136,7 @@ bool SimEngine::apply(const SimCommand& c) {
         }
         case CmdKind::SetXI: {
             const double xI = std::clamp(std::isfinite(c.a) ? c.a : 0.0, -kMaxAbsXI, kMaxAbsXI);
-            p_.xI = xI;
-            // The bumper is moved quasi-statically: if it lands on the cart it pushes the cart back to the
-            // contact point and stops it there (for every model, so a compliant bumper never starts deep
-            // inside the cart with an enormous force). make_consistent then settles the regime.
-            if (s_.x > xI) {
-                s_.x = xI;
-                s_.v = std::min(s_.v, 0.0);
-                if (!p_.rigid()) s_.v = 0.0;
-            }
-            Simulator::make_consistent(p_, d_, s_);
+            Simulator::move_bumper(p_, d_, s_, xI);
             bump();
             emit_now();
             return true;

@@ -159,6 +159,17 @@ void Simulator::make_consistent(const Params& p, const Drive& d, State& s) {
     sync_sections(d, s);
 }
 
+void Simulator::move_bumper(Params& p, const Drive& d, State& s, double xI) {
+    const bool held = s.regime != Regime::Free;
+    p.xI = xI;
+    if (s.regime == Regime::Sticking) s.regime = Regime::Free;
+    if (held || s.x > xI) {
+        s.x = std::min(s.x, xI);
+        s.v = 0.0;
+    }
+    make_consistent(p, d, s);
+}
+
 void Simulator::sync_sections(const Drive& d, State& s) {
     // The next section is the first phi = 2 pi n strictly after now.
     const double periods = d.phi(s.t) / kTwoPi;

@@ -2,6 +2,7 @@
 // against closed forms, Poincare section instants, consistency of a state, the uniform sampler.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -443,4 +444,38 @@ TEST_CASE("a cart pressed on a compliant bumper settles near the static penetrat
         CHECK(std::abs(s.v) < 1e-6);
         CHECK(s.steps < 100000);
     }
+}
+
+TEST_CASE("move_bumper: a bumper moved onto the cart pushes it back to the contact point; a sticking ends") {
+    for (const char* name : {"A1C", "A1H", "A1G"}) {
+        CAPTURE(name);
+        Params p = make_version(name);
+        const Drive d(18.0);
+        State s;
+        s.x = -0.004;   // the bumper moves from 0 to -6 mm: it lands on the cart
+        s.v = 0.05;
+        Simulator::make_consistent(p, d, s);
+        Simulator::move_bumper(p, d, s, -0.006);
+        CHECK(p.xI == -0.006);
+        CHECK(s.x == doctest::Approx(-0.006));
+        CHECK(s.x <= p.xI);
+        CHECK(s.v == 0.0);
+        if (!p.rigid()) CHECK(s.regime == Regime::Free);
+        // And the simulation goes on from there without the cart ever passing a rigid bumper.
+        Simulator sim;
+        double x_max = -1;
+        UniformSampler sampler(d, 1e-3, s.t, [&](const Sample& smp) { x_max = std::max(x_max, smp.x); });
+        sim.advance(p, d, s, s.t + 1.0, &sampler);
+        if (p.rigid()) CHECK(x_max <= p.xI + 1e-12);
+    }
+    // A sticking in progress ends when the bumper moves away: the cart is left free where it was.
+    Params p = make_version("A1H");
+    const Drive d(18.0);
+    State s;
+    s.regime = Regime::Sticking;
+    s.t_release = 0.01;
+    Simulator::move_bumper(p, d, s, 0.003);
+    CHECK(s.regime == Regime::Free);
+    CHECK(s.x == 0.0);
+    CHECK(s.v == 0.0);
 }

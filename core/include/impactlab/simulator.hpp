@@ -63,6 +63,11 @@ public:
     // xI (it is put on the bumper, in regime III if the normal force presses it there, else I); compliant
     // models only know regime I; the next Poincare section is the first after state.t.
     static void make_consistent(const Params& p, const Drive& d, State& s);
+    // Moves the bumper to xI quasi-statically: if it lands on the cart it pushes the cart back to the
+    // contact point and stops it there (so a compliant bumper never starts deep inside the cart); a
+    // sticking in progress ends, since the bumper no longer holds the cart where the impact left it.
+    // Then make_consistent settles the regime.
+    static void move_bumper(Params& p, const Drive& d, State& s, double xI);
     // After a change of drive only: the next section becomes the first phi = 2 pi n after s.t; a regime II
     // or III in progress carries over.
     static void sync_sections(const Drive& d, State& s);
