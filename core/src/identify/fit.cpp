@@ -23,29 +23,32 @@ struct Knob {
     std::string name;
 };
 
-// Levenberg-Marquardt on the weak-form residual over `knobs` (numerical Jacobian). Returns the final
-// residual in R and the Jacobian dR/dknob in J.
-void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_iter, Eigen::VectorXd& R, Eigen::MatrixXd& J) {
-    std::vector<double> pw;
-    residual(pr, m, R, pw);
+// Levenberg-Marquardt over `knobs` (clamped to their bounds) with a forward-difference Jacobian, shared by
+// the equation-error and the simulation-error fits. eval(R) fills the residual at the knobs' current values
+// and returns |R|^2 (infinite if not finite); step_of(knob, value) is the finite-difference step. Stops when
+// an iteration gains less than min_gain of |R|^2. Leaves the final residual in R and, if final_jacobian, its
+// Jacobian in J (a Jacobian costs one evaluation per knob).
+template <class Eval, class StepOf>
+void lm_knobs(std::vector<Knob>& knobs, Eval&& eval, StepOf&& step_of, int max_iter, double lambda, double min_gain,
+              bool final_jacobian, Eigen::VectorXd& R, Eigen::MatrixXd& J) {
+    double ss = eval(R);
     const auto p = static_cast<Eigen::Index>(knobs.size());
     J.resize(R.size(), p);
     if (p == 0) return;
-    double ss = R.squaredNorm(), lambda = 1e-4;
     Eigen::VectorXd Rt;
     auto jacobian = [&]() {
         for (Eigen::Index k = 0; k < p; ++k) {
             Knob& kb = knobs[static_cast<std::size_t>(k)];
             const double v0 = *kb.value;
-            double h = kb.step;
-            if (v0 + h > kb.hi) h = -h;
+            const double h = step_of(kb, v0);
             *kb.value = v0 + h;
-            residual(pr, m, Rt, pw);
+            eval(Rt);
             *kb.value = v0;
             J.col(k) = (Rt - R) / h;
         }
     };
     jacobian();
+    std::vector<double> old(knobs.size());
     for (int it = 0; it < max_iter; ++it) {
         const Eigen::MatrixXd A = J.transpose() * J;
         const Eigen::VectorXd g = J.transpose() * R;
@@ -54,27 +57,37 @@ void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_ite
             Eigen::MatrixXd Ad = A;
             for (Eigen::Index k = 0; k < p; ++k) Ad(k, k) += lambda * A(k, k) + 1e-300;
             const Eigen::VectorXd d = Ad.ldlt().solve(-g);
-            std::vector<double> old(knobs.size());
             for (std::size_t k = 0; k < knobs.size(); ++k) {
                 old[k] = *knobs[k].value;
                 *knobs[k].value = std::clamp(old[k] + d[static_cast<Eigen::Index>(k)], knobs[k].lo, knobs[k].hi);
             }
-            residual(pr, m, Rt, pw);
-            const double ss_new = Rt.squaredNorm();
+            const double ss_new = eval(Rt);
             if (std::isfinite(ss_new) && ss_new < ss) {
-                const double rel = (ss - ss_new) / ss;
+                improved = (ss - ss_new) > min_gain * ss;
                 R.swap(Rt);
                 ss = ss_new;
                 lambda = std::max(lambda / 4, 1e-9);
-                improved = rel > 1e-9;
                 break;
             }
             for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = old[k];
             lambda *= 8;
         }
         if (!improved) break;
-        jacobian();
+        if (final_jacobian || it + 1 < max_iter) jacobian();
     }
+}
+
+// Levenberg-Marquardt on the weak-form residual over `knobs` (numerical Jacobian). Returns the final
+// residual in R and the Jacobian dR/dknob in J.
+void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_iter, Eigen::VectorXd& R, Eigen::MatrixXd& J) {
+    std::vector<double> pw;
+    auto eval = [&](Eigen::VectorXd& out) {
+        residual(pr, m, out, pw);
+        return out.squaredNorm();
+    };
+    // The knob's own step, taken downwards where upwards would leave its bounds.
+    auto step_of = [](const Knob& kb, double v0) { return v0 + kb.step > kb.hi ? -kb.step : kb.step; };
+    lm_knobs(knobs, eval, step_of, max_iter, 1e-4, 1e-9, true, R, J);
 }
 
 // The output-error fit uses samples [a, end]; the rest of the record validates it.
@@ -105,44 +118,10 @@ void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_i
         }
         return std::isfinite(ss) ? ss : INFINITY;
     };
-    Eigen::VectorXd e, et;
-    double ss = err(e), lambda = 1e-3;
-    Eigen::MatrixXd J(e.size(), p);
-    for (int it = 0; it < max_iter; ++it) {
-        for (Eigen::Index k = 0; k < p; ++k) {
-            Knob& kb = knobs[static_cast<std::size_t>(k)];
-            const double v0 = *kb.value;
-            const double h = std::max(1e-5 * std::abs(v0), kb.step);
-            *kb.value = v0 + h;
-            err(et);
-            *kb.value = v0;
-            J.col(k) = (et - e) / h;
-        }
-        const Eigen::MatrixXd A = J.transpose() * J;
-        const Eigen::VectorXd g = J.transpose() * e;
-        bool improved = false;
-        for (int tries = 0; tries < 8; ++tries) {
-            Eigen::MatrixXd Ad = A;
-            for (Eigen::Index k = 0; k < p; ++k) Ad(k, k) += lambda * A(k, k) + 1e-300;
-            const Eigen::VectorXd dlt = Ad.ldlt().solve(-g);
-            std::vector<double> old(knobs.size());
-            for (std::size_t k = 0; k < knobs.size(); ++k) {
-                old[k] = *knobs[k].value;
-                *knobs[k].value = std::clamp(old[k] + dlt[static_cast<Eigen::Index>(k)], knobs[k].lo, knobs[k].hi);
-            }
-            const double ss_new = err(et);
-            if (ss_new < ss) {
-                improved = (ss - ss_new) > 1e-7 * ss;
-                ss = ss_new;
-                e.swap(et);
-                lambda = std::max(lambda / 4, 1e-9);
-                break;
-            }
-            for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = old[k];
-            lambda *= 8;
-        }
-        if (!improved) break;
-    }
+    auto step_of = [](const Knob& kb, double v0) { return std::max(1e-5 * std::abs(v0), kb.step); };
+    Eigen::VectorXd e;
+    Eigen::MatrixXd J;
+    lm_knobs(knobs, err, step_of, max_iter, 1e-3, 1e-7, false, e, J);
 }
 
 // Small LM for the impact laws: minimises sum f(theta)^2 with bounds; returns the covariance scale (J'J)^-1.
