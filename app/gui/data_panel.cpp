@@ -123,6 +123,20 @@ void DataPanel::take(DataJobResult r, const DataPanelContext& ctx) {
             res_y_ = to_range(robust_extent({&rc.before, &rc.after}, 0.005, 0.08), 1e-6);
             res_x_ = to_range(robust_extent({&rc.x}, 0.0, 0.04), 1e-4);
             res_v_ = to_range(robust_extent({&rc.v}, 0.0, 0.04), 1e-3);
+            {
+                double wl = 1e300, wh = -1e300, xl = 1e300, xh = -1e300;
+                for (const auto* pts : {&report_->diagram_measured, &report_->diagram_before, &report_->diagram_after})
+                    for (const auto& [w, x] : *pts) {
+                        if (!std::isfinite(w) || !std::isfinite(x)) continue;
+                        wl = std::min(wl, w);
+                        wh = std::max(wh, w);
+                        xl = std::min(xl, x);
+                        xh = std::max(xh, x);
+                    }
+                if (wl > wh) wl = wh = xl = xh = 0.0;
+                sec_w_ = to_range({wl - 0.25, wh + 0.25}, 0.5);
+                sec_x_ = to_range({xl - 5e-4, xh + 5e-4}, 1e-3);
+            }
             break;
         }
         case DataJobResult::Kind::Evaluate:
@@ -358,6 +372,29 @@ void DataPanel::draw_trace(ImVec2 size) {
     plot.end();
 }
 
+// The Poincare points of the record (x at phi = 2 pi i, against the omega there), measured and simulated
+// over the whole record by both models: where the model reproduces the data's attractors.
+void DataPanel::draw_sections(ImVec2 size) {
+    const identify::FitReport& r = *report_;
+    if (r.diagram_measured.empty()) {
+        ImGui::TextDisabled("no Poincare points (the record is forced by an input u, not by phi)");
+        return;
+    }
+    Plot plot;
+    Axes ax;
+    ax.x_label = "omega [rad/s]";
+    ax.y_label = "x at phi = 2 pi i [mm]";
+    ax.y_scale = 1e3;
+    if (!plot.begin("##sections", size, sec_w_, sec_x_, ax)) return;
+    auto draw = [&](const std::vector<std::pair<double, double>>& pts, ImU32 col, float sz) {
+        plot.scatter(pts.size(), [&](std::size_t i) { return XY{pts[i].first, pts[i].second}; }, col, sz);
+    };
+    draw(r.diagram_before, before_color(), 3.0f);
+    draw(r.diagram_after, after_color(), 3.0f);
+    draw(r.diagram_measured, measured_color(), 2.0f);
+    plot.end();
+}
+
 void DataPanel::draw_residual(const char* id, const char* xlabel, const std::vector<double>& var, double scale,
                               Range xr, ImVec2 size) {
     const auto& rc = report_->residual;
@@ -398,6 +435,9 @@ void DataPanel::draw(bool* open, const DataPanelContext& ctx) {
     if (ImGui::BeginChild("##left", ImVec2(left_w, avail.y), false)) {
         draw_effects();
         draw_errors();
+        ImGui::TextDisabled("Poincare points: measured (blue) and simulated");
+        const ImVec2 la = ImGui::GetContentRegionAvail();
+        if (la.y > 6.0f * fs) draw_sections(ImVec2(la.x, la.y));
     }
     ImGui::EndChild();
     ImGui::SameLine();

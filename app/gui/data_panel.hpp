@@ -47,6 +47,7 @@ private:
     void draw_effects();
     void draw_errors();
     void draw_trace(ImVec2 size);
+    void draw_sections(ImVec2 size);
     void draw_residual(const char* id, const char* xlabel, const std::vector<double>& var, double scale, Range xr,
                        ImVec2 size);
 
@@ -71,7 +72,7 @@ private:
     std::string fit_model_name_;
 
     // Display ranges of the report's plots (robust: the 0.5 % .. 99.5 % quantiles).
-    Range trace_t_, trace_x_, res_y_, res_x_, res_v_;
+    Range trace_t_, trace_x_, res_y_, res_x_, res_v_, sec_w_, sec_x_;
 };
 
 }  // namespace impactlab::gui
