@@ -191,7 +191,7 @@ bool Simulator::step(const Params& p, const Drive& d, State& s, double t_limit, 
     if (at_section) t_stop = t_sec;
 
     if (s.regime == Regime::Free) {
-        free_step(p, d, s, t_stop, at_section, obs);
+        free_step(p, d, s, t_stop, obs);
     } else {
         hold_step(p, d, s, t_stop, obs);
     }
@@ -213,7 +213,7 @@ void Simulator::advance(const Params& p, const Drive& d, State& s, double t_end,
     in_advance_ = false;
 }
 
-bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_stop, bool /*stop_is_section*/,
+bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_stop,
                           Observer* obs) {
     const RigSystem sys{p, d, !p.rigid()};
     const Vec2 y0(s.x, s.v);

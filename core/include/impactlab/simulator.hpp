@@ -79,7 +79,7 @@ public:
     void advance(const Params& p, const Drive& d, State& s, double t_end, Observer* obs = nullptr);
 
 private:
-    bool free_step(const Params& p, const Drive& d, State& s, double t_stop, bool stop_is_section, Observer* obs);
+    bool free_step(const Params& p, const Drive& d, State& s, double t_stop, Observer* obs);
     void hold_step(const Params& p, const Drive& d, State& s, double t_stop, Observer* obs);
     void release(const Params& p, const Drive& d, State& s, double v_plus, Observer* obs);
     Tolerances tol_;
