@@ -95,6 +95,18 @@ std::size_t oe_fit_end(const Prep& pr, std::size_t a, std::size_t max_samples) {
     return std::min(pr.n - 1, a + std::min(max_samples, (pr.n - a) / 2));
 }
 
+// RMS of a free run against the measured x over samples [from, end) where the run is defined; -1 if none.
+double free_run_rms(const std::vector<double>& fr, const std::vector<double>& x, std::size_t from = 0) {
+    double s = 0;
+    std::size_t c = 0;
+    for (std::size_t i = from; i < fr.size(); ++i)
+        if (std::isfinite(fr[i])) {
+            s += (fr[i] - x[i]) * (fr[i] - x[i]);
+            ++c;
+        }
+    return c ? std::sqrt(s / static_cast<double>(c)) : -1.0;
+}
+
 // Levenberg-Marquardt on the free-run simulation error (input-forced data only: there a free run over the
 // record is meaningful, and it weighs the resonance the way the benchmark's simulation error does).
 void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_iter, double rtol) {
@@ -593,14 +605,8 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             std::size_t first = 0;
             while (first < pr.n && !std::isfinite(fr[first])) ++first;
             const std::size_t fit_end = oe_fit_end(pr, first, 30000);
-            double s = 0;
-            std::size_t cnt = 0;
-            for (std::size_t i = fit_end + 1; i < pr.n; ++i)
-                if (std::isfinite(fr[i])) {
-                    s += (fr[i] - data.x[i]) * (fr[i] - data.x[i]);
-                    ++cnt;
-                }
-            return cnt ? std::sqrt(s / static_cast<double>(cnt)) : INFINITY;
+            const double rms = free_run_rms(fr, data.x, fit_end + 1);
+            return rms < 0 ? INFINITY : rms;
         };
         double rms_all = oe_fit(after, chosen.size(), 20);
         for (std::size_t k = chosen.size(); k-- > 0;) {
@@ -767,15 +773,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         e.shooting_rms_10_m = so.rms10;
         e.impact = impact_error(pr, m);
         if (!pr.phi_forced) {
-            const std::vector<double> fr = free_run(pr, m, o.rtol);
-            double s = 0;
-            std::size_t c = 0;
-            for (std::size_t i = 0; i < pr.n; ++i)
-                if (std::isfinite(fr[i])) {
-                    s += (fr[i] - data.x[i]) * (fr[i] - data.x[i]);
-                    ++c;
-                }
-            e.simulation_rms_m = c ? std::sqrt(s / static_cast<double>(c)) : -1;
+            e.simulation_rms_m = free_run_rms(free_run(pr, m, o.rtol), data.x);
         }
     };
     ShootOut sb, sa;
@@ -859,15 +857,7 @@ ErrorSummary evaluate_model(const MeasuredData& data, const Model& model, const 
             e.diagram_distance_m = diagram_distance(measured_sections(pr), free_run_sections(pr, model, o.rtol), o.omega_bin,
                                                     e.diagram_bins, &e.diagram_per_bin);
     } else {
-        const std::vector<double> fr = free_run(pr, model, o.rtol);
-        double s = 0;
-        std::size_t c = 0;
-        for (std::size_t i = 0; i < pr.n; ++i)
-            if (std::isfinite(fr[i])) {
-                s += (fr[i] - data.x[i]) * (fr[i] - data.x[i]);
-                ++c;
-            }
-        e.simulation_rms_m = c ? std::sqrt(s / static_cast<double>(c)) : -1;
+        e.simulation_rms_m = free_run_rms(free_run(pr, model, o.rtol), data.x);
     }
     return e;
 }
