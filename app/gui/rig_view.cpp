@@ -70,16 +70,16 @@ ImVec2 RigView::to_image(double x, double y) const {
                   static_cast<float>(0.5 * fb_h_ - (y - cy_) * px_per_m_));
 }
 
-void RigView::capsule(double ax, double ay, double bx, double by, double r, const float* rgb, float a, int style,
-                      double outline, const float* line, double glow) {
+void RigView::push_shape(int kind, double p0x, double p0y, double p1x, double p1y, double size, const float* rgb,
+                         float a, int style, double outline, const float* line, double glow) {
     Shape s{};
-    s.p0[0] = static_cast<float>(ax);
-    s.p0[1] = static_cast<float>(ay);
-    s.p1[0] = static_cast<float>(bx);
-    s.p1[1] = static_cast<float>(by);
+    s.p0[0] = static_cast<float>(p0x);
+    s.p0[1] = static_cast<float>(p0y);
+    s.p1[0] = static_cast<float>(p1x);
+    s.p1[1] = static_cast<float>(p1y);
     s.p2[0] = static_cast<float>(glow);
-    s.shape[0] = 0;
-    s.shape[1] = static_cast<float>(r);
+    s.shape[0] = static_cast<float>(kind);
+    s.shape[1] = static_cast<float>(size);
     s.shape[2] = static_cast<float>(outline);
     s.shape[3] = static_cast<float>(style);
     for (int i = 0; i < 3; ++i) s.fill[i] = rgb[i];
@@ -88,45 +88,21 @@ void RigView::capsule(double ax, double ay, double bx, double by, double r, cons
     for (int i = 0; i < 3; ++i) s.line[i] = l[i];
     s.line[3] = 1;
     shapes_.push_back(s);
+}
+
+void RigView::capsule(double ax, double ay, double bx, double by, double r, const float* rgb, float a, int style,
+                      double outline, const float* line, double glow) {
+    push_shape(0, ax, ay, bx, by, r, rgb, a, style, outline, line, glow);
 }
 
 void RigView::box(double cx, double cy, double hx, double hy, double corner, const float* rgb, float a, int style,
                   double outline, const float* line, double glow) {
-    Shape s{};
-    s.p0[0] = static_cast<float>(cx);
-    s.p0[1] = static_cast<float>(cy);
-    s.p1[0] = static_cast<float>(hx);
-    s.p1[1] = static_cast<float>(hy);
-    s.p2[0] = static_cast<float>(glow);
-    s.shape[0] = 1;
-    s.shape[1] = static_cast<float>(corner);
-    s.shape[2] = static_cast<float>(outline);
-    s.shape[3] = static_cast<float>(style);
-    for (int i = 0; i < 3; ++i) s.fill[i] = rgb[i];
-    s.fill[3] = a;
-    const float* l = line ? line : kBlack;
-    for (int i = 0; i < 3; ++i) s.line[i] = l[i];
-    s.line[3] = 1;
-    shapes_.push_back(s);
+    push_shape(1, cx, cy, hx, hy, corner, rgb, a, style, outline, line, glow);
 }
 
 void RigView::disc(double cx, double cy, double r, double inner, const float* rgb, float a, int style, double outline,
                    const float* line, double glow) {
-    Shape s{};
-    s.p0[0] = static_cast<float>(cx);
-    s.p0[1] = static_cast<float>(cy);
-    s.p1[0] = static_cast<float>(inner);
-    s.p2[0] = static_cast<float>(glow);
-    s.shape[0] = 2;
-    s.shape[1] = static_cast<float>(r);
-    s.shape[2] = static_cast<float>(outline);
-    s.shape[3] = static_cast<float>(style);
-    for (int i = 0; i < 3; ++i) s.fill[i] = rgb[i];
-    s.fill[3] = a;
-    const float* l = line ? line : kBlack;
-    for (int i = 0; i < 3; ++i) s.line[i] = l[i];
-    s.line[3] = 1;
-    shapes_.push_back(s);
+    push_shape(2, cx, cy, inner, 0.0, r, rgb, a, style, outline, line, glow);
 }
 
 void RigView::triangle(double ax, double ay, double bx, double by, double cx, double cy, const float* rgb, float a) {

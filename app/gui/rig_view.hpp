@@ -63,6 +63,9 @@ private:
                  double outline = 0, const float* line = nullptr, double glow = 0);
     void box(double cx, double cy, double hx, double hy, double corner, const float* rgb, float a = 1, int style = 0,
              double outline = 0, const float* line = nullptr, double glow = 0);
+    // Capsule, box and disc are one instance record; `kind` selects the distance field in rig_shapes.frag.
+    void push_shape(int kind, double p0x, double p0y, double p1x, double p1y, double size, const float* rgb, float a,
+                    int style, double outline, const float* line, double glow);
     void disc(double cx, double cy, double r, double inner, const float* rgb, float a = 1, int style = 2,
               double outline = 0, const float* line = nullptr, double glow = 0);
     void triangle(double ax, double ay, double bx, double by, double cx, double cy, const float* rgb, float a = 1);
