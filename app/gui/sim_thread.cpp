@@ -48,12 +48,14 @@ void SimThread::run() {
     double meter_sim = anchor_sim;
 
     engine_.publish_state();   // the UI sees the initial state even when started paused
+    sink_.publish();
     while (!quit_.load(std::memory_order_relaxed)) {
         bool changed = false;
         commands_.drain([&](const SimCommand& c) {
             engine_.apply(c);
             changed = true;
         });
+        if (changed) sink_.publish();   // a command may publish the new state (reset, model switch)
         const auto now = Clock::now();
         if (changed || engine_.speed() != speed) {
             speed = engine_.speed();
@@ -80,6 +82,7 @@ void SimThread::run() {
             target = anchor_sim + speed * std::chrono::duration<double>(now - anchor_wall).count();
         }
         const double reached = engine_.advance_to(target, deadline);
+        sink_.publish();   // the whole slice at once
         sim_time_.store(reached, std::memory_order_relaxed);
 
         const auto after = Clock::now();

@@ -55,7 +55,14 @@ private:
     class RingSink final : public MsgSink {
     public:
         explicit RingSink(SpscRing<SimMsg>& r) : ring_(r) {}
-        void put(const SimMsg& m) override { ring_.try_push(m); }   // sim thread (the producer)
+        // Sim thread (the producer). Stages the record; shows the batch every kPublishEvery records and
+        // at the end of each work slice (SimThread::run calls publish()).
+        void put(const SimMsg& m) override {
+            ring_.try_stage(m);
+            if (ring_.unpublished() >= kPublishEvery) ring_.publish();
+        }
+        void publish() { ring_.publish(); }   // sim thread
+        static constexpr std::size_t kPublishEvery = 256;
     private:
         SpscRing<SimMsg>& ring_;
     };

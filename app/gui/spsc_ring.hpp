@@ -1,13 +1,14 @@
 // A lock-free single-producer / single-consumer ring buffer (after rigtorp/SPSCQueue).
 //
 // One thread pushes, one other thread pops; neither ever blocks or allocates. The capacity is fixed at
-// construction and must be a power of two (the slot index is `counter & mask`). `head_` (next slot to
-// write) and `tail_` (next slot to read) are monotonically increasing 64-bit counters that never wrap in
-// practice, so "full" is `head - tail == capacity` and every slot is usable. Each side keeps a private
-// cached copy of the other side's counter and re-reads the shared atomic only when the cache says
-// full/empty, which keeps the cache-line traffic to about one transfer per batch. The producer's and the
-// consumer's lines are separated by alignas(64), and the slot array is 64-byte aligned, so the two
-// threads never false-share.
+// construction and must be a power of two (the slot index is `counter & mask`). `head_` (one past the
+// last published slot) and `tail_` (next slot to read) are monotonically increasing 64-bit counters that
+// never wrap in practice, so "full" is `head - tail == capacity` and every slot is usable. Each side keeps
+// a private cached copy of the other side's counter and re-reads the shared atomic only when the cache
+// says full/empty, which keeps the cache-line traffic to about one transfer per batch. The producer may
+// also stage items privately and show them with one store (try_stage + publish), the way the simulation
+// thread hands over a work slice. The producer's and the consumer's lines are separated by alignas(64),
+// and the slot array is 64-byte aligned, so the two threads never false-share.
 //
 // Memory ordering: the producer writes the slot, then publishes it with a release store of head_; the
 // consumer's acquire load of head_ makes the slot contents visible before it reads them. Symmetrically
@@ -43,32 +44,43 @@ public:
     // Any thread.
     std::size_t capacity() const noexcept { return capacity_; }
 
-    // Producer thread only. Copies `item` in; returns false (and counts a drop) if the ring is full.
+    // Producer thread only. Copies `item` in and publishes it; returns false (and counts a drop) if the
+    // ring is full.
     bool try_push(const T& item) noexcept {
-        const std::uint64_t head = head_.load(std::memory_order_relaxed);
-        if (head - tail_cache_ >= capacity_) {
-            tail_cache_ = tail_.load(std::memory_order_acquire);
-            if (head - tail_cache_ >= capacity_) {
-                dropped_.store(dropped_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
-                return false;
-            }
-        }
-        slots_[head & mask_] = item;
-        head_.store(head + 1, std::memory_order_release);
+        if (!try_stage(item)) return false;
+        publish();
         return true;
     }
 
     // Producer thread only. Like try_push but does not count a drop when full (for callers that retry).
     bool try_push_no_drop(const T& item) noexcept {
-        const std::uint64_t head = head_.load(std::memory_order_relaxed);
-        if (head - tail_cache_ >= capacity_) {
-            tail_cache_ = tail_.load(std::memory_order_acquire);
-            if (head - tail_cache_ >= capacity_) return false;
-        }
-        slots_[head & mask_] = item;
-        head_.store(head + 1, std::memory_order_release);
+        if (!write(item)) return false;
+        publish();
         return true;
     }
+
+    // Producer thread only. Copies `item` into the next slot without showing it to the consumer yet;
+    // returns false (and counts a drop) if the ring is full. publish() shows every staged item at once.
+    // Why: one release store per batch instead of per item keeps the consumer's polling of head_ from
+    // pulling that line away from the producer on every push (about 3x the cross-core rate on our VM).
+    bool try_stage(const T& item) noexcept {
+        if (write(item)) return true;
+        dropped_.store(dropped_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+        return false;
+    }
+
+    // Producer thread only. Like try_stage but a refusal is not a drop (the caller retries).
+    bool try_stage_no_drop(const T& item) noexcept { return write(item); }
+
+    // Producer thread only. Makes every staged item visible to the consumer (release).
+    void publish() noexcept {
+        if (staged_ == published_) return;
+        published_ = staged_;
+        head_.store(staged_, std::memory_order_release);
+    }
+
+    // Producer thread only. Items staged but not yet published.
+    std::size_t unpublished() const noexcept { return static_cast<std::size_t>(staged_ - published_); }
 
     // Consumer thread only. Moves the oldest item into `out`; returns false if the ring is empty.
     bool try_pop(T& out) noexcept {
@@ -105,7 +117,7 @@ public:
     bool empty() const noexcept { return size() == 0; }
     // Any thread. Items refused by try_push because the ring was full, since construction.
     std::uint64_t dropped() const noexcept { return dropped_.load(std::memory_order_relaxed); }
-    // Any thread. Items ever accepted.
+    // Any thread. Items ever published.
     std::uint64_t pushed() const noexcept { return head_.load(std::memory_order_relaxed); }
 
 private:
@@ -121,12 +133,27 @@ private:
         return static_cast<T*>(raw);   // trivially copyable T: storage is usable as is
     }
 
+    // Producer thread only: the slot write behind try_push/try_stage; false when full.
+    bool write(const T& item) noexcept {
+        if (staged_ - tail_cache_ >= capacity_) {
+            tail_cache_ = tail_.load(std::memory_order_acquire);
+            if (staged_ - tail_cache_ >= capacity_) return false;
+        }
+        slots_[staged_ & mask_] = item;
+        ++staged_;
+        return true;
+    }
+
     const std::size_t capacity_;
     const std::size_t mask_;
     const std::unique_ptr<T[], Deleter> slots_;
 
-    // Producer's line: its own counter, its cache of the consumer's, the drop count.
+    // Producer's line: its published counter, private copies of it and of the staged counter (>= head_;
+    // the producer never reads head_ back, which the consumer's polling would make a cross-core miss),
+    // its cache of the consumer's counter, the drop count.
     alignas(kLine) std::atomic<std::uint64_t> head_{0};
+    std::uint64_t published_ = 0;
+    std::uint64_t staged_ = 0;
     std::uint64_t tail_cache_ = 0;
     std::atomic<std::uint64_t> dropped_{0};
     // Consumer's line.

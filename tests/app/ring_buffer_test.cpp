@@ -81,6 +81,36 @@ TEST_CASE("ring: drain honours its limit and releases in one go") {
     for (int i = 0; i < 10; ++i) CHECK(got[static_cast<std::size_t>(i)] == i);
 }
 
+TEST_CASE("ring: staged items stay hidden until publish, then arrive in order") {
+    SpscRing<int> r(4);
+    CHECK(r.try_stage(1));
+    CHECK(r.try_stage(2));
+    CHECK(r.unpublished() == 2);
+    CHECK(r.empty());   // the consumer sees nothing yet
+    int out = -1;
+    CHECK_FALSE(r.try_pop(out));
+    r.publish();
+    CHECK(r.unpublished() == 0);
+    CHECK(r.size() == 2);
+    CHECK(r.pushed() == 2);
+    CHECK(r.try_stage(3));
+    CHECK(r.try_stage(4));
+    CHECK_FALSE(r.try_stage(5));           // staged items take slots: the ring is full now
+    CHECK(r.dropped() == 1);
+    CHECK_FALSE(r.try_stage_no_drop(6));   // retried, not dropped
+    CHECK(r.dropped() == 1);
+    CHECK_FALSE(r.try_push(7));            // try_push also sees the staged slots
+    CHECK(r.dropped() == 2);
+    std::vector<int> got;
+    r.drain([&](int v) { got.push_back(v); });
+    CHECK(got == std::vector<int>{1, 2});   // 3 and 4 are still staged
+    r.publish();
+    r.drain([&](int v) { got.push_back(v); });
+    CHECK(got == std::vector<int>{1, 2, 3, 4});
+    r.publish();   // nothing staged: a no-op
+    CHECK(r.pushed() == 4);
+}
+
 TEST_CASE("ring: the sample record is one cache line and the counters sit on separate lines") {
     CHECK(sizeof(impactlab::gui::SimMsg) == 64);
     CHECK(alignof(SpscRing<int>) >= 64);
@@ -121,6 +151,38 @@ TEST_CASE("ring: two threads, 10 million items, lossless, in order, intact") {
     CHECK(expected == kItems);
     CHECK(r.dropped() == 0);
     CHECK(r.empty());
+}
+
+TEST_CASE("ring: two threads, 10 million items published in batches, lossless, in order, intact") {
+    // The simulation thread's way: stage a work slice, publish it with one release store.
+    constexpr std::uint64_t kItems = 10'000'000;
+    SpscRing<Item> r(1024);
+    std::thread producer([&] {
+        for (std::uint64_t i = 0; i < kItems; ++i) {
+            const Item it{i, mix(i), static_cast<double>(i) * 0.5};
+            while (!r.try_stage_no_drop(it)) {
+                r.publish();
+                std::this_thread::yield();
+            }
+            if (r.unpublished() >= 1 + i % 300) r.publish();   // uneven batches
+        }
+        r.publish();
+    });
+    std::uint64_t expected = 0;
+    std::uint64_t bad = 0;
+    while (expected < kItems) {
+        const std::size_t n = r.drain([&](const Item& it) {
+            if (it.seq != expected || it.check != mix(expected) || it.as_double != static_cast<double>(expected) * 0.5)
+                ++bad;
+            ++expected;
+        });
+        if (n == 0) std::this_thread::yield();
+    }
+    producer.join();
+    CHECK(bad == 0);
+    CHECK(expected == kItems);
+    CHECK(r.dropped() == 0);
+    CHECK(r.pushed() == kItems);
 }
 
 TEST_CASE("ring: two threads, 10 million items, lossy producer: drops counted, survivors in order") {
