@@ -14,6 +14,7 @@
 #include <numbers>
 
 #include "gl_util.hpp"
+#include "plot2d.hpp"
 #include "plot_gpu.hpp"
 #include "impactlab/forces.hpp"
 #include "theme.hpp"
@@ -410,8 +411,20 @@ void App::frame() {
     glfwGetFramebufferSize(win_, &fw, &fh);
     glViewport(0, 0, fw, fh);
     const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
-    glClearColor(bg.x * 0.8f, bg.y * 0.8f, bg.z * 0.8f, 1.0f);
+    glClearColor(bg.x, bg.y, bg.z, 1.0f);   // the tiles' background (they draw none themselves)
     glClear(GL_COLOR_BUFFER_BIT);
+    // The tiles' plot areas: scissored clears, which cost next to nothing, instead of blended rectangles.
+    const ImVec2 fbs = ImGui::GetIO().DisplayFramebufferScale;
+    glEnable(GL_SCISSOR_TEST);
+    for (const PlotBackdrop& b : take_plot_backdrops()) {
+        const ImVec4 c = ImGui::ColorConvertU32ToFloat4(b.color);
+        const int x0 = static_cast<int>(std::lround(b.min.x * fbs.x)), x1 = static_cast<int>(std::lround(b.max.x * fbs.x));
+        const int y0 = static_cast<int>(std::lround(b.min.y * fbs.y)), y1 = static_cast<int>(std::lround(b.max.y * fbs.y));
+        glScissor(x0, fh - y1, x1 - x0, y1 - y0);
+        glClearColor(c.x, c.y, c.z, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+    }
+    glDisable(GL_SCISSOR_TEST);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (!pending_shot_.empty()) {
         glReadBuffer(GL_BACK);
@@ -433,22 +446,29 @@ void App::frame() {
     ++frame_count_;
 }
 
+namespace {
+// Bench mode: the headless engine's samples go straight into the UI's history, as if drained from the ring.
+struct HistorySink final : MsgSink {
+    History<SimMsg>* traj = nullptr;
+    void put(const SimMsg& m) override {   // UI thread (the bench engine runs there)
+        if (m.kind == MsgKind::Sample) traj->push(m);
+    }
+};
+}  // namespace
+
 void App::fill_bench_data(int points) {
-    // Real trajectory for the phase portrait and x(t): the engine, headless, at omega = 18 (chaos).
-    struct Into final : MsgSink {
-        App* app;
-        void put(const SimMsg& m) override {
-            if (m.kind == MsgKind::Sample) app->traj_.push(m);
-        }
-    } into;
-    into.app = this;
+    // Real trajectory for the phase portrait and x(t): the engine, headless, at omega = 18 (chaos), at
+    // 100x real time (1 ms samples) as in the live app.
+    auto sink = std::make_unique<HistorySink>();
+    sink->traj = &traj_;
     EngineConfig cfg;
     cfg.model = model_name();
     cfg.omega = 18.0;
-    cfg.speed = 100.0;   // 1 ms samples
-    SimEngine eng(cfg, &into);
+    cfg.speed = 100.0;
+    bench_engine_ = std::make_unique<SimEngine>(cfg, sink.get());
+    bench_sink_ = std::move(sink);
     traj_.clear();
-    eng.advance_to(points * eng.sample_dt() * 1.0001);
+    bench_engine_->advance_to(points * bench_engine_->sample_dt() * 1.0001);
     last_ = traj_.back();
     have_last_ = true;
     omega_ = 18.0;
@@ -479,7 +499,14 @@ void App::fill_bench_data(int points) {
     bif_x_ = {0, 25};
     bif_y_ = {-0.019, -0.003};
     bif_dirty_ = true;
-    bench_all_points_ = true;
+    bench_window_ = static_cast<std::size_t>(points);
+}
+
+void App::feed_bench_frame() {
+    // One 60 Hz frame at 100x real time: 1/60 s x 100 = 1.67 s of simulation, 1,667 samples of 1 ms.
+    const double t = last_.t + 100.0 / 60.0;
+    bench_engine_->advance_to(t);
+    last_ = traj_.back();
 }
 
 int App::run() {
@@ -491,26 +518,29 @@ int App::run() {
     if (bench_mode_) {
         fill_bench_data(opt_.bench_points);
         constexpr int kWarm = 20, kFrames = 200;
-        double t0 = 0;
+        double s = 0;   // time spent in frames (the bench's own simulation is not counted: the app runs it
+                        // on the simulation thread, at about 1.5% of a core for 100x real time)
         std::size_t verts = 0;
         for (int i = 0; i < kWarm + kFrames && !glfwWindowShouldClose(win_); ++i) {
             if (i == kWarm) {
-                glFinish();
-                t0 = now_s();
                 Plot::reset_stats();
                 bench_build_s_ = bench_render_s_ = 0;
                 for (double& p : panel_s_) p = 0;
+                s = 0;
             }
+            feed_bench_frame();
+            if (i + 1 == kWarm && !opt_.screenshot.empty()) screenshot(opt_.screenshot);   // an untimed frame
+            glFinish();
+            const double f0 = now_s();
             frame();
+            s += now_s() - f0;
             if (i >= kWarm) verts = std::max(verts, static_cast<std::size_t>(ImGui::GetDrawData()->TotalVtxCount) +
                                                          plot_gpu::queued_points());
         }
-        glFinish();
-        const double s = now_s() - t0;
         int fw = 0, fh = 0;
         glfwGetFramebufferSize(win_, &fw, &fh);
         std::printf("plot benchmark (%s backend): %dx%d, %d points on each plot (phase portrait, x(t), Poincare map, "
-                    "bifurcation): %.1f fps (%.2f ms/frame, %zu vertices/frame, renderer: %s)\n",
+                    "bifurcation), 1,667 new samples a frame (100x real time): %.1f fps (%.2f ms/frame, %zu vertices/frame, renderer: %s)\n",
                     opt_.plot_backend.c_str(), fw, fh, opt_.bench_points, kFrames / s, 1e3 * s / kFrames, verts,
                     reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
         std::printf("plot benchmark: per frame %.2f ms building the UI (ImGui, decimation, rig geometry), %.2f ms "

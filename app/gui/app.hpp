@@ -58,6 +58,7 @@ private:
     std::string model_name() const;
     double now_s() const;
     void fill_bench_data(int points);
+    void feed_bench_frame();   // appends one frame's worth of new samples (bench mode)
 
     // panels.cpp: one function per window
     void layout_and_draw();
@@ -137,7 +138,13 @@ private:
     bool switched_ = false;
     bool bench_mode_ = false;
     bool warming_ = false;   // --warmup: at 100x until the sim time reaches opt_.warmup
-    bool bench_all_points_ = false;
+    // --bench-plot: the plots show the newest bench_window_ samples (0: the normal trail and strip), and a
+    // headless engine appends what the live app would receive at 100x real time every frame.
+    std::size_t bench_window_ = 0;
+    // Auto-fit extents of the plots' windows, kept incrementally (100k points would cost a pass a frame).
+    WindowExtent phase_x_extent_, phase_v_extent_, pc_x_extent_, pc_v_extent_, strip_x_extent_;
+    std::unique_ptr<SimEngine> bench_engine_;
+    std::unique_ptr<MsgSink> bench_sink_;
     double bench_build_s_ = 0, bench_render_s_ = 0;
     int exit_code_ = 0;
 };

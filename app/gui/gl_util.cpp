@@ -66,6 +66,33 @@ GLuint upload_rgba_texture(GLuint tex, int w, int h, const unsigned char* rgba) 
     return tex;
 }
 
+CanvasTexture::~CanvasTexture() {
+    if (tex_) glDeleteTextures(1, &tex_);
+}
+
+GLuint CanvasTexture::ensure() {
+    if (!tex_) glGenTextures(1, &tex_);
+    return tex_;
+}
+
+GLuint CanvasTexture::upload(const unsigned char* rgba, int w, int h, int x0, int y0, int x1, int y1) {
+    if (!tex_ || w != w_ || h != h_) {
+        tex_ = upload_rgba_texture(tex_, w, h, rgba);   // keeps the name if there is one
+        w_ = w;
+        h_ = h;
+        return tex_;
+    }
+    if (x1 < x0 || y1 < y0) return tex_;
+    glBindTexture(GL_TEXTURE_2D, tex_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, w);
+    const unsigned char* first = rgba + (static_cast<std::size_t>(y0) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x0)) * 4;
+    glTexSubImage2D(GL_TEXTURE_2D, 0, x0, y0, x1 - x0 + 1, y1 - y0 + 1, GL_RGBA, GL_UNSIGNED_BYTE, first);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return tex_;
+}
+
 std::vector<unsigned char> read_framebuffer_rgb(int w, int h) {
     std::vector<unsigned char> px(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);

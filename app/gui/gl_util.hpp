@@ -16,6 +16,24 @@ GLuint build_program(const char* vert_src, const char* frag_src, const char* nam
 // Creates or updates a 2-D RGBA8 texture (linear filtering, clamped); returns its id.
 GLuint upload_rgba_texture(GLuint tex, int w, int h, const unsigned char* rgba);
 
+// An RGBA8 texture the size of a CPU image (a plot canvas), updated a rectangle at a time.
+class CanvasTexture {
+public:
+    CanvasTexture() = default;
+    ~CanvasTexture();
+    CanvasTexture(const CanvasTexture&) = delete;
+    CanvasTexture& operator=(const CanvasTexture&) = delete;
+    // Creates the texture name now (so a draw command can refer to it before the first upload).
+    GLuint ensure();
+    // Uploads columns [x0, x1] of rows [y0, y1] of `rgba` (w x h); all of it when the size is new.
+    GLuint upload(const unsigned char* rgba, int w, int h, int x0, int y0, int x1, int y1);
+    GLuint id() const { return tex_; }
+
+private:
+    GLuint tex_ = 0;
+    int w_ = 0, h_ = 0;
+};
+
 // Reads the current read framebuffer (w x h from the lower left) and writes a PNG (top row first).
 // Returns false and fills `error` on failure.
 bool save_framebuffer_png(const std::string& path, int w, int h, std::string& error);

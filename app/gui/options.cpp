@@ -143,7 +143,7 @@ Options parse_options(const std::vector<std::string>& args) {
         }
         else throw OptionsError("unknown option '" + a + "' (see impactlab-gui --help)");
     }
-    if (!o.screenshot.empty() && o.frames == 0) throw OptionsError("--screenshot needs --frames N");
+    if (!o.screenshot.empty() && o.frames == 0 && !o.bench_plot) throw OptionsError("--screenshot needs --frames N or --bench-plot");
     return o;
 }
 

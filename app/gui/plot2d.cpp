@@ -7,6 +7,7 @@
 #include <memory>
 #include <unordered_map>
 
+#include "gl_util.hpp"
 #include "theme.hpp"
 
 namespace impactlab::gui {
@@ -69,38 +70,95 @@ void AutoRange::track(Range t, double pad, double min_span, double dt_s) {
         init = true;
         return;
     }
-    // Grow at once to include the data; shrink towards the target over about a second.
+    // Grow at once to include the data. Shrink towards the target over about a second, but only once it is
+    // 4% of the span away, and stop dead within 0.2%: an axis that keeps creeping would make every plot
+    // that keeps its pixels between frames (TrailCanvas) redraw all of them every frame.
     const double k = 1.0 - std::exp(-dt_s / 0.6);
-    cur.lo = want.lo < cur.lo ? want.lo : cur.lo + (want.lo - cur.lo) * k;
-    cur.hi = want.hi > cur.hi ? want.hi : cur.hi + (want.hi - cur.hi) * k;
+    const double span_now = cur.span();
+    const auto shrink = [&](double& edge, double target, bool& active) {
+        if (std::abs(target - edge) > 0.04 * span_now) active = true;
+        if (!active) return;
+        edge += (target - edge) * k;
+        if (std::abs(target - edge) < 0.002 * span_now) {
+            edge = target;
+            active = false;
+        }
+    };
+    if (want.lo < cur.lo) {
+        cur.lo = want.lo;
+        shrinking_lo = false;
+    } else {
+        shrink(cur.lo, want.lo, shrinking_lo);
+    }
+    if (want.hi > cur.hi) {
+        cur.hi = want.hi;
+        shrinking_hi = false;
+    } else {
+        shrink(cur.hi, want.hi, shrinking_hi);
+    }
 }
 
 std::size_t& g_stat_points() { return g_vertices; }
 
 namespace {
 PlotBackend g_backend = PlotBackend::Raster;
-// One canvas per plot (by ImGui id), kept between frames with its texture.
-std::unordered_map<ImGuiID, std::unique_ptr<RasterCanvas>>& canvases() {
-    static std::unordered_map<ImGuiID, std::unique_ptr<RasterCanvas>> map;
+bool g_backdrops_by_clear = false;
+std::vector<PlotBackdrop> g_backdrops;
+// One canvas of each kind per plot (by ImGui id), kept between frames with its texture.
+std::unordered_map<ImGuiID, std::unique_ptr<Plot::CanvasSlot>>& canvases() {
+    static std::unordered_map<ImGuiID, std::unique_ptr<Plot::CanvasSlot>> map;
     return map;
 }
+std::unordered_map<ImGuiID, std::unique_ptr<Plot::TrailSlot>>& trail_canvases() {
+    static std::unordered_map<ImGuiID, std::unique_ptr<Plot::TrailSlot>> map;
+    return map;
+}
+ImTextureID as_texture_id(GLuint tex) { return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(tex)); }
 }  // namespace
+
+static_assert(IM_COL32_R_SHIFT == kColorRShift && IM_COL32_G_SHIFT == kColorGShift &&
+                  IM_COL32_B_SHIFT == kColorBShift && IM_COL32_A_SHIFT == kColorAShift,
+              "the raster canvases pack colours as ImU32 does");
 
 void set_plot_backend(PlotBackend b) { g_backend = b; }
 PlotBackend plot_backend() { return g_backend; }
-void release_plot_canvases() { canvases().clear(); }
+void release_plot_canvases() {
+    canvases().clear();
+    trail_canvases().clear();
+}
+void set_plot_backdrops_by_clear(bool on) { g_backdrops_by_clear = on; }
+std::vector<PlotBackdrop> take_plot_backdrops() {
+    std::vector<PlotBackdrop> out;
+    out.swap(g_backdrops);
+    return out;
+}
 
 RasterCanvas* Plot::canvas() {
     if (!canvas_) {
         auto& slot = canvases()[id_];
-        if (!slot) slot = std::make_unique<RasterCanvas>();
+        if (!slot) slot = std::make_unique<CanvasSlot>();
         canvas_ = slot.get();
     }
-    if (!canvas_->active()) {
-        canvas_->begin(min_, max_);
-        dl_->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(canvas_->texture())), min_, max_);
+    if (!canvas_->canvas.active()) {
+        canvas_->canvas.begin({min_.x, min_.y}, {max_.x, max_.y});
+        // The image goes here in the draw order (under what is drawn later); end() trims it to the pixels
+        // the canvas drew, so an almost empty plot costs the renderer almost nothing.
+        canvas_vtx_ = dl_->VtxBuffer.Size;
+        dl_->AddImage(as_texture_id(canvas_->tex.ensure()), min_, max_);
     }
-    return canvas_;
+    return &canvas_->canvas;
+}
+
+Plot::TrailSlot* Plot::trail_slot() {
+    auto& slot = trail_canvases()[id_];
+    if (!slot) slot = std::make_unique<TrailSlot>();
+    return slot.get();
+}
+
+void Plot::show_trail(TrailSlot& slot) {
+    const TrailCanvas& t = slot.trail;
+    slot.tex.upload(t.rgba(), t.width(), t.height(), 0, 0, t.width() - 1, t.height() - 1);
+    dl_->AddImage(as_texture_id(slot.tex.id()), min_, max_);
 }
 
 void Plot::flush_raster(ImU32 color, float thickness) {
@@ -110,7 +168,7 @@ void Plot::flush_raster(ImU32 color, float thickness) {
     for (std::size_t i = 1; i < gbuf_.size(); ++i) {
         const auto& a = gbuf_[i - 1];
         const auto& b = gbuf_[i];
-        cv->segment(ImVec2(a.x, a.y), ImVec2(b.x, b.y), thickness, a.alpha, b.alpha);
+        cv->segment({a.x, a.y}, {b.x, b.y}, thickness, a.alpha, b.alpha);
     }
     g_vertices += gbuf_.size();
 }
@@ -150,7 +208,8 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
     by_ = -(max_.y - min_.y) / y_.span();
     ay_ = max_.y - by_ * y_.lo;
 
-    dl_->AddRectFilled(min_, max_, pal.plot_bg);
+    if (g_backdrops_by_clear) g_backdrops.push_back({min_, max_, pal.plot_bg});
+    else dl_->AddRectFilled(min_, max_, pal.plot_bg);
 
     // Ticks and grid.
     char buf[32];
@@ -190,8 +249,26 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
 }
 
 void Plot::end() {
-    if (canvas_ && canvas_->active()) canvas_->finish();
+    if (canvas_ && canvas_->canvas.active()) {
+        const RasterCanvas& cv = canvas_->canvas;
+        const PixelRect r = canvas_->canvas.finish();
+        canvas_->tex.upload(cv.rgba(), cv.width(), cv.height(), r.x0, r.y0, r.x1, r.y1);
+        // Move the four corners of the image quad AddImage wrote (ImDrawList::PrimRectUV order: a, b, c, d
+        // clockwise from the top left) onto the drawn rectangle; an empty one collapses to nothing.
+        const float w = static_cast<float>(cv.width()), h = static_cast<float>(cv.height());
+        const float x0 = r.empty() ? 0.0f : static_cast<float>(r.x0), x1 = r.empty() ? 0.0f : static_cast<float>(r.x1 + 1);
+        const float y0 = r.empty() ? 0.0f : static_cast<float>(r.y0), y1 = r.empty() ? 0.0f : static_cast<float>(r.y1 + 1);
+        const ImVec2 o(std::floor(min_.x), std::floor(min_.y));
+        const ImVec2 pos[4] = {{o.x + x0, o.y + y0}, {o.x + x1, o.y + y0}, {o.x + x1, o.y + y1}, {o.x + x0, o.y + y1}};
+        const ImVec2 uv[4] = {{x0 / w, y0 / h}, {x1 / w, y0 / h}, {x1 / w, y1 / h}, {x0 / w, y1 / h}};
+        if (canvas_vtx_ >= 0 && canvas_vtx_ + 4 <= dl_->VtxBuffer.Size)
+            for (int k = 0; k < 4; ++k) {
+                dl_->VtxBuffer[canvas_vtx_ + k].pos = pos[k];
+                dl_->VtxBuffer[canvas_vtx_ + k].uv = uv[k];
+            }
+    }
     canvas_ = nullptr;
+    canvas_vtx_ = -1;
     dl_->PopClipRect();
 }
 

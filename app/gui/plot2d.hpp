@@ -12,12 +12,14 @@
 
 #include <imgui.h>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "gl_util.hpp"
 #include "plot_gpu.hpp"
 #include "plot_raster.hpp"
 
@@ -33,6 +35,7 @@ struct Range {
 struct AutoRange {
     Range cur;
     bool init = false;
+    bool shrinking_lo = false, shrinking_hi = false;
     // target: the data's extent; pad: fraction of span added either side; min_span: the smallest span.
     void track(Range target, double pad, double min_span, double dt_s);
     void snap(Range target, double pad, double min_span);
@@ -47,6 +50,17 @@ void set_plot_backend(PlotBackend b);
 PlotBackend plot_backend();
 // Frees the raster canvases' textures (before the GL context goes).
 void release_plot_canvases();
+
+// Plot backgrounds as scissored clears instead of blended rectangles (a clear is nearly free under Mesa's
+// llvmpipe, a blended rectangle is not). Only for plots that nothing is drawn under and that no window
+// covers from below: the app turns it on while it draws its tiles. UI thread only.
+struct PlotBackdrop {
+    ImVec2 min, max;
+    ImU32 color;
+};
+void set_plot_backdrops_by_clear(bool on);
+// The backdrops recorded since the last call; the caller clears them before ImGui renders the frame.
+std::vector<PlotBackdrop> take_plot_backdrops();
 
 struct Axes {
     const char* x_label = "";
@@ -82,12 +96,21 @@ public:
     void path(std::size_t n, Get&& get, ImU32 color, float thickness = 1.5f, bool fade = false);
     template <class Get>
     void scatter(std::size_t n, Get&& get, ImU32 color, float size = 2.0f);
+    // A fading trail of the history samples [0, n) whose sequence numbers start at seq0 (History::seq_of)
+    // in history `generation`: like path(..., fade = true), but kept between frames (TrailCanvas), so a
+    // frame only draws what is new. Raster backend only; the others fall back to path().
+    template <class Get>
+    void trail(std::size_t n, std::uint64_t seq0, std::uint64_t generation, Get&& get, ImU32 color,
+               float thickness = 1.5f);
 
     void vline(double x, ImU32 color, float thickness = 1.0f, bool dashed = false);
     void hline(double y, ImU32 color, float thickness = 1.0f, bool dashed = false);
     void text(double x, double y, const char* s, ImU32 color, ImVec2 align = ImVec2(0, 0));
     // Fills the part of the area with x > x0 (a forbidden region), hatched.
     void shade_right_of(double x0, ImU32 color);
+
+    // Up to this many markers, scatter() draws them with ImDrawList.
+    static constexpr std::size_t kFewDots = 256;
 
     // Statistics of the last frame (benchmark)
     static std::size_t emitted_vertices();
@@ -97,8 +120,24 @@ private:
     void flush(std::vector<ImVec2>& pts, ImU32 color, float thickness);
     void flush_gpu(ImU32 color, float thickness);
     void flush_raster(ImU32 color, float thickness);
+public:
+    // A canvas and its texture, kept per plot between frames (plot2d.cpp).
+    struct CanvasSlot {
+        RasterCanvas canvas;
+        CanvasTexture tex;
+    };
+    struct TrailSlot {
+        TrailCanvas trail;
+        CanvasTexture tex;
+    };
+
+private:
     RasterCanvas* canvas();   // the plot's canvas, begun and placed in the draw order on first use
-    RasterCanvas* canvas_ = nullptr;
+    TrailSlot* trail_slot();
+    void show_trail(TrailSlot& slot);   // uploads the trail's image and places it over the area
+    PlotMapping mapping() const { return {ax_, bx_, ay_, by_}; }
+    CanvasSlot* canvas_ = nullptr;
+    int canvas_vtx_ = -1;     // where the canvas's image quad sits in the draw list (set by end())
     ImGuiID id_ = 0;
     ImDrawList* dl_ = nullptr;
     ImVec2 min_, max_;
@@ -106,6 +145,10 @@ private:
     double ax_ = 0, bx_ = 1, ay_ = 0, by_ = 1;
     bool hovered_ = false, clicked_ = false, dragging_ = false;
     std::vector<ImVec2> buf_;
+    struct ColumnSpan {
+        float x, lo, hi, last;   // the column's centre, the screen y of its top (lo), bottom (hi) and last point
+    };
+    std::vector<ColumnSpan> spans_;
     std::vector<plot_gpu::Vtx> gbuf_;
     std::vector<std::uint64_t> bitmap_;
 };
@@ -126,7 +169,11 @@ void Plot::series(std::size_t n, Get&& get, ImU32 color, float thickness) {
     constexpr int kNone = std::numeric_limits<int>::min();
     int col = kNone;
     ImVec2 first{}, lo{}, hi{}, last{};
+    spans_.clear();
+    std::size_t columns = 0;
     auto emit = [&] {
+        ++columns;
+        spans_.push_back({std::floor(first.x) + 0.5f, lo.y, hi.y, last.y});
         buf_.push_back(first);
         if (lo.y != first.y && lo.y != last.y) buf_.push_back(lo);
         if (hi.y != first.y && hi.y != last.y) buf_.push_back(hi);
@@ -149,6 +196,24 @@ void Plot::series(std::size_t n, Get&& get, ImU32 color, float thickness) {
     emit();
     if (plot_backend() == PlotBackend::DrawList || (plot_backend() == PlotBackend::Gpu && !plot_gpu::ready())) {
         flush(buf_, color, thickness);
+        return;
+    }
+    if (plot_backend() == PlotBackend::Raster && n >= 16 * columns) {
+        // Dense (16+ samples per pixel column, where a slope is no longer seen as one): the curve is a
+        // vertical bar per column from its lowest to its highest point (joined to the column before),
+        // drawn as such rather than as the segments.
+        RasterCanvas* cv = canvas();
+        cv->layer(color);
+        float prev_last = first.y;
+        bool have_prev = false;
+        for (const ColumnSpan& c : spans_) {
+            const float lo_y = have_prev ? std::min(c.lo, prev_last) : c.lo;
+            const float hi_y = have_prev ? std::max(c.hi, prev_last) : c.hi;
+            cv->vspan(c.x, lo_y, hi_y, thickness);
+            prev_last = c.last;
+            have_prev = true;
+        }
+        g_stat_points() += spans_.size();
         return;
     }
     gbuf_.clear();
@@ -211,8 +276,45 @@ void Plot::path(std::size_t n, Get&& get, ImU32 color, float thickness, bool fad
 }
 
 template <class Get>
+void Plot::trail(std::size_t n, std::uint64_t seq0, std::uint64_t generation, Get&& get, ImU32 color,
+                 float thickness) {
+    if (n < 2) return;
+    if (plot_backend() != PlotBackend::Raster) {
+        path(n, get, color, thickness, true);
+        return;
+    }
+    TrailSlot* slot = trail_slot();
+    TrailCanvas* tc = &slot->trail;
+    TrailCanvas::Frame f;
+    f.min = {min_.x, min_.y};
+    f.max = {max_.x, max_.y};
+    f.map = mapping();
+    f.generation = generation;
+    f.first_seq = seq0;
+    f.last_seq = seq0 + n - 1;
+    f.color = color;
+    f.thickness = thickness;
+    const std::size_t from = tc->begin(f);
+    for (std::size_t i = from; i < n; ++i) {
+        const auto p = get(i);
+        tc->feed(seq0 + i, p.x, p.y);
+    }
+    g_stat_points() += n - from;
+    tc->finish();
+    show_trail(*slot);
+}
+
+template <class Get>
 void Plot::scatter(std::size_t n, Get&& get, ImU32 color, float size) {
     if (n == 0) return;
+    if (n <= kFewDots) {
+        // A few markers: ImDrawList circles cost less than a canvas the size of the plot.
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto p = get(i);
+            dl_->AddCircleFilled(to_px(p.x, p.y), 0.5f * size, color, 10);
+        }
+        return;
+    }
     const int w = static_cast<int>(max_.x - min_.x) + 1, h = static_cast<int>(max_.y - min_.y) + 1;
     if (w <= 0 || h <= 0) return;
     const std::size_t bits = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
@@ -232,7 +334,7 @@ void Plot::scatter(std::size_t n, Get&& get, ImU32 color, float size) {
         const std::uint64_t bit = std::uint64_t{1} << (k & 63);
         if (word & bit) continue;
         word |= bit;
-        if (cv) cv->dot(q, size);
+        if (cv) cv->dot({q.x, q.y}, size);
         else if (gpu) gbuf_.push_back({q.x, q.y, 1.0f, 0.0f});
         else dl_->AddRectFilled(ImVec2(q.x - r, q.y - r), ImVec2(q.x + r, q.y + r), color);
     }

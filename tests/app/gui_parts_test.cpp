@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,16 @@ TEST_CASE("history: overwrites the oldest, indexes oldest first, finds times") {
     CHECK(h.back() == 5);
     CHECK(h.lower_bound(4.0, [](int v) { return static_cast<double>(v); }) == 2);
     CHECK(h.lower_bound(9.0, [](int v) { return static_cast<double>(v); }) == 4);
+    CHECK(h.seq_of(0) == 2);   // sequence numbers count every push
+    CHECK(h.seq_of(3) == 5);
+    const auto gen = h.generation();
     h.clear();
     CHECK(h.size() == 0);
+    CHECK(h.generation() == gen + 1);
+    h.push(7);
+    CHECK(h.seq_of(0) == 6);   // never reused after a clear
+    CHECK_THROWS_AS(History<int>(6), std::invalid_argument);
+    CHECK_THROWS_AS(History<int>(0), std::invalid_argument);
 }
 
 TEST_CASE("history: trajectory and section CSV files have a header and one row per record") {
