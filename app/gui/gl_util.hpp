@@ -13,7 +13,7 @@ namespace impactlab::gui {
 // Compiles and links a program; on failure returns 0 and puts the driver's log in `error`.
 GLuint build_program(const char* vert_src, const char* frag_src, const char* name, std::string& error);
 
-// Creates or updates a 2-D RGBA8 texture (linear filtering, clamped); returns its id.
+// Creates or updates a 2-D RGBA8 texture (nearest filtering: for images shown 1:1; clamped); returns its id.
 GLuint upload_rgba_texture(GLuint tex, int w, int h, const unsigned char* rgba);
 
 // An RGBA8 texture the size of a CPU image (a plot canvas), updated a rectangle at a time.
