@@ -1,12 +1,14 @@
 // A small 2-D plotting layer on ImDrawList (ImPlot is not in Debian): a frame with axes, nice ticks and
-// labels, a clipped data area, and three primitives that bound their draw cost by the pixels they cover,
+// labels, a clipped data area, and four primitives that bound their draw cost by the pixels they cover,
 // not by the number of points:
 //   series  - y(x) with x increasing: per-pixel-column decimation (first, min, max, last in each column);
 //   path    - a general curve (phase portraits): points closer than ~0.7 px to the last one are skipped,
 //             with an optional fade from old (transparent) to new (opaque);
+//   trail   - a fading path over a sliding window of a History, kept between frames (draws only the new);
 //   scatter - dots: one per covered pixel (a bitmap of the area, cleared per call).
-// The decimated curves and dots go to the GPU (plot_gpu: one instanced draw per call, in an ImDrawList
-// callback); without it (shaders refused) they fall back to ImDrawList polylines and rectangles.
+// By default the decimated curves and dots are rasterized on the CPU into one texture per plot
+// (plot_raster); the other backends send them to the GPU (plot_gpu: one instanced draw per call) or to
+// ImDrawList polylines and rectangles.
 // UI thread only.
 #pragma once
 
@@ -170,9 +172,7 @@ void Plot::series(std::size_t n, Get&& get, ImU32 color, float thickness) {
     int col = kNone;
     ImVec2 first{}, lo{}, hi{}, last{};
     spans_.clear();
-    std::size_t columns = 0;
     auto emit = [&] {
-        ++columns;
         spans_.push_back({std::floor(first.x) + 0.5f, lo.y, hi.y, last.y});
         buf_.push_back(first);
         if (lo.y != first.y && lo.y != last.y) buf_.push_back(lo);
@@ -198,13 +198,13 @@ void Plot::series(std::size_t n, Get&& get, ImU32 color, float thickness) {
         flush(buf_, color, thickness);
         return;
     }
-    if (plot_backend() == PlotBackend::Raster && n >= 16 * columns) {
+    if (plot_backend() == PlotBackend::Raster && n >= 16 * spans_.size()) {
         // Dense (16+ samples per pixel column, where a slope is no longer seen as one): the curve is a
         // vertical bar per column from its lowest to its highest point (joined to the column before),
         // drawn as such rather than as the segments.
         RasterCanvas* cv = canvas();
         cv->layer(color);
-        float prev_last = first.y;
+        float prev_last = 0.0f;
         bool have_prev = false;
         for (const ColumnSpan& c : spans_) {
             const float lo_y = have_prev ? std::min(c.lo, prev_last) : c.lo;
