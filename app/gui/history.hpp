@@ -87,8 +87,9 @@ public:
             next_seq_ = first_seq;
         }
         first_seq_ = first_seq;
+        const std::uint64_t seq0 = h.seq_of(0);
         for (std::uint64_t q = next_seq_; q < end_seq; ++q) {
-            const double v = key(h[static_cast<std::size_t>(q - h.seq_of(0))]);
+            const double v = key(h[static_cast<std::size_t>(q - seq0)]);
             while (!lo_.empty() && lo_.back().second >= v) lo_.pop_back();
             lo_.emplace_back(q, v);
             while (!hi_.empty() && hi_.back().second <= v) hi_.pop_back();

@@ -51,6 +51,24 @@ PixelRect rasterize_segment(int w, int h, PxPoint a, PxPoint b, float width, Cov
     return r;
 }
 
+// The whole pixels an area [min, max) of display pixels spans: origin and size (at least 1 x 1).
+struct PixelArea {
+    int x0, y0, w, h;
+};
+PixelArea pixel_area(PxPoint min, PxPoint max) {
+    const int x0 = static_cast<int>(std::floor(min.x)), y0 = static_cast<int>(std::floor(min.y));
+    return {x0, y0, std::max(1, static_cast<int>(std::ceil(max.x)) - x0), std::max(1, static_cast<int>(std::ceil(max.y)) - y0)};
+}
+
+// A packed colour's channels.
+struct Rgba8 {
+    std::uint8_t r, g, b, a;
+};
+Rgba8 unpack(PackedColor c) {
+    return {static_cast<std::uint8_t>(c >> kColorRShift), static_cast<std::uint8_t>(c >> kColorGShift),
+            static_cast<std::uint8_t>(c >> kColorBShift), static_cast<std::uint8_t>(c >> kColorAShift)};
+}
+
 }  // namespace
 
 void PixelRect::add(const PixelRect& r) {
@@ -65,10 +83,10 @@ void PixelRect::add(const PixelRect& r) {
 // ---- RasterCanvas -----------------------------------------------------------------------------------------
 
 void RasterCanvas::begin(PxPoint min, PxPoint max) {
-    x0_ = static_cast<int>(std::floor(min.x));
-    y0_ = static_cast<int>(std::floor(min.y));
-    const int w = std::max(1, static_cast<int>(std::ceil(max.x)) - x0_);
-    const int h = std::max(1, static_cast<int>(std::ceil(max.y)) - y0_);
+    const PixelArea area = pixel_area(min, max);
+    x0_ = area.x0;
+    y0_ = area.y0;
+    const int w = area.w, h = area.h;
     const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     if (w != w_ || h != h_) {
         w_ = w;
@@ -99,10 +117,9 @@ void RasterCanvas::flatten_layer() {
         return;
     }
     // Straight-alpha "over" in 8 bits: the common case (an empty pixel below) is a plain store.
-    const std::uint8_t cr = static_cast<std::uint8_t>(color_ >> kColorRShift);
-    const std::uint8_t cg = static_cast<std::uint8_t>(color_ >> kColorGShift);
-    const std::uint8_t cb = static_cast<std::uint8_t>(color_ >> kColorBShift);
-    const unsigned ca = (color_ >> kColorAShift) & 0xFF;
+    const Rgba8 col = unpack(color_);
+    const std::uint8_t cr = col.r, cg = col.g, cb = col.b;
+    const unsigned ca = col.a;
     for (int y = layer_rect_.y0; y <= layer_rect_.y1; ++y) {
         const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(w_);
         for (int x = layer_rect_.x0; x <= layer_rect_.x1; ++x) {
@@ -182,18 +199,16 @@ PixelRect RasterCanvas::finish() {
 // ---- TrailCanvas ------------------------------------------------------------------------------------------
 
 bool TrailCanvas::same_view(const Frame& f) const {
-    const int x0 = static_cast<int>(std::floor(f.min.x)), y0 = static_cast<int>(std::floor(f.min.y));
-    const int w = std::max(1, static_cast<int>(std::ceil(f.max.x)) - x0);
-    const int h = std::max(1, static_cast<int>(std::ceil(f.max.y)) - y0);
-    if (w != w_ || h != h_ || f.color != color_ || f.thickness != thickness_) return false;
+    const PixelArea area = pixel_area(f.min, f.max);
+    if (area.w != w_ || area.h != h_ || f.color != color_ || f.thickness != thickness_) return false;
     // The mappings are affine: if the area's corners land within half a pixel, every point does.
     const double xs[2] = {(f.min.x - f.map.ax) / f.map.bx, (f.max.x - f.map.ax) / f.map.bx};
     const double ys[2] = {(f.min.y - f.map.ay) / f.map.by, (f.max.y - f.map.ay) / f.map.by};
     for (double x : xs)
         for (double y : ys) {
             const PxPoint now = f.map.to_px(x, y), then = map_.to_px(x, y);
-            if (std::abs((now.x - static_cast<float>(x0)) - (then.x - static_cast<float>(x0_))) > 0.5f ||
-                std::abs((now.y - static_cast<float>(y0)) - (then.y - static_cast<float>(y0_))) > 0.5f)
+            if (std::abs((now.x - static_cast<float>(area.x0)) - (then.x - static_cast<float>(x0_))) > 0.5f ||
+                std::abs((now.y - static_cast<float>(area.y0)) - (then.y - static_cast<float>(y0_))) > 0.5f)
                 return false;
         }
     return true;
@@ -202,23 +217,22 @@ bool TrailCanvas::same_view(const Frame& f) const {
 std::size_t TrailCanvas::begin(const Frame& f) {
     first_ = f.first_seq;
     last_ = f.last_seq;
-    const bool keep = generation_ == f.generation && same_view(f) && f.first_seq >= drawn_first_ &&
+    const bool keep = generation_ == f.generation && same_view(f) && f.first_seq >= base_ &&
                       next_seq_ >= f.first_seq && next_seq_ <= f.last_seq + 1 && f.last_seq - base_ < (1ull << 31);
     // The image stays where it was drawn relative to the area (it is shown over the area).
-    const int x0 = static_cast<int>(std::floor(f.min.x)), y0 = static_cast<int>(std::floor(f.min.y));
+    const PixelArea area = pixel_area(f.min, f.max);
     if (keep) {
-        map_.ax += static_cast<double>(x0 - x0_);
-        map_.ay += static_cast<double>(y0 - y0_);
-        x0_ = x0;
-        y0_ = y0;
+        map_.ax += static_cast<double>(area.x0 - x0_);
+        map_.ay += static_cast<double>(area.y0 - y0_);
+        x0_ = area.x0;
+        y0_ = area.y0;
         full_ = false;
         return static_cast<std::size_t>(next_seq_ - f.first_seq);
     }
     full_ = true;
-    x0_ = x0;
-    y0_ = y0;
-    const int w = std::max(1, static_cast<int>(std::ceil(f.max.x)) - x0_);
-    const int h = std::max(1, static_cast<int>(std::ceil(f.max.y)) - y0_);
+    x0_ = area.x0;
+    y0_ = area.y0;
+    const int w = area.w, h = area.h;
     const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     if (w != w_ || h != h_) rgba_.assign(n * 4, 0);
     w_ = w;
@@ -230,7 +244,6 @@ std::size_t TrailCanvas::begin(const Frame& f) {
     thickness_ = f.thickness;
     generation_ = f.generation;
     base_ = f.first_seq;
-    drawn_first_ = f.first_seq;
     next_seq_ = f.first_seq;
     have_prev_ = false;
     return 0;
@@ -243,7 +256,6 @@ void TrailCanvas::feed(std::uint64_t seq, double x, double y) {
     if (!have_prev_) {
         have_prev_ = true;
         prev_ = q;
-        prev_seq_ = seq;
         return;
     }
     // Steps under 1.5 px add nothing visible to a 1.6 px line; the newest sample is always drawn so the
@@ -252,7 +264,6 @@ void TrailCanvas::feed(std::uint64_t seq, double x, double y) {
     if (dx * dx + dy * dy < 2.25f && seq != last_) return;
     segment(prev_, q, static_cast<std::uint32_t>(seq - base_ + 1));
     prev_ = q;
-    prev_seq_ = seq;
 }
 
 void TrailCanvas::segment(PxPoint a, PxPoint b, std::uint32_t stamp) {
@@ -274,10 +285,9 @@ void TrailCanvas::finish() {
     // Opacity ((seq - first + 1) / n)^2 by the age of each pixel's newest sample.
     const std::uint32_t s_first = static_cast<std::uint32_t>(first_ - base_ + 1);
     const float inv_n = 1.0f / static_cast<float>(last_ - first_ + 1);
-    const float ca = static_cast<float>((color_ >> kColorAShift) & 0xFF) / 255.0f;
-    const std::uint8_t cr = static_cast<std::uint8_t>(color_ >> kColorRShift);
-    const std::uint8_t cg = static_cast<std::uint8_t>(color_ >> kColorGShift);
-    const std::uint8_t cb = static_cast<std::uint8_t>(color_ >> kColorBShift);
+    const Rgba8 col = unpack(color_);
+    const float ca = col.a / 255.0f;
+    const std::uint8_t cr = col.r, cg = col.g, cb = col.b;
     const std::size_t n = stamp_.size();
     for (std::size_t i = 0; i < n; ++i) {
         std::uint8_t* d = &rgba_[i * 4];

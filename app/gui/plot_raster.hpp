@@ -107,13 +107,12 @@ private:
     PackedColor color_ = 0;
     float thickness_ = 0;
     std::uint64_t generation_ = ~std::uint64_t{0};
-    std::uint64_t base_ = 0;                // stamps are seq - base_ + 1 (0 = never covered)
-    std::uint64_t drawn_first_ = 0;         // the oldest sample drawn since the last full redraw
+    std::uint64_t base_ = 0;                // the oldest sample drawn since the last full redraw; stamps
+                                            // are seq - base_ + 1 (0 = never covered)
     std::uint64_t next_seq_ = 0;            // the next sample to draw
     std::uint64_t first_ = 0, last_ = 0;    // this frame's window
     bool have_prev_ = false, full_ = false;
     PxPoint prev_{};                        // the last point drawn (image pixels, the image's mapping)
-    std::uint64_t prev_seq_ = 0;
     std::vector<std::uint32_t> stamp_;
     std::vector<std::uint8_t> cover_;
     std::vector<std::uint8_t> rgba_;

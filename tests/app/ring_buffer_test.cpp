@@ -125,6 +125,24 @@ struct Item {
     double as_double;
 };
 constexpr std::uint64_t mix(std::uint64_t s) { return s * 0x9E3779B97F4A7C15ull ^ (s >> 7); }
+
+// Consumer side of the lossless stress tests: drains at least `count` items made as Item{i, mix(i), i * 0.5};
+// reports how many arrived and how many of those were not the next one expected, intact.
+struct Consumed {
+    std::uint64_t received, bad;
+};
+Consumed consume_in_order(SpscRing<Item>& r, std::uint64_t count) {
+    std::uint64_t expected = 0, bad = 0;
+    while (expected < count) {
+        const std::size_t n = r.drain([&](const Item& it) {
+            if (it.seq != expected || it.check != mix(expected) || it.as_double != static_cast<double>(expected) * 0.5)
+                ++bad;
+            ++expected;
+        });
+        if (n == 0) std::this_thread::yield();
+    }
+    return {expected, bad};
+}
 }  // namespace
 
 TEST_CASE("ring: two threads, 10 million items, lossless, in order, intact") {
@@ -136,19 +154,10 @@ TEST_CASE("ring: two threads, 10 million items, lossless, in order, intact") {
             while (!r.try_push_no_drop(it)) std::this_thread::yield();
         }
     });
-    std::uint64_t expected = 0;
-    std::uint64_t bad = 0;
-    while (expected < kItems) {
-        const std::size_t n = r.drain([&](const Item& it) {
-            if (it.seq != expected || it.check != mix(expected) || it.as_double != static_cast<double>(expected) * 0.5)
-                ++bad;
-            ++expected;
-        });
-        if (n == 0) std::this_thread::yield();
-    }
+    const Consumed got = consume_in_order(r, kItems);
     producer.join();
-    CHECK(bad == 0);
-    CHECK(expected == kItems);
+    CHECK(got.bad == 0);
+    CHECK(got.received == kItems);
     CHECK(r.dropped() == 0);
     CHECK(r.empty());
 }
@@ -168,19 +177,10 @@ TEST_CASE("ring: two threads, 10 million items published in batches, lossless, i
         }
         r.publish();
     });
-    std::uint64_t expected = 0;
-    std::uint64_t bad = 0;
-    while (expected < kItems) {
-        const std::size_t n = r.drain([&](const Item& it) {
-            if (it.seq != expected || it.check != mix(expected) || it.as_double != static_cast<double>(expected) * 0.5)
-                ++bad;
-            ++expected;
-        });
-        if (n == 0) std::this_thread::yield();
-    }
+    const Consumed got = consume_in_order(r, kItems);
     producer.join();
-    CHECK(bad == 0);
-    CHECK(expected == kItems);
+    CHECK(got.bad == 0);
+    CHECK(got.received == kItems);
     CHECK(r.dropped() == 0);
     CHECK(r.pushed() == kItems);
 }
