@@ -122,6 +122,46 @@ TEST_CASE("loader: gzip read directly, corrupt gzip refused") {
     CHECK_THROWS_AS(id::load_measured("/nonexistent/file.csv"), id::DataError);
 }
 
+TEST_CASE("loader: gzip through zlib: round trip, concatenated members, truncation, a gzip bomb") {
+    const std::string text = "t,x,phi\n" + rows(2000);
+    const std::string gz = id::gzip_stored(text);
+    CHECK(id::is_gzip(gz));
+    CHECK(gz.size() < text.size());   // deflated now, not stored
+    CHECK(id::gunzip(gz, "a.gz") == text);
+    CHECK(id::gunzip(id::gzip_stored(""), "empty.gz").empty());
+
+    // Two members one after the other (cat a.gz b.gz) read whole; zero padding after the last is allowed.
+    const std::string second = rows(50);
+    CHECK(id::gunzip(gz + id::gzip_stored(second), "two.gz") == text + second);
+    CHECK(id::gunzip(gz + std::string(16, '\0'), "padded.gz") == text);
+
+    // Truncated anywhere (inside the data or the trailer) or with garbage after a member: refused.
+    for (std::size_t cut : {std::size_t{10}, gz.size() / 2, gz.size() - 8, gz.size() - 1}) {
+        try {
+            id::gunzip(gz.substr(0, cut), "short.gz");
+            FAIL("a truncated gzip was accepted, cut at " << cut);
+        } catch (const id::DataError& e) {
+            CHECK(has(e.what(), "short.gz: corrupt gzip data"));
+        }
+    }
+    CHECK_THROWS_AS(id::gunzip(gz + "garbage", "tail.gz"), id::DataError);
+    CHECK_THROWS_AS(id::gunzip("", "nothing.gz"), id::DataError);
+
+    // 64 MiB of zeros deflate to a few dozen KiB; with a 1 MiB cap gunzip refuses them early.
+    const std::string bomb = id::gzip_stored(std::string(std::size_t{64} << 20, '\0'));
+    CHECK(bomb.size() < (std::size_t{1} << 20));
+    try {
+        id::gunzip(bomb, "bomb.gz", std::size_t{1} << 20);
+        FAIL("the gzip bomb was accepted");
+    } catch (const id::DataError& e) {
+        CHECK(has(e.what(), "bomb.gz: decompressed data exceed 1 MiB"));
+    }
+    // Exactly at the cap is fine.
+    const std::string mib(std::size_t{1} << 20, 'x');
+    CHECK(id::gunzip(id::gzip_stored(mib), "cap.gz", mib.size()) == mib);
+    CHECK_THROWS_AS(id::gunzip(id::gzip_stored(mib), "cap.gz", mib.size() - 1), id::DataError);
+}
+
 TEST_CASE("loader: real deflate streams (the shared data files)") {
     const std::string f = std::string(IMPACTLAB_SHARED_DIR) + "/data/synthetic/s3_noise_only.csv.gz";
     if (!std::filesystem::exists(f)) return;

@@ -56,7 +56,9 @@ void parse_row_range(const std::string& spec, long& begin, long& end);
 // The bytes of a file, decompressed if it is gzip; throws DataError("PATH: ...").
 std::string read_data_file(const std::string& path);
 bool is_gzip(std::string_view bytes);
-std::string gunzip(std::string_view bytes, const std::string& source);
+// Decompresses gzip (one member or several concatenated) with zlib; refuses corrupt or truncated data and,
+// as a gzip bomb, more than `max_bytes` of output (DataError naming `source`).
+std::string gunzip(std::string_view bytes, const std::string& source, std::size_t max_bytes = std::size_t{1} << 30);
 // A valid gzip member holding `text` uncompressed (stored blocks): what synth writes for FILE.csv.gz.
 std::string gzip_stored(std::string_view text);
 
