@@ -235,14 +235,16 @@ void App::draw_controls() {
     if (ImGui::BeginCombo("##impact", imps[static_cast<std::size_t>(impact_)].id)) {
         for (std::size_t i = 0; i < imps.size(); ++i) {
             char label[96];
-            std::snprintf(label, sizeof label, "%-3s %s", imps[i].id,
-                          imps[i].kind == ImpactKind::Rigid ? "rigid, event-driven" : "compliant Hunt-Crossley");
+            const char* kind = imps[i].kind == ImpactKind::Rigid       ? "rigid, event-driven"
+                               : imps[i].kind == ImpactKind::Compliant ? "compliant Hunt-Crossley"
+                                                                       : "no bumper";
+            std::snprintf(label, sizeof label, "%-4s %s", imps[i].id, kind);
             if (ImGui::Selectable(label, static_cast<int>(i) == impact_)) set_model(stiffness_, static_cast<int>(i));
             tooltip(imps[i].summary);
         }
         ImGui::EndCombo();
     }
-    tooltip("Impact model (Tables 2, 3): C, C1 compliant; G instantaneous; H finite duration.  M cycles.");
+    tooltip("Impact model (Tables 2, 3): C, C1 compliant; G instantaneous; H finite duration; none: no bumper.  M cycles.");
 
     section("Forcing and bumper");
     float w = static_cast<float>(omega_);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace impactlab {
 
@@ -83,7 +84,50 @@ double Drive::time_of_phase(double phase) const {
 
 double Drive::next_knot(double t) const {
     const auto it = std::upper_bound(t_.begin(), t_.end(), t);
-    return it == t_.end() ? std::numeric_limits<double>::infinity() : *it;
+    double next = it == t_.end() ? std::numeric_limits<double>::infinity() : *it;
+    if (input_) {
+        // The first input sample strictly after t (rounding may put t a hair before a sample it sits on).
+        const Input& in = *input_;
+        const double s = (t - in.t0) / in.dt;
+        const double last = static_cast<double>(in.u.size() - 1);
+        if (s < last) {
+            double k = std::max(0.0, std::floor(s) + 1.0);
+            double tk = in.t0 + k * in.dt;
+            if (tk <= t) tk = in.t0 + (++k) * in.dt;
+            if (k <= last) next = std::min(next, tk);
+        }
+    }
+    return next;
+}
+
+void Drive::set_input(double t0, double dt, std::vector<double> u) {
+    if (!std::isfinite(t0) || !(dt > 0) || !std::isfinite(dt)) throw std::invalid_argument("input: the sample step must be positive");
+    if (u.size() < 2) throw std::invalid_argument("input: need at least two samples");
+    for (std::size_t k = 0; k < u.size(); ++k)
+        if (!std::isfinite(u[k])) throw std::invalid_argument("input: sample " + std::to_string(k) + " is not a finite number");
+    input_ = std::make_shared<const Input>(Input{t0, dt, std::move(u)});
+}
+
+double Drive::input(double t) const {
+    if (!input_) return 0.0;
+    const Input& in = *input_;
+    const double s = (t - in.t0) / in.dt;
+    const double last = static_cast<double>(in.u.size() - 1);
+    if (!(s > 0)) return in.u.front();
+    if (s >= last) return in.u.back();
+    const auto k = static_cast<std::size_t>(s);
+    const double f = s - static_cast<double>(k);
+    return in.u[k] + f * (in.u[k + 1] - in.u[k]);
+}
+
+double Drive::input_rate(double t) const {
+    if (!input_) return 0.0;
+    const Input& in = *input_;
+    const double s = (t - in.t0) / in.dt;
+    const double last = static_cast<double>(in.u.size() - 1);
+    if (!(s >= 0) || s >= last) return 0.0;
+    const auto k = static_cast<std::size_t>(s);
+    return (in.u[k + 1] - in.u[k]) / in.dt;
 }
 
 }  // namespace impactlab

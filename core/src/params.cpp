@@ -102,6 +102,7 @@ void validate(const Params& p, const std::string& src) {
     for (int i = 0; i < 4; ++i) finite(src, "a[" + std::to_string(i) + "]", p.a[i]);
     for (int i = 0; i < 4; ++i) finite(src, "b[" + std::to_string(i) + "]", p.b[i]);
     finite(src, "xI", p.xI);
+    finite(src, "input_gain", p.input_gain);
     if (std::abs(p.xI) > 0.1) fail(src, "xI", "must lie within +/-0.1 m of the springs' zero", p.xI);
     // The denominator of Eq. (3) must not vanish on the rail (|x| <= 0.1 m): sample it.
     for (int i = 0; i <= 1000; ++i) {
@@ -118,7 +119,7 @@ void validate(const Params& p, const std::string& src) {
         nonnegative(src, ik + "b", p.ip[1]);
         for (int i = 2; i < 5; ++i) positive(src, ik + p.impact->names[i], p.ip[i]);
         if (p.ip[2] < 1.0) fail(src, ik + "n1", "must be at least 1 (a contact force vanishing at h = 0)", p.ip[2]);
-    } else {
+    } else if (p.impact->kind == ImpactKind::Rigid) {
         for (int i = 0; i < 2; ++i) {
             nonnegative(src, ik + p.impact->names[i], p.ip[i]);
             if (p.ip[i] > 1.0) fail(src, ik + p.impact->names[i], "a restitution coefficient must lie in [0, 1]", p.ip[i]);

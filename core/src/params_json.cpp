@@ -141,7 +141,8 @@ Params params_from_json_text(const std::string& text, const std::string& src) {
         fail(src, msg);
     }
     if (!j.is_object()) fail(src, "expected a JSON object at the top level");
-    check_keys(j, {"name", "base", "stiffness", "m", "m0e", "k", "c", "T", "eps", "a", "b", "xI", "impact", "effects"},
+    check_keys(j, {"name", "base", "stiffness", "m", "m0e", "k", "c", "T", "eps", "a", "b", "xI", "input_gain", "impact",
+                   "effects"},
                "", src);
 
     // "base": start from a built-in version and override what the file gives; otherwise every key is required.
@@ -177,14 +178,15 @@ Params params_from_json_text(const std::string& text, const std::string& src) {
     read_coeffs(j, "a", p.a, required, src);
     read_coeffs(j, "b", p.b, required, src);
     read(j, "xI", p.xI, required, "", src);
+    read(j, "input_gain", p.input_gain, false, "", src);   // optional: 0 (no sampled input) by default
 
     if (j.contains("impact")) {
         const json& im = j["impact"];
         if (!im.is_object()) fail(src, "key 'impact': expected an object with \"model\" and its parameters");
-        if (!im.contains("model") || !im["model"].is_string()) fail(src, "missing key 'impact.model' (C, C1, G or H)");
+        if (!im.contains("model") || !im["model"].is_string()) fail(src, "missing key 'impact.model' (C, C1, G, H or none)");
         const std::string model = im["model"].get<std::string>();
         const ImpactModel* law = find_impact(model);
-        if (!law) fail(src, "key 'impact.model': unknown impact model '" + model + "' (known: C, C1, G, H)");
+        if (!law) fail(src, "key 'impact.model': unknown impact model '" + model + "' (known: C, C1, G, H, none)");
         const bool same_law = p.impact == law;
         p.impact = law;
         if (!same_law) p.ip = law->defaults;
@@ -247,6 +249,7 @@ std::string params_to_json_text(const Params& p) {
     for (double v : p.a) j["a"].push_back(v);
     for (double v : p.b) j["b"].push_back(v);
     j["xI"] = p.xI;
+    if (p.input_gain != 0.0) j["input_gain"] = p.input_gain;
     json im;
     im["model"] = p.impact->id;
     for (std::size_t i = 0; i < kMaxLawParams && p.impact->names[i]; ++i) im[p.impact->names[i]] = p.ip[i];

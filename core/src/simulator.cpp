@@ -48,6 +48,7 @@ struct RigSystem {
     Vec2 rhs(double t, const Vec2& y) const {
         const double w = d.omega(t), phi = d.phi(t);
         double F = unbalance_force(p, phi, w) - resistance(p, y[1]).F - spring_magnet(p, y[0]).F;
+        if (p.input_gain != 0.0) F += p.input_gain * d.input(t);
         if (compliant) F -= p.impact->contact(p.ip.data(), y[0] - p.xI, y[1]).F;
         if (!p.effects.empty()) F += effects_at(p, {t, y[0], y[1], phi, w, d.alpha(t), p.m0e, p.xI}).F;
         return {y[1], F / p.m};
@@ -67,7 +68,7 @@ struct RigSystem {
     void jacobian(double t, const Vec2& y, Mat2& J, Vec2& dfdt) const {
         const double w = d.omega(t), phi = d.phi(t), al = d.alpha(t);
         double dFdx = -spring_magnet(p, y[0]).dF, dFdv = -resistance(p, y[1]).dF;
-        double dFdt = p.m0e * (2.0 * w * al * std::sin(phi) + w * w * w * std::cos(phi));
+        double dFdt = p.m0e * (2.0 * w * al * std::sin(phi) + w * w * w * std::cos(phi)) + p.input_gain * d.input_rate(t);
         if (compliant) {
             const ContactForce c = p.impact->contact(p.ip.data(), y[0] - p.xI, y[1]);
             dFdx -= c.dF_dh;
@@ -109,14 +110,14 @@ double find_root(G&& g, double a, double b, double ga, double gb) {
 
 double normal_force(const Params& p, const Drive& d, double t) {
     const double w = d.omega(t), phi = d.phi(t);
-    double N = unbalance_force(p, phi, w) - spring_magnet(p, p.xI).F;
+    double N = unbalance_force(p, phi, w) + p.input_gain * d.input(t) - spring_magnet(p, p.xI).F;
     if (!p.effects.empty()) N += effects_at(p, {t, p.xI, 0.0, phi, w, d.alpha(t), p.m0e, p.xI}).F;
     return N;
 }
 
 double mechanical_energy(const Params& p, double x, double v) {
     double E = 0.5 * p.m * v * v + spring_magnet_potential(p, x);
-    if (!p.rigid() && x > p.xI) {
+    if (p.compliant() && x > p.xI) {
         const double n1 = p.ip[2];
         E += p.ip[0] * std::pow(x - p.xI, n1 + 1.0) / (n1 + 1.0);
     }
@@ -124,7 +125,8 @@ double mechanical_energy(const Params& p, double x, double v) {
 }
 
 double bumper_force(const Params& p, const Drive& d, const State& s) {
-    if (!p.rigid()) return p.impact->contact(p.ip.data(), s.x - p.xI, s.v).F;
+    if (!p.has_bumper()) return 0.0;
+    if (p.compliant()) return p.impact->contact(p.ip.data(), s.x - p.xI, s.v).F;
     if (s.regime == Regime::Contact) return std::max(0.0, normal_force(p, d, s.t));
     if (s.regime == Regime::Sticking) {
         const double T = p.impact->duration(p.ip.data(), s.v_impact);
@@ -137,14 +139,16 @@ ForceTerms force_terms(const Params& p, double t, double x, double v, double phi
     ForceTerms f;
     f.resistance = resistance(p, v).F;
     f.spring_magnet = spring_magnet(p, x).F;
-    f.impact = p.rigid() ? 0.0 : p.impact->contact(p.ip.data(), x - p.xI, v).F;
+    f.impact = p.compliant() ? p.impact->contact(p.ip.data(), x - p.xI, v).F : 0.0;
     f.unbalance = unbalance_force(p, phi, omega);
     if (!p.effects.empty()) f.effects = effects_at(p, {t, x, v, phi, omega, alpha, p.m0e, p.xI}).F;
     return f;
 }
 
 void Simulator::make_consistent(const Params& p, const Drive& d, State& s) {
-    if (p.rigid()) {
+    if (!p.has_bumper()) {
+        s.regime = Regime::Free;
+    } else if (p.rigid()) {
         if (s.regime != Regime::Free || s.x > p.xI || (s.x == p.xI && s.v >= 0)) {
             // On (or beyond) the bumper: held there, pressed or not.
             if (s.regime != Regime::Sticking) s.regime = normal_force(p, d, s.t) > 0 ? Regime::Contact : Regime::Free;
@@ -215,7 +219,7 @@ void Simulator::advance(const Params& p, const Drive& d, State& s, double t_end,
 
 bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_stop,
                           Observer* obs) {
-    const RigSystem sys{p, d, !p.rigid()};
+    const RigSystem sys{p, d, p.compliant()};
     const Vec2 y0(s.x, s.v);
     const double t0 = s.t;
     double h = std::min(s.h > 0 ? s.h : kRestartStep, tol_.h_max);
@@ -268,7 +272,7 @@ bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_st
     constexpr int kSamples = 4;
     double ta = t0, tb = t0;
     bool event = false;
-    for (int k = 1; k <= kSamples; ++k) {
+    for (int k = 1; k <= kSamples && p.has_bumper(); ++k) {   // without a bumper: no event
         tb = (k == kSamples) ? t0 + h : t0 + h * k / kSamples;
         if (crossed(tb)) {
             event = true;

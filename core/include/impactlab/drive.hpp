@@ -1,7 +1,11 @@
-// The prescribed rotation of the unbalance: omega(t) piecewise linear through knots, phi its exact integral.
-// Constant omega (CF), the EF ramp and the synthetic data's plateaus are all Drives.
+// How the rig is driven: the prescribed rotation of the unbalance (omega(t) piecewise linear through knots,
+// phi its exact integral), and optionally a sampled input u(t) (a measured force or voltage, linear between
+// samples) that acts on the cart as Params::input_gain * u. Constant omega (CF), the EF ramp, the synthetic
+// data's plateaus and a measured record's input are all Drives; the simulator stops at every knot and
+// every input sample, where the forcing's slope jumps.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 namespace impactlab {
@@ -25,9 +29,19 @@ public:
     double next_knot(double t) const;
     double t_begin() const { return t_.front(); }
 
+    // A sampled input u_k at t0 + k dt (k = 0..n-1), linear in between, held at its end values outside.
+    // Throws std::invalid_argument for dt <= 0, fewer than two samples or a value that is not finite.
+    void set_input(double t0, double dt, std::vector<double> u);
+    bool has_input() const { return input_ != nullptr; }
+    double input(double t) const;        // u(t); 0 without an input
+    double input_rate(double t) const;   // du/dt
+
 private:
     std::size_t segment(double t) const;
     std::vector<double> t_, w_, phi_;   // knots and phi at each knot
+    // Shared, so that copying a Drive (one per worker, one per window) never copies a long record.
+    struct Input { double t0, dt; std::vector<double> u; };
+    std::shared_ptr<const Input> input_;
 };
 
 }  // namespace impactlab

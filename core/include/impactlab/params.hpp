@@ -25,7 +25,8 @@ struct StiffnessSet {
     std::array<double, 4> b;        // b2 [1/m^2], b4 [1/m^4], b6, b8
 };
 
-enum class ImpactKind { Compliant, Rigid };
+// None: no bumper anywhere on the rail (a plain Duffing-type oscillator is a model like any other).
+enum class ImpactKind { Compliant, Rigid, None };
 
 // A contact force law for a compliant bumper: F >= 0 and its partial derivatives at penetration h >= 0
 // and penetration rate hdot. The derivatives feed the implicit integrator's Newton matrix.
@@ -85,11 +86,14 @@ struct Params {
     std::array<double, 4> a{};      // a1, a3, a5, a7
     std::array<double, 4> b{};      // b2, b4, b6, b8
     double xI = 0.0;                // bumper position [m]
+    double input_gain = 0.0;        // force per unit of a sampled input u(t) [N per unit of u] (Drive::input)
     const ImpactModel* impact = nullptr;            // never null in a valid Params
     std::array<double, kMaxLawParams> ip{};         // impact law parameters (impact->names order)
     std::vector<EffectInstance> effects;            // extra force laws (identify/, effects/)
 
     bool rigid() const { return impact->kind == ImpactKind::Rigid; }
+    bool compliant() const { return impact->kind == ImpactKind::Compliant; }
+    bool has_bumper() const { return impact->kind != ImpactKind::None; }
 };
 
 // Thrown for any invalid parameter set: the message names the source, the key and the problem.

@@ -26,6 +26,8 @@ const std::vector<ImpactModel>& impact_models() {
         {"H", "rigid bumper, finite impact duration T_imp(v-), restitution kappa(v-)", ImpactKind::Rigid,
          kRigidNames, kRigidUnits, {0.6150, 0.1350, 0.6594, 6.2193e-3, 4.0689e-3, 2.1733}, nullptr,
          discontinuous::restitution, discontinuous::duration},
+        {"none", "no bumper: the cart moves freely past xI (a plain Duffing-type oscillator)", ImpactKind::None,
+         {nullptr}, {nullptr}, {}, nullptr, nullptr, nullptr},
     };
     return table;
 }
