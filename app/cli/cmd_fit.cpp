@@ -102,11 +102,11 @@ int cmd_fit(const std::vector<std::string>& argv) {
     }
     if (a.has("--xI")) model.p.xI = a.num("--xI", 0.0, -0.1, 0.1);
     if (a.has("--m0e")) model.p.m0e = a.num("--m0e", model.p.m0e, 0.0, 10.0);
-    model.gain = a.num("--gain", 1.0, -1e12, 1e12);
+    if (a.has("--gain")) model.p.input_gain = a.num("--gain", 1.0, -1e12, 1e12);
     if (!data.has_phi()) model.forcing = identify::Forcing::Input;
 
     identify::FitOptions o;
-    const std::string baseline = a.str("--baseline", model.bumper ? "fixed" : "fit");
+    const std::string baseline = a.str("--baseline", model.bumper() ? "fixed" : "fit");
     if (baseline != "fixed" && baseline != "fit") throw UsageError("fit: --baseline must be 'fixed' or 'fit'");
     o.fit_baseline = baseline == "fit";
     o.fit_params = split_list(a.str("--fit-params", ""));
@@ -141,6 +141,10 @@ int cmd_fit(const std::vector<std::string>& argv) {
     if (r.effects_found.empty()) std::printf("effects found: none\n");
     for (const auto& f : r.effects_found)
         std::printf("effect %-22s explains %5.1f %%  z = %6.1f  %s\n", f.id.c_str(), 100 * f.explained_fraction, f.z, f.sentence.c_str());
+    for (const auto& f : r.effects_rejected) std::printf("rejected %-22s %s\n", f.id.c_str(), f.reason.c_str());
+    if (r.horizon_periods > 0)
+        std::printf("validated on %zu held-out windows of %.3g forcing periods (the predictability horizon): shooting RMS %.3g -> %.3g m\n",
+                    r.validation_windows, r.horizon_periods, r.validation_rms_before_m, r.validation_rms_after_m);
     const auto& b = r.error_before;
     const auto& e = r.error_after;
     std::printf("%-34s %14s %14s\n", "", "before", "after");

@@ -91,7 +91,7 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
     } catch (const ParamError& e) {
         throw UsageError(std::string("--model: ") + e.what());
     }
-    if (!model.bumper || model.forcing != identify::Forcing::Unbalance)
+    if (!model.bumper() || model.forcing != identify::Forcing::Unbalance)
         throw UsageError("synth: --model must be an unbalance-forced rig model (a version or a parameter file)");
     if (a.has("--xI")) model.p.xI = a.num("--xI", 0.0, -0.1, 0.1);
     if (a.has("--m0e")) model.p.m0e = a.num("--m0e", model.p.m0e, 0.0, 10.0);

@@ -64,6 +64,6 @@ TEST_CASE("effect catalogue: every registry law plus the base-changing effects")
     CHECK_THROWS_AS(identify::apply_effect(m, "no_such_effect", {}), ParamError);
     CHECK_THROWS_AS(identify::apply_effect(m, "constant_force", {{"F9", 1.0}}), ParamError);
     const identify::Model duffing = identify::resolve_fit_model("duffing", identify::Forcing::Input);
-    CHECK_FALSE(duffing.bumper);
+    CHECK_FALSE(duffing.bumper());
     CHECK(duffing.p.m == 1.0);
 }

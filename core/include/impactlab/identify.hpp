@@ -26,10 +26,9 @@ enum class Forcing { Unbalance, Input };   // phi drives m0e phi'^2 sin(phi); or
 
 // The model impactlab fit works with: the physical parameters (with any effects), and how the data force it.
 struct Model {
-    Params p;
+    Params p;               // p.input_gain: the force per unit of u; impact model "none": no bumper
     Forcing forcing = Forcing::Unbalance;
-    double gain = 1.0;      // Input: the force is gain * u [N per unit of u]
-    bool bumper = true;     // false: no bumper anywhere on the rail (the Duffing baseline)
+    bool bumper() const { return p.has_bumper(); }
     // The measurement map x_measured = sensor_gain * x + sensor_offset, from the sensor_* effects.
     double sensor_gain() const;
     double sensor_offset() const;
@@ -71,11 +70,12 @@ struct FitOptions {
     bool plots = true;
 };
 
+// Measured impacts against the same impacts simulated with the model and read by the same detector.
 struct ImpactLawError {
-    std::size_t impacts = 0;
-    double kappa_rms = 0;        // RMS of measured -v+/v- minus the model's kappa(v-)
-    double duration_rms_s = 0;   // RMS of the measured dwell minus the model's T_imp(v-) [s]
-    double level_offset_m = 0;   // measured bumper level minus the model's xI (in measured coordinates) [m]
+    std::size_t impacts = 0;     // measured impacts the model also makes (the pairs compared)
+    double kappa_rms = 0;        // RMS of measured minus simulated apparent restitution -v+/v-
+    double duration_rms_s = 0;   // RMS of measured minus simulated dwell at the bumper [s]
+    double level_offset_m = 0;   // median of measured minus simulated flat-top level (measured coordinates) [m]
 };
 
 struct ErrorSummary {
@@ -97,12 +97,23 @@ struct FoundEffect {
     std::string sentence;
     double z = 0;                     // significance
     std::string evidence;             // "equation error" or "impact law"
+    // The held-out check that kept it: relative fall of the short-horizon simulation error on the fold the
+    // effect's parameters were not fitted to, and the paired z of that fall over the windows.
+    double validation_gain = 0, validation_z = 0;
 };
 
 struct CandidateScore {              // every library candidate tried in the first round
     std::string id;
     double gain = 0, z = 0;          // share of the residual it would explain alone, and its significance
     bool selected = false;
+    std::vector<std::pair<std::string, double>> coefficients;   // its parameters fitted alone
+};
+
+// An effect the residual pointed to and the held-out simulation error turned down.
+struct RejectedEffect {
+    std::string id, reason;
+    double validation_gain = 0, validation_z = 0;
+    std::vector<std::pair<std::string, double>> parameters;
 };
 
 // Plot material kept from the run.
@@ -112,7 +123,11 @@ struct Trace {
 struct ResidualCloud {
     std::vector<double> x, v, phi, before, after;
 };
-struct ImpactPoint { double t, v_minus, v_plus, dwell, level; };
+// A measured impact, and the same impact simulated with the model before and after (NaN: none there).
+struct ImpactPoint {
+    double t, v_minus, v_plus, dwell, level;
+    double kappa_before, dwell_before, kappa_after, dwell_after;
+};
 
 struct FitReport {
     std::string data_source, model_name, forcing, baseline;
@@ -121,6 +136,13 @@ struct FitReport {
     double omega_min = 0, omega_max = 0, drive_fit_rms_rad = 0, period_s = 0;
     Model before, after;
     std::vector<FoundEffect> effects_found;
+    std::vector<RejectedEffect> effects_rejected;
+    // The predictability horizon: shooting error of the baseline against window length, and the length the
+    // held-out validation used.
+    std::vector<std::pair<double, double>> horizon_growth;   // (window [forcing periods], RMS [m])
+    double horizon_periods = 0;
+    std::size_t validation_windows = 0;
+    double validation_rms_before_m = 0, validation_rms_after_m = 0;   // held-out shooting RMS
     std::vector<CandidateScore> candidates;
     ErrorSummary error_before, error_after;
     std::vector<ImpactPoint> impacts;

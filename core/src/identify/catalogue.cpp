@@ -31,7 +31,7 @@ Model resolve_fit_model(const std::string& name, Forcing forcing) {
     if (lower == "duffing") {
         // m y'' + d y' + k y + k3 y^3 = gain u: a Params with m = 1, no dry friction, no magnets' denominator,
         // and no bumper. Starting values are placeholders: fit mode estimates d, k, k3 and the gain.
-        m.p = make_version("A1G");
+        m.p = make_version("A1none");
         m.p.name = "duffing";
         m.p.stiffness_id = "duffing";
         m.p.m = 1.0;
@@ -41,12 +41,14 @@ Model resolve_fit_model(const std::string& name, Forcing forcing) {
         m.p.T = 0.0;
         m.p.a = {0, 0, 0, 0};
         m.p.b = {0, 0, 0, 0};
-        m.p.xI = 0.1;
-        m.bumper = false;
+        m.p.xI = 0.0;
+        m.p.input_gain = 1.0;
         m.forcing = Forcing::Input;
         return m;
     }
     m.p = resolve_model(name);
+    // A measured input drives the rig through a gain the fit estimates; a file may state its own.
+    if (forcing == Forcing::Input && m.p.input_gain == 0.0) m.p.input_gain = 1.0;
     return m;
 }
 
@@ -122,7 +124,7 @@ void apply_effect(Model& m, const std::string& id, const std::vector<std::pair<s
             if (given[k]) inst->p[k] = v[k];
         return;
     }
-    if (!m.bumper) throw ParamError("effect '" + id + "' needs a model with a bumper");
+    if (!m.bumper()) throw ParamError("effect '" + id + "' needs a model with a bumper");
     if (id == "bumper_offset") {
         m.p.xI += v[0];
         return;
@@ -238,7 +240,7 @@ EffectInstance start_instance(const Candidate& c, const Model& m, const Prep& pr
 std::vector<std::string> default_fit_params(const Model& m) {
     if (m.forcing == Forcing::Input) {
         std::vector<std::string> v{"c", "k", "gain"};
-        if (!m.bumper) v.insert(v.begin() + 2, "a3");
+        if (!m.bumper()) v.insert(v.begin() + 2, "a3");
         else {
             if (m.p.T > 0) v.push_back("T");
             if (m.p.a[0] != 0) v.push_back("a1");
@@ -264,7 +266,7 @@ std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& nam
         else if (n == "b2") p = &m.p.b[0];
         else if (n == "b4") p = &m.p.b[1];
         else if (n == "m0e") p = &m.p.m0e;
-        else if (n == "gain") p = &m.gain;
+        else if (n == "gain") p = &m.p.input_gain;
         else if (n == "m") p = &m.p.m;
         else if (n == "xI") p = &m.p.xI;
         if (!p) throw ParamError("--fit-params: unknown parameter '" + n + "' (known: c, T, k, a1, a3, a5, b2, b4, m0e, gain, m, xI)");
@@ -303,10 +305,10 @@ std::string sentence(const std::string& id, const Model& b, const std::vector<st
                      const std::vector<std::pair<std::string, double>>& s, const SentenceContext& c) {
     auto val = [&](const char* k) { return get(v, k); };
     auto sig = [&](const char* k) { return get(s, k); };
-    if (id == "constant_force" && !b.bumper)
+    if (id == "constant_force" && !b.bumper())
         return "a constant force of " + pm(val("F0"), sig("F0")) +
                " (in the model's force units): an offset of the input or of the system's equilibrium";
-    if (id == "even_stiffness" && !b.bumper)
+    if (id == "even_stiffness" && !b.bumper())
         return "an even (quadratic) restoring term -k2 y^2 with k2 = " + pm(val("k2"), sig("k2")) +
                ": an asymmetric nonlinearity, the even-order distortion";
     if (id == "constant_force") {

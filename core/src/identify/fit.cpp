@@ -1,8 +1,11 @@
 // The loop of impactlab fit: baseline, residual, effect selection, the model with the effects, errors before
 // and after.
 #include <algorithm>
+#include <array>
+#include <cstdio>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <numeric>
@@ -216,29 +219,89 @@ double group_z_dss(const Eigen::MatrixXd& J, const Eigen::VectorXd& R, const std
     return chi2_to_z(dss / std::max(s2 * tau, 1e-300), static_cast<int>(q));
 }
 
-ImpactLawError impact_error(const Prep& pr, const Model& m) {
+// Knobs for the fitted base parameters, with their physical bounds: mass, damping, friction and unbalance
+// never negative, the input gain keeps the sign it starts with, the magnets' b2 keeps F_SA's denominator
+// positive.
+std::vector<Knob> base_knobs(Model& m, const std::vector<std::string>& names) {
+    std::vector<Knob> knobs;
+    for (const auto& b : base_params(m, names)) {
+        double lo = -1e12, hi = 1e12;
+        if (b.name == "c" || b.name == "T" || b.name == "m0e" || b.name == "m") lo = 0;
+        if (b.name == "gain") (*b.value >= 0 ? lo : hi) = 0;
+        if (b.name == "b2") lo = -50;
+        knobs.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6), lo, hi, b.name});
+    }
+    return knobs;
+}
+
+// Knobs for the free parameters of effect instance `inst` as candidate `c` fits them, with their bounds.
+void effect_knobs(const Candidate& c, EffectInstance& inst, std::vector<Knob>& knobs) {
+    for (std::size_t li = 0; li < c.free.size(); ++li) {
+        const auto pi = static_cast<std::size_t>(c.free[li]);
+        double lo = -1e12, hi = 1e12;
+        if (c.id == "stribeck_friction") lo = pi == 1 ? 0.005 : 0.0;
+        if (c.id == "quadratic_damping") lo = 0.0;   // a resistance never pushes
+        if (c.id == "sensor_gain") {
+            lo = 0.5;
+            hi = 2.0;
+        }
+        knobs.push_back({&inst.p[pi], c.step[li], lo, hi, c.law->names[pi]});
+    }
+}
+
+// Knobs of the effects a fit added to model m (those after its first `first` effects), as their candidates
+// fit them.
+std::vector<Knob> found_effect_knobs(Model& m, std::size_t first, const std::vector<Candidate>& cands) {
+    std::vector<Knob> knobs;
+    for (std::size_t k = first; k < m.p.effects.size(); ++k)
+        for (const auto& c : cands)
+            if (c.id == m.p.effects[k].law->id) {
+                effect_knobs(c, m.p.effects[k], knobs);
+                break;
+            }
+    return knobs;
+}
+
+// Why a model is not physical, or empty: what a fit must never write.
+std::string unphysical(const Model& m) {
+    try {
+        validate(m.p, "fitted model");
+    } catch (const ParamError& e) {
+        return e.what();
+    }
+    for (const auto& e : m.p.effects) {
+        const std::string id = e.law->id;
+        if (id == "quadratic_damping" && e.p[0] < 0) return "a negative quadratic damping cq (it would push the cart)";
+        if (id == "sensor_gain" && !(e.p[0] > 0)) return "a sensor gain that is not positive";
+    }
+    return {};
+}
+
+double apparent_kappa(const ImpactObs& im) { return im.v_minus > 0 ? -im.v_plus / im.v_minus : 0.0; }
+
+ImpactLawError impact_error(const Prep& pr, const PredictedImpacts& pred) {
     ImpactLawError e;
-    if (!m.bumper || pr.impacts.empty()) return e;
-    const double g = m.sensor_gain(), o = m.sensor_offset();
     double sk = 0, sd = 0;
     std::size_t nk = 0;
     std::vector<double> lev;
-    for (const auto& im : pr.impacts) {
-        double kappa, dwell;
-        model_impact_law(m.p, im.v_minus / g, kappa, dwell);
+    for (std::size_t k = 0; k < pr.impacts.size(); ++k) {
+        if (!pred.ok[k]) continue;
+        const ImpactObs& im = pr.impacts[k];
+        const ImpactObs& sm = pred.obs[k];
         if (im.v_minus > 0.02) {
-            const double k = -im.v_plus / im.v_minus - kappa;
-            sk += k * k;
+            const double dk = apparent_kappa(im) - apparent_kappa(sm);
+            sk += dk * dk;
             ++nk;
         }
-        const double dd = (im.t_out - im.t_in) - dwell;
+        const double dd = (im.t_out - im.t_in) - (sm.t_out - sm.t_in);
         sd += dd * dd;
-        lev.push_back(im.level);
+        lev.push_back(im.level - sm.level);
+        ++e.impacts;
     }
-    e.impacts = pr.impacts.size();
+    if (e.impacts == 0) return e;
     e.kappa_rms = nk ? std::sqrt(sk / static_cast<double>(nk)) : 0.0;
-    e.duration_rms_s = std::sqrt(sd / static_cast<double>(pr.impacts.size()));
-    e.level_offset_m = median(lev) - (g * m.p.xI + o);
+    e.duration_rms_s = std::sqrt(sd / static_cast<double>(e.impacts));
+    e.level_offset_m = median(lev);
     return e;
 }
 
@@ -249,6 +312,178 @@ std::vector<std::pair<std::string, double>> named(const EffectInstance& e) {
 }
 
 double rms_of(const Eigen::VectorXd& R) { return R.size() ? std::sqrt(R.squaredNorm() / static_cast<double>(R.size())) : 0.0; }
+
+}  // namespace
+
+namespace {
+
+// The held-out validation of the effects found (stage 6 of run_fit). The record is cut into blocks of about
+// an eighth of its length, alternately in fold 0 and fold 1. For each fold, the force effects' parameters are
+// refitted on the equation error of the other fold's rows (the base-changing impact effects keep the values
+// their impacts gave), and the model is simulated over the fold's windows, each as long as the record's
+// predictability horizon (a chaotic record cannot be judged by a long free run). Effects are tried in the
+// order they were found; each must lower the summed held-out error against the model without it, with a
+// paired z >= 3 over the windows and by at least 2 % of the error above the sensor noise.
+void validate_effects(const Prep& pr, const Model& base, const std::vector<Candidate>& cands, const FitOptions& o,
+                      FitReport& rep, Model& after) {
+    const MeasuredData& data = *pr.data;
+    // The horizon of the best model at hand (the baseline with every effect found): a wrong baseline's error
+    // grows from its own fault, not from the record's instability. An unphysical candidate falls back to the
+    // baseline.
+    const Horizon hz = predictability_horizon(pr, unphysical(after).empty() ? after : base, o.rtol);
+    rep.horizon_growth = hz.growth;
+    // Within the horizon, windows short enough that there are about 40 of them (the paired test's power).
+    double L = hz.periods;
+    while (L > 0.25 && windows(pr, L).size() < 40) L *= 0.5;
+    rep.horizon_periods = L;
+    const auto wins = L > 0 ? windows(pr, L) : std::vector<std::pair<std::size_t, std::size_t>>{};
+    rep.validation_windows = wins.size();
+    const double t0 = data.t.front(), span = data.t.back() - t0;
+    const double block = std::max(span / 8.0, 2.0 * hz.periods * pr.period);
+    auto fold_of = [&](std::size_t i) { return static_cast<int>(std::floor((data.t[i] - t0) / block)) % 2; };
+    std::array<Prep, 2> fold_pr{pr, pr};
+    std::array<std::vector<std::size_t>, 2> fold_wins;
+    for (int f = 0; f < 2; ++f) {
+        fold_pr[static_cast<std::size_t>(f)].rows.clear();
+        for (std::size_t r : pr.rows)
+            if (fold_of(r) == f) fold_pr[static_cast<std::size_t>(f)].rows.push_back(r);
+    }
+    for (std::size_t w = 0; w < wins.size(); ++w) fold_wins[static_cast<std::size_t>(fold_of(wins[w].first))].push_back(w);
+    const std::size_t n_base_effects = base.p.effects.size();
+
+    // Held-out SSE of each window for model m (its force effects refitted on the other fold).
+    auto held_out = [&](const Model& m) {
+        std::vector<double> e(wins.size(), INFINITY);
+        for (std::size_t f = 0; f < 2; ++f) {
+            Model mf = m;
+            std::vector<Knob> knobs = found_effect_knobs(mf, n_base_effects, cands);
+            const Prep& fit_on = fold_pr[1 - f];
+            if (!knobs.empty() && fit_on.rows.size() >= 20) {
+                Eigen::VectorXd R;
+                Eigen::MatrixXd J;
+                lm_residual(fit_on, mf, knobs, 15, R, J);
+            }
+            std::vector<std::pair<std::size_t, std::size_t>> sub;
+            for (std::size_t w : fold_wins[f]) sub.push_back(wins[w]);
+            const std::vector<double> ef = window_sse(pr, mf, sub, o.refine_shooting, o.rtol);
+            for (std::size_t k = 0; k < sub.size(); ++k) e[fold_wins[f][k]] = ef[k];
+        }
+        return e;
+    };
+    std::size_t samples = 0;
+    for (const auto& [a, b] : wins) samples += b - a + 1;
+    const double noise_sse = static_cast<double>(samples) * pr.sigma_x * pr.sigma_x;
+    struct Compare { double gain = 0, z = 0, sum_cur = 0, sum_new = 0; };
+    // The paired test runs over the informative windows, where the two models' errors differ by more than a
+    // tenth of the window's noise: an impact-law effect changes only the windows with impacts in them. The
+    // t statistic is read through F(1, n-1), so a few windows need a large and consistent fall.
+    auto compare = [&](const std::vector<double>& cur, const std::vector<double>& cand) {
+        Compare c;
+        std::vector<double> d;
+        for (std::size_t w = 0; w < cur.size(); ++w) {
+            if (!std::isfinite(cur[w]) && !std::isfinite(cand[w])) continue;
+            // A window the new model cannot simulate counts against it; one the old cannot, for it.
+            const double a = std::isfinite(cur[w]) ? cur[w] : 10.0 * cand[w] + 1.0, b = std::isfinite(cand[w]) ? cand[w] : 10.0 * cur[w] + 1.0;
+            c.sum_cur += a;
+            c.sum_new += b;
+            const double noise_w = static_cast<double>(wins[w].second - wins[w].first + 1) * pr.sigma_x * pr.sigma_x;
+            if (std::abs(a - b) > 0.1 * noise_w) d.push_back(a - b);
+        }
+        c.gain = c.sum_cur > 0 ? (c.sum_cur - c.sum_new) / c.sum_cur : 0.0;
+        if (d.size() < 3) return c;
+        const double n = static_cast<double>(d.size());
+        double mean = 0, var = 0;
+        for (double v : d) mean += v;
+        mean /= n;
+        for (double v : d) var += (v - mean) * (v - mean);
+        var /= (n - 1.0);
+        const double t = var > 0 ? mean / std::sqrt(var / n) : (mean > 0 ? 1e6 : -1e6);
+        const double z_t = std::copysign(f_to_z(t * t, 1.0, n - 1.0), t);
+        // Wilcoxon's signed-rank test as well: chaotic windows make the differences heavy-tailed, and a
+        // consistent sign over the windows is what a real effect shows and a spurious one does not.
+        std::vector<std::size_t> order(d.size());
+        std::iota(order.begin(), order.end(), 0);
+        std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return std::abs(d[i]) < std::abs(d[j]); });
+        double w_plus = 0;
+        for (std::size_t r = 0; r < order.size(); ++r)
+            if (d[order[r]] > 0) w_plus += static_cast<double>(r + 1);
+        const double z_w = (w_plus - n * (n + 1) / 4.0) / std::sqrt(n * (n + 1) * (2 * n + 1) / 24.0);
+        c.z = std::max(z_t, z_w);
+        return c;
+    };
+
+    std::vector<FoundEffect> found = std::move(rep.effects_found);
+    rep.effects_found.clear();
+    Model cur = base;
+    const std::vector<double> e_base = wins.size() >= 12 ? held_out(base) : std::vector<double>{};
+    std::vector<double> e_cur = e_base;
+    for (auto& f : found) {
+        RejectedEffect rej{f.id, "", 0, 0, f.parameters};
+        if (e_cur.empty()) {
+            rej.reason = "too few windows to validate it on held-out data";
+            rep.effects_rejected.push_back(std::move(rej));
+            continue;
+        }
+        Model cand = cur;
+        apply_effect(cand, f.id, f.parameters);
+        const std::string why = unphysical(cand);
+        if (!why.empty()) {
+            rej.reason = "unphysical: " + why;
+            rep.effects_rejected.push_back(std::move(rej));
+            continue;
+        }
+        const std::vector<double> e_new = held_out(cand);
+        const Compare c = compare(e_cur, e_new);
+        f.validation_gain = rej.validation_gain = c.gain;
+        f.validation_z = rej.validation_z = c.z;
+        const double excess = std::max(c.sum_cur - noise_sse, 0.0);
+        const bool better = c.z >= 3.0 && c.sum_cur - c.sum_new > 0.02 * excess && c.gain > 1e-3;
+        if (!better) {
+            char buf[200];
+            std::snprintf(buf, sizeof buf, "held-out simulation error %s by %.2f %% (paired z = %.1f over %zu windows): not better beyond the noise",
+                          c.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(c.gain), c.z, wins.size());
+            rej.reason = buf;
+            rep.effects_rejected.push_back(std::move(rej));
+            continue;
+        }
+        cur = std::move(cand);
+        e_cur = e_new;
+        rep.effects_found.push_back(std::move(f));
+    }
+    if (!rep.effects_found.empty()) {
+        const Compare c = compare(e_base, e_cur);
+        if (!(c.sum_new < c.sum_cur)) {   // never a worse model than the baseline
+            for (auto& f : rep.effects_found)
+                rep.effects_rejected.push_back({f.id, "the model with every effect does not beat the baseline on held-out data", c.gain, c.z, f.parameters});
+            rep.effects_found.clear();
+            cur = base;
+            e_cur = e_base;
+        }
+    }
+    // The kept force effects were fitted jointly with the rejected ones: refit them on the whole record
+    // (equation error; an input-forced record keeps its output-error values when nothing was dropped).
+    if (!rep.effects_rejected.empty() && !rep.effects_found.empty() && pr.phi_forced) {
+        Model refit = cur;
+        std::vector<Knob> knobs = found_effect_knobs(refit, n_base_effects, cands);
+        if (!knobs.empty()) {
+            Eigen::VectorXd R;
+            Eigen::MatrixXd J;
+            lm_residual(pr, refit, knobs, 20, R, J);
+            if (unphysical(refit).empty()) cur = refit;
+        }
+        for (auto& f : rep.effects_found)
+            for (const auto& e : cur.p.effects)
+                if (f.id == e.law->id) f.parameters = named(e);
+    }
+    auto total = [&](const std::vector<double>& e) {
+        double s = 0;
+        for (double v : e) s += std::isfinite(v) ? v : 0.0;
+        return samples ? std::sqrt(s / static_cast<double>(samples)) : 0.0;
+    };
+    rep.validation_rms_before_m = total(e_base);
+    rep.validation_rms_after_m = total(e_cur);
+    after = cur;
+}
 
 }  // namespace
 
@@ -284,14 +519,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     std::vector<std::string> base_names;
     if (o.fit_baseline) {
         base_names = o.fit_params.empty() ? default_fit_params(base) : o.fit_params;
-        auto bp = base_params(base, base_names);
-        std::vector<Knob> knobs;
-        for (const auto& b : bp) {
-            double lo = -1e12, hi = 1e12;
-            if (b.name == "c" || b.name == "T" || b.name == "m0e" || b.name == "m") lo = 0;
-            if (b.name == "b2") lo = -50;
-            knobs.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6), lo, hi, b.name});
-        }
+        std::vector<Knob> knobs = base_knobs(base, base_names);
         // A first pass from the starting values (linear parameters converge in one step), then refine.
         lm_residual(pr, base, knobs, 40, R0, Jtmp);
         // Input-forced data: refine by the simulation error, which the equation error at a few samples per
@@ -495,29 +723,10 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             }
         }
         std::vector<Knob> knobs;
-        if (o.fit_baseline) {
-            for (const auto& b : base_params(after, base_names)) {
-                double lo = -1e12;
-                if (b.name == "c" || b.name == "T" || b.name == "m0e" || b.name == "m") lo = 0;
-                if (b.name == "b2") lo = -50;
-                knobs.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6), lo, 1e12, b.name});
-            }
-        }
+        if (o.fit_baseline) knobs = base_knobs(after, base_names);
         const std::size_t n_base_knobs = knobs.size();
-        for (std::size_t k = 0; k < chosen.size(); ++k) {
-            const Candidate& c = cands[groups[chosen[k]].cand];
-            EffectInstance& inst = after.p.effects[first_new + k];
-            for (std::size_t li = 0; li < c.free.size(); ++li) {
-                const auto pi = static_cast<std::size_t>(c.free[li]);
-                double lo = -1e12, hi = 1e12;
-                if (c.id == "stribeck_friction") lo = pi == 1 ? 0.005 : 0.0;
-                if (c.id == "sensor_gain") {
-                    lo = 0.5;
-                    hi = 2.0;
-                }
-                knobs.push_back({&inst.p[pi], c.step[li], lo, hi, c.law->names[pi]});
-            }
-        }
+        for (std::size_t k = 0; k < chosen.size(); ++k)
+            effect_knobs(cands[groups[chosen[k]].cand], after.p.effects[first_new + k], knobs);
         Eigen::VectorXd R1;
         Eigen::MatrixXd J1;
         if (knobs.empty()) residual(pr, after, R1, pw);
@@ -583,21 +792,10 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     // the refitted model without it simulates the validation part clearly worse (1 %).
     if (!pr.phi_forced && o.fit_baseline && !chosen.empty()) {
         auto oe_fit = [&](Model& m, std::size_t skip, int iters) {
-            std::vector<Knob> kn;
-            for (const auto& b : base_params(m, base_names)) {
-                double lo = -1e12;
-                if (b.name == "c" || b.name == "T" || b.name == "m0e" || b.name == "m") lo = 0;
-                kn.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6), lo, 1e12, b.name});
-            }
+            std::vector<Knob> kn = base_knobs(m, base_names);
             for (std::size_t k = 0, e = 0; k < chosen.size(); ++k) {
                 if (k == skip) continue;
-                const Candidate& c = cands[groups[chosen[k]].cand];
-                EffectInstance& inst = m.p.effects[first_new + e++];
-                for (std::size_t li = 0; li < c.free.size(); ++li) {
-                    const auto pi = static_cast<std::size_t>(c.free[li]);
-                    kn.push_back({&inst.p[pi], c.step[li], c.id == "stribeck_friction" ? (pi == 1 ? 0.005 : 0.0) : -1e12,
-                                  c.id == "sensor_gain" ? 2.0 : 1e12, c.law->names[pi]});
-                }
+                effect_knobs(cands[groups[chosen[k]].cand], m.p.effects[first_new + e++], kn);
             }
             lm_simulation(pr, m, kn, iters, o.rtol);
             // Judged out of sample: on the part of the record the fit did not use.
@@ -633,7 +831,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     }
     // A sensor offset moves the measured bumper level too: if the impacts' flat tops contradict it, the
     // offset is an artefact of the free-flight fit and goes (the impact stage then sees the level as it is).
-    if (after.bumper && pr.impacts.size() >= 3) {
+    if (after.bumper() && pr.impacts.size() >= 3) {
         for (std::size_t k = 0; k < force_found.size(); ++k) {
             if (force_found[k].id != "sensor_offset") continue;
             std::vector<double> lev;
@@ -657,50 +855,55 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     for (auto& f : force_found) rep.effects_found.push_back(std::move(f));
 
     // ---- 5. the impact law: bumper position, impact duration, restitution ----------------------------------
-    if (after.bumper && pr.impacts.size() >= 3) {
-        const double g = after.sensor_gain(), off = after.sensor_offset();
-        const std::size_t ni = pr.impacts.size();
-        std::vector<double> lev;
-        for (const auto& im : pr.impacts) lev.push_back((im.level - off) / g);
-        const double med = median(lev);
-        std::vector<double> dev;
-        for (double l : lev) dev.push_back(std::abs(l - med));
-        const double se = std::max(1.2533 * 1.4826 * median(dev), 0.3 * pr.sigma_x) / std::sqrt(static_cast<double>(ni));
-        const double delta = med - after.p.xI;
-        if (std::abs(delta) / se >= o.z_threshold && std::abs(delta) > 2.0 * pr.sigma_x + 1e-7) {
-            double sb = 0, sa = 0;
-            for (double l : lev) {
-                sb += (l - after.p.xI) * (l - after.p.xI);
-                sa += (l - med) * (l - med);
+    // Each measured impact is compared with the same impact simulated with the model (predict_impacts), so a
+    // compliant bumper's apparent penetration or a sampled flat top is never mistaken for an effect.
+    if (after.bumper() && pr.impacts.size() >= 3) {
+        const double g = after.sensor_gain();
+        PredictedImpacts pred = predict_impacts(pr, after, o.rtol);
+        std::vector<double> dlev;
+        for (std::size_t k = 0; k < pr.impacts.size(); ++k)
+            if (pred.ok[k]) dlev.push_back((pr.impacts[k].level - pred.obs[k].level) / g);
+        const std::size_t ni = dlev.size();
+        if (ni >= 3) {
+            const double med = median(dlev);
+            std::vector<double> dev;
+            for (double l : dlev) dev.push_back(std::abs(l - med));
+            const double se = std::max(1.2533 * 1.4826 * median(dev), 0.3 * pr.sigma_x) / std::sqrt(static_cast<double>(ni));
+            const double delta = med;
+            if (std::abs(delta) / se >= o.z_threshold && std::abs(delta) > 2.0 * pr.sigma_x + 1e-7) {
+                double sb = 0, sa = 0;
+                for (double l : dlev) {
+                    sb += l * l;
+                    sa += (l - med) * (l - med);
+                }
+                FoundEffect f;
+                f.id = "bumper_offset";
+                f.evidence = "impact law";
+                f.explained_fraction = sb > 0 ? 1.0 - sa / sb : 0.0;
+                f.parameters = {{"dx", delta}};
+                f.sigma = {{"dx", se}};
+                f.z = std::abs(delta) / se;
+                f.sentence = sentence("bumper_offset", after, f.parameters, f.sigma, sc);
+                apply_effect(after, "bumper_offset", {{"dx", delta}});
+                rep.effects_found.push_back(std::move(f));
+                pred = predict_impacts(pr, after, o.rtol);
             }
-            FoundEffect f;
-            f.id = "bumper_offset";
-            f.evidence = "impact law";
-            f.explained_fraction = sb > 0 ? 1.0 - sa / sb : 0.0;
-            f.parameters = {{"dx", delta}};
-            f.sigma = {{"dx", se}};
-            f.z = std::abs(delta) / se;
-            f.sentence = sentence("bumper_offset", after, f.parameters, f.sigma, sc);
-            apply_effect(after, "bumper_offset", {{"dx", delta}});
-            rep.effects_found.push_back(std::move(f));
         }
-        // The dwell time and the restitution against the model's laws.
+        // The dwell time and the restitution against the model's, impact by impact.
         for (const char* which : {"impact_duration", "restitution"}) {
             const bool dur = std::strcmp(which, "impact_duration") == 0;
-            std::vector<double> vm, obs;
-            for (const auto& im : pr.impacts) {
-                if (!dur && im.v_minus < 0.02) continue;
+            std::vector<double> vm, obs, simulated;
+            for (std::size_t k = 0; k < pr.impacts.size(); ++k) {
+                const ImpactObs& im = pr.impacts[k];
+                if (!pred.ok[k] || (!dur && im.v_minus < 0.02)) continue;
                 vm.push_back(im.v_minus / g);
-                obs.push_back(dur ? im.t_out - im.t_in : -im.v_plus / im.v_minus);
+                obs.push_back(dur ? im.t_out - im.t_in : apparent_kappa(im));
+                simulated.push_back(dur ? pred.obs[k].t_out - pred.obs[k].t_in : apparent_kappa(pred.obs[k]));
             }
             const auto n = static_cast<Eigen::Index>(vm.size());
             if (n < 3) continue;
             Eigen::VectorXd model_pred(n);
-            for (Eigen::Index i = 0; i < n; ++i) {
-                double kap, dw;
-                model_impact_law(after.p, vm[static_cast<std::size_t>(i)], kap, dw);
-                model_pred[i] = dur ? dw : kap;
-            }
+            for (Eigen::Index i = 0; i < n; ++i) model_pred[i] = simulated[static_cast<std::size_t>(i)];
             auto law = [&](const Eigen::VectorXd& th) {
                 Eigen::VectorXd r(n);
                 for (Eigen::Index i = 0; i < n; ++i)
@@ -733,14 +936,35 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
                     sa = sf;
                 }
             }
-            double sb = 0;
-            for (Eigen::Index i = 0; i < n; ++i) sb += std::pow(obs[static_cast<std::size_t>(i)] - model_pred[i], 2);
+            // The paired differences measured - simulated: an effect shifts them (a constant) or tilts them
+            // with the approach speed; under the model they scatter around zero. Wald test on both.
+            double sb = 0, vbar = 0;
+            for (Eigen::Index i = 0; i < n; ++i) {
+                sb += std::pow(obs[static_cast<std::size_t>(i)] - model_pred[i], 2);
+                vbar += vm[static_cast<std::size_t>(i)];
+            }
+            vbar /= static_cast<double>(n);
+            Eigen::MatrixXd Xd(n, 2);
+            Eigen::VectorXd dd(n);
+            for (Eigen::Index i = 0; i < n; ++i) {
+                Xd(i, 0) = 1.0;
+                Xd(i, 1) = vm[static_cast<std::size_t>(i)] - vbar;
+                dd[i] = obs[static_cast<std::size_t>(i)] - model_pred[i];
+            }
+            Eigen::Matrix2d XtX = Xd.transpose() * Xd;
+            XtX(1, 1) += 1e-12 * XtX(0, 0) + 1e-300;
+            const Eigen::Vector2d bd = XtX.ldlt().solve(Xd.transpose() * dd);
+            const double rss_d = (dd - Xd * bd).squaredNorm();
             const double floor_var = dur ? std::pow(0.05 * pr.dt, 2) : 1e-4;
+            const double s2d = std::max(rss_d / std::max(1.0, static_cast<double>(n) - 2.0), 2.0 * floor_var);
+            const double W = bd.dot(XtX * bd) / s2d;
+            const double z = f_to_z(W / 2.0, 2.0, std::max(1.0, static_cast<double>(n) - 2.0));
             const double s2 = std::max(sa / std::max<double>(1.0, static_cast<double>(n) - 3.0), floor_var);
-            const double z = chi2_to_z((sb - sa) / s2, 3);
-            const double gain_rms = std::sqrt(sb / static_cast<double>(n)) - std::sqrt(sa / static_cast<double>(n));
-            const bool practical = dur ? gain_rms > 0.2 * pr.dt : gain_rms > 0.02;
-            if (z >= o.z_threshold && practical && sb > 0) {
+            // Practical size: the systematic part of the differences, not their scatter.
+            const double shift_rms = std::sqrt((Xd * bd).squaredNorm() / static_cast<double>(n));
+            const bool practical = dur ? shift_rms > 0.2 * pr.dt : shift_rms > 0.02;
+            // A handful of impacts cannot reach the equation error's z; the held-out validation decides.
+            if (z >= std::min(o.z_threshold, 3.0) && practical && sb > 0) {
                 FoundEffect f;
                 f.id = which;
                 f.evidence = "impact law";
@@ -757,28 +981,34 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             }
         }
     }
+    // ---- 6. validation: an effect stays only if it lowers the short-horizon simulation error on data held
+    //         out from its fit, by more than the windows' scatter; the final model must beat the baseline ----
+    validate_effects(pr, base, cands, o, rep, after);
+
     std::stable_sort(rep.effects_found.begin(), rep.effects_found.end(),
                      [](const FoundEffect& a, const FoundEffect& b) { return a.explained_fraction > b.explained_fraction; });
     if (!rep.effects_found.empty()) after.p.name = base.p.name + "+" + rep.effects_found.front().id;
     for (std::size_t k = 1; k < rep.effects_found.size(); ++k) after.p.name += "+" + rep.effects_found[k].id;
     rep.after = after;
 
-    // ---- 6. errors before and after ------------------------------------------------------------------------
+    // ---- 7. errors before and after ------------------------------------------------------------------------
     Eigen::VectorXd R1;
     residual(pr, after, R1, pw);
-    auto errors = [&](const Model& m, const Eigen::VectorXd& R, ErrorSummary& e, ShootOut& so) {
+    PredictedImpacts pred_before, pred_after;
+    auto errors = [&](const Model& m, const Eigen::VectorXd& R, ErrorSummary& e, ShootOut& so, PredictedImpacts& pred) {
         e.residual_rms_N = rms_of(R);
         so = shooting(pr, m, o);
         e.shooting_rms_1_m = so.rms1;
         e.shooting_rms_10_m = so.rms10;
-        e.impact = impact_error(pr, m);
+        pred = predict_impacts(pr, m, o.rtol);
+        e.impact = impact_error(pr, pred);
         if (!pr.phi_forced) {
             e.simulation_rms_m = free_run_rms(free_run(pr, m, o.rtol), data.x);
         }
     };
     ShootOut sb, sa;
-    errors(base, R0, rep.error_before, sb);
-    errors(after, R1, rep.error_after, sa);
+    errors(base, R0, rep.error_before, sb, pred_before);
+    errors(after, R1, rep.error_after, sa, pred_after);
     if (pr.phi_forced && rep.omega_max - rep.omega_min > 2 * o.omega_bin) {
         rep.diagram_measured = measured_sections(pr);
         rep.diagram_before = free_run_sections(pr, base, o.rtol);
@@ -806,7 +1036,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         }
     }
 
-    // ---- 7. material for the plots -----------------------------------------------------------------------
+    // ---- 8. material for the plots -----------------------------------------------------------------------
     {
         const std::size_t step = std::max<std::size_t>(1, pr.rows.size() / 20000);
         for (std::size_t r = 0; r < pr.rows.size(); r += step) {
@@ -831,7 +1061,13 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
                     break;
                 }
         }
-        for (const auto& im : pr.impacts) rep.impacts.push_back({im.t_in, im.v_minus, im.v_plus, im.t_out - im.t_in, im.level});
+        for (std::size_t k = 0; k < pr.impacts.size(); ++k) {
+            const ImpactObs& im = pr.impacts[k];
+            const bool b = k < pred_before.ok.size() && pred_before.ok[k], a = k < pred_after.ok.size() && pred_after.ok[k];
+            rep.impacts.push_back({im.t_in, im.v_minus, im.v_plus, im.t_out - im.t_in, im.level,
+                                   b ? apparent_kappa(pred_before.obs[k]) : kNaN, b ? pred_before.obs[k].t_out - pred_before.obs[k].t_in : kNaN,
+                                   a ? apparent_kappa(pred_after.obs[k]) : kNaN, a ? pred_after.obs[k].t_out - pred_after.obs[k].t_in : kNaN});
+        }
     }
     if (rep.effects_found.empty()) rep.notes.push_back("no missing effect: the residual is at the level of the noise and the model's own error");
     rep.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
@@ -850,7 +1086,7 @@ ErrorSummary evaluate_model(const MeasuredData& data, const Model& model, const 
     const ShootOut so = shooting(pr, model, o);
     e.shooting_rms_1_m = so.rms1;
     e.shooting_rms_10_m = so.rms10;
-    e.impact = impact_error(pr, model);
+    e.impact = impact_error(pr, predict_impacts(pr, model, o.rtol));
     if (pr.phi_forced) {
         const auto [wmin, wmax] = std::minmax_element(pr.omega.begin(), pr.omega.end());
         if (*wmax - *wmin > 2 * o.omega_bin)

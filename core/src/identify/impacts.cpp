@@ -1,6 +1,7 @@
 // Impacts seen in the data, and the impact law a model predicts, for the impact-law residual.
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "identify/internal.hpp"
 
@@ -218,42 +219,56 @@ std::vector<ImpactObs> find_impacts(const std::vector<double>& t, const std::vec
     return out;
 }
 
-void model_impact_law(const Params& p, double v_minus, double& kappa, double& dwell) {
-    if (p.rigid()) {
-        kappa = p.impact->restitution(p.ip.data(), v_minus);
-        dwell = p.impact->duration(p.ip.data(), v_minus);
-        return;
-    }
-    // Compliant: one collision of the cart alone on the bumper (the other forces are small during it).
-    if (!(v_minus > 0)) {
-        kappa = 1.0;
-        dwell = 0.0;
-        return;
-    }
-    const double n1 = p.ip[2];
-    const double hmax = std::pow((n1 + 1.0) * 0.5 * p.m * v_minus * v_minus / p.ip[0], 1.0 / (n1 + 1.0));
-    const double h = std::clamp(hmax / v_minus / 2000.0, 1e-9, 1e-5);
-    auto acc = [&](double hh, double vv) { return -p.impact->contact(p.ip.data(), hh, vv).F / p.m; };
-    double x = 0, v = v_minus, t = 0;
-    for (int it = 0; it < 2000000; ++it) {
-        const double k1x = v, k1v = acc(x, v);
-        const double k2x = v + 0.5 * h * k1v, k2v = acc(x + 0.5 * h * k1x, v + 0.5 * h * k1v);
-        const double k3x = v + 0.5 * h * k2v, k3v = acc(x + 0.5 * h * k2x, v + 0.5 * h * k2v);
-        const double k4x = v + h * k3v, k4v = acc(x + h * k3x, v + h * k3v);
-        const double xn = x + h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
-        const double vn = v + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
-        if (xn <= 0 && vn < 0) {
-            const double frac = x / (x - xn);
-            t += frac * h;
-            v = v + frac * (vn - v);
-            break;
+PredictedImpacts predict_impacts(const Prep& pr, const Model& m, double rtol) {
+    PredictedImpacts out;
+    const std::size_t ni = pr.impacts.size();
+    out.obs.assign(ni, ImpactObs{});
+    out.ok.assign(ni, 0);
+    if (!m.bumper() || ni == 0) return out;
+    const MeasuredData& d = *pr.data;
+    // The window starts where the smoothed state is clear of the impact (the S-G half-width and a margin)
+    // and ends with enough flight after it for the detector's fits.
+    const std::size_t lead = static_cast<std::size_t>(pr.Hv) + 3 * kFitSide, tail = 3 * kFitSide;
+    const double g = m.sensor_gain(), o = m.sensor_offset();
+    constexpr int kRealisations = 2;   // noise draws averaged per impact
+    for (std::size_t k = 0; k < ni; ++k) {
+        const ImpactObs& im = pr.impacts[k];
+        if (im.i_first < lead + 1) continue;
+        std::size_t a = im.i_first - lead;
+        if (k > 0) a = std::max(a, pr.impacts[k - 1].i_last + 2);
+        const std::size_t b = std::min(pr.n - 1, im.i_last + tail);
+        const std::size_t pre_end = im.i_first >= 2 ? im.i_first - 2 : 0;
+        if (pre_end < a + 8 || b < im.i_last + kFitSide || !std::isfinite(pr.xs[a]) || !std::isfinite(pr.vs[a])) continue;
+        const std::vector<double> sim = simulate_window(pr, m, a, b, true, rtol, pre_end);
+        if (sim.size() != b - a + 1) continue;
+        const std::vector<double> tw(d.t.begin() + static_cast<long>(a), d.t.begin() + static_cast<long>(b) + 1);
+        std::mt19937_64 rng(0x5eed + k);
+        std::normal_distribution<double> noise(0.0, pr.sigma_x);
+        ImpactObs acc{};
+        int found = 0;
+        for (int r = 0; r < kRealisations; ++r) {
+            std::vector<double> xw(sim.size());
+            for (std::size_t j = 0; j < sim.size(); ++j) xw[j] = sim[j] + noise(rng);
+            const std::vector<ImpactObs> seen = find_impacts(tw, xw, pr.sigma_x, g * m.p.xI + o);
+            // The simulated impact nearest the measured one (within 10 samples).
+            const ImpactObs* best = nullptr;
+            for (const auto& s : seen)
+                if (std::abs(s.t_in - im.t_in) <= 10 * pr.dt && (!best || std::abs(s.t_in - im.t_in) < std::abs(best->t_in - im.t_in)))
+                    best = &s;
+            if (!best) continue;
+            acc.t_in += best->t_in;
+            acc.t_out += best->t_out;
+            acc.level += best->level;
+            acc.v_minus += best->v_minus;
+            acc.v_plus += best->v_plus;
+            ++found;
         }
-        x = xn;
-        v = vn;
-        t += h;
+        if (found == 0) continue;
+        const double f = 1.0 / found;
+        out.obs[k] = {acc.t_in * f, acc.t_out * f, acc.level * f, acc.v_minus * f, acc.v_plus * f, im.i_first, im.i_last};
+        out.ok[k] = 1;
     }
-    kappa = std::max(0.0, -v / v_minus);
-    dwell = t;
+    return out;
 }
 
 }  // namespace impactlab::identify::detail

@@ -52,9 +52,6 @@ struct ImpactObs {
 std::vector<ImpactObs> find_impacts(const std::vector<double>& t, const std::vector<double>& x, double sigma_x,
                                     double level_hint);
 
-// The impact law of a model as the data would show it: restitution -v+/v- and dwell time for an approach
-// speed v- > 0 (rigid laws in closed form, compliant ones by integrating one collision).
-void model_impact_law(const Params& p, double v_minus, double& kappa, double& dwell);
 
 // ---- residual.cpp -------------------------------------------------------------------------------------
 // The data made ready for the residual: smoothed signals, drive, kernel, masks, rows.
@@ -75,6 +72,18 @@ struct Prep {
     std::size_t j_lo = 0, j_hi = 0;          // samples the rows' windows touch [j_lo, j_hi)
 };
 Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::vector<std::string>& notes);
+
+// The impacts the model predicts where the data show one, as the data would show them: each measured
+// impact's approach is simulated with the full model (every force on, on the core Simulator) from the
+// flight before it, sampled at the data's times with the data's noise, and read by the same detector
+// (find_impacts). So the apparent penetration and the flat top a compliant contact leaves in sampled data,
+// and the dwell and restitution of a rigid law, are compared like with like. ok[k] is false where the
+// model makes no impact near the measured one.
+struct PredictedImpacts {
+    std::vector<ImpactObs> obs;
+    std::vector<char> ok;
+};
+PredictedImpacts predict_impacts(const Prep& pr, const Model& m, double rtol);
 
 // Weak-form residual at prep.rows [N]; `pointwise` is scratch.
 void residual(const Prep& pr, const Model& m, Eigen::VectorXd& R, std::vector<double>& pointwise);
@@ -100,6 +109,9 @@ void cv_sse(const Folds& f, const std::vector<int>& cols, double& cv, double& in
 Eigen::MatrixXd hac_cov(const Eigen::MatrixXd& X, const Eigen::VectorXd& e, int L);
 // A chi-square statistic with p degrees of freedom as the equivalent standard-normal z (Wilson-Hilferty).
 double chi2_to_z(double W, int p);
+// An F(d1, d2) statistic as the equivalent standard-normal z (Paulson's cube-root approximation): the
+// small-sample counterpart of chi2_to_z when the variance is estimated from d2 degrees of freedom.
+double f_to_z(double F, double d1, double d2);
 // Weighted quantile / median helpers.
 double median(std::vector<double> v);
 double quantile(std::vector<double> v, double q);
@@ -107,7 +119,9 @@ double quantile(std::vector<double> v, double q);
 // ---- shooting.cpp -------------------------------------------------------------------------------------
 // Simulates samples i0..i1 from the state estimated at i0 (refined by Gauss-Newton if asked); returns the
 // simulated measurement g x + o at each sample (empty if the window cannot start).
-std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, bool refine, double rtol);
+// With refine_end, the initial state is fitted to samples [i0, refine_end] only (the flight before an impact).
+std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, bool refine, double rtol,
+                                    std::size_t refine_end = static_cast<std::size_t>(-1));
 struct ShootOut {
     double rms1 = 0, rms10 = 0;
     std::size_t n1 = 0, n10 = 0;
@@ -115,7 +129,18 @@ struct ShootOut {
 };
 ShootOut shooting(const Prep& pr, const Model& m, const FitOptions& o);
 // Window boundaries (sample indices [a, b]) of `periods` forcing periods each.
-std::vector<std::pair<std::size_t, std::size_t>> windows(const Prep& pr, int periods);
+std::vector<std::pair<std::size_t, std::size_t>> windows(const Prep& pr, double periods);
+// Sum of squared errors (measured coordinates) of each window's simulation; +inf where it fails.
+std::vector<double> window_sse(const Prep& pr, const Model& m, const std::vector<std::pair<std::size_t, std::size_t>>& wins,
+                               bool refine, double rtol);
+// How far the record can be predicted: the shooting error of the model for windows of 0.25 to 5 forcing
+// periods (dominant periods for input-forced data); the horizon is the longest length whose error is at
+// most twice the shortest's.
+struct Horizon {
+    double periods = 0;
+    std::vector<std::pair<double, double>> growth;   // (window length [periods], shooting RMS [m])
+};
+Horizon predictability_horizon(const Prep& pr, const Model& m, double rtol);
 // Free run over the whole record from the first usable sample: simulated measurement at every sample
 // (NaN before the start).
 std::vector<double> free_run(const Prep& pr, const Model& m, double rtol);

@@ -39,8 +39,7 @@ json errors_json(const ErrorSummary& e) {
 json model_json(const Model& m) {
     json j = json::parse(params_to_json_text(m.p));
     j["forcing"] = m.forcing == Forcing::Unbalance ? "unbalance" : "input";
-    if (m.forcing == Forcing::Input) j["gain"] = m.gain;
-    j["bumper"] = m.bumper;
+    j["bumper"] = m.bumper();
     return j;
 }
 
@@ -135,7 +134,7 @@ void plots(const FitReport& r, const std::string& dir) {
     }
     if (r.impacts.size() >= 3) {
         plot::Figure fig;
-        fig.title = "Impact law: measured impacts against the model's kappa(v-) and T_imp(v-)";
+        fig.title = "Impact law: measured impacts against the same impacts simulated with the model";
         fig.width = 1000;
         fig.panel_height = 300;
         double vmax = 0;
@@ -146,17 +145,20 @@ void plots(const FitReport& r, const std::string& dir) {
             kap.push_back(im.v_minus > 0 ? -im.v_plus / im.v_minus : NAN);
             dw.push_back(im.dwell * 1e3);
         }
-        std::vector<double> grid, kb, ka, tb, ta;
-        for (int k = 0; k <= 100; ++k) {
-            const double v = vmax * 1.1 * k / 100.0;
-            grid.push_back(v);
-            double a, b;
-            detail::model_impact_law(r.before.p, v, a, b);
-            kb.push_back(a);
-            tb.push_back(b * 1e3);
-            detail::model_impact_law(r.after.p, v, a, b);
-            ka.push_back(a);
-            ta.push_back(b * 1e3);
+        // The model's side: each measured impact simulated with the model before and after, read by the
+        // same detector (what the fit compared).
+        std::vector<double> vb, kb, tb, va, ka, ta;
+        for (const auto& im : r.impacts) {
+            if (std::isfinite(im.kappa_before)) {
+                vb.push_back(im.v_minus);
+                kb.push_back(im.kappa_before);
+                tb.push_back(im.dwell_before * 1e3);
+            }
+            if (std::isfinite(im.kappa_after)) {
+                va.push_back(im.v_minus);
+                ka.push_back(im.kappa_after);
+                ta.push_back(im.dwell_after * 1e3);
+            }
         }
         plot::Panel p1, p2;
         p1.title = "restitution -v+/v-";
@@ -164,15 +166,15 @@ void plots(const FitReport& r, const std::string& dir) {
         p1.ylabel = "kappa";
         p1.series.push_back(points(vm, kap, {20, 20, 20, 255}, 1, 1, "measured"));
         p1.series.back().size = 2.5f;
-        p1.series.push_back(line(grid, kb, {214, 39, 40, 230}, 1.5f, "model before"));
-        p1.series.push_back(line(grid, ka, {31, 119, 180, 230}, 1.5f, "model after"));
+        p1.series.push_back(points(vb, kb, {214, 39, 40, 200}, 1, 1, "model before"));
+        p1.series.push_back(points(va, ka, {31, 119, 180, 200}, 1, 1, "model after"));
         p2.title = "time held at the bumper";
         p2.xlabel = "v- [m/s]";
         p2.ylabel = "dwell [ms]";
         p2.series.push_back(points(vm, dw, {20, 20, 20, 255}, 1, 1, "measured"));
         p2.series.back().size = 2.5f;
-        p2.series.push_back(line(grid, tb, {214, 39, 40, 230}, 1.5f, "model before"));
-        p2.series.push_back(line(grid, ta, {31, 119, 180, 230}, 1.5f, "model after"));
+        p2.series.push_back(points(vb, tb, {214, 39, 40, 200}, 1, 1, "model before"));
+        p2.series.push_back(points(va, ta, {31, 119, 180, 200}, 1, 1, "model after"));
         fig.panels.push_back(std::move(p1));
         fig.panels.push_back(std::move(p2));
         plot::save_png(fig, (fs::path(dir) / "impacts.png").string());

@@ -98,6 +98,8 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
         pr.period = kTwoPi / std::max(median(pr.omega), 0.5);
     } else {
         pr.u = d.u;
+        pr.drive = Drive(0.0, d.t.front());
+        pr.drive.set_input(d.t.front(), pr.dt, d.u);
         pr.period = dominant_period(d.x, pr.dt);
         t_char = pr.period;
     }
@@ -111,7 +113,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
 
     refine_reversals(d, pr);
     pr.zone.assign(n, 0);
-    if (m.bumper) {
+    if (m.bumper()) {
         pr.impacts = find_impacts(d.t, d.x, pr.sigma_x, m.sensor_gain() * m.p.xI + m.sensor_offset());
         // A margin of kMargin samples keeps the zone's edge away from the samples whose noise decided it
         // (otherwise the windows next to it would be chosen by the noise they contain: a biased residual).
@@ -129,7 +131,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     for (double c : cv) sv += c * c;
     const double slow = 3.0 * pr.sigma_x * std::sqrt(sv) + 1e-6;
     // Grazing contacts too brief to fit as impacts: every sample at the bumper's level joins the zone.
-    if (m.bumper) {
+    if (m.bumper()) {
         std::vector<double> lev;
         for (const auto& im : pr.impacts) lev.push_back(im.level);
         const double level = lev.size() >= 3 ? median(lev) : m.sensor_gain() * m.p.xI + m.sensor_offset();
@@ -148,7 +150,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
             const double x = (d.x[i] - m.sensor_offset()) / m.sensor_gain();
             double F = -spring_magnet(m.p, x).F;
             if (pr.phi_forced) F += unbalance_force(m.p, pr.phi[i], pr.omega[i]);
-            else F += m.gain * pr.u[i];
+            else F += m.p.input_gain * pr.u[i];
             if (std::abs(F) < Tlim) {
                 const std::size_t a = i >= static_cast<std::size_t>(pr.Hv) ? i - static_cast<std::size_t>(pr.Hv) : 0;
                 const std::size_t b = std::min(n - 1, i + static_cast<std::size_t>(pr.Hv) + 1);
@@ -185,7 +187,7 @@ void residual(const Prep& pr, const Model& m, Eigen::VectorXd& R, std::vector<do
         const double x = (d.x[j] - o) * ig, v = pr.vs[j] * ig;
         const ForceTerms f = force_terms(m.p, d.t[j], x, v, pr.phi[j], pr.omega[j], pr.alpha[j]);
         double val = -f.net();
-        if (input) val -= m.gain * pr.u[j];
+        if (input) val -= m.p.input_gain * pr.u[j];
         pw[j] = val;
     }
     const int H = pr.K.H;

@@ -1,10 +1,8 @@
 // The simulation error: multiple shooting over windows of 1 and 10 forcing periods, free runs, and the
-// distance between measured and simulated bifurcation diagrams. Unbalance-forced data run on the core
-// Simulator with the drive fitted to phi; input-forced data on a small integrator of their own (the core
-// drives by phi only), RK4 or, with stiff friction terms, the L-stable two-stage Rosenbrock ROS2.
+// distance between measured and simulated bifurcation diagrams. Every run is the core Simulator's, driven by
+// the omega(t) fitted to phi or by the record's input u(t) (Prep::drive).
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <map>
 
 #include "identify/internal.hpp"
@@ -15,136 +13,8 @@ namespace impactlab::identify::detail {
 
 namespace {
 
-// ---- input-forced integrator --------------------------------------------------------------------------
-struct InputRig {
-    const Prep& pr;
-    const Model& m;
-    bool stiff = false;
-
-    double u_at(double t) const {
-        const MeasuredData& d = *pr.data;
-        const double s = (t - d.t.front()) / pr.dt;
-        const auto i = static_cast<std::size_t>(std::clamp(std::floor(s), 0.0, static_cast<double>(pr.n - 2)));
-        const double f = std::clamp(s - static_cast<double>(i), 0.0, 1.0);
-        return pr.u[i] + f * (pr.u[i + 1] - pr.u[i]);
-    }
-    double force(double t, double x, double v, double& dFdx, double& dFdv) const {
-        const ForceAndSlope r = resistance(m.p, v), k = spring_magnet(m.p, x);
-        double F = m.gain * u_at(t) - r.F - k.F;
-        dFdx = -k.dF;
-        dFdv = -r.dF;
-        if (m.bumper && !m.p.rigid()) {
-            const ContactForce c = m.p.impact->contact(m.p.ip.data(), x - m.p.xI, v);
-            F -= c.F;
-            dFdx -= c.dF_dh;
-            dFdv -= c.dF_dhdot;
-        }
-        for (const auto& e : m.p.effects) {
-            const EffectForce f = e.law->force(e.p.data(), {t, x, v, 0.0, 0.0, 0.0, m.p.m0e, m.p.xI});
-            F += f.F;
-            dFdx += f.dF_dx;
-            dFdv += f.dF_dv;
-        }
-        return F;
-    }
-    void step(double t, double h, double& x, double& v) const {
-        double a, b;
-        if (!stiff) {
-            const double im = 1.0 / m.p.m;
-            const double k1x = v, k1v = force(t, x, v, a, b) * im;
-            const double k2x = v + 0.5 * h * k1v, k2v = force(t + 0.5 * h, x + 0.5 * h * k1x, v + 0.5 * h * k1v, a, b) * im;
-            const double k3x = v + 0.5 * h * k2v, k3v = force(t + 0.5 * h, x + 0.5 * h * k2x, v + 0.5 * h * k2v, a, b) * im;
-            const double k4x = v + h * k3v, k4v = force(t + h, x + h * k3x, v + h * k3v, a, b) * im;
-            x += h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
-            v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
-            return;
-        }
-        // ROS2 (Verwer et al. 1999), gamma = 1 + 1/sqrt(2).
-        constexpr double g = 1.0 + 0.7071067811865476;
-        const double F0 = force(t, x, v, a, b);
-        Mat2 J;
-        J << 0.0, 1.0, a / m.p.m, b / m.p.m;
-        const Mat2 W = Mat2::Identity() - g * h * J;
-        const Eigen::PartialPivLU<Mat2> lu(W);
-        const Vec2 f0(v, F0 / m.p.m);
-        const Vec2 k1 = lu.solve(f0);
-        const double x1 = x + h * k1[0], v1 = v + h * k1[1];
-        const Vec2 f1(v1, force(t + h, x1, v1, a, b) / m.p.m);
-        const Vec2 k2 = lu.solve(f1 - 2.0 * k1);
-        x += h * (1.5 * k1[0] + 0.5 * k2[0]);
-        v += h * (1.5 * k1[1] + 0.5 * k2[1]);
-    }
-};
-
-bool stiff_model(const Model& m) {
-    if (m.p.T > 0 || (m.bumper && !m.p.rigid())) return true;
-    for (const auto& e : m.p.effects) {
-        const char* id = e.law->id;
-        if (!std::strcmp(id, "coulomb_friction") || !std::strcmp(id, "stribeck_friction") || !std::strcmp(id, "unexplained_x_signv"))
-            return true;
-    }
-    return false;
-}
-
-// Samples i0..i1 of an input-forced model from (x, v) at i0; true coordinates out.
-void run_input(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, double x, double v, std::vector<double>& out) {
-    InputRig rig{pr, m, stiff_model(m)};
-    const int sub = rig.stiff ? 8 : 4;
-    const double h = pr.dt / sub;
-    const MeasuredData& d = *pr.data;
-    const bool rigid = m.bumper && m.p.rigid();
-    double hold_until = -1;   // held at the bumper until then (regime II), or while pressed (III: +inf)
-    double v_release = 0;
-    out.assign(i1 - i0 + 1, 0.0);
-    if (rigid && x >= m.p.xI) {
-        x = m.p.xI;
-        v = 0;
-        hold_until = INFINITY;
-    }
-    out[0] = x;
-    for (std::size_t i = i0; i < i1; ++i) {
-        for (int s = 0; s < sub; ++s) {
-            const double t = d.t[i] + s * h;
-            if (hold_until >= t + h) {
-                if (std::isinf(hold_until)) {   // regime III: stays while the net force presses it on
-                    double a, b;
-                    if (rig.force(t + h, m.p.xI, 0.0, a, b) <= 0) {
-                        hold_until = -1;
-                        v = 0;
-                    }
-                }
-                continue;
-            }
-            if (hold_until > t) {   // the hold ends within this substep: leave with v+
-                hold_until = -1;
-                v = v_release;
-                x = m.p.xI;
-            }
-            const double xb = x, vb = v;
-            rig.step(t, h, x, v);
-            if (rigid && x > m.p.xI && !(xb > m.p.xI)) {
-                const double f = (m.p.xI - xb) / (x - xb);
-                const double vm = std::max(0.0, vb + f * (v - vb));
-                const double kappa = m.p.impact->restitution(m.p.ip.data(), vm);
-                const double T = m.p.impact->duration(m.p.ip.data(), vm);
-                v_release = -kappa * vm;
-                x = m.p.xI;
-                v = 0;
-                double a, b;
-                if (std::abs(v_release) < m.p.impact->eps_v && rig.force(t + h, m.p.xI, 0.0, a, b) > 0) {
-                    hold_until = INFINITY;
-                } else if (T > 0) {
-                    hold_until = t + f * h + T;
-                } else {
-                    v = v_release;
-                }
-            }
-        }
-        out[i + 1 - i0] = x;
-    }
-}
-
-// Samples i0..i1 of an unbalance-forced model on the core simulator; true coordinates out.
+// Samples i0..i1 of the model on the core simulator (the drive carries phi(t) or the input u(t)); true
+// coordinates out.
 class Collect : public Observer {
 public:
     Collect(const Drive& d, double dt, double t0, std::vector<double>& out, std::size_t count)
@@ -163,8 +33,8 @@ private:
     std::size_t k_ = 0;
 };
 
-void run_phi(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, double x, double v, double rtol,
-             std::vector<double>& out) {
+void run(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, double x, double v, double rtol,
+         std::vector<double>& out) {
     const MeasuredData& d = *pr.data;
     Tolerances tol;
     tol.rtol = rtol;
@@ -178,12 +48,6 @@ void run_phi(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, dou
     sim.advance(m.p, pr.drive, s, d.t[i1] + 0.5 * pr.dt, &c);
     // Samples the sampler could not reach (rounding at the end) repeat the last state.
     for (std::size_t k = c.filled(); k < out.size(); ++k) out[k] = k ? out[k - 1] : s.x;
-}
-
-void run(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, double x, double v, double rtol,
-         std::vector<double>& out) {
-    if (pr.phi_forced) run_phi(pr, m, i0, i1, x, v, rtol, out);
-    else run_input(pr, m, i0, i1, x, v, out);
 }
 
 double sse(const Prep& pr, const Model& m, std::size_t i0, const std::vector<double>& sim, std::vector<double>* e) {
@@ -206,13 +70,20 @@ std::size_t usable_start(const Prep& pr, std::size_t i, std::size_t limit) {
 
 }  // namespace
 
-std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, bool refine, double rtol) {
+std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, bool refine, double rtol,
+                                    std::size_t refine_end) {
     std::vector<double> best;
     if (i1 <= i0) return best;
     const double g = m.sensor_gain(), o = m.sensor_offset();
     double x = (pr.xs[i0] - o) / g, v = pr.vs[i0] / g;
     run(pr, m, i0, i1, x, v, rtol, best);
-    double best_sse = sse(pr, m, i0, best, nullptr);
+    // The refinement fits the initial state to samples [i0, refine_end] only.
+    const std::size_t nfit = std::min(i1, refine_end) - i0 + 1;
+    auto fit_sse = [&](const std::vector<double>& sim) {
+        const std::vector<double> head(sim.begin(), sim.begin() + static_cast<long>(std::min(nfit, sim.size())));
+        return sse(pr, m, i0, head, nullptr);
+    };
+    double best_sse = fit_sse(best);
     if (refine) {
         const double dx = std::max(1e-7, 0.3 * pr.sigma_x), dv = dx / std::max(pr.dt * 10, 1e-4);
         std::vector<double> sx, sv, trial, e;
@@ -222,7 +93,7 @@ std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t 
             run(pr, m, i0, i1, x, v + dv, rtol, sv);
             Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
             Eigen::Vector2d b = Eigen::Vector2d::Zero();
-            for (std::size_t k = 0; k < best.size(); ++k) {
+            for (std::size_t k = 0; k < std::min(nfit, best.size()); ++k) {
                 const double jx = g * (sx[k] - best[k]) / dx, jv = g * (sv[k] - best[k]) / dv;
                 if (!std::isfinite(jx) || !std::isfinite(jv)) continue;
                 A(0, 0) += jx * jx;
@@ -240,7 +111,7 @@ std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t 
             const double sx_lim = 50 * std::max(pr.sigma_x, 1e-6), sv_lim = 50 * std::max(pr.sigma_x, 1e-6) / (pr.dt * 5);
             const double nx = x + std::clamp(step[0], -sx_lim, sx_lim), nv = v + std::clamp(step[1], -sv_lim, sv_lim);
             run(pr, m, i0, i1, nx, nv, rtol, trial);
-            const double s2 = sse(pr, m, i0, trial, nullptr);
+            const double s2 = fit_sse(trial);
             if (!(s2 < best_sse)) break;
             best.swap(trial);
             best_sse = s2;
@@ -252,7 +123,7 @@ std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t 
     return best;
 }
 
-std::vector<std::pair<std::size_t, std::size_t>> windows(const Prep& pr, int periods) {
+std::vector<std::pair<std::size_t, std::size_t>> windows(const Prep& pr, double periods) {
     std::vector<std::pair<std::size_t, std::size_t>> out;
     const MeasuredData& d = *pr.data;
     const std::size_t n = pr.n;
@@ -277,6 +148,47 @@ std::vector<std::pair<std::size_t, std::size_t>> windows(const Prep& pr, int per
         if (b > a + 3) out.emplace_back(a, b);
     }
     return out;
+}
+
+std::vector<double> window_sse(const Prep& pr, const Model& m, const std::vector<std::pair<std::size_t, std::size_t>>& wins,
+                               bool refine, double rtol) {
+    std::vector<double> out;
+    out.reserve(wins.size());
+    for (const auto& [a, b] : wins) {
+        const std::vector<double> sim = simulate_window(pr, m, a, b, refine, rtol);
+        double e = sim.empty() ? INFINITY : 0.0;
+        for (std::size_t k = 0; k < sim.size(); ++k) e += (sim[k] - pr.data->x[a + k]) * (sim[k] - pr.data->x[a + k]);
+        out.push_back(std::isfinite(e) ? e : INFINITY);
+    }
+    return out;
+}
+
+Horizon predictability_horizon(const Prep& pr, const Model& m, double rtol) {
+    Horizon h;
+    constexpr double kLengths[] = {0.25, 0.5, 1.0, 2.0, 5.0};
+    double first = -1;
+    for (double L : kLengths) {
+        const auto wins = windows(pr, L);
+        if (wins.size() < 12) break;   // too few windows to compare two models on
+        const std::vector<double> e = window_sse(pr, m, wins, true, rtol);
+        double s = 0;
+        std::size_t c = 0;
+        for (std::size_t w = 0; w < e.size(); ++w)
+            if (std::isfinite(e[w])) {
+                s += e[w];
+                c += wins[w].second - wins[w].first + 1;
+            }
+        if (c == 0) break;
+        const double rms = std::sqrt(s / static_cast<double>(c));
+        h.growth.emplace_back(L, rms);
+        if (first < 0) first = rms;
+        // Within the horizon the error has at most doubled from the shortest windows' (the noise, for a
+        // good model): beyond it the record's own instability, not the model, decides the error.
+        if (rms <= 2.0 * first + 1e-300) h.periods = L;
+        else break;
+    }
+    if (h.periods <= 0 && !h.growth.empty()) h.periods = h.growth.front().first;
+    return h;
 }
 
 ShootOut shooting(const Prep& pr, const Model& m, const FitOptions& o) {

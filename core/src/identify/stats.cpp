@@ -93,4 +93,10 @@ double chi2_to_z(double W, int p) {
     return (std::cbrt(W / p) - (1.0 - k)) / std::sqrt(k);
 }
 
+double f_to_z(double F, double d1, double d2) {
+    if (!(F > 0) || !(d1 > 0) || !(d2 > 0)) return 0.0;
+    const double a = 2.0 / (9.0 * d1), b = 2.0 / (9.0 * d2), f3 = std::cbrt(F);
+    return ((1.0 - b) * f3 - (1.0 - a)) / std::sqrt(b * f3 * f3 + a);
+}
+
 }  // namespace impactlab::identify::detail
