@@ -136,21 +136,29 @@ int cmd_fit(const std::vector<std::string>& argv) {
     }
     identify::write_report(r, dir, o.plots);
 
-    std::printf("%s: %zu samples, model %s (%s), noise %.3g um\n", path.c_str(), r.samples, r.before.p.name.c_str(),
-                r.baseline.c_str(), r.sigma_x * 1e6);
+    if (r.x_unit == "m")
+        std::printf("%s: %zu samples, model %s (%s), sensor noise %.3g um\n", path.c_str(), r.samples, r.before.p.name.c_str(),
+                    r.baseline.c_str(), r.sigma_x * 1e6);
+    else
+        std::printf("%s: %zu samples, model %s (%s), sensor noise %.3g (%s)\n", path.c_str(), r.samples, r.before.p.name.c_str(),
+                    r.baseline.c_str(), r.sigma_x, r.x_unit.c_str());
     if (r.effects_found.empty()) std::printf("effects found: none\n");
     for (const auto& f : r.effects_found)
         std::printf("effect %-22s explains %5.1f %%  z = %6.1f  %s\n", f.id.c_str(), 100 * f.explained_fraction, f.z, f.sentence.c_str());
     for (const auto& f : r.effects_rejected) std::printf("rejected %-22s %s\n", f.id.c_str(), f.reason.c_str());
     if (r.horizon_periods > 0)
-        std::printf("validated on %zu held-out windows of %.3g forcing periods (the predictability horizon): shooting RMS %.3g -> %.3g m\n",
-                    r.validation_windows, r.horizon_periods, r.validation_rms_before_m, r.validation_rms_after_m);
+        std::printf("validated on %zu held-out windows of %.3g forcing periods (within the predictability horizon): shooting RMS %.3g -> %.3g %s\n",
+                    r.validation_windows, r.horizon_periods, r.validation_rms_before_m, r.validation_rms_after_m,
+                    r.x_unit == "m" ? "m" : r.x_unit.c_str());
     const auto& b = r.error_before;
     const auto& e = r.error_after;
+    std::printf("verdict: %s\n", r.verdict.c_str());
+    const std::string xu = r.x_unit == "m" ? "[m]" : "[" + r.x_unit + "]";
+    const std::string fu = r.force_unit == "N" ? "[N]" : "[force units]";
     std::printf("%-34s %14s %14s\n", "", "before", "after");
-    std::printf("%-34s %14.5g %14.5g\n", "residual RMS [N]", b.residual_rms_N, e.residual_rms_N);
-    std::printf("%-34s %14.5g %14.5g\n", "shooting RMS 1 period [m]", b.shooting_rms_1_m, e.shooting_rms_1_m);
-    std::printf("%-34s %14.5g %14.5g\n", "shooting RMS 10 periods [m]", b.shooting_rms_10_m, e.shooting_rms_10_m);
+    std::printf("%-34s %14.5g %14.5g\n", ("residual RMS " + fu).c_str(), b.residual_rms_N, e.residual_rms_N);
+    std::printf("%-34s %14.5g %14.5g\n", ("shooting RMS 1 period " + xu).c_str(), b.shooting_rms_1_m, e.shooting_rms_1_m);
+    std::printf("%-34s %14.5g %14.5g\n", ("shooting RMS 10 periods " + xu).c_str(), b.shooting_rms_10_m, e.shooting_rms_10_m);
     if (b.impact.impacts)
         std::printf("%-34s %7.3g/%-6.3g %7.3g/%-6.3g\n", "impact law kappa / dwell [-/ms]", b.impact.kappa_rms,
                     b.impact.duration_rms_s * 1e3, e.impact.kappa_rms, e.impact.duration_rms_s * 1e3);

@@ -47,7 +47,8 @@ struct RigSystem {
 
     Vec2 rhs(double t, const Vec2& y) const {
         const double w = d.omega(t), phi = d.phi(t);
-        double F = unbalance_force(p, phi, w) - resistance(p, y[1]).F - spring_magnet(p, y[0]).F;
+        double F = -resistance(p, y[1]).F - spring_magnet(p, y[0]).F;
+        if (p.m0e != 0.0) F += unbalance_force(p, phi, w);   // an input-driven model has no unbalance
         if (p.input_gain != 0.0) F += p.input_gain * d.input(t);
         if (compliant) F -= p.impact->contact(p.ip.data(), y[0] - p.xI, y[1]).F;
         if (!p.effects.empty()) F += effects_at(p, {t, y[0], y[1], phi, w, d.alpha(t), p.m0e, p.xI}).F;

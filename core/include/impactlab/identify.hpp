@@ -107,6 +107,7 @@ struct CandidateScore {              // every library candidate tried in the fir
     double gain = 0, z = 0;          // share of the residual it would explain alone, and its significance
     bool selected = false;
     std::vector<std::pair<std::string, double>> coefficients;   // its parameters fitted alone
+    double cv_gain = 0;              // cross-validated share of the residual it explains (what ranked it)
 };
 
 // An effect the residual pointed to and the held-out simulation error turned down.
@@ -151,6 +152,10 @@ struct FitReport {
     std::vector<std::pair<double, double>> diagram_measured, diagram_before, diagram_after;   // (omega, x)
     std::vector<std::string> notes;
     double runtime_s = 0;
+    // Units of x and of the equation error: "m" and "N" for the rig; a plain Duffing model (m = 1) works in
+    // the data's own units, which the report names as such.
+    std::string x_unit = "m", force_unit = "N";
+    std::string verdict;   // one sentence on the residual against its noise floor, after the validation
 };
 
 // The whole loop. `test` (optional): data held out for the simulation error (same layout as `data`).

@@ -122,8 +122,10 @@ void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_i
     std::size_t a = 0;
     while (a + 2 < pr.n && (pr.zone[a] || !std::isfinite(pr.xs[a]) || !std::isfinite(pr.vs[a]))) ++a;
     const std::size_t b = oe_fit_end(pr, a, kOeSamples);
+    // The fit needs the simulation far more accurate than the sensor, not to the reporting tolerance.
+    const double fit_rtol = std::max(rtol, 1e-6);
     auto err = [&](Eigen::VectorXd& e) {
-        const std::vector<double> fr = simulate_window(pr, m, a, b, false, rtol);
+        const std::vector<double> fr = simulate_window(pr, m, a, b, false, fit_rtol);
         e.resize(static_cast<Eigen::Index>(b - a + 1));
         double ss = 0;
         for (std::size_t i = 0; i + a <= b; ++i) {
@@ -334,7 +336,7 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
     rep.horizon_growth = hz.growth;
     // Within the horizon, windows short enough that there are about 40 of them (the paired test's power).
     double L = hz.periods;
-    while (L > 0.25 && windows(pr, L).size() < 40) L *= 0.5;
+    while (L > 0.25 && L * pr.period >= 32.0 * pr.dt && windows(pr, L).size() < 40) L *= 0.5;
     rep.horizon_periods = L;
     const auto wins = L > 0 ? windows(pr, L) : std::vector<std::pair<std::size_t, std::size_t>>{};
     rep.validation_windows = wins.size();
@@ -494,6 +496,10 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     rep.model_name = model0.p.name;
     rep.forcing = data.has_phi() ? "phi (unbalance)" : "u (measured input)";
     rep.baseline = o.fit_baseline ? "fit" : "fixed";
+    if (model0.p.stiffness_id == "duffing") {
+        rep.x_unit = "data units";
+        rep.force_unit = "model force units (m = 1: data units / s^2)";
+    }
     validate(model0.p, "model");
     const Prep pr = prepare(data, model0, o, rep.notes);
     rep.samples = pr.n;
@@ -663,8 +669,21 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             e.z = zscore(cols, sub);
         }
         if (round == 0)
-            for (const auto& e : evals)
-                rep.candidates.push_back({cands[groups[e.g].cand].id, e.gain_in, e.z, false});
+            for (const auto& e : evals) {
+                // Its parameters fitted alone on the baseline residual: sign and size, selected or not.
+                const Group& g = groups[e.g];
+                const Candidate& c = cands[g.cand];
+                std::vector<int> cols = cur;
+                cols.insert(cols.end(), g.cols.begin(), g.cols.end());
+                double cv, in;
+                Eigen::VectorXd beta;
+                cv_sse(folds, cols, cv, in, &beta);
+                EffectInstance inst = g.inst;
+                for (std::size_t li = 0; li < c.linear.size(); ++li)
+                    inst.p[static_cast<std::size_t>(c.free[static_cast<std::size_t>(c.linear[li])])] +=
+                        beta[static_cast<Eigen::Index>(cur.size() + li)];
+                rep.candidates.push_back({c.id, e.gain_in, e.z, false, named(inst), e.gain_cv});
+            }
         const Eval* lib = nullptr;
         const Eval* gen = nullptr;
         for (const auto& e : evals) {
@@ -806,22 +825,8 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             const double rms = free_run_rms(fr, data.x, fit_end + 1);
             return rms < 0 ? INFINITY : rms;
         };
-        double rms_all = oe_fit(after, chosen.size(), 20);
-        for (std::size_t k = chosen.size(); k-- > 0;) {
-            Model without = after;
-            without.p.effects.erase(without.p.effects.begin() + static_cast<long>(first_new + k));
-            const double rms_without = oe_fit(without, k, 10);
-            if (rms_without <= 1.01 * rms_all) {
-                rms_all = std::min(rms_all, rms_without);
-                rep.notes.push_back("dropped " + force_found[k].id + ": without it the refitted model simulates the validation part as well (" +
-                                    std::to_string(rms_without) + " against " + std::to_string(rms_all) + ")");
-                for (auto& cs : rep.candidates)
-                    if (cs.id == force_found[k].id) cs.selected = false;
-                after = without;
-                chosen.erase(chosen.begin() + static_cast<long>(k));
-                force_found.erase(force_found.begin() + static_cast<long>(k));
-            }
-        }
+        // Which of them stay is the held-out validation's decision (stage 6).
+        oe_fit(after, chosen.size(), 20);
         // The reported values are the simulation-error fit's; their uncertainties stay the equation error's.
         for (std::size_t k = 0; k < force_found.size(); ++k) {
             force_found[k].parameters = named(after.p.effects[first_new + k]);
@@ -1069,7 +1074,24 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
                                    a ? apparent_kappa(pred_after.obs[k]) : kNaN, a ? pred_after.obs[k].t_out - pred_after.obs[k].t_in : kNaN});
         }
     }
-    if (rep.effects_found.empty()) rep.notes.push_back("no missing effect: the residual is at the level of the noise and the model's own error");
+    // The verdict says what the numbers say: at the noise floor only when the residual is.
+    {
+        const double ratio = rep.noise_floor_N > 0 ? rep.error_after.residual_rms_N / rep.noise_floor_N : INFINITY;
+        char buf[400];
+        if (ratio <= 1.5) {
+            std::snprintf(buf, sizeof buf, "the residual (%.3g %s RMS) is at its noise floor (%.3g %s)%s", rep.error_after.residual_rms_N,
+                          rep.force_unit.c_str(), rep.noise_floor_N, rep.force_unit.c_str(),
+                          rep.effects_found.empty() ? ": no missing effect" : " with the effects found");
+        } else {
+            std::snprintf(buf, sizeof buf,
+                          "the residual (%.3g %s RMS) is %.3g times its noise floor (%.3g %s): the model %s misses something that %s",
+                          rep.error_after.residual_rms_N, rep.force_unit.c_str(), ratio, rep.noise_floor_N, rep.force_unit.c_str(),
+                          rep.effects_found.empty() ? "still" : "with the effects found still",
+                          rep.effects_found.empty() ? "no library effect explains in a way that holds on held-out data"
+                                                    : "the library does not name or that does not hold on held-out data");
+        }
+        rep.verdict = buf;
+    }
     rep.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
     return rep;
 }

@@ -208,20 +208,42 @@ std::string markdown(const FitReport& r, bool with_plots) {
     md << "# impactlab fit: " << r.data_source << "\n\n";
     md << "Model **" << r.before.p.name << "** (" << (r.baseline == "fit" ? "parameters fitted to the data" : "parameters fixed")
        << "), forcing " << r.forcing << ". " << r.samples << " samples, " << g3(r.duration) << " s at " << g3(1.0 / r.dt)
-       << " Hz; sensor noise about " << g3(r.sigma_x * 1e6) << " um.\n\n";
+       << " Hz; sensor noise about " << (r.x_unit == "m" ? g3(r.sigma_x * 1e6) + " um" : g3(r.sigma_x) + " (" + r.x_unit + ")") << ".\n\n";
     md << "The equation error is the local average over a smooth window of half-width " << g3(r.window_s * 1e3)
        << " ms of m x'' + F_R + F_SA + F_I - forcing, on " << r.rows_used
-       << " free-flight windows (impacts left out); its noise floor is about " << g3(r.noise_floor_N) << " N.\n\n";
+       << " free-flight windows (impacts left out); its noise floor is about " << g3(r.noise_floor_N) << " " << r.force_unit << ".\n\n";
+    md << "**Verdict:** " << r.verdict << ".\n\n";
     md << "## Effects found\n\n";
     if (r.effects_found.empty()) {
-        md << "None: no missing effect explains the residual beyond the noise.\n\n";
+        md << "None: no effect lowered the simulation error on held-out data beyond its noise.\n\n";
     } else {
         int k = 1;
         for (const auto& f : r.effects_found) {
             md << k++ << ". **" << f.id << "** (explains " << g3(100 * f.explained_fraction, "%.1f") << " % of the "
                << (f.evidence == "impact law" ? "impact-law error" : "residual") << ", z = " << g3(f.z, "%.1f") << "): "
-               << f.sentence << ".\n";
+               << f.sentence << ". Held-out simulation error " << g3(-100 * f.validation_gain, "%+.1f") << " % (paired z = "
+               << g3(f.validation_z, "%.1f") << ").\n";
         }
+        md << "\n";
+    }
+    md << "## Validation on held-out data\n\n";
+    md << "Every effect the residual points to must lower the short-horizon simulation error (multiple shooting) on the "
+          "half of the record its parameters were not fitted to (alternate blocks of about an eighth of the record), "
+          "by more than the windows' scatter (paired z >= 3) and by 2 % of the error above the noise. ";
+    if (r.horizon_periods > 0) {
+        md << "The windows are " << g3(r.horizon_periods) << " forcing periods long (" << r.validation_windows
+           << " of them): within the record's predictability horizon, where the shooting error of the model has at most "
+              "doubled from the shortest windows'; past it a chaotic record's own instability, not the model, sets the error.\n\n";
+        md << "| window [periods] | shooting RMS [" << (r.x_unit == "m" ? "mm" : r.x_unit) << "] |\n|---|---|\n";
+        for (const auto& [L, e] : r.horizon_growth) md << "| " << g3(L) << " | " << g3(r.x_unit == "m" ? e * 1e3 : e, "%.4g") << " |\n";
+        md << "\nHeld-out shooting RMS: " << g3(r.validation_rms_before_m * (r.x_unit == "m" ? 1e3 : 1), "%.4g") << " before, "
+           << g3(r.validation_rms_after_m * (r.x_unit == "m" ? 1e3 : 1), "%.4g") << " after.\n\n";
+    } else {
+        md << "The record is too short for held-out windows: nothing can be validated, so nothing is reported.\n\n";
+    }
+    if (!r.effects_rejected.empty()) {
+        md << "Turned down:\n\n";
+        for (const auto& f : r.effects_rejected) md << "- **" << f.id << "**: " << f.reason << ".\n";
         md << "\n";
     }
     md << "## Error before and after\n\n| measure | before | after |\n|---|---|---|\n";
@@ -230,9 +252,12 @@ std::string markdown(const FitReport& r, bool with_plots) {
     };
     const auto& b = r.error_before;
     const auto& a = r.error_after;
-    row("residual RMS [N]", b.residual_rms_N, a.residual_rms_N, 1, "%.4g");
-    row("shooting RMS, 1 period [mm]", b.shooting_rms_1_m, a.shooting_rms_1_m, 1e3, "%.4g");
-    row("shooting RMS, 10 periods [mm]", b.shooting_rms_10_m, a.shooting_rms_10_m, 1e3, "%.4g");
+    const bool metres = r.x_unit == "m";
+    const double xs = metres ? 1e3 : 1.0;
+    const std::string xu = metres ? "mm" : r.x_unit;
+    row(("residual RMS [" + r.force_unit + "]").c_str(), b.residual_rms_N, a.residual_rms_N, 1, "%.4g");
+    row(("shooting RMS, 1 period [" + xu + "]").c_str(), b.shooting_rms_1_m, a.shooting_rms_1_m, xs, "%.4g");
+    row(("shooting RMS, 10 periods [" + xu + "]").c_str(), b.shooting_rms_10_m, a.shooting_rms_10_m, xs, "%.4g");
     if (b.impact.impacts > 0) {
         row("impact law: kappa RMS error", b.impact.kappa_rms, a.impact.kappa_rms, 1, "%.3g");
         row("impact law: dwell RMS error [ms]", b.impact.duration_rms_s, a.impact.duration_rms_s, 1e3, "%.3g");
@@ -243,11 +268,17 @@ std::string markdown(const FitReport& r, bool with_plots) {
     if (b.test_simulation_rms_m >= 0)
         row("free-run simulation RMS on the test rows (as measured)", b.test_simulation_rms_m, a.test_simulation_rms_m, 1, "%.4g");
     md << "\n" << b.impact.impacts << " impacts found in the data.\n\n";
-    md << "## Candidates (first round: each alone on the baseline residual)\n\n| id | share of residual | z | selected |\n|---|---|---|---|\n";
-    for (const auto& c : r.candidates)
-        md << "| " << c.id << " | " << g3(100 * c.gain, "%.2f") << " % | " << g3(c.z, "%.1f") << " | " << (c.selected ? "yes" : "") << " |\n";
-    md << "\nAn effect is kept when it lowers the 5-fold block cross-validated residual by at least the minimum share and its "
-          "coefficient stands out of the noise (z from serially-correlation-robust standard errors).\n\n";
+    md << "## Candidates (first round: each alone on the baseline residual)\n\n"
+          "| id | share of residual (in sample) | cross-validated gain | z | coefficients alone | selected |\n|---|---|---|---|---|---|\n";
+    for (const auto& c : r.candidates) {
+        std::string coef;
+        for (const auto& [k, v] : c.coefficients) coef += (coef.empty() ? "" : ", ") + k + " = " + g3(v, "%.4g");
+        md << "| " << c.id << " | " << g3(100 * c.gain, "%.2f") << " % | " << g3(100 * c.cv_gain, "%.2f") << " % | " << g3(c.z, "%.1f")
+           << " | " << coef << " | " << (c.selected ? "yes" : "") << " |\n";
+    }
+    md << "\nA candidate is proposed when it lowers the 5-fold block cross-validated residual by at least the minimum share and "
+          "its coefficient stands out of the noise (z from serially-correlation-robust standard errors); the held-out "
+          "simulation error above then decides.\n\n";
     if (!r.notes.empty()) {
         md << "## Notes\n\n";
         for (const auto& n : r.notes) md << "- " << n << "\n";
@@ -294,11 +325,31 @@ std::string report_json_text(const FitReport& r) {
         e["z"] = num(f.z);
         e["evidence"] = f.evidence;
         e["sentence"] = f.sentence;
+        e["validation_gain"] = num(f.validation_gain);
+        e["validation_z"] = num(f.validation_z);
         j["effects_found"].push_back(e);
     }
     j["candidates"] = json::array();
     for (const auto& c : r.candidates)
-        j["candidates"].push_back({{"id", c.id}, {"explained_fraction_alone", num(c.gain)}, {"z", num(c.z)}, {"selected", c.selected}});
+    {
+        json cj{{"id", c.id}, {"explained_fraction_alone", num(c.gain)}, {"cv_gain", num(c.cv_gain)}, {"z", num(c.z)}, {"selected", c.selected}};
+        cj["coefficients"] = json::object();
+        for (const auto& [k, v] : c.coefficients) cj["coefficients"][k] = num(v);
+        j["candidates"].push_back(cj);
+    }
+    j["effects_rejected"] = json::array();
+    for (const auto& f : r.effects_rejected) {
+        json e{{"id", f.id}, {"reason", f.reason}, {"validation_gain", num(f.validation_gain)}, {"validation_z", num(f.validation_z)}};
+        e["parameters"] = json::object();
+        for (const auto& [k, v] : f.parameters) e["parameters"][k] = num(v);
+        j["effects_rejected"].push_back(e);
+    }
+    j["validation"] = {{"horizon_periods", num(r.horizon_periods)}, {"windows", r.validation_windows},
+                       {"rms_before", num(r.validation_rms_before_m)}, {"rms_after", num(r.validation_rms_after_m)}};
+    j["validation"]["growth"] = json::array();
+    for (const auto& [L, e] : r.horizon_growth) j["validation"]["growth"].push_back({{"periods", L}, {"shooting_rms", num(e)}});
+    j["verdict"] = r.verdict;
+    j["units"] = {{"x", r.x_unit}, {"force", r.force_unit}};
     j["error_before"] = errors_json(r.error_before);
     j["error_after"] = errors_json(r.error_after);
     j["model_before"] = model_json(r.before);

@@ -168,6 +168,7 @@ Horizon predictability_horizon(const Prep& pr, const Model& m, double rtol) {
     constexpr double kLengths[] = {0.25, 0.5, 1.0, 2.0, 5.0};
     double first = -1;
     for (double L : kLengths) {
+        if (L * pr.period < 16.0 * pr.dt) continue;   // a window needs samples to fit its initial state to
         const auto wins = windows(pr, L);
         if (wins.size() < 12) break;   // too few windows to compare two models on
         const std::vector<double> e = window_sse(pr, m, wins, true, rtol);
