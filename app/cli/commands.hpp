@@ -20,6 +20,7 @@ int cmd_bifurcation(const std::vector<std::string>& args);
 int cmd_figure3(const std::vector<std::string>& args);
 int cmd_fit(const std::vector<std::string>& args);
 int cmd_synth(const std::vector<std::string>& args);
+int cmd_recovery(const std::vector<std::string>& args);
 
 const std::vector<Command>& commands();
 

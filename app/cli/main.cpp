@@ -19,6 +19,7 @@ const std::vector<Command>& commands() {
         {"figure3", "the paper's Fig. 3 as one PNG", cmd_figure3},
         {"fit", "close the loop with measured data: residual, missing effect, model with it, error before/after", cmd_fit},
         {"synth", "synthetic measured data with effects, sensor noise and quantisation (t,x,phi CSV)", cmd_synth},
+        {"recovery", "the recovery matrix: every library effect injected into each version, is it named first?", cmd_recovery},
     };
     return table;
 }

@@ -189,3 +189,27 @@ void steps_profile(const std::vector<double>& omegas, double plateau, double ram
                    std::vector<double>& w);
 
 }  // namespace impactlab::identify
+
+namespace impactlab::identify {
+
+// The recovery matrix: an effect injected by synth into a version at a moderate strength, and what the loop
+// makes of it. Recovered when the effect is named first, its parameter lies within 3 sigma of the truth,
+// and the held-out simulation error falls.
+struct RecoveryCase {
+    std::string version, effect, param;
+    double truth = 0;
+};
+struct RecoveryResult {
+    RecoveryCase c;
+    std::string first;            // the effect named first ("" if none)
+    double estimate = 0, sigma = 0;
+    double rms_before_m = 0, rms_after_m = 0;   // held-out shooting RMS
+    bool named_first = false, within = false, lowered = false;
+    bool recovered() const { return named_first && within && lowered; }
+};
+// Every library effect at a moderate strength (restitution only for the rigid versions).
+std::vector<RecoveryCase> recovery_cases(const std::vector<std::string>& versions);
+// Synthesises the case (steps 9 and 16 rad/s, `duration` seconds, noise seed) and runs the loop on it.
+RecoveryResult run_recovery(const RecoveryCase& c, double duration, unsigned seed);
+
+}  // namespace impactlab::identify

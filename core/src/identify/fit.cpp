@@ -839,11 +839,15 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     if (after.bumper() && pr.impacts.size() >= 3) {
         for (std::size_t k = 0; k < force_found.size(); ++k) {
             if (force_found[k].id != "sensor_offset") continue;
+            // The flat tops measured against the same impacts simulated with the offset in the model (so a
+            // compliant bumper's apparent penetration is on both sides).
+            const PredictedImpacts pred = predict_impacts(pr, after, o.rtol);
             std::vector<double> lev;
-            for (const auto& im : pr.impacts) lev.push_back(im.level);
-            const double o_imp = median(lev) - after.sensor_gain() * after.p.xI;
-            const double o_fit = after.sensor_offset(), so = force_found[k].sigma.empty() ? 0.0 : force_found[k].sigma[0].second;
-            if (std::abs(o_fit - o_imp) > std::max(5.0 * so, 5.0 * pr.sigma_x + 1e-6)) {
+            for (std::size_t i = 0; i < pr.impacts.size(); ++i)
+                if (pred.ok[i]) lev.push_back(pr.impacts[i].level - pred.obs[i].level);
+            if (lev.size() < 3) continue;
+            const double miss = median(lev), so = force_found[k].sigma.empty() ? 0.0 : force_found[k].sigma[0].second;
+            if (std::abs(miss) > std::max(5.0 * so, 5.0 * pr.sigma_x + 1e-6)) {
                 rep.notes.push_back("dropped sensor_offset: the impacts' flat tops put the bumper where the uncorrected sensor does");
                 for (auto& cs : rep.candidates)
                     if (cs.id == "sensor_offset") cs.selected = false;

@@ -11,4 +11,5 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/fit.cpp
   src/identify/report.cpp
   src/identify/synth.cpp
+  src/identify/recovery.cpp
 )
