@@ -7,10 +7,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "impactlab/identify.hpp"
+#include "impactlab/simulator.hpp"
 
 namespace id = impactlab::identify;
 using impactlab::EffectForce;
@@ -220,4 +222,76 @@ TEST_CASE("synth: exact stops, noise and quantisation as asked") {
     const double q = 2 * 3.141592653589793 / 4096;
     for (double p : d.phi) CHECK(std::abs(p / q - std::round(p / q)) < 1e-6);
     CHECK(d.meta.at("model") == "A1H");
+}
+
+TEST_CASE("recovery matrix (subset): an effect injected into a compliant and a rigid version is named first, within 3 sigma") {
+    // The whole matrix is `impactlab recovery` (README); here a friction and a bumper effect on
+    // A1C1 (a compliant bumper with its flat tops) and A1G.
+    for (const char* version : {"A1C1", "A1G"}) {
+        for (const auto& c : id::recovery_cases({version})) {
+            if (c.effect != "stribeck_friction" && c.effect != "bumper_offset") continue;
+            CAPTURE(version);
+            CAPTURE(c.effect);
+            const id::RecoveryResult r = id::run_recovery(c, 40.0, 3);
+            CHECK(r.first == c.effect);
+            CHECK(r.within);
+            CHECK(r.rms_after_m < 0.5 * r.rms_before_m);
+        }
+    }
+}
+
+TEST_CASE("duffing forced by u: noise alone yields nothing, the model written reproduces the fit through the core simulator") {
+    // y'' + d y' + k y + k3 y^3 = gain u with a random-phase multisine u, simulated on the core Simulator
+    // (a Drive with the sampled input, impact model "none"), noise on y.
+    id::Model truth = id::resolve_fit_model("duffing", id::Forcing::Input);
+    truth.p.k = 4.0e4;     // about 32 Hz
+    truth.p.c = 20.0;
+    truth.p.a[1] = 2.0e6;  // a hardening cubic
+    truth.p.input_gain = 2000.0;   // y of about 10 mm against 0.1 mm of noise
+    const double rate = 500.0, duration = 40.0;
+    const auto n = static_cast<std::size_t>(duration * rate) + 1;
+    std::vector<double> u(n, 0.0);
+    for (int k = 1; k <= 40; ++k) {
+        const double f = 0.5 * k, ph = std::fmod(1.7 * k * k, 6.283185307179586);
+        for (std::size_t i = 0; i < n; ++i) u[i] += 0.05 * std::sin(6.283185307179586 * f * static_cast<double>(i) / rate + ph);
+    }
+    impactlab::Drive drive(0.0);
+    drive.set_input(0.0, 1.0 / rate, u);
+    impactlab::Simulator sim;
+    impactlab::State s;
+    id::MeasuredData d;
+    d.source = "duffing-synth";
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> noise(0.0, 1e-4);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double t = static_cast<double>(i) / rate;
+        sim.advance(truth.p, drive, s, t);
+        d.t.push_back(t);
+        d.x.push_back(s.x + noise(rng));
+        d.u.push_back(u[i]);
+        d.line.push_back(static_cast<long>(i) + 2);
+    }
+    id::FitOptions fo;
+    fo.plots = false;
+    fo.fit_baseline = true;
+    id::Model start = id::resolve_fit_model("duffing", id::Forcing::Input);
+    start.p.k = 3.5e4;
+    start.p.c = 15.0;
+    start.p.input_gain = 1600.0;
+    const id::FitReport r = id::run_fit(d, start, fo);
+    CHECK(r.effects_found.empty());
+    CHECK(r.after.p.input_gain == doctest::Approx(2000.0).epsilon(0.05));
+    CHECK(r.after.p.k == doctest::Approx(4.0e4).epsilon(0.05));
+    CHECK(r.after.p.impact->kind == impactlab::ImpactKind::None);
+    CHECK(r.verdict.find("at its noise floor") != std::string::npos);
+    // The written model is the whole model: read back, it gives the same simulation error.
+    const auto dir = std::filesystem::temp_directory_path() / "impactlab_duffing_report_test";
+    std::filesystem::remove_all(dir);
+    id::write_report(r, dir.string(), false);
+    const id::Model back = id::resolve_fit_model((dir / "model_after.json").string(), id::Forcing::Input);
+    CHECK(back.p.input_gain == doctest::Approx(r.after.p.input_gain));
+    const id::ErrorSummary e = id::evaluate_model(d, back, fo);
+    CHECK(e.simulation_rms_m == doctest::Approx(r.error_after.simulation_rms_m).epsilon(1e-3));
+    CHECK(e.simulation_rms_m < 2e-4);
+    std::filesystem::remove_all(dir);
 }
