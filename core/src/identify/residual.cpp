@@ -134,7 +134,10 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     if (m.bumper()) {
         std::vector<double> lev;
         for (const auto& im : pr.impacts) lev.push_back(im.level);
-        const double level = lev.size() >= 3 ? median(lev) : m.sensor_gain() * m.p.xI + m.sensor_offset();
+        // The lower of the measured flat tops and the model's own bumper: past the latter the model's
+        // contact force acts, and a bumper or sensor that is off would fill the residual with it.
+        const double model_level = m.sensor_gain() * m.p.xI + m.sensor_offset();
+        const double level = lev.size() >= 3 ? std::min(median(lev), model_level) : model_level;
         const double near = 8.0 * pr.sigma_x + 2e-6;
         for (std::size_t i = 0; i < n; ++i)
             if (d.x[i] >= level - near)
