@@ -1,4 +1,5 @@
 // impactlab fit: close the loop with measured data (see core/include/impactlab/identify.hpp).
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -11,7 +12,10 @@ namespace impactlab::cli {
 namespace {
 
 constexpr const char* kFitHelp =
-    "usage: impactlab fit DATA.csv[.gz] --model A1H --report DIR [options]\n\n"
+    "usage: impactlab fit DATA.csv[.gz] [MORE.csv ...] --model A1H --report DIR [options]\n\n"
+    "Several files are runs of one rig fitted together with shared parameters (each its own forcing, initial\n"
+    "state and rows): a left-well and a right-well run, or several drive levels. Only so is an asymmetry\n"
+    "between the wells identifiable; the report gives both wells' depths and frequencies with uncertainties.\n"
     "Runs the whole loop on a measured run: the residual of the model (equation error on free flight, impact law,\n"
     "multiple-shooting simulation error, bifurcation-diagram distance), the missing effect it traces to (a library\n"
     "of named effects, or a generic smooth force named by its variable), the model with it, the error before and\n"
@@ -64,8 +68,10 @@ int cmd_fit(const std::vector<std::string>& argv) {
                   "--phi-col", "--u-col", "--rate", "--x-scale", "--u-scale", "--phi-scale", "--t-scale", "--rows", "--test-rows",
                   "--window", "--z", "--min-gain", "--max-effects", "--only", "--exclude", "--knots", "--omega-bin"},
                  {"--no-generic", "--no-refine", "--no-plots"});
-    if (a.positional().size() != 1) throw UsageError("fit: give exactly one data file (see impactlab fit --help)");
-    const std::string path = a.positional()[0];
+    if (a.positional().empty()) throw UsageError("fit: give a data file, or several runs of one rig (see impactlab fit --help)");
+    const std::vector<std::string> paths = a.positional();
+    const std::string path = paths.size() == 1 ? paths[0] : paths[0] + " + " + std::to_string(paths.size() - 1) + " more";
+    if (paths.size() > 1 && a.has("--test-rows")) throw UsageError("fit: --test-rows needs a single data file");
     const std::string dir = a.required("--report");
 
     identify::LoadOptions lo;
@@ -82,11 +88,13 @@ int cmd_fit(const std::vector<std::string>& argv) {
     bool has_test = false;
     try {
         if (a.has("--rows")) identify::parse_row_range(a.str("--rows", ""), lo.row_begin, lo.row_end);
-        data = identify::load_measured(path, lo);
+        std::vector<identify::MeasuredData> runs;
+        for (const auto& p : paths) runs.push_back(identify::load_measured(p, lo));
+        data = identify::join_records(runs);
         if (a.has("--test-rows")) {
             identify::LoadOptions lt = lo;
             identify::parse_row_range(a.str("--test-rows", ""), lt.row_begin, lt.row_end);
-            test = identify::load_measured(path, lt);
+            test = identify::load_measured(paths[0], lt);
             has_test = true;
         }
     } catch (const identify::DataError& e) {
@@ -153,6 +161,20 @@ int cmd_fit(const std::vector<std::string>& argv) {
     const auto& b = r.error_before;
     const auto& e = r.error_after;
     std::printf("verdict: %s\n", r.verdict.c_str());
+    const auto& wa = r.wells_after;
+    if (wa.wells.size() == 2 && std::isfinite(wa.hill_x)) {
+        const double s = r.x_unit == "m" ? 1e3 : 1.0;
+        for (int k = 0; k < 2; ++k) {
+            const auto& w = wa.wells[static_cast<std::size_t>(k)];
+            std::printf("%s well: x = %.4g +/- %.2g %s, depth %.4g +/- %.2g J, omega %.4g +/- %.2g rad/s%s\n", k ? "right" : "left ",
+                        w.x * s, w.sx * s, r.x_unit == "m" ? "mm" : r.x_unit.c_str(), w.depth, w.sdepth, w.omega, w.somega,
+                        w.beyond_bumper ? " (beyond the bumper)" : "");
+        }
+        std::printf("wells, right minus left: depth %.3g +/- %.2g J, omega %.3g +/- %.2g rad/s (%zu run%s:", wa.depth_asym, wa.sdepth_asym,
+                    wa.omega_asym, wa.somega_asym, r.runs, r.runs > 1 ? "s" : "");
+        for (const auto& rw : wa.run_wells) std::printf(" %s", rw.c_str());
+        std::printf(")\n");
+    }
     const std::string xu = r.x_unit == "m" ? "[m]" : "[" + r.x_unit + "]";
     const std::string fu = r.force_unit == "N" ? "[N]" : "[force units]";
     std::printf("%-34s %14s %14s\n", "", "before", "after");

@@ -295,3 +295,56 @@ TEST_CASE("duffing forced by u: noise alone yields nothing, the model written re
     CHECK(e.simulation_rms_m < 2e-4);
     std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("several runs, one model: a left-well and a right-well run give both wells and their asymmetry") {
+    // An even stiffness makes the wells differ; the bumper is moved out of the way so the right well is free.
+    id::Model truth = a1h();
+    truth.p.xI = 0.05;
+    id::apply_effect(truth, "even_stiffness", {{"k2", 4000.0}});
+    id::Model model = a1h();
+    model.p.xI = 0.05;
+    std::vector<id::MeasuredData> runs;
+    for (double x0 : {-0.011, 0.011}) {
+        id::SynthOptions so = short_run(x0 < 0 ? 21 : 22);
+        so.x0 = x0;
+        id::steps_profile({6.0, 8.0}, 9.0, 2.0, so.knot_t, so.knot_omega);
+        runs.push_back(id::synthesize(truth, so));
+        runs.back().source = x0 < 0 ? "left" : "right";
+    }
+    const id::MeasuredData both = id::join_records(runs);
+    REQUIRE(both.run_starts.size() == 2);
+    CHECK(both.t[both.run_starts[1]] == doctest::Approx(both.t[both.run_starts[1] - 1] + 1e-3));
+    id::FitOptions fo;
+    fo.plots = false;
+    const id::FitReport r = id::run_fit(both, model, fo);
+    CHECK(r.runs == 2);
+    REQUIRE_FALSE(r.effects_found.empty());
+    CHECK(r.effects_found.front().id == "even_stiffness");
+    const double k2 = param(r.effects_found.front(), "k2");
+    CHECK(std::abs(k2 - 4000.0) <= 3.0 * r.effects_found.front().sigma.front().second + 1e-9);
+    const id::WellReport& w = r.wells_after;
+    REQUIRE(w.wells.size() == 2);
+    CHECK(w.run_wells == std::vector<std::string>{"left", "right"});
+    // -k2 x^2 pulls both wells towards -x: the left one deepens, the right one gets shallower.
+    CHECK(w.wells[0].depth > w.wells[1].depth);
+    CHECK(w.depth_asym < 0);
+    CHECK(w.sdepth_asym > 0);
+    CHECK(std::abs(w.depth_asym) > 10 * w.sdepth_asym);
+    // The symmetric baseline has equal wells.
+    REQUIRE(r.wells_before.wells.size() == 2);
+    CHECK(r.wells_before.depth_asym == doctest::Approx(0.0).epsilon(1e-9).scale(1e-3));
+}
+
+TEST_CASE("several runs: runs with different forcing or rates are refused, naming the run") {
+    id::MeasuredData a = id::synthesize(a1h(), short_run(1)), b = a;
+    a.source = "a.csv";
+    b.source = "b.csv";
+    b.u = b.phi;
+    b.phi.clear();
+    CHECK_THROWS_WITH_AS(id::join_records({a, b}), doctest::Contains("b.csv"), id::DataError);
+    id::MeasuredData c = a;
+    c.source = "c.csv";
+    for (auto& t : c.t) t *= 2.0;
+    CHECK_THROWS_WITH_AS(id::join_records({a, c}), doctest::Contains("c.csv: sample step"), id::DataError);
+    CHECK_THROWS_AS(id::join_records({}), id::DataError);
+}

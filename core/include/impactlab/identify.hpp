@@ -130,6 +130,23 @@ struct ImpactPoint {
     double kappa_before, dwell_before, kappa_after, dwell_after;
 };
 
+// The wells of a model's static force (springs, magnets and every effect at v = 0, averaged over the forcing
+// phase): position, depth below the hilltop between them [J] and the linearised frequency [rad/s], with
+// standard errors propagated from the found effects' parameter uncertainties. A well beyond the bumper is
+// listed too (flagged): the rail's magnets still make it.
+struct Well {
+    double x = 0, depth = 0, omega = 0;
+    double sx = 0, sdepth = 0, somega = 0;
+    bool beyond_bumper = false;
+};
+struct WellReport {
+    std::vector<Well> wells;                 // ascending x; two for a bistable rig
+    double hill_x = 0;                       // the unstable equilibrium between two wells
+    double depth_asym = 0, sdepth_asym = 0;  // right depth minus left depth [J], and its standard error
+    double omega_asym = 0, somega_asym = 0;  // right minus left linearised frequency [rad/s]
+    std::vector<std::string> run_wells;      // per run of the data: "left", "right" or "both"
+};
+
 struct FitReport {
     std::string data_source, model_name, forcing, baseline;
     std::size_t samples = 0, rows_used = 0;
@@ -156,6 +173,8 @@ struct FitReport {
     // the data's own units, which the report names as such.
     std::string x_unit = "m", force_unit = "N";
     std::string verdict;   // one sentence on the residual against its noise floor, after the validation
+    std::size_t runs = 1;  // records fitted together
+    WellReport wells_before, wells_after;
 };
 
 // The whole loop. `test` (optional): data held out for the simulation error (same layout as `data`).

@@ -41,6 +41,9 @@ struct MeasuredData {
     std::vector<double> omega, v;               // optional columns; empty if absent
     std::vector<long> line;                     // the file line of each sample (1-based)
     std::map<std::string, std::string> meta;    // "# key: value" comment lines
+    // Several runs of one rig fitted together (join_records): the first sample of each run. Each run keeps
+    // its own forcing and initial state; nothing (smoothing, windows, impacts) reaches across a start.
+    std::vector<std::size_t> run_starts{0};
     bool has_phi() const { return !phi.empty(); }
     bool has_u() const { return !u.empty(); }
     std::size_t size() const { return t.size(); }
@@ -61,6 +64,11 @@ bool is_gzip(std::string_view bytes);
 std::string gunzip(std::string_view bytes, const std::string& source, std::size_t max_bytes = std::size_t{1} << 30);
 // A valid gzip member holding `text` uncompressed (stored blocks): what synth writes for FILE.csv.gz.
 std::string gzip_stored(std::string_view text);
+
+// Several runs of the same rig as one record with run boundaries: the same forcing column (phi or u) and
+// the same sample step (within 1 %) in each; run k is shifted in time to start one step after run k-1 ends.
+// Throws DataError naming the run that does not fit.
+MeasuredData join_records(const std::vector<MeasuredData>& runs);
 
 // Writes t,x and phi or u (and the meta as "# key: value" lines) in the MODEL.md layout.
 void write_measured_csv(std::ostream& out, const MeasuredData& d);

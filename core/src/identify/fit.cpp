@@ -95,7 +95,8 @@ void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_ite
 
 // The output-error fit uses samples [a, end]; the rest of the record validates it.
 std::size_t oe_fit_end(const Prep& pr, std::size_t a, std::size_t max_samples) {
-    return std::min(pr.n - 1, a + std::min(max_samples, (pr.n - a) / 2));
+    const std::size_t last = pr.run_last(a);   // a free run stays within its run
+    return std::min(last, a + std::min(max_samples, (last + 1 - a) / 2));
 }
 
 // RMS of a free run against the measured x over samples [from, end) where the run is defined; -1 if none.
@@ -1011,6 +1012,9 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     if (!rep.effects_found.empty()) after.p.name = base.p.name + "+" + rep.effects_found.front().id;
     for (std::size_t k = 1; k < rep.effects_found.size(); ++k) after.p.name += "+" + rep.effects_found[k].id;
     rep.after = after;
+    rep.runs = pr.run_start.size();
+    rep.wells_before = well_report(base, {}, pr);
+    rep.wells_after = well_report(after, rep.effects_found, pr);
 
     // ---- 7. errors before and after ------------------------------------------------------------------------
     Eigen::VectorXd R1;

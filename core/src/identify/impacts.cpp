@@ -234,9 +234,9 @@ PredictedImpacts predict_impacts(const Prep& pr, const Model& m, double rtol) {
     for (std::size_t k = 0; k < ni; ++k) {
         const ImpactObs& im = pr.impacts[k];
         if (im.i_first < lead + 1) continue;
-        std::size_t a = im.i_first - lead;
+        std::size_t a = std::max(im.i_first - lead, pr.run_start[pr.run_of(im.i_first)]);
         if (k > 0) a = std::max(a, pr.impacts[k - 1].i_last + 2);
-        const std::size_t b = std::min(pr.n - 1, im.i_last + tail);
+        const std::size_t b = std::min(pr.run_last(im.i_first), im.i_last + tail);
         const std::size_t pre_end = im.i_first >= 2 ? im.i_first - 2 : 0;
         if (pre_end < a + 8 || b < im.i_last + kFitSide || !std::isfinite(pr.xs[a]) || !std::isfinite(pr.vs[a])) continue;
         const std::vector<double> sim = simulate_window(pr, m, a, b, true, rtol, pre_end);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cstddef>
 #include <limits>
 #include <string>
@@ -60,7 +61,17 @@ struct Prep {
     std::size_t n = 0;
     double dt = 0, sigma_x = 0, period = 0, drive_rms = 0;
     bool phi_forced = true;
-    Drive drive;
+    // One drive per run (MeasuredData::run_starts): omega(t) fitted to the run's phi, or its input u(t).
+    std::vector<Drive> drives;
+    std::vector<std::size_t> run_start;   // first sample of each run, ascending, run_start[0] = 0
+    std::size_t run_of(std::size_t i) const {
+        return static_cast<std::size_t>(std::upper_bound(run_start.begin(), run_start.end(), i) - run_start.begin()) - 1;
+    }
+    std::size_t run_last(std::size_t i) const {   // last sample of the run holding sample i
+        const std::size_t r = run_of(i);
+        return r + 1 < run_start.size() ? run_start[r + 1] - 1 : n - 1;
+    }
+    const Drive& drive_of(std::size_t i) const { return drives[run_of(i)]; }
     std::vector<double> xs, vs;              // S-G position and velocity (measured coordinates)
     std::vector<double> phi, omega, alpha;   // from the drive (phi data); zeros otherwise
     std::vector<double> u;
@@ -91,6 +102,9 @@ void residual(const Prep& pr, const Model& m, Eigen::VectorXd& R, std::vector<do
 // i.e. the regressor column X = -dR/dp_k [N per unit]; `m` supplies the measurement map.
 void effect_column(const Prep& pr, const Model& m, const EffectInstance& e, int k, double h, Eigen::Ref<Eigen::VectorXd> X,
                    std::vector<double>& pointwise);
+
+// ---- wells.cpp ----------------------------------------------------------------------------------------
+WellReport well_report(const Model& m, const std::vector<FoundEffect>& found, const Prep& pr);
 
 // ---- linear algebra helpers (stats.cpp) -----------------------------------------------------------------
 struct Folds {   // contiguous blocks of rows for cross-validation, with per-block Gram matrices

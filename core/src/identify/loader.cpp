@@ -259,6 +259,42 @@ MeasuredData parse_measured(std::string_view text, const std::string& src, const
     return d;
 }
 
+MeasuredData join_records(const std::vector<MeasuredData>& runs) {
+    if (runs.empty()) throw DataError("no data: give at least one record");
+    if (runs.size() == 1) return runs.front();
+    MeasuredData all;
+    all.run_starts.clear();
+    const bool phi = runs.front().has_phi();
+    double dt0 = 0;
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        const MeasuredData& r = runs[k];
+        if (r.size() < 2) throw DataError(r.source + ": a run needs at least two samples");
+        if (r.has_phi() != phi)
+            throw DataError(r.source + ": forced through " + (r.has_phi() ? "phi" : "u") + ", but " + runs.front().source +
+                            " through " + (phi ? "phi" : "u") + ": runs fitted together need the same forcing");
+        const double dt = (r.t.back() - r.t.front()) / static_cast<double>(r.size() - 1);
+        if (k == 0) dt0 = dt;
+        if (std::abs(dt - dt0) > 0.01 * dt0)
+            throw DataError(r.source + ": sample step " + std::to_string(dt) + " s, but " + runs.front().source + " has " +
+                            std::to_string(dt0) + " s: runs fitted together need the same rate");
+        const double shift = k == 0 ? 0.0 : all.t.back() + dt0 - r.t.front();
+        all.run_starts.push_back(all.t.size());
+        for (std::size_t i = 0; i < r.size(); ++i) all.t.push_back(r.t[i] + shift);
+        all.x.insert(all.x.end(), r.x.begin(), r.x.end());
+        all.phi.insert(all.phi.end(), r.phi.begin(), r.phi.end());
+        all.u.insert(all.u.end(), r.u.begin(), r.u.end());
+        all.omega.insert(all.omega.end(), r.omega.begin(), r.omega.end());
+        all.v.insert(all.v.end(), r.v.begin(), r.v.end());
+        all.line.insert(all.line.end(), r.line.begin(), r.line.end());
+        all.source += (k ? " + " : "") + r.source;
+        for (const auto& [key, value] : r.meta) all.meta[r.source + ": " + key] = value;
+    }
+    // An optional column only some runs have is dropped (its samples would not line up).
+    if (all.omega.size() != all.t.size()) all.omega.clear();
+    if (all.v.size() != all.t.size()) all.v.clear();
+    return all;
+}
+
 void write_measured_csv(std::ostream& out, const MeasuredData& d) {
     for (const auto& [k, v] : d.meta) out << "# " << k << ": " << v << '\n';
     out << "t,x," << (d.has_phi() ? "phi" : "u") << '\n';

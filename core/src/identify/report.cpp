@@ -246,6 +246,30 @@ std::string markdown(const FitReport& r, bool with_plots) {
         for (const auto& f : r.effects_rejected) md << "- **" << f.id << "**: " << f.reason << ".\n";
         md << "\n";
     }
+    const auto& wa = r.wells_after;
+    if (wa.wells.size() == 2 && std::isfinite(wa.hill_x)) {
+        const double xs_ = r.x_unit == "m" ? 1e3 : 1.0;
+        const std::string xu_ = r.x_unit == "m" ? "mm" : r.x_unit;
+        md << "## The two wells (model after)\n\n| well | x [" << xu_ << "] | depth below the hilltop [J] | linearised omega [rad/s] |\n|---|---|---|---|\n";
+        const char* side[2] = {"left", "right"};
+        for (int k = 0; k < 2; ++k) {
+            const Well& w = wa.wells[static_cast<std::size_t>(k)];
+            md << "| " << side[k] << (w.beyond_bumper ? " (beyond the bumper)" : "") << " | " << g3(w.x * xs_, "%.4g") << " +/- "
+               << g3(w.sx * xs_, "%.2g") << " | " << g3(w.depth, "%.4g") << " +/- " << g3(w.sdepth, "%.2g") << " | " << g3(w.omega, "%.4g")
+               << " +/- " << g3(w.somega, "%.2g") << " |\n";
+        }
+        md << "\nRight minus left: depth " << g3(wa.depth_asym, "%.3g") << " +/- " << g3(wa.sdepth_asym, "%.2g") << " J, omega "
+           << g3(wa.omega_asym, "%.3g") << " +/- " << g3(wa.somega_asym, "%.2g") << " rad/s (uncertainties from the effects found; "
+           << "the base parameters are taken as given). ";
+        std::string visited;
+        for (std::size_t k = 0; k < wa.run_wells.size(); ++k)
+            visited += (k ? ", " : "") + std::string("run ") + std::to_string(k + 1) + ": " + wa.run_wells[k];
+        md << "Runs: " << visited << ". "
+           << (r.runs > 1 ? "The runs together constrain both wells."
+                          : "One run constrains the well it stays in; an asymmetry between the wells is identifiable only from runs "
+                            "in both (fit them together: impactlab fit a.csv b.csv).")
+           << "\n\n";
+    }
     md << "## Error before and after\n\n| measure | before | after |\n|---|---|---|\n";
     auto row = [&](const char* name, double b, double a, double scale, const char* f) {
         md << "| " << name << " | " << g3(b * scale, f) << " | " << g3(a * scale, f) << " |\n";
@@ -349,6 +373,23 @@ std::string report_json_text(const FitReport& r) {
     j["validation"]["growth"] = json::array();
     for (const auto& [L, e] : r.horizon_growth) j["validation"]["growth"].push_back({{"periods", L}, {"shooting_rms", num(e)}});
     j["verdict"] = r.verdict;
+    j["runs"] = r.runs;
+    auto wells_json = [](const WellReport& w) {
+        json o;
+        o["wells"] = json::array();
+        for (const auto& e : w.wells)
+            o["wells"].push_back({{"x", num(e.x)}, {"sx", num(e.sx)}, {"depth_J", num(e.depth)}, {"sdepth_J", num(e.sdepth)},
+                                  {"omega", num(e.omega)}, {"somega", num(e.somega)}, {"beyond_bumper", e.beyond_bumper}});
+        o["hill_x"] = num(w.hill_x);
+        o["depth_asym_J"] = num(w.depth_asym);
+        o["sdepth_asym_J"] = num(w.sdepth_asym);
+        o["omega_asym"] = num(w.omega_asym);
+        o["somega_asym"] = num(w.somega_asym);
+        o["run_wells"] = w.run_wells;
+        return o;
+    };
+    j["wells_before"] = wells_json(r.wells_before);
+    j["wells_after"] = wells_json(r.wells_after);
     j["units"] = {{"x", r.x_unit}, {"force", r.force_unit}};
     j["error_before"] = errors_json(r.error_before);
     j["error_after"] = errors_json(r.error_after);

@@ -86,20 +86,34 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     pr.phi.assign(n, 0.0);
     pr.omega.assign(n, 0.0);
     pr.alpha.assign(n, 0.0);
-    if (pr.phi_forced) {
-        pr.drive = fit_drive(d.t, d.phi, o.knot_spacing, pr.drive_rms);
-        for (std::size_t i = 0; i < n; ++i) {
-            pr.phi[i] = pr.drive.phi(d.t[i]);
-            pr.omega[i] = pr.drive.omega(d.t[i]);
-            pr.alpha[i] = pr.drive.alpha(d.t[i]);
+    pr.run_start = d.run_starts.empty() ? std::vector<std::size_t>{0} : d.run_starts;
+    for (std::size_t r = 0; r < pr.run_start.size(); ++r) {
+        const std::size_t a = pr.run_start[r], b = r + 1 < pr.run_start.size() ? pr.run_start[r + 1] : n;
+        if (b - a < 200) throw DataError(d.source + ": run " + std::to_string(r + 1) + " has only " + std::to_string(b - a) +
+                                         " samples; impactlab fit needs at least 200 in each");
+        const std::vector<double> t(d.t.begin() + static_cast<long>(a), d.t.begin() + static_cast<long>(b));
+        if (pr.phi_forced) {
+            double rms = 0;
+            const std::vector<double> ph(d.phi.begin() + static_cast<long>(a), d.phi.begin() + static_cast<long>(b));
+            pr.drives.push_back(fit_drive(t, ph, o.knot_spacing, rms));
+            pr.drive_rms = std::max(pr.drive_rms, rms);
+            for (std::size_t i = a; i < b; ++i) {
+                pr.phi[i] = pr.drives.back().phi(d.t[i]);
+                pr.omega[i] = pr.drives.back().omega(d.t[i]);
+                pr.alpha[i] = pr.drives.back().alpha(d.t[i]);
+            }
+        } else {
+            Drive in(0.0, t.front());
+            in.set_input(t.front(), pr.dt, std::vector<double>(d.u.begin() + static_cast<long>(a), d.u.begin() + static_cast<long>(b)));
+            pr.drives.push_back(std::move(in));
         }
+    }
+    if (pr.phi_forced) {
         const double wmax = std::max(quantile(pr.omega, 0.99), 0.5);
         t_char = kTwoPi / wmax;
         pr.period = kTwoPi / std::max(median(pr.omega), 0.5);
     } else {
         pr.u = d.u;
-        pr.drive = Drive(0.0, d.t.front());
-        pr.drive.set_input(d.t.front(), pr.dt, d.u);
         pr.period = dominant_period(d.x, pr.dt);
         t_char = pr.period;
     }
@@ -110,11 +124,30 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     pr.Hv = std::max(3, H / 2);
     pr.xs = apply_fir(d.x, savgol(pr.Hv, 4, 0, pr.dt));
     pr.vs = apply_fir(d.x, savgol(pr.Hv, 3, 1, pr.dt));
-
-    refine_reversals(d, pr);
+    if (d.v.size() == n) {
+        pr.vs = d.v;   // a measured velocity is used as it is (its own noise, no smoothing lag at reversals)
+    } else {
+        refine_reversals(d, pr);
+    }
     pr.zone.assign(n, 0);
+    // Nothing reaches across the start of a run: the smoothers' and the kernel's reach around it is left out.
+    for (std::size_t r = 1; r < pr.run_start.size(); ++r) {
+        const std::size_t reach = static_cast<std::size_t>(H + pr.Hv + 2);
+        const std::size_t a = pr.run_start[r] >= reach ? pr.run_start[r] - reach : 0;
+        for (std::size_t j = a; j < std::min(n, pr.run_start[r] + reach); ++j) pr.zone[j] = 1;
+    }
     if (m.bumper()) {
-        pr.impacts = find_impacts(d.t, d.x, pr.sigma_x, m.sensor_gain() * m.p.xI + m.sensor_offset());
+        // Impacts run by run, so that the jump from one run to the next is never read as one.
+        for (std::size_t r = 0; r < pr.run_start.size(); ++r) {
+            const std::size_t a = pr.run_start[r], b = r + 1 < pr.run_start.size() ? pr.run_start[r + 1] : n;
+            const std::vector<double> t(d.t.begin() + static_cast<long>(a), d.t.begin() + static_cast<long>(b));
+            const std::vector<double> x(d.x.begin() + static_cast<long>(a), d.x.begin() + static_cast<long>(b));
+            for (ImpactObs im : find_impacts(t, x, pr.sigma_x, m.sensor_gain() * m.p.xI + m.sensor_offset())) {
+                im.i_first += a;
+                im.i_last += a;
+                pr.impacts.push_back(im);
+            }
+        }
         // A margin of kMargin samples keeps the zone's edge away from the samples whose noise decided it
         // (otherwise the windows next to it would be chosen by the noise they contain: a biased residual).
         constexpr std::size_t kMargin = 10;

@@ -43,9 +43,10 @@ void run(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, double 
     s.t = d.t[i0];
     s.x = x;
     s.v = v;
-    Simulator::make_consistent(m.p, pr.drive, s);
-    Collect c(pr.drive, pr.dt, d.t[i0], out, i1 - i0 + 1);
-    sim.advance(m.p, pr.drive, s, d.t[i1] + 0.5 * pr.dt, &c);
+    const Drive& drive = pr.drive_of(i0);
+    Simulator::make_consistent(m.p, drive, s);
+    Collect c(drive, pr.dt, d.t[i0], out, i1 - i0 + 1);
+    sim.advance(m.p, drive, s, d.t[i1] + 0.5 * pr.dt, &c);
     // Samples the sampler could not reach (rounding at the end) repeat the last state.
     for (std::size_t k = c.filled(); k < out.size(); ++k) out[k] = k ? out[k - 1] : s.x;
 }
@@ -126,26 +127,31 @@ std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t 
 std::vector<std::pair<std::size_t, std::size_t>> windows(const Prep& pr, double periods) {
     std::vector<std::pair<std::size_t, std::size_t>> out;
     const MeasuredData& d = *pr.data;
-    const std::size_t n = pr.n;
-    std::vector<double> bounds;
-    if (pr.phi_forced) {
-        const double k0 = std::ceil(pr.drive.phi(d.t.front()) / kTwoPi);
-        for (double k = k0;; k += periods) {
-            const double tb = pr.drive.time_of_phase(kTwoPi * k);
-            if (!(tb <= d.t.back())) break;
-            bounds.push_back(tb);
+    // Run by run: a window never reaches across the start of the next run.
+    for (std::size_t r = 0; r < pr.run_start.size(); ++r) {
+        const std::size_t first = pr.run_start[r], last = pr.run_last(first);
+        const double t_first = d.t[first], t_last = d.t[last];
+        const Drive& drive = pr.drives[r];
+        std::vector<double> bounds;
+        if (pr.phi_forced) {
+            const double k0 = std::ceil(drive.phi(t_first) / kTwoPi);
+            for (double k = k0;; k += periods) {
+                const double tb = drive.time_of_phase(kTwoPi * k);
+                if (!(tb <= t_last)) break;
+                bounds.push_back(tb);
+            }
+        } else {
+            const double len = pr.period * periods;
+            for (double tb = t_first; tb <= t_last; tb += len) bounds.push_back(tb);
         }
-    } else {
-        const double len = pr.period * periods;
-        for (double tb = d.t.front(); tb <= d.t.back(); tb += len) bounds.push_back(tb);
-    }
-    for (std::size_t w = 0; w + 1 < bounds.size(); ++w) {
-        const double ta = bounds[w], tb = bounds[w + 1];
-        std::size_t a = static_cast<std::size_t>(std::max(0.0, std::ceil((ta - d.t.front()) / pr.dt - 1e-9)));
-        std::size_t b = static_cast<std::size_t>(std::max(0.0, std::floor((tb - d.t.front()) / pr.dt - 1e-9)));
-        b = std::min(b, n - 1);
-        a = usable_start(pr, a, b);
-        if (b > a + 3) out.emplace_back(a, b);
+        for (std::size_t w = 0; w + 1 < bounds.size(); ++w) {
+            const double ta = bounds[w], tb = bounds[w + 1];
+            std::size_t a = first + static_cast<std::size_t>(std::max(0.0, std::ceil((ta - t_first) / pr.dt - 1e-9)));
+            std::size_t b = first + static_cast<std::size_t>(std::max(0.0, std::floor((tb - t_first) / pr.dt - 1e-9)));
+            b = std::min(b, last);
+            a = usable_start(pr, a, b);
+            if (b > a + 3) out.emplace_back(a, b);
+        }
     }
     return out;
 }
@@ -225,10 +231,13 @@ ShootOut shooting(const Prep& pr, const Model& m, const FitOptions& o) {
 
 std::vector<double> free_run(const Prep& pr, const Model& m, double rtol) {
     std::vector<double> out(pr.n, kNaN);
-    const std::size_t a = usable_start(pr, 0, pr.n - 1);
-    if (a + 2 >= pr.n) return out;
-    const std::vector<double> sim = simulate_window(pr, m, a, pr.n - 1, false, rtol);
-    std::copy(sim.begin(), sim.end(), out.begin() + static_cast<long>(a));
+    for (std::size_t first : pr.run_start) {   // each run from its own first usable sample
+        const std::size_t last = pr.run_last(first);
+        const std::size_t a = usable_start(pr, first, last);
+        if (a + 2 >= last) continue;
+        const std::vector<double> sim = simulate_window(pr, m, a, last, false, rtol);
+        std::copy(sim.begin(), sim.end(), out.begin() + static_cast<long>(a));
+    }
     return out;
 }
 
@@ -248,20 +257,25 @@ std::vector<std::pair<double, double>> free_run_sections(const Prep& pr, const M
     std::vector<std::pair<double, double>> out;
     if (!pr.phi_forced) return out;
     const MeasuredData& d = *pr.data;
-    const std::size_t a = usable_start(pr, 0, pr.n - 1);
-    if (a + 2 >= pr.n) return out;
     const double g = m.sensor_gain(), o = m.sensor_offset();
-    Tolerances tol;
-    tol.rtol = rtol;
-    Simulator sim(tol);
-    State s;
-    s.t = d.t[a];
-    s.x = (pr.xs[a] - o) / g;
-    s.v = pr.vs[a] / g;
-    Simulator::make_consistent(m.p, pr.drive, s);
-    Sections obs(pr.drive, out);
-    sim.advance(m.p, pr.drive, s, d.t.back(), &obs);
-    for (auto& [w, x] : out) x = g * x + o;
+    for (std::size_t first : pr.run_start) {
+        const std::size_t last = pr.run_last(first);
+        const std::size_t a = usable_start(pr, first, last);
+        if (a + 2 >= last) continue;
+        const Drive& drive = pr.drive_of(a);
+        Tolerances tol;
+        tol.rtol = rtol;
+        Simulator sim(tol);
+        State s;
+        s.t = d.t[a];
+        s.x = (pr.xs[a] - o) / g;
+        s.v = pr.vs[a] / g;
+        Simulator::make_consistent(m.p, drive, s);
+        const std::size_t before = out.size();
+        Sections obs(drive, out);
+        sim.advance(m.p, drive, s, d.t[last], &obs);
+        for (std::size_t k = before; k < out.size(); ++k) out[k].second = g * out[k].second + o;
+    }
     return out;
 }
 
@@ -269,23 +283,27 @@ std::vector<std::pair<double, double>> measured_sections(const Prep& pr) {
     std::vector<std::pair<double, double>> out;
     if (!pr.phi_forced) return out;
     const MeasuredData& d = *pr.data;
-    const double k0 = std::ceil(pr.drive.phi(d.t.front()) / kTwoPi);
-    for (double k = k0;; k += 1) {
-        const double tk = pr.drive.time_of_phase(kTwoPi * k);
-        if (!(tk < d.t.back())) break;
-        const auto i = static_cast<std::size_t>(std::floor((tk - d.t.front()) / pr.dt));
-        if (i + 1 >= pr.n) break;
-        const double f = (tk - d.t[i]) / pr.dt;
-        double x;
-        if (!pr.zone[i] && !pr.zone[i + 1] && std::isfinite(pr.xs[i]) && std::isfinite(pr.xs[i + 1])) {
-            // Cubic Hermite through the smoothed positions and velocities.
-            const double h00 = (1 + 2 * f) * (1 - f) * (1 - f), h10 = f * (1 - f) * (1 - f);
-            const double h01 = f * f * (3 - 2 * f), h11 = f * f * (f - 1);
-            x = h00 * pr.xs[i] + h10 * pr.dt * pr.vs[i] + h01 * pr.xs[i + 1] + h11 * pr.dt * pr.vs[i + 1];
-        } else {
-            x = d.x[i] + f * (d.x[i + 1] - d.x[i]);
+    for (std::size_t r = 0; r < pr.run_start.size(); ++r) {
+        const std::size_t first = pr.run_start[r], last = pr.run_last(first);
+        const Drive& drive = pr.drives[r];
+        const double k0 = std::ceil(drive.phi(d.t[first]) / kTwoPi);
+        for (double k = k0;; k += 1) {
+            const double tk = drive.time_of_phase(kTwoPi * k);
+            if (!(tk < d.t[last])) break;
+            const auto i = first + static_cast<std::size_t>(std::floor((tk - d.t[first]) / pr.dt));
+            if (i + 1 > last) break;
+            const double f = (tk - d.t[i]) / pr.dt;
+            double x;
+            if (!pr.zone[i] && !pr.zone[i + 1] && std::isfinite(pr.xs[i]) && std::isfinite(pr.xs[i + 1])) {
+                // Cubic Hermite through the smoothed positions and velocities.
+                const double h00 = (1 + 2 * f) * (1 - f) * (1 - f), h10 = f * (1 - f) * (1 - f);
+                const double h01 = f * f * (3 - 2 * f), h11 = f * f * (f - 1);
+                x = h00 * pr.xs[i] + h10 * pr.dt * pr.vs[i] + h01 * pr.xs[i + 1] + h11 * pr.dt * pr.vs[i + 1];
+            } else {
+                x = d.x[i] + f * (d.x[i + 1] - d.x[i]);
+            }
+            out.emplace_back(drive.omega(tk), x);
         }
-        out.emplace_back(pr.drive.omega(tk), x);
     }
     return out;
 }

@@ -12,4 +12,5 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/report.cpp
   src/identify/synth.cpp
   src/identify/recovery.cpp
+  src/identify/wells.cpp
 )
