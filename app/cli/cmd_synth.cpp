@@ -34,7 +34,12 @@ constexpr const char* kSynthHelp =
     "  --omega-knots t:w,...   omega piecewise linear through knots\n"
     "  --x0 X, --v0 V          initial state (default -0.01 m, 0)\n"
     "  --seed N                noise seed (default 1)\n"
-    "  --rtol R                integrator tolerance (default 1e-10)\n";
+    "  --rtol R                integrator tolerance (default 1e-10)\n"
+    "Input-forced data (writes t,x,u; the model is driven by input_gain * u, plus its unbalance if m0e > 0):\n"
+    "  --input FILE            a record whose u column drives the model (MODEL.md layout, or mapped:)\n"
+    "  --u-col C, --x-col C, --t-col C, --input-rate HZ, --u-scale S   its columns, rate and unit\n"
+    "  --gain G                input_gain [N per unit of u] (default: the model's, 1 if it has none)\n"
+    "                          (--duration defaults to the input's length; --rate to its rate)\n";
 
 std::vector<double> numbers(const std::string& flag, const std::string& s) {
     std::vector<double> out;
@@ -82,17 +87,38 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
     }
     const Args a("synth", argv,
                  {"--model", "--xI", "--m0e", "--out", "--duration", "--rate", "--noise", "--quantum", "--phi-counts", "--omega",
-                  "--plateau", "--ramp", "--ef", "--omega-knots", "--x0", "--v0", "--seed", "--rtol"});
+                  "--plateau", "--ramp", "--ef", "--omega-knots", "--x0", "--v0", "--seed", "--rtol", "--input", "--u-col", "--x-col",
+                  "--t-col", "--input-rate", "--u-scale", "--gain"});
     if (!a.positional().empty()) throw UsageError("synth: unexpected argument '" + a.positional()[0] + "'");
     const std::string out_path = a.required("--out");
+    const bool input = a.has("--input");
+    for (const char* f : {"--u-col", "--x-col", "--t-col", "--input-rate", "--u-scale", "--gain"})
+        if (a.has(f) && !input) throw UsageError(std::string("synth: ") + f + " needs --input");
+    identify::MeasuredData in;
+    if (input) {
+        identify::LoadOptions lo;
+        lo.columns.u = a.str("--u-col", "");
+        lo.columns.x = a.str("--x-col", "");
+        lo.columns.t = a.str("--t-col", "");
+        lo.rate = a.num("--input-rate", 0.0, 1e-6, 1e9);
+        lo.u_scale = a.num("--u-scale", 1.0, -1e12, 1e12);
+        lo.min_samples = 2;   // an input needs two samples to be a signal
+        try {
+            in = identify::load_measured(a.str("--input", ""), lo);
+        } catch (const identify::DataError& e) {
+            throw UsageError(std::string("synth: --input: ") + e.what());
+        }
+        if (!in.has_u()) throw UsageError("synth: --input: " + in.source + " has no input column u (map one with --u-col)");
+    }
     identify::Model model;
     try {
-        model = identify::resolve_fit_model(a.str("--model", "A1H"), identify::Forcing::Unbalance);
+        model = identify::resolve_fit_model(a.str("--model", "A1H"), input ? identify::Forcing::Input : identify::Forcing::Unbalance);
     } catch (const ParamError& e) {
         throw UsageError(std::string("--model: ") + e.what());
     }
-    if (!model.bumper() || model.forcing != identify::Forcing::Unbalance)
-        throw UsageError("synth: --model must be an unbalance-forced rig model (a version or a parameter file)");
+    if (!input && (!model.bumper() || model.forcing != identify::Forcing::Unbalance))
+        throw UsageError("synth: --model must be an unbalance-forced rig model (a version or a parameter file), or give --input");
+    if (a.has("--gain")) model.p.input_gain = a.num("--gain", 1.0, -1e12, 1e12);
     if (a.has("--xI")) model.p.xI = a.num("--xI", 0.0, -0.1, 0.1);
     if (a.has("--m0e")) model.p.m0e = a.num("--m0e", model.p.m0e, 0.0, 10.0);
     for (const auto& spec_list : effects) {
@@ -122,8 +148,17 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
     }
 
     identify::SynthOptions o;
-    o.duration = a.num("--duration", 60.0, 1e-3, 1e6);
-    o.rate = a.num("--rate", 1000.0, 1.0, 1e7);
+    if (input) {
+        o.input = in.u;
+        o.input_t0 = 0.0;   // the record is re-timed from 0
+        o.input_dt = (in.t.back() - in.t.front()) / static_cast<double>(in.size() - 1);
+        o.phi_counts = 0;
+        o.knot_t = {0.0};
+        o.knot_omega = {0.0};
+    }
+    const double in_len = input ? o.input_dt * static_cast<double>(in.size() - 1) : 60.0;
+    o.duration = a.num("--duration", in_len, 1e-3, 1e6);
+    o.rate = a.num("--rate", input ? 1.0 / o.input_dt : 1000.0, 1.0, 1e7);
     o.noise = a.num("--noise", 3e-6, 0.0, 1.0);
     o.quantum = a.num("--quantum", 1e-6, 0.0, 1.0);
     o.phi_counts = a.integer("--phi-counts", 4096, 0, 1 << 30);
@@ -133,7 +168,9 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
     o.rtol = a.num("--rtol", 1e-10, 1e-13, 1e-3);
     const int profiles = (a.has("--omega") ? 1 : 0) + (a.has("--ef") ? 1 : 0) + (a.has("--omega-knots") ? 1 : 0);
     if (profiles > 1) throw UsageError("synth: give one of --omega, --ef, --omega-knots");
-    if (a.has("--ef")) {
+    if (input && profiles == 0) {
+        // driven by the input alone: omega stays 0
+    } else if (a.has("--ef")) {
         const std::string s = a.str("--ef", "");
         const auto colon = s.find(':');
         if (colon == std::string::npos) throw UsageError("synth: --ef: expected WMAX:TRAMP");

@@ -104,3 +104,24 @@ impactlab_cli_test(bifurcation_ramp_csv --rc 0 --csv R.csv "omega,x,v" 9 9
 foreach(cmd simulate poincare bifurcation)
   impactlab_cli_test(help_${cmd}_model_flags --rc 0 --match "--rtol R" --match "--m0e M" -- ${cmd} --help)
 endforeach()
+
+# --- input-forced models, several runs, the recovery matrix ------------------------------------------------
+set(_input_csv "t,x,u\n0,0,0\n0.001,0,1\n0.002,0,0\n0.003,0,-1\n0.004,0,0\n")
+impactlab_cli_test(simulate_input --rc 0 --csv out.csv "t,x,v,u,regime" 4 6
+                   --write duff.json "{\"base\": \"A1none\", \"m\": 1, \"m0e\": 0, \"k\": 100, \"c\": 1, \"T\": 0, \"a\": [0,0,0,0], \"b\": [0,0,0,0], \"input_gain\": 2}"
+                   --write in.csv "${_input_csv}"
+                   -- simulate --model duff.json --input in.csv --out out.csv)
+impactlab_cli_test(simulate_input_flag_alone --rc 2 --match "--u-col needs --input" --absent out.csv
+                   -- simulate --model A1H --omega 9 --duration 1 --u-col 2 --out out.csv)
+impactlab_cli_test(simulate_input_without_u --rc 2 --match "no input column u" --match "x.csv"
+                   --write x.csv "t,x,phi\n0,0,0\n0.001,0,0.1\n"
+                   -- simulate --model A1H --input x.csv --out out.csv)
+impactlab_cli_test(synth_input --rc 0 --match "5 samples over 0.004 s"
+                   --write duff.json "{\"base\": \"A1none\", \"m\": 1, \"m0e\": 0, \"k\": 100, \"c\": 1, \"T\": 0, \"a\": [0,0,0,0], \"b\": [0,0,0,0], \"input_gain\": 2}"
+                   --write in.csv "${_input_csv}"
+                   -- synth --model duff.json --input in.csv --x0 0 --out du.csv)
+impactlab_cli_test(synth_gain_without_input --rc 2 --match "--gain needs --input" -- synth --model A1H --gain 2 --out s.csv)
+impactlab_cli_test(fit_test_rows_with_runs --rc 2 --match "--test-rows needs a single data file"
+                   -- fit a.csv b.csv --model A1H --report r --test-rows 0:10)
+impactlab_cli_test(help_recovery --rc 0 --match "usage: impactlab recovery" --match "--null" -- recovery --help)
+impactlab_cli_test(recovery_bad_version --rc 2 --match "unknown model version 'A9Q'" -- recovery --versions A1C,A9Q)

@@ -201,6 +201,10 @@ struct SynthOptions {
     double x0 = -0.01, v0 = 0.0;
     unsigned seed = 1;
     double rtol = 1e-10;
+    // A sampled input u at input_t0 + k input_dt: the model is driven by input_gain * u (as well as by its
+    // unbalance, if m0e > 0) and the record carries u instead of phi (an input-forced record).
+    std::vector<double> input;
+    double input_t0 = 0.0, input_dt = 1e-3;
 };
 MeasuredData synthesize(const Model& model, const SynthOptions& options);
 // Knots of the steps profile: plateaus of `plateau` seconds at each omega, joined by `ramp`-second ramps.
@@ -230,5 +234,13 @@ struct RecoveryResult {
 std::vector<RecoveryCase> recovery_cases(const std::vector<std::string>& versions);
 // Synthesises the case (steps 9 and 16 rad/s, `duration` seconds, noise seed) and runs the loop on it.
 RecoveryResult run_recovery(const RecoveryCase& c, double duration, unsigned seed);
+// The null check: noise-only data of `version` (same profile), fitted with the version; the ids it names
+// (none is the right answer) and whether the model written equals the model given.
+struct NullResult {
+    std::vector<std::string> found;
+    bool model_unchanged = false;
+    double rms_m = 0;   // 1-period shooting RMS (the sensor noise when the model is right)
+};
+NullResult run_null(const std::string& version, double duration, unsigned seed);
 
 }  // namespace impactlab::identify

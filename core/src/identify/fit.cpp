@@ -539,14 +539,33 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     if (o.fit_baseline) {
         base_names = o.fit_params.empty() ? default_fit_params(base) : o.fit_params;
         std::vector<Knob> knobs = base_knobs(base, base_names);
+        // A bistable starting model stays bistable: a fit that merges the wells into one is a fit to the
+        // wrong attractor (a chaotic record's free run, say), and that stage is undone.
+        const std::size_t wells0 = well_report(base, {}, pr).wells.size();
+        auto keeps_wells = [&](const Model& m, const char* stage) {
+            const std::size_t w = well_report(m, {}, pr).wells.size();
+            if (wells0 == 2 && w < 2) {
+                rep.notes.push_back(std::string("the ") + stage + " fit of the baseline would merge its two wells into " +
+                                    (w ? "one" : "none") + "; that stage is undone");
+                return false;
+            }
+            return true;
+        };
         // A first pass from the starting values (linear parameters converge in one step), then refine.
+        const Model start = base;
         lm_residual(pr, base, knobs, 40, R0, Jtmp);
+        if (!keeps_wells(base, "equation-error")) base = start;
         // Input-forced data: refine by the simulation error, which the equation error at a few samples per
         // period of the resonance cannot match.
         if (!pr.phi_forced) {
+            const Model ee = base;
+            knobs = base_knobs(base, base_names);
             lm_simulation(pr, base, knobs, 30, o.rtol);
-            rep.notes.push_back("baseline refined on the free-run simulation error (output error)");
+            if (keeps_wells(base, "output-error")) rep.notes.push_back("baseline refined on the free-run simulation error (output error)");
+            else base = ee;
         }
+        if (const std::string why = unphysical(base); !why.empty())
+            throw ParamError("the baseline fit leaves the physical range (" + why + "); fix the starting values or --fit-params");
     }
     residual(pr, base, R0, pw);
     rep.before = base;

@@ -59,4 +59,21 @@ RecoveryResult run_recovery(const RecoveryCase& c, double duration, unsigned see
     return r;
 }
 
+NullResult run_null(const std::string& version, double duration, unsigned seed) {
+    const Model truth = resolve_fit_model(version, Forcing::Unbalance);
+    SynthOptions so;
+    so.duration = duration;
+    so.seed = seed;
+    steps_profile({9.0, 16.0}, 0.5 * duration - 1.0, 2.0, so.knot_t, so.knot_omega);
+    FitOptions fo;
+    fo.plots = false;
+    const FitReport rep = run_fit(synthesize(truth, so), truth, fo);
+    NullResult r;
+    for (const auto& f : rep.effects_found) r.found.push_back(f.id);
+    r.model_unchanged = rep.after.p.effects.empty() && rep.after.p.xI == truth.p.xI && rep.after.p.impact == truth.p.impact &&
+                        rep.after.p.ip == truth.p.ip && rep.after.p.input_gain == truth.p.input_gain;
+    r.rms_m = rep.error_after.shooting_rms_1_m;
+    return r;
+}
+
 }  // namespace impactlab::identify

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 
 #include "identify/internal.hpp"
 #include "impactlab/simulator.hpp"
@@ -26,13 +27,21 @@ void steps_profile(const std::vector<double>& omegas, double plateau, double ram
 }
 
 MeasuredData synthesize(const Model& m, const SynthOptions& o) {
-    if (m.forcing != Forcing::Unbalance) throw ParamError("synth: only unbalance-forced models can be synthesised");
+    const bool input = !o.input.empty();
+    if (m.forcing == Forcing::Input && !input) throw ParamError("synth: an input-forced model needs the input u to drive it");
     if (!(o.duration > 0) || !(o.rate > 0)) throw ParamError("synth: the duration and the rate must be positive");
     validate(m.p, "synth model");
     // Knots closer than a microsecond (a step profile with zero ramp) are separated by one.
     std::vector<double> kt = o.knot_t, kw = o.knot_omega;
     for (std::size_t i = 1; i < kt.size(); ++i) kt[i] = std::max(kt[i], kt[i - 1] + 1e-6);
-    const Drive drive = Drive::piecewise_linear(kt, kw, 0.0);
+    Drive drive = Drive::piecewise_linear(kt, kw, 0.0);
+    if (input) {
+        try {
+            drive.set_input(o.input_t0, o.input_dt, o.input);
+        } catch (const std::invalid_argument& e) {
+            throw ParamError(std::string("synth: ") + e.what());
+        }
+    }
     Tolerances tol;
     tol.rtol = o.rtol;
     Simulator sim(tol);
@@ -50,7 +59,7 @@ MeasuredData synthesize(const Model& m, const SynthOptions& o) {
     d.source = "synth";
     d.t.resize(n);
     d.x.resize(n);
-    d.phi.resize(n);
+    (input ? d.u : d.phi).resize(n);
     d.line.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
         const double tk = static_cast<double>(k) / o.rate;
@@ -61,7 +70,8 @@ MeasuredData synthesize(const Model& m, const SynthOptions& o) {
         if (phi_q > 0) phi = std::round(phi / phi_q) * phi_q;
         d.t[k] = tk;
         d.x[k] = x;
-        d.phi[k] = phi;
+        if (input) d.u[k] = drive.input(tk);
+        else d.phi[k] = phi;
         d.line[k] = static_cast<long>(k) + 2;
     }
     std::ostringstream eff, prof;
@@ -70,6 +80,7 @@ MeasuredData synthesize(const Model& m, const SynthOptions& o) {
         for (std::size_t i = 0; i < kMaxLawParams && e.law->names[i]; ++i) eff << (i ? "," : "=") << e.law->names[i] << ":" << e.p[i];
     }
     for (std::size_t i = 0; i < kt.size(); ++i) prof << (i ? " " : "") << kt[i] << ":" << kw[i];
+    if (input) d.meta["input_gain"] = std::to_string(m.p.input_gain);
     d.meta["generated_by"] = "impactlab synth";
     d.meta["model"] = m.p.name;
     auto g6 = [](double v) {
