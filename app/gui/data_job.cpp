@@ -87,6 +87,7 @@ void DataJob::reap(bool all) {
 }
 
 void DataJob::cancel() {
+    if (fit_progress_) fit_progress_->cancel.store(true, std::memory_order_relaxed);
     std::lock_guard<std::mutex> lock(mutex_);
     wanted_.store(0, std::memory_order_release);
     busy_.store(false, std::memory_order_release);
@@ -139,9 +140,13 @@ std::uint64_t DataJob::start_load(const std::string& path, const identify::LoadO
 
 std::uint64_t DataJob::start_fit(std::shared_ptr<const identify::MeasuredData> data, const identify::Model& model,
                                  const identify::FitOptions& options) {
-    return launch(DataJobResult::Kind::Fit, [data, model, options](DataJobResult& r) {
-        r.report = std::make_shared<const identify::FitReport>(identify::run_fit(*data, model, options));
+    if (fit_progress_) fit_progress_->cancel.store(true, std::memory_order_relaxed);   // a superseded fit stops
+    auto progress = std::make_shared<identify::FitProgress>();
+    const std::uint64_t id = launch(DataJobResult::Kind::Fit, [data, model, options, progress](DataJobResult& r) {
+        r.report = std::make_shared<const identify::FitReport>(identify::run_fit(*data, model, options, nullptr, progress.get()));
     });
+    fit_progress_ = std::move(progress);
+    return id;
 }
 
 std::uint64_t DataJob::start_evaluate(std::shared_ptr<const identify::MeasuredData> data, const identify::Model& model,

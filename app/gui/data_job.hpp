@@ -1,7 +1,8 @@
 // The measured-data panel's GL-free half: the mapping of the panel's fields onto identify's load options,
 // the mapping of an effect subset onto a model, and a worker that runs the core's load_measured / run_fit /
-// evaluate_model off the UI thread and hands each result over whole, once. The core's loop has no progress
-// or cancel hook, so a cancelled (or superseded) job runs to its end and its result is discarded.
+// evaluate_model off the UI thread and hands each result over whole, once. A fit reports its stage and
+// progress through the core's FitProgress and stops soon after a cancel; a cancelled load or evaluation
+// runs to its end and its result is discarded.
 #pragma once
 
 #include <atomic>
@@ -67,8 +68,11 @@ public:
                             const identify::FitOptions& options);
     std::uint64_t start_evaluate(std::shared_ptr<const identify::MeasuredData> data, const identify::Model& model,
                                  const identify::FitOptions& options, std::uint32_t mask);
-    // UI thread. The running job's result will be discarded (the core cannot be interrupted).
+    // UI thread. The running job's result will be discarded; a fit is also asked to stop.
     void cancel();
+    // Any thread: the running fit's stage (FitStage, -1 before it starts) and fraction done, 0..1.
+    int fit_stage() const { return fit_progress_ ? fit_progress_->stage.load(std::memory_order_relaxed) : -1; }
+    double fit_fraction() const { return fit_progress_ ? fit_progress_->fraction.load(std::memory_order_relaxed) : 0.0; }
     // Any thread: a job whose result is still wanted is running.
     bool running() const { return busy_.load(std::memory_order_acquire); }
     DataJobResult::Kind running_kind() const { return kind_; }
@@ -93,6 +97,8 @@ private:
     double started_s_ = 0;
     std::mutex mutex_;                 // guards result_
     std::optional<DataJobResult> result_;
+    // The current fit's progress (shared with its worker, which may outlive a cancel). Set on the UI thread.
+    std::shared_ptr<identify::FitProgress> fit_progress_;
 };
 
 }  // namespace impactlab::gui

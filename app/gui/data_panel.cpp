@@ -217,10 +217,20 @@ void DataPanel::draw_fit_row(const DataPanelContext& ctx) {
         ImGui::SameLine();
         spinner(ImGui::GetFontSize() * 0.45f);
         ImGui::SameLine();
-        const char* what = job_.running_kind() == DataJobResult::Kind::Load  ? "loading"
-                           : job_.running_kind() == DataJobResult::Kind::Fit ? "fitting"
-                                                                             : "evaluating the chosen effects";
-        ImGui::Text("%s ... %.1f s", what, job_.running_for_s());
+        if (job_.running_kind() == DataJobResult::Kind::Fit) {
+            // The core's stage and its share of the whole fit.
+            const int stage = job_.fit_stage();
+            char label[96];
+            std::snprintf(label, sizeof label, "%s  %.0f %%",
+                          stage >= 0 ? identify::fit_stage_name(static_cast<identify::FitStage>(stage)) : "starting",
+                          100.0 * job_.fit_fraction());
+            ImGui::ProgressBar(static_cast<float>(job_.fit_fraction()), ImVec2(ImGui::GetFontSize() * 18.0f, 0.0f), label);
+            ImGui::SameLine();
+            ImGui::Text("%.1f s", job_.running_for_s());
+        } else {
+            const char* what = job_.running_kind() == DataJobResult::Kind::Load ? "loading" : "evaluating the chosen effects";
+            ImGui::Text("%s ... %.1f s", what, job_.running_for_s());
+        }
         ImGui::SameLine();
         if (ImGui::Button("Cancel")) {
             job_.cancel();

@@ -142,10 +142,13 @@ TEST_CASE("data panel: the worker hands results over whole, once; cancelled ones
     CHECK_FALSE(job.running());
     CHECK_FALSE(job.take_result());
 
-    // The fit, then the subsets "none" and "all" evaluated: they match the fit's before and after.
+    // The fit, then the subsets "none" and "all" evaluated: they match the fit's before and after. While it
+    // runs it reports a stage of the core's loop; at its end the whole fraction.
     job.start_fit(data, base, fo);
     CHECK(job.running());
     REQUIRE(job.wait(120.0));
+    CHECK(job.fit_fraction() == doctest::Approx(1.0));
+    CHECK(job.fit_stage() == static_cast<int>(identify::FitStage::Errors));
     r = job.take_result();
     REQUIRE(r);
     REQUIRE(r->error.empty());

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <thread>
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -347,4 +349,27 @@ TEST_CASE("several runs: runs with different forcing or rates are refused, namin
     for (auto& t : c.t) t *= 2.0;
     CHECK_THROWS_WITH_AS(id::join_records({a, c}), doctest::Contains("c.csv: sample step"), id::DataError);
     CHECK_THROWS_AS(id::join_records({}), id::DataError);
+}
+
+TEST_CASE("fit session: stages in order, progress to 1, and a cancel stops the fit with FitCancelled") {
+    const id::MeasuredData d = id::synthesize(a1h(), short_run(3));
+    id::FitOptions fo;
+    fo.plots = false;
+    id::FitProgress progress;
+    const id::FitReport r = id::run_fit(d, a1h(), fo, nullptr, &progress);
+    CHECK(progress.fraction.load() == doctest::Approx(1.0));
+    CHECK(progress.stage.load() == static_cast<int>(id::FitStage::Errors));
+    for (int s = 0; s < static_cast<int>(id::FitStage::Count); ++s)
+        CHECK(std::string(id::fit_stage_name(static_cast<id::FitStage>(s))) != "?");
+    // Cancelled from another thread while it runs: it stops early, with nothing returned.
+    id::FitProgress stop;
+    std::thread watcher([&] {
+        while (stop.stage.load() < static_cast<int>(id::FitStage::Baseline)) std::this_thread::yield();
+        stop.cancel.store(true);
+    });
+    const auto t0 = std::chrono::steady_clock::now();
+    CHECK_THROWS_AS(id::run_fit(d, a1h(), fo, nullptr, &stop), id::FitCancelled);
+    watcher.join();
+    CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < r.runtime_s + 1.0);
+    CHECK(stop.fraction.load() < 1.0);
 }

@@ -12,7 +12,9 @@
 // effect is kept there only if it improves the simulation of the part of the record the fit did not use.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -177,9 +179,25 @@ struct FitReport {
     WellReport wells_before, wells_after;
 };
 
+// The stages of a fit, in the order they run.
+enum class FitStage { Prepare, Baseline, Candidates, Selection, Refit, ImpactLaw, Validation, Errors, Count };
+const char* fit_stage_name(FitStage s);   // "preparing the data", "fitting the baseline", ...
+
+// A fit in progress, shared between the thread that runs run_fit and any thread that watches it.
+struct FitProgress {
+    std::atomic<int> stage{-1};          // the FitStage running; written by the fit's thread
+    std::atomic<double> fraction{0.0};   // of the whole fit, 0..1 (by the stages' typical cost); fit's thread
+    std::atomic<bool> cancel{false};     // any thread: the fit stops at its next check and throws FitCancelled
+};
+struct FitCancelled : std::runtime_error {
+    FitCancelled() : std::runtime_error("the fit was cancelled") {}
+};
+
 // The whole loop. `test` (optional): data held out for the simulation error (same layout as `data`).
+// `progress` (optional): stage and fraction as the fit goes, and a cancel flag it honours within a few
+// simulated windows (then it throws FitCancelled and returns nothing).
 FitReport run_fit(const MeasuredData& data, const Model& model, const FitOptions& options = {},
-                  const MeasuredData* test = nullptr);
+                  const MeasuredData* test = nullptr, FitProgress* progress = nullptr);
 
 // The errors of one given model on the data (no selection, no fitting): what a panel that switches effects
 // on and off shows. Diagram distance only when omega spans more than two bins.

@@ -432,7 +432,11 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
     Model cur = base;
     const std::vector<double> e_base = wins.size() >= 12 ? held_out(base) : std::vector<double>{};
     std::vector<double> e_cur = e_base;
+    std::size_t tried = 0;
     for (auto& f : found) {
+        if (pr.progress)   // the validation's share of the fit, effect by effect
+            pr.progress->fraction.store(0.34 + 0.46 * static_cast<double>(++tried) / static_cast<double>(found.size() + 1),
+                                        std::memory_order_relaxed);
         RejectedEffect rej{f.id, "", 0, 0, f.parameters};
         if (e_cur.empty()) {
             rej.reason = "too few windows to validate it on held-out data";
@@ -502,7 +506,32 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
 
 }  // namespace
 
-FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOptions& o, const MeasuredData* test) {
+const char* fit_stage_name(FitStage s) {
+    switch (s) {
+        case FitStage::Prepare: return "preparing the data";
+        case FitStage::Baseline: return "fitting the baseline";
+        case FitStage::Candidates: return "screening the candidate effects";
+        case FitStage::Selection: return "selecting effects";
+        case FitStage::Refit: return "refitting the effects";
+        case FitStage::ImpactLaw: return "comparing the impacts";
+        case FitStage::Validation: return "validating on held-out data";
+        case FitStage::Errors: return "errors before and after";
+        case FitStage::Count: break;
+    }
+    return "?";
+}
+
+FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOptions& o, const MeasuredData* test,
+                  FitProgress* progress) {
+    // Where each stage starts in the whole fit's progress (their typical share of the run time).
+    static constexpr double kStageStart[] = {0.0, 0.04, 0.10, 0.14, 0.18, 0.24, 0.34, 0.80, 1.0};
+    auto enter = [&](FitStage s) {
+        if (!progress) return;
+        if (progress->cancel.load(std::memory_order_relaxed)) throw FitCancelled();
+        progress->stage.store(static_cast<int>(s), std::memory_order_relaxed);
+        progress->fraction.store(kStageStart[static_cast<int>(s)], std::memory_order_relaxed);
+    };
+    enter(FitStage::Prepare);
     const auto clock0 = std::chrono::steady_clock::now();
     FitReport rep;
     rep.data_source = data.source;
@@ -514,7 +543,9 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         rep.force_unit = "model force units (m = 1: data units / s^2)";
     }
     validate(model0.p, "model");
-    const Prep pr = prepare(data, model0, o, rep.notes);
+    Prep prep = prepare(data, model0, o, rep.notes);
+    prep.progress = progress;
+    const Prep& pr = prep;
     rep.samples = pr.n;
     rep.rows_used = pr.rows.size();
     rep.dt = pr.dt;
@@ -530,6 +561,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     const int stride = std::max(1, pr.K.H / 4);
     const int hac_lag = static_cast<int>(std::ceil(2.0 * (2 * pr.K.H + 1) / stride));
 
+    enter(FitStage::Baseline);
     // ---- 1. the baseline --------------------------------------------------------------------------------
     Model base = model0;
     std::vector<double> pw;
@@ -572,6 +604,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     const double in0 = R0.squaredNorm();
     rep.noise_floor_N = base.p.m * pr.sigma_x * pr.K.noise_gain / base.sensor_gain();
 
+    enter(FitStage::Candidates);
     // ---- 2. candidate columns -----------------------------------------------------------------------------
     struct Group {
         std::size_t cand;
@@ -649,6 +682,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         return std::min(z_hac, group_z_dss(Xs, e, sub, bs, 2 * hac_lag));
     };
 
+    enter(FitStage::Selection);
     // ---- 3. greedy selection ------------------------------------------------------------------------------
     std::vector<int> cur = base_cols;
     double cv_cur, in_cur;
@@ -737,6 +771,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             if (cs.id == cands[g.cand].id) cs.selected = true;
     }
 
+    enter(FitStage::Refit);
     // ---- 4. the model with the effects: linear estimates, then joint nonlinear refinement; an effect whose
     //         significance does not survive the joint fit is dropped and the rest refitted ------------------
     SentenceContext sc;
@@ -895,6 +930,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     }
     for (auto& f : force_found) rep.effects_found.push_back(std::move(f));
 
+    enter(FitStage::ImpactLaw);
     // ---- 5. the impact law: bumper position, impact duration, restitution ----------------------------------
     // Each measured impact is compared with the same impact simulated with the model (predict_impacts), so a
     // compliant bumper's apparent penetration or a sampled flat top is never mistaken for an effect.
@@ -1022,6 +1058,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             }
         }
     }
+    enter(FitStage::Validation);
     // ---- 6. validation: an effect stays only if it lowers the short-horizon simulation error on data held
     //         out from its fit, by more than the windows' scatter; the final model must beat the baseline ----
     validate_effects(pr, base, cands, o, rep, after);
@@ -1035,6 +1072,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     rep.wells_before = well_report(base, {}, pr);
     rep.wells_after = well_report(after, rep.effects_found, pr);
 
+    enter(FitStage::Errors);
     // ---- 7. errors before and after ------------------------------------------------------------------------
     Eigen::VectorXd R1;
     residual(pr, after, R1, pw);
@@ -1132,6 +1170,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         rep.verdict = buf;
     }
     rep.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+    if (progress) progress->fraction.store(1.0, std::memory_order_relaxed);
     return rep;
 }
 

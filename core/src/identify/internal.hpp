@@ -81,6 +81,11 @@ struct Prep {
     std::vector<char> zone;                  // 1: the sample lies in or next to an impact
     std::vector<std::size_t> rows;           // centres of the residual windows used
     std::size_t j_lo = 0, j_hi = 0;          // samples the rows' windows touch [j_lo, j_hi)
+    FitProgress* progress = nullptr;         // run_fit's, if any: checked for cancellation per simulation
+    // Throws FitCancelled if the fit's watcher asked to stop (called between simulations).
+    void check_cancel() const {
+        if (progress && progress->cancel.load(std::memory_order_relaxed)) throw FitCancelled();
+    }
 };
 Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::vector<std::string>& notes);
 

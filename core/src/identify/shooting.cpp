@@ -73,6 +73,7 @@ std::size_t usable_start(const Prep& pr, std::size_t i, std::size_t limit) {
 
 std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, bool refine, double rtol,
                                     std::size_t refine_end) {
+    pr.check_cancel();
     std::vector<double> best;
     if (i1 <= i0) return best;
     const double g = m.sensor_gain(), o = m.sensor_offset();
