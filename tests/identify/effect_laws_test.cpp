@@ -67,3 +67,45 @@ TEST_CASE("effect catalogue: every registry law plus the base-changing effects")
     CHECK_FALSE(duffing.bumper());
     CHECK(duffing.p.m == 1.0);
 }
+
+TEST_CASE("effect laws carry their own metadata: fit hints in range, a sentence, sensors map x affinely") {
+    for (const auto& law : effect_laws()) {
+        CAPTURE(law.id);
+        std::size_t n = 0;
+        while (n < kMaxLawParams && law.names[n]) ++n;
+        const EffectFitHint& h = law.fit;
+        REQUIRE(h.n_free > 0);   // every registry effect is one fit can look for
+        CHECK(h.n_linear <= h.n_free);
+        for (int k = 0; k < h.n_free; ++k) {
+            const auto i = static_cast<std::size_t>(h.free[static_cast<std::size_t>(k)]);
+            CHECK(i < n);
+            CHECK(h.step[i] > 0);
+            CHECK(h.lo[i] < h.hi[i]);
+        }
+        if (h.n_free > h.n_linear) CHECK(h.n_starts > 0);   // a nonlinear parameter needs trial values
+        REQUIRE(static_cast<bool>(law.describe));
+        std::array<double, kMaxLawParams> p = law.defaults, s{};
+        p[0] = law.kind == EffectKind::Sensor && std::string(law.id) == "sensor_gain" ? 1.02 : 0.3;
+        if (h.generic && std::string(law.id) != "unexplained_phi") {
+            p[0] = -0.01;
+            p[1] = 0.01;
+            p[2] = 0.5;
+        }
+        s[0] = 0.01;
+        const Params model = make_version("A1H");
+        const std::string text = law.describe(p.data(), s.data(), {&model, true, 0.2, 0.012});
+        CHECK(text.size() > 20);
+        if (law.kind == EffectKind::Sensor) {
+            REQUIRE(static_cast<bool>(law.measure));
+            const double m0 = law.measure(p.data(), 0.0), m1 = law.measure(p.data(), 1.0), m2 = law.measure(p.data(), 2.0);
+            CHECK(m2 - m1 == doctest::Approx(m1 - m0));   // affine
+            CHECK(law.force(p.data(), {0, 0.01, 0.1, 0, 10, 0, 0.025, 0}).F == 0.0);   // no force
+        }
+    }
+    // The model's measurement map combines them: gains multiply, offsets add.
+    identify::Model m = identify::resolve_fit_model("A1H", identify::Forcing::Unbalance);
+    identify::apply_effect(m, "sensor_offset", {{"o", 2e-4}});
+    identify::apply_effect(m, "sensor_gain", {{"g", 1.05}});
+    CHECK(m.sensor_gain() == doctest::Approx(1.05));
+    CHECK(m.sensor_offset() == doctest::Approx(2e-4));
+}

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -58,7 +59,61 @@ struct ForceContext {
 struct EffectForce { double F = 0, dF_dx = 0, dF_dv = 0, dF_dt = 0; };
 using EffectForceFn = EffectForce (*)(const double* p, const ForceContext& ctx);
 
-// One row of the effect registry (effects/registry.cpp): a named physical effect the base model lacks.
+// What an effect changes: the force on the cart, or only what the position sensor reads (no force).
+enum class EffectKind : std::uint8_t { Force, Sensor };
+
+// When impactlab fit tries an effect (bits of EffectFitHint::needs).
+struct FitNeeds {
+    static constexpr unsigned Phi = 1;            // unbalance-forced data (the effect acts through phi)
+    static constexpr unsigned SpeedChanges = 2;   // the motor's speed changes (phi'' is not negligible)
+    static constexpr unsigned Magnets = 4;        // the model has a magnetic force to shift
+    static constexpr unsigned DryFriction = 8;    // the model has dry friction T > 0
+    static constexpr unsigned FixedBaseline = 16; // only when the base parameters are not fitted
+};
+
+inline constexpr std::array<double, kMaxLawParams> kUnboundedBelow{-1e12, -1e12, -1e12, -1e12, -1e12, -1e12, -1e12, -1e12};
+inline constexpr std::array<double, kMaxLawParams> kUnboundedAbove{1e12, 1e12, 1e12, 1e12, 1e12, 1e12, 1e12, 1e12};
+
+// How impactlab fit looks for an effect: which parameters it fits, how they enter, their bounds.
+struct EffectFitHint {
+    std::array<int, kMaxLawParams> free{};        // indices of the fitted parameters, n_free of them
+    int n_free = 0;
+    int n_linear = 0;                             // the first n_linear free ones enter the screening linearly
+    std::array<double, kMaxLawParams> step{};     // per parameter: finite-difference step and natural scale
+    std::array<double, kMaxLawParams> lo = kUnboundedBelow, hi = kUnboundedAbove;   // physical bounds
+    std::array<double, 12> starts{};              // trial values of the first nonlinear free parameter
+    int n_starts = 0;
+    unsigned needs = 0;                           // FitNeeds bits
+    const char* absorbed_by = nullptr;            // a base parameter that, when fitted, absorbs the effect
+    bool positive = false;                        // the first linear parameter must come out > 0
+    bool generic = false;                         // a last-resort smooth force named by its variable
+    bool test_first_only = false;                 // significance of the first parameter alone (no null shape)
+};
+
+struct Params;
+
+// What a description of a fitted effect may use.
+struct EffectReportContext {
+    const Params* model = nullptr;   // the model the effect was added to
+    bool rig = true;                 // false: a plain Duffing model in the data's own units
+    double v_typ = 0, x_typ = 0;     // RMS speed [m/s] and 90 % |x| [m] of the data
+};
+// One sentence for a fitted effect: values p and standard errors sigma (the law's parameter order).
+using EffectDescribeFn = std::string (*)(const double* p, const double* sigma, const EffectReportContext& c);
+// What a fit's starting shape parameters may use: the model and the data's ranges; `start` is the trial
+// value of the first nonlinear free parameter.
+struct EffectStartContext {
+    const Params* model = nullptr;
+    double x_lo = 0, x_hi = 0, v_lo = 0, v_hi = 0, start = 0;
+};
+using EffectStartFn = void (*)(double* p, const EffectStartContext& c);
+// A sensor effect: what the sensor reads for the true position x (affine in x).
+using EffectMeasureFn = double (*)(const double* p, double x);
+// Copies into p what an effect shares with the model it is added to (magnet_offset: the magnetic law).
+using EffectAdaptFn = void (*)(double* p, const Params& model);
+
+// One row of the effect registry (effects/registry.cpp): a named physical effect the base model lacks, with
+// everything the rest of the program needs to know about it (each effect's file defines its row).
 struct EffectLaw {
     const char* id;                                 // stable snake_case id, e.g. "constant_force"
     const char* meaning;                            // one line of physics
@@ -66,6 +121,12 @@ struct EffectLaw {
     std::array<const char*, kMaxLawParams> units;
     std::array<double, kMaxLawParams> defaults;
     EffectForceFn force;
+    EffectKind kind = EffectKind::Force;
+    EffectFitHint fit{};                            // n_free == 0: fit never looks for it
+    EffectDescribeFn describe = nullptr;
+    EffectStartFn start = nullptr;                  // null: free parameters from 0, the others from defaults
+    EffectMeasureFn measure = nullptr;              // Sensor only
+    EffectAdaptFn adapt = nullptr;                  // null: nothing shared with the model
 };
 
 // An effect switched on in a parameter set.

@@ -1,25 +1,25 @@
-// Force laws of the extra physical effects; each is defined in its own file in this folder and listed once
-// in registry.cpp. Sign convention: the returned force acts on the cart, positive towards +x, so it is
-// exactly what the residual r = m x'' + F_R + F_SA + F_I - forcing measures.
+// The extra physical effects, each defined whole (force law, fit hint, description) in its own file in this
+// folder and listed once in registry.cpp. Sign convention: the force acts on the cart, positive towards +x,
+// so it is exactly what the residual r = m x'' + F_R + F_SA + F_I - forcing measures.
 #pragma once
 #include "impactlab/params.hpp"
 
 namespace impactlab::effects {
-EffectForce constant_force(const double* p, const ForceContext& c);
-EffectForce quadratic_damping(const double* p, const ForceContext& c);
-EffectForce tangential_unbalance(const double* p, const ForceContext& c);
-EffectForce magnet_offset(const double* p, const ForceContext& c);
-EffectForce even_stiffness(const double* p, const ForceContext& c);
-EffectForce linear_stiffness(const double* p, const ForceContext& c);
-EffectForce viscous_damping(const double* p, const ForceContext& c);
-EffectForce coulomb_friction(const double* p, const ForceContext& c);
-EffectForce stribeck_friction(const double* p, const ForceContext& c);
-EffectForce phase_offset(const double* p, const ForceContext& c);
-EffectForce unbalance_scale(const double* p, const ForceContext& c);
-EffectForce sensor_offset(const double* p, const ForceContext& c);
-EffectForce sensor_gain(const double* p, const ForceContext& c);
-EffectForce unexplained_x(const double* p, const ForceContext& c);
-EffectForce unexplained_v(const double* p, const ForceContext& c);
-EffectForce unexplained_x_signv(const double* p, const ForceContext& c);
-EffectForce unexplained_phi(const double* p, const ForceContext& c);
+const EffectLaw& constant_force_law();
+const EffectLaw& quadratic_damping_law();
+const EffectLaw& tangential_unbalance_law();
+const EffectLaw& magnet_offset_law();
+const EffectLaw& even_stiffness_law();
+const EffectLaw& linear_stiffness_law();
+const EffectLaw& viscous_damping_law();
+const EffectLaw& coulomb_friction_law();
+const EffectLaw& stribeck_friction_law();
+const EffectLaw& phase_offset_law();
+const EffectLaw& unbalance_scale_law();
+const EffectLaw& sensor_offset_law();
+const EffectLaw& sensor_gain_law();
+const EffectLaw& unexplained_x_law();
+const EffectLaw& unexplained_v_law();
+const EffectLaw& unexplained_x_signv_law();
+const EffectLaw& unexplained_phi_law();
 }  // namespace impactlab::effects

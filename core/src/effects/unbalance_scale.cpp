@@ -2,10 +2,30 @@
 #include <cmath>
 
 #include "effects/effects.hpp"
+#include "effects/law_helpers.hpp"
 
 namespace impactlab::effects {
-EffectForce unbalance_scale(const double* p, const ForceContext& c) {
+namespace {
+EffectForce force(const double* p, const ForceContext& c) {
     const double sn = std::sin(c.phi), cs = std::cos(c.phi), w = c.omega;
     return {p[0] * c.m0e * w * w * sn, 0.0, 0.0, p[0] * c.m0e * (2.0 * w * c.alpha * sn + w * w * w * cs)};
+}
+
+std::string describe(const double* p, const double* s, const EffectReportContext& c) {
+    return "the unbalance m0e is " + pm(p[0], s[0], 100.0) + " % off the model's " + fmt("%.5g", c.model ? c.model->m0e : 0.0) +
+           " kg m (a different mass or radius)";
+}
+}  // namespace
+
+const EffectLaw& unbalance_scale_law() {
+    static const EffectLaw law = [] {
+        EffectLaw l{"unbalance_scale", "the unbalance is (1 + s) m0e instead of m0e", {"s", nullptr}, {"-", nullptr}, {0.0}, force};
+        l.fit = hint({0}, {1.0});
+        l.fit.needs = FitNeeds::Phi;
+        l.fit.absorbed_by = "m0e";
+        l.describe = describe;
+        return l;
+    }();
+    return law;
 }
 }  // namespace impactlab::effects

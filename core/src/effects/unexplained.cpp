@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "effects/effects.hpp"
+#include "effects/law_helpers.hpp"
 
 namespace impactlab::effects {
 namespace {
@@ -48,26 +49,24 @@ Value spline(const double* p, double s) {
     return {S, inside ? dS : 0.0};
 }
 
-}  // namespace
-
-EffectForce unexplained_x(const double* p, const ForceContext& c) {
+EffectForce force_x(const double* p, const ForceContext& c) {
     const Value s = spline(p, c.x);
     return {s.S, s.dS, 0.0, 0.0};
 }
 
-EffectForce unexplained_v(const double* p, const ForceContext& c) {
+EffectForce force_v(const double* p, const ForceContext& c) {
     const Value s = spline(p, c.v);
     return {s.S, 0.0, s.dS, 0.0};
 }
 
-EffectForce unexplained_x_signv(const double* p, const ForceContext& c) {
+EffectForce force_x_signv(const double* p, const ForceContext& c) {
     const Value s = spline(p, c.x);
     const double s2 = c.v * c.v + kEps * kEps, inv = 1.0 / std::sqrt(s2);
     const double sg = c.v * inv, dsg = kEps * kEps * inv / s2;
     return {s.S * sg, s.dS * sg, s.S * dsg, 0.0};
 }
 
-EffectForce unexplained_phi(const double* p, const ForceContext& c) {
+EffectForce force_phi(const double* p, const ForceContext& c) {
     double F = 0.0, dF = 0.0;
     for (int k = 1; k <= 3; ++k) {
         const double a = p[2 * (k - 1)], b = p[2 * (k - 1) + 1];
@@ -76,6 +75,99 @@ EffectForce unexplained_phi(const double* p, const ForceContext& c) {
         dF += k * (-a * sn + b * cs);
     }
     return {F, 0.0, 0.0, dF * c.omega};
+}
+
+
+
+enum class Var { X, V, XSignV, Phi };
+
+// Where the fitted force is largest, and the sentence that names the variable it depends on.
+std::string describe_var(Var var, EffectForceFn force, const double* p, const EffectReportContext& c) {
+    const char* name = var == Var::X ? "the position x" : var == Var::V ? "the velocity v" : var == Var::Phi ? "the unbalance angle phi"
+                                                                                                      : "the position x, with the sign of v";
+    const bool periodic = var == Var::Phi;
+    const double lo = periodic ? 0.0 : p[0], hi = periodic ? 2 * kPi : p[1];
+    double best = 0, at = lo;
+    for (int k = 0; k <= 200; ++k) {
+        const double q = lo + (hi - lo) * k / 200.0;
+        ForceContext ctx{0.0, 0.0, 1.0, 0.0, 0.0, 0.0, c.model ? c.model->m0e : 0.0, c.model ? c.model->xI : 0.0};
+        if (var == Var::V) ctx.v = q;
+        else if (periodic) ctx.phi = q;
+        else ctx.x = q;
+        const double F = force(p, ctx).F;
+        if (std::abs(F) > std::abs(best)) {
+            best = F;
+            at = q;
+        }
+    }
+    const std::string where = var == Var::V ? "v = " + fmt("%.3g", at) + " m/s" : periodic ? "phi = " + fmt("%.2f", at) + " rad"
+                                                                                          : "x = " + fmt("%.3g", at * 1e3) + " mm";
+    return std::string("no library effect explains this part of the residual; a smooth force of ") + name + " does, up to " +
+           fmt("%.2g", best) + " N at " + where + (var == Var::XSignV ? " (for v > 0; reversed for v < 0)" : "") +
+           ": the missing physics depends on " + name;
+}
+
+std::string describe_x(const double* p, const double*, const EffectReportContext& c) { return describe_var(Var::X, force_x, p, c); }
+std::string describe_v(const double* p, const double*, const EffectReportContext& c) { return describe_var(Var::V, force_v, p, c); }
+std::string describe_x_signv(const double* p, const double*, const EffectReportContext& c) {
+    return describe_var(Var::XSignV, force_x_signv, p, c);
+}
+std::string describe_phi(const double* p, const double*, const EffectReportContext& c) { return describe_var(Var::Phi, force_phi, p, c); }
+
+// The spline's range: where the data go (in the variable of the law).
+void start_x(double* p, const EffectStartContext& c) {
+    p[0] = c.x_lo;
+    p[1] = c.x_hi > c.x_lo ? c.x_hi : c.x_lo + 1e-6;
+}
+void start_v(double* p, const EffectStartContext& c) {
+    p[0] = c.v_lo;
+    p[1] = c.v_hi > c.v_lo ? c.v_hi : c.v_lo + 1e-6;
+}
+
+constexpr const char* kSplineNames[] = {"lo", "hi", "c1", "c2", "c3", "c4", "c5", "c6"};
+using Names = std::array<const char*, kMaxLawParams>;
+constexpr Names kSpline{kSplineNames[0], kSplineNames[1], kSplineNames[2], kSplineNames[3],
+                        kSplineNames[4], kSplineNames[5], kSplineNames[6], kSplineNames[7]};
+constexpr Names kSplineXUnits{"m", "m", "N", "N", "N", "N", "N", "N"};
+constexpr Names kSplineVUnits{"m/s", "m/s", "N", "N", "N", "N", "N", "N"};
+
+EffectLaw spline_law(const char* id, const char* meaning, const Names& units, EffectForceFn f, EffectDescribeFn d, EffectStartFn st) {
+    EffectLaw l{id, meaning, kSpline, units, {0.0}, f};
+    l.fit = hint({2, 3, 4, 5, 6, 7}, {1, 1, 1, 1, 1, 1});
+    l.fit.generic = true;
+    l.describe = d;
+    l.start = st;
+    return l;
+}
+}  // namespace
+
+const EffectLaw& unexplained_x_law() {
+    static const EffectLaw law = spline_law("unexplained_x", "a smooth force of the position x that no named effect explains",
+                                            kSplineXUnits, force_x, describe_x, start_x);
+    return law;
+}
+const EffectLaw& unexplained_v_law() {
+    static const EffectLaw law = spline_law("unexplained_v", "a smooth force of the velocity v that no named effect explains",
+                                            kSplineVUnits, force_v, describe_v, start_v);
+    return law;
+}
+const EffectLaw& unexplained_x_signv_law() {
+    static const EffectLaw law =
+        spline_law("unexplained_x_signv", "a force S(x) sign(v) (position-dependent friction) no named effect explains", kSplineXUnits,
+                   force_x_signv, describe_x_signv, start_x);
+    return law;
+}
+const EffectLaw& unexplained_phi_law() {
+    static const EffectLaw law = [] {
+        EffectLaw l{"unexplained_phi", "a force periodic in the unbalance angle that no named effect explains",
+                    {"a1", "b1", "a2", "b2", "a3", "b3", nullptr}, {"N", "N", "N", "N", "N", "N", nullptr}, {0.0}, force_phi};
+        l.fit = hint({0, 1, 2, 3, 4, 5}, {1, 1, 1, 1, 1, 1});
+        l.fit.generic = true;
+        l.fit.needs = FitNeeds::Phi;
+        l.describe = describe_phi;
+        return l;
+    }();
+    return law;
 }
 
 }  // namespace impactlab::effects

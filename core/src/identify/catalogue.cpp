@@ -1,6 +1,6 @@
-// The effect catalogue of impactlab fit: which library effects exist, how each is screened and fitted, and
-// the plain sentence that reports it. Force laws live in core/src/effects (one file each); this file only
-// says how to look for them.
+// The effect catalogue of impactlab fit: the registry's effects (each law carries how it is looked for and
+// described, core/src/effects) turned into candidates, plus the three effects that change the base model
+// rather than add a force (bumper_offset, impact_duration, restitution), which live here.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,15 +12,19 @@
 
 namespace impactlab::identify {
 
+// The sensor effects' affine maps combined as x_measured = g x + o: gains multiply, offsets add (an offset
+// is a zero error of the reading, whatever the gain).
 double Model::sensor_gain() const {
+    double g = 1.0;
     for (const auto& e : p.effects)
-        if (std::strcmp(e.law->id, "sensor_gain") == 0) return e.p[0];
-    return 1.0;
+        if (e.law->kind == EffectKind::Sensor && e.law->measure) g *= e.law->measure(e.p.data(), 1.0) - e.law->measure(e.p.data(), 0.0);
+    return g;
 }
 double Model::sensor_offset() const {
+    double o = 0.0;
     for (const auto& e : p.effects)
-        if (std::strcmp(e.law->id, "sensor_offset") == 0) return e.p[0];
-    return 0.0;
+        if (e.law->kind == EffectKind::Sensor && e.law->measure) o += e.law->measure(e.p.data(), 0.0);
+    return o;
 }
 
 Model resolve_fit_model(const std::string& name, Forcing forcing) {
@@ -65,7 +69,7 @@ std::vector<EffectInfo> build_catalogue() {
             e.units.emplace_back(law.units[i]);
             e.defaults.push_back(law.defaults[i]);
         }
-        e.generic = e.id.rfind("unexplained_", 0) == 0;
+        e.generic = law.fit.generic;
         out.push_back(std::move(e));
     }
     out.push_back({"bumper_offset", "the bumper stands dx off the model's xI (moves xI)", {"dx"}, {"m"}, {0.0}, false, true});
@@ -116,9 +120,9 @@ void apply_effect(Model& m, const std::string& id, const std::vector<std::pair<s
         EffectInstance* inst = nullptr;
         for (auto& e : m.p.effects)
             if (id == e.law->id) inst = &e;
-        if (!inst) {   // a new instance: defaults, and the model's own magnetic law for magnet_offset
+        if (!inst) {   // a new instance: defaults, and what it shares with the model (magnet_offset's law)
             inst = &add_effect(m.p, id);
-            if (id == "magnet_offset") inst->p = {0.0, m.p.a[0], m.p.a[1], m.p.b[0], m.p.b[1], 0, 0, 0};
+            if (inst->law->adapt) inst->law->adapt(inst->p.data(), m.p);
         }
         for (std::size_t k = 0; k < v.size(); ++k)
             if (given[k]) inst->p[k] = v[k];
@@ -156,83 +160,57 @@ namespace impactlab::identify::detail {
 
 std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const FitOptions& o) {
     std::vector<Candidate> out;
-    const bool phi = pr.phi_forced;
     double alpha_rms = 0;
     for (double a : pr.alpha) alpha_rms += a * a;
     alpha_rms = std::sqrt(alpha_rms / static_cast<double>(std::max<std::size_t>(1, pr.alpha.size())));
-    auto allowed = [&](const std::string& id) {
-        if (std::find(o.exclude.begin(), o.exclude.end(), id) != o.exclude.end()) return false;
-        if (!o.only.empty() && std::find(o.only.begin(), o.only.end(), id) == o.only.end()) return false;
-        return true;
-    };
-    auto add = [&](const char* id, std::vector<int> free, std::vector<double> step, std::vector<int> linear,
-                   std::vector<double> starts = {}) {
-        if (!allowed(id)) return;
+    // In fit mode the base parameters absorb some effects; in validate mode those say which base value is off.
+    const auto fitted_names = o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(m) : o.fit_params) : std::vector<std::string>{};
+    auto fitted = [&](const char* name) { return std::find(fitted_names.begin(), fitted_names.end(), name) != fitted_names.end(); };
+    for (const auto& law : effect_laws()) {
+        const EffectFitHint& h = law.fit;
+        const std::string id = law.id;
+        if (h.n_free == 0) continue;
+        if (std::find(o.exclude.begin(), o.exclude.end(), id) != o.exclude.end()) continue;
+        if (!o.only.empty() && std::find(o.only.begin(), o.only.end(), id) == o.only.end()) continue;
+        if (h.generic && !o.generic) continue;
+        if ((h.needs & FitNeeds::Phi) && !pr.phi_forced) continue;
+        if ((h.needs & FitNeeds::SpeedChanges) && !(alpha_rms > 1e-3)) continue;
+        if ((h.needs & FitNeeds::Magnets) && m.p.a[0] == 0.0 && m.p.a[1] == 0.0) continue;
+        if ((h.needs & FitNeeds::DryFriction) && !(m.p.T > 0)) continue;
+        if ((h.needs & FitNeeds::FixedBaseline) && o.fit_baseline) continue;
+        if (h.absorbed_by && fitted(h.absorbed_by)) continue;
         Candidate c;
         c.id = id;
-        c.law = find_effect(id);
-        c.free = std::move(free);
-        c.step = std::move(step);
-        c.linear = std::move(linear);
-        c.starts = std::move(starts);
-        c.generic = c.id.rfind("unexplained_", 0) == 0;
-        c.sensor = c.id.rfind("sensor_", 0) == 0;
-        if (c.law) out.push_back(std::move(c));
-    };
-    // In fit mode the base parameters absorb these; in validate mode they say which base value is off.
-    auto fitted = [&](const char* name) {
-        if (!o.fit_baseline) return false;
-        const auto names = o.fit_params.empty() ? default_fit_params(m) : o.fit_params;
-        return std::find(names.begin(), names.end(), name) != names.end();
-    };
-    const double vscale = 0.1, xscale = 0.01;
-    add("constant_force", {0}, {1.0}, {0});
-    add("quadratic_damping", {0}, {1.0}, {0});
-    if (phi && alpha_rms > 1e-3) add("tangential_unbalance", {0}, {1.0}, {0});
-    if (m.p.a[0] != 0.0 || m.p.a[1] != 0.0) add("magnet_offset", {0}, {1e-5}, {0});
-    add("even_stiffness", {0}, {1.0}, {0});
-    if (!fitted("k")) add("linear_stiffness", {0}, {1.0}, {0});
-    if (!fitted("c")) add("viscous_damping", {0}, {1.0}, {0});
-    if (!fitted("T") && m.p.T > 0) add("coulomb_friction", {0}, {1.0}, {0});
-    // Extra friction (Fs > 0) below a speed vs the data can resolve: a reversal's timing is known to a fraction
-    // of a millisecond, so speeds below a few mm/s are out of reach (a "negative Stribeck" there only
-    // smooths the friction step and is not physics).
-    add("stribeck_friction", {0, 1}, {1.0, 1e-3 * vscale}, {0}, {0.005, 0.0075, 0.01, 0.015, 0.02, 0.03, 0.05, 0.075, 0.1});
-    if (!out.empty() && out.back().id == "stribeck_friction") out.back().positive = true;
-    if (phi) add("phase_offset", {0}, {1e-4}, {0});
-    if (phi && !fitted("m0e")) add("unbalance_scale", {0}, {1.0}, {0});
-    if (!fitted("gain")) add("sensor_offset", {0}, {1e-3 * xscale}, {0});
-    // A gain error rescales every term of the equation: with fitted base parameters it is not identifiable.
-    if (!o.fit_baseline) add("sensor_gain", {0}, {1e-3}, {0});
-    if (o.generic) {
-        add("unexplained_x", {2, 3, 4, 5, 6, 7}, {1, 1, 1, 1, 1, 1}, {0, 1, 2, 3, 4, 5});
-        add("unexplained_v", {2, 3, 4, 5, 6, 7}, {1, 1, 1, 1, 1, 1}, {0, 1, 2, 3, 4, 5});
-        add("unexplained_x_signv", {2, 3, 4, 5, 6, 7}, {1, 1, 1, 1, 1, 1}, {0, 1, 2, 3, 4, 5});
-        if (phi) add("unexplained_phi", {0, 1, 2, 3, 4, 5}, {1, 1, 1, 1, 1, 1}, {0, 1, 2, 3, 4, 5});
+        c.law = &law;
+        for (int k = 0; k < h.n_free; ++k) {
+            c.free.push_back(h.free[static_cast<std::size_t>(k)]);
+            c.step.push_back(h.step[static_cast<std::size_t>(h.free[static_cast<std::size_t>(k)])]);
+        }
+        for (int k = 0; k < h.n_linear; ++k) c.linear.push_back(k);
+        c.starts.assign(h.starts.begin(), h.starts.begin() + h.n_starts);
+        c.generic = h.generic;
+        c.sensor = law.kind == EffectKind::Sensor;
+        c.positive = h.positive;
+        out.push_back(std::move(c));
     }
     return out;
 }
 
 EffectInstance start_instance(const Candidate& c, const Model& m, const Prep& pr, double start) {
-    EffectInstance e{c.law, c.law->defaults};
-    const std::string& id = c.id;
-    const MeasuredData& d = *pr.data;
-    const double g = m.sensor_gain(), o = m.sensor_offset();
-    if (id == "magnet_offset") {
-        e.p = {0.0, m.p.a[0], m.p.a[1], m.p.b[0], m.p.b[1], 0, 0, 0};
-    } else if (id == "sensor_gain") {
-        e.p[0] = 1.0;
-    } else if (id == "stribeck_friction") {
-        e.p[0] = 0.0;
-        e.p[1] = start;
-    } else if (c.generic && id != "unexplained_phi") {
-        std::vector<double> s;
-        s.reserve(pr.rows.size());
-        for (std::size_t r : pr.rows) s.push_back(id == "unexplained_v" ? pr.vs[r] / g : (d.x[r] - o) / g);
-        e.p = {quantile(s, 0.005), quantile(s, 0.995), 0, 0, 0, 0, 0, 0};
-        if (!(e.p[1] > e.p[0])) e.p[1] = e.p[0] + 1e-6;
-    } else {
-        e.p.fill(0.0);
+    EffectInstance e{c.law, {}};
+    if (c.law->start) {
+        // What the law may take its shape from: the model, and the data's ranges in true coordinates.
+        const MeasuredData& d = *pr.data;
+        const double g = m.sensor_gain(), o = m.sensor_offset();
+        std::vector<double> xs, vs;
+        xs.reserve(pr.rows.size());
+        vs.reserve(pr.rows.size());
+        for (std::size_t r : pr.rows) {
+            xs.push_back((d.x[r] - o) / g);
+            vs.push_back(pr.vs[r] / g);
+        }
+        EffectStartContext ctx{&m.p, quantile(xs, 0.005), quantile(xs, 0.995), quantile(vs, 0.005), quantile(vs, 0.995), start};
+        c.law->start(e.p.data(), ctx);
     }
     return e;
 }
@@ -305,59 +283,17 @@ std::string sentence(const std::string& id, const Model& b, const std::vector<st
                      const std::vector<std::pair<std::string, double>>& s, const SentenceContext& c) {
     auto val = [&](const char* k) { return get(v, k); };
     auto sig = [&](const char* k) { return get(s, k); };
-    if (id == "constant_force" && !b.bumper())
-        return "a constant force of " + pm(val("F0"), sig("F0")) +
-               " (in the model's force units): an offset of the input or of the system's equilibrium";
-    if (id == "even_stiffness" && !b.bumper())
-        return "an even (quadratic) restoring term -k2 y^2 with k2 = " + pm(val("k2"), sig("k2")) +
-               ": an asymmetric nonlinearity, the even-order distortion";
-    if (id == "constant_force") {
-        const double F = val("F0"), tilt = std::asin(std::min(1.0, std::abs(F) / (c.m * c.g_earth))) * 180.0 / kPi;
-        return "a constant force of " + pm(F, sig("F0")) + " N along the rail (" + (F > 0 ? "towards +x" : "towards -x") +
-               "): a tilt of about " + fmt("%.2g", tilt) + " degrees, or a pull on the cart";
+    // A force or sensor effect describes itself (its law's metadata).
+    if (const EffectLaw* law = find_effect(id); law && law->describe) {
+        std::array<double, kMaxLawParams> p{}, sg{};
+        for (std::size_t k = 0; k < kMaxLawParams && law->names[k]; ++k) {
+            p[k] = val(law->names[k]);
+            sg[k] = sig(law->names[k]);
+        }
+        const EffectReportContext ctx{&b.p, b.p.stiffness_id != "duffing", c.v_typ, c.x_typ};
+        return law->describe(p.data(), sg.data(), ctx);
     }
-    if (id == "quadratic_damping") {
-        const double cq = val("cq"), Fv = cq * c.v_typ * c.v_typ;
-        return "a resistance growing with the square of the speed, cq = " + pm(cq, sig("cq")) + " N s^2/m^2: at the typical speed of " +
-               fmt("%.2g", c.v_typ) + " m/s it adds " + fmt("%.2g", Fv) + " N to the viscous " + fmt("%.2g", b.p.c * c.v_typ) +
-               " N (air or oil drag)";
-    }
-    if (id == "tangential_unbalance")
-        return "the unbalance's tangential force -m0e phi'' cos(phi) at " + pm(val("scale"), sig("scale")) +
-               " times its full size: the motor's speed changes push the cart";
-    if (id == "magnet_offset") {
-        const double d = val("d");
-        return "the fixed magnet sits " + pm(std::abs(d), sig("d"), 1e3) + " mm " + (d > 0 ? "towards +x" : "towards -x") +
-               " of x = 0 (misaligned magnets): the two wells are no longer mirror images";
-    }
-    if (id == "even_stiffness") {
-        const double k2 = val("k2");
-        return "an even stiffness term -k2 x^2 with k2 = " + pm(k2, sig("k2")) + " N/m^2: at |x| = " + fmt("%.3g", c.x_typ * 1e3) +
-               " mm it adds " + fmt("%.2g", -k2 * c.x_typ * c.x_typ) + " N on both sides, so the wells differ (asymmetric magnets or springs)";
-    }
-    if (id == "linear_stiffness")
-        return "the springs are " + pm(val("dk"), sig("dk")) + " N/m stiffer than the model's k = " + fmt("%.5g", b.p.k) + " N/m (" +
-               fmt("%+.2g", 100 * val("dk") / (b.p.k != 0 ? b.p.k : 1)) + " %; negative: softer)";
-    if (id == "viscous_damping")
-        return "the viscous damping is " + pm(val("dc"), sig("dc")) + " N s/m more than the model's c = " + fmt("%.5g", b.p.c) +
-               " N s/m (" + (b.p.c != 0 ? fmt("%+.2g", 100 * val("dc") / b.p.c) + " %" : std::string("new")) + "; negative: less)";
-    if (id == "coulomb_friction")
-        return "the dry rolling resistance is " + pm(val("dT"), sig("dT")) + " N more than the model's T = " + fmt("%.5g", b.p.T) +
-               " N (" + (b.p.T != 0 ? fmt("%+.2g", 100 * val("dT") / b.p.T) + " %" : std::string("new")) + "; negative: less)";
-    if (id == "stribeck_friction")
-        return "extra friction of " + pm(val("Fs"), sig("Fs")) + " N at low speed that fades above about " +
-               pm(std::abs(val("vs")), sig("vs")) + " m/s (a Stribeck effect: stiction in the bearings)";
-    if (id == "phase_offset")
-        return "the unbalance leads the measured angle by " + pm(val("delta"), sig("delta")) + " rad (" +
-               fmt("%.2g", val("delta") * 180 / kPi) + " degrees): the encoder or optocoupler mark is off, or the angle lags";
-    if (id == "unbalance_scale")
-        return "the unbalance m0e is " + pm(val("s"), sig("s"), 100.0) + " % off the model's " + fmt("%.5g", b.p.m0e) +
-               " kg m (a different mass or radius)";
-    if (id == "sensor_offset")
-        return "the position sensor reads " + pm(val("o"), sig("o"), 1e3) + " mm more than the true position (a zero offset of the Hall sensor or its tape)";
-    if (id == "sensor_gain")
-        return "the position sensor's gain is " + pm(val("g"), sig("g")) + " (it reads " + fmt("%+.2g", 100 * (val("g") - 1)) +
-               " % of the travel too much): a calibration error";
+    // The three that change the base model.
     if (id == "bumper_offset") {
         const double dx = val("dx");
         return "the bumper stands " + pm(std::abs(dx), sig("dx"), 1e3) + " mm " + (dx > 0 ? "to the right (+x)" : "to the left (-x)") +
@@ -380,37 +316,6 @@ std::string sentence(const std::string& id, const Model& b, const std::vector<st
                    model_k + "): a different restitution";
         return "the restitution coefficient is " + pm(val("kappa0"), sig("kappa0")) + " at low and " + pm(val("kappa1"), sig("kappa1")) +
                " at high impact speed (the model's law: " + model_k + ")";
-    }
-    if (id.rfind("unexplained_", 0) == 0) {
-        const std::string var = id == "unexplained_x" ? "the position x"
-                                : id == "unexplained_v" ? "the velocity v"
-                                : id == "unexplained_phi" ? "the unbalance angle phi"
-                                                          : "the position x, with the sign of v";
-        // Where the fitted force is largest.
-        const EffectLaw* law = find_effect(id);
-        std::array<double, kMaxLawParams> p{};
-        for (std::size_t k = 0; k < kMaxLawParams && law && law->names[k]; ++k) p[k] = val(law->names[k]);
-        const bool periodic = id == "unexplained_phi";
-        const double lo = periodic ? 0.0 : p[0], hi = periodic ? 2 * kPi : p[1];
-        double best = 0, at = lo;
-        for (int k = 0; k <= 200 && law; ++k) {
-            const double q = lo + (hi - lo) * k / 200.0;
-            ForceContext ctx{0.0, 0.0, 1.0, 0.0, 0.0, 0.0, b.p.m0e, b.p.xI};
-            if (id == "unexplained_v") ctx.v = q;
-            else if (periodic) ctx.phi = q;
-            else ctx.x = q;
-            const double F = law->force(p.data(), ctx).F;
-            if (std::abs(F) > std::abs(best)) {
-                best = F;
-                at = q;
-            }
-        }
-        const std::string where = id == "unexplained_v" ? "v = " + fmt("%.3g", at) + " m/s"
-                                  : periodic           ? "phi = " + fmt("%.2f", at) + " rad"
-                                                       : "x = " + fmt("%.3g", at * 1e3) + " mm";
-        return "no library effect explains this part of the residual; a smooth force of " + var + " does, up to " +
-               fmt("%.2g", best) + " N at " + where + (id == "unexplained_x_signv" ? " (for v > 0; reversed for v < 0)" : "") +
-               ": the missing physics depends on " + var;
     }
     return "";
 }

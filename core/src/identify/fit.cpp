@@ -241,14 +241,7 @@ std::vector<Knob> base_knobs(Model& m, const std::vector<std::string>& names) {
 void effect_knobs(const Candidate& c, EffectInstance& inst, std::vector<Knob>& knobs) {
     for (std::size_t li = 0; li < c.free.size(); ++li) {
         const auto pi = static_cast<std::size_t>(c.free[li]);
-        double lo = -1e12, hi = 1e12;
-        if (c.id == "stribeck_friction") lo = pi == 1 ? 0.005 : 0.0;
-        if (c.id == "quadratic_damping") lo = 0.0;   // a resistance never pushes
-        if (c.id == "sensor_gain") {
-            lo = 0.5;
-            hi = 2.0;
-        }
-        knobs.push_back({&inst.p[pi], c.step[li], lo, hi, c.law->names[pi]});
+        knobs.push_back({&inst.p[pi], c.step[li], c.law->fit.lo[pi], c.law->fit.hi[pi], c.law->names[pi]});
     }
 }
 
@@ -272,10 +265,14 @@ std::string unphysical(const Model& m) {
     } catch (const ParamError& e) {
         return e.what();
     }
-    for (const auto& e : m.p.effects) {
-        const std::string id = e.law->id;
-        if (id == "quadratic_damping" && e.p[0] < 0) return "a negative quadratic damping cq (it would push the cart)";
-        if (id == "sensor_gain" && !(e.p[0] > 0)) return "a sensor gain that is not positive";
+    for (const auto& e : m.p.effects) {   // each law's physical bounds on the parameters a fit moves
+        const EffectFitHint& h = e.law->fit;
+        for (int k = 0; k < h.n_free; ++k) {
+            const auto i = static_cast<std::size_t>(h.free[static_cast<std::size_t>(k)]);
+            if (!(e.p[i] >= h.lo[i] && e.p[i] <= h.hi[i]))
+                return std::string(e.law->id) + "." + e.law->names[i] + " = " + std::to_string(e.p[i]) + " outside [" +
+                       std::to_string(h.lo[i]) + ", " + std::to_string(h.hi[i]) + "]";
+        }
     }
     return {};
 }
@@ -785,7 +782,6 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         for (double v : av) s += v * v;
         sc.v_typ = av.empty() ? 0.0 : std::sqrt(s / static_cast<double>(av.size()));
         sc.x_typ = quantile(ax, 0.9);
-        sc.m = base.p.m;
     }
     Model after = base;
     std::vector<FoundEffect> force_found;
@@ -851,7 +847,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
                 d[i] = inst.p[pi] - null_inst.p[pi];
                 for (Eigen::Index j = 0; j < q; ++j) Vs(i, j) = V(sub[static_cast<std::size_t>(i)], sub[static_cast<std::size_t>(j)]);
             }
-            if (c.id == "stribeck_friction") {   // the speed scale has no null value: test Fs alone
+            if (c.law->fit.test_first_only) {   // a shape parameter (a speed scale) has no null value: test the first alone
                 f.z = std::abs(inst.p[0]) / std::max(knob_sigma[static_cast<std::size_t>(sub[0])], 1e-300);
                 f.z = std::min(f.z, group_z_dss(J1, R1, {sub[0]}, d.head(1), 2 * hac_lag));
             } else {
@@ -901,25 +897,36 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         }
         rep.notes.push_back("effects refitted on the free-run simulation error (output error)");
     }
-    // A sensor offset moves the measured bumper level too: if the impacts' flat tops contradict it, the
-    // offset is an artefact of the free-flight fit and goes (the impact stage then sees the level as it is).
+    // A sensor effect moves the measured bumper level too: if the impacts' flat tops contradict it, it is an
+    // artefact of the free-flight fit and goes (the impact stage then sees the level as it is).
     if (after.bumper() && pr.impacts.size() >= 3) {
         for (std::size_t k = 0; k < force_found.size(); ++k) {
-            if (force_found[k].id != "sensor_offset") continue;
-            // The flat tops measured against the same impacts simulated with the offset in the model (so a
-            // compliant bumper's apparent penetration is on both sides).
+            const EffectLaw* law = find_effect(force_found[k].id);
+            if (!law || law->kind != EffectKind::Sensor) continue;
+            // The flat tops measured against the same impacts simulated with the sensor effect in the model (so
+            // a compliant bumper's apparent penetration is on both sides).
             const PredictedImpacts pred = predict_impacts(pr, after, o.rtol);
             std::vector<double> lev;
             for (std::size_t i = 0; i < pr.impacts.size(); ++i)
                 if (pred.ok[i]) lev.push_back(pr.impacts[i].level - pred.obs[i].level);
             if (lev.size() < 3) continue;
-            const double miss = median(lev), so = force_found[k].sigma.empty() ? 0.0 : force_found[k].sigma[0].second;
-            if (std::abs(miss) > std::max(5.0 * so, 5.0 * pr.sigma_x + 1e-6)) {
-                rep.notes.push_back("dropped sensor_offset: the impacts' flat tops put the bumper where the uncorrected sensor does");
+            // The level's own uncertainty from the effect's: its first parameter moved by its standard error.
+            const double s0 = force_found[k].sigma.empty() ? 0.0 : force_found[k].sigma[0].second;
+            double level_sigma = 0;
+            std::array<double, kMaxLawParams> moved{};
+            for (const auto& e : after.p.effects)
+                if (e.law == law) {
+                    moved = e.p;
+                    moved[0] += s0;
+                    level_sigma = std::abs(law->measure(moved.data(), after.p.xI) - law->measure(e.p.data(), after.p.xI));
+                }
+            const double miss = median(lev);
+            if (std::abs(miss) > std::max(5.0 * level_sigma, 5.0 * pr.sigma_x + 1e-6)) {
+                rep.notes.push_back("dropped " + force_found[k].id + ": the impacts' flat tops put the bumper where the uncorrected sensor does");
                 for (auto& cs : rep.candidates)
-                    if (cs.id == "sensor_offset") cs.selected = false;
+                    if (cs.id == force_found[k].id) cs.selected = false;
                 for (auto it = after.p.effects.begin(); it != after.p.effects.end(); ++it)
-                    if (std::string(it->law->id) == "sensor_offset") {
+                    if (it->law == law) {
                         after.p.effects.erase(it);
                         break;
                     }

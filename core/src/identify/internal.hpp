@@ -192,7 +192,7 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
 EffectInstance start_instance(const Candidate& c, const Model& m, const Prep& pr, double start);
 
 struct SentenceContext {
-    double v_typ = 0, x_typ = 0, m = 1, g_earth = 9.81;
+    double v_typ = 0, x_typ = 0;
 };
 std::string sentence(const std::string& id, const Model& before, const std::vector<std::pair<std::string, double>>& values,
                      const std::vector<std::pair<std::string, double>>& sigma, const SentenceContext& ctx);
