@@ -19,67 +19,6 @@ using namespace detail;
 
 namespace {
 
-// A parameter the nonlinear least squares may move: its address, finite-difference step and bounds.
-struct Knob {
-    double* value;
-    double step, lo, hi;
-    std::string name;
-};
-
-// Levenberg-Marquardt over `knobs` (clamped to their bounds) with a forward-difference Jacobian, shared by
-// the equation-error and the simulation-error fits. eval(R) fills the residual at the knobs' current values
-// and returns |R|^2 (infinite if not finite); step_of(knob, value) is the finite-difference step. Stops when
-// an iteration gains less than min_gain of |R|^2. Leaves the final residual in R and, if final_jacobian, its
-// Jacobian in J (a Jacobian costs one evaluation per knob).
-template <class Eval, class StepOf>
-void lm_knobs(std::vector<Knob>& knobs, Eval&& eval, StepOf&& step_of, int max_iter, double lambda, double min_gain,
-              bool final_jacobian, Eigen::VectorXd& R, Eigen::MatrixXd& J) {
-    double ss = eval(R);
-    const auto p = static_cast<Eigen::Index>(knobs.size());
-    J.resize(R.size(), p);
-    if (p == 0) return;
-    Eigen::VectorXd Rt;
-    auto jacobian = [&]() {
-        for (Eigen::Index k = 0; k < p; ++k) {
-            Knob& kb = knobs[static_cast<std::size_t>(k)];
-            const double v0 = *kb.value;
-            const double h = step_of(kb, v0);
-            *kb.value = v0 + h;
-            eval(Rt);
-            *kb.value = v0;
-            J.col(k) = (Rt - R) / h;
-        }
-    };
-    jacobian();
-    std::vector<double> old(knobs.size());
-    for (int it = 0; it < max_iter; ++it) {
-        const Eigen::MatrixXd A = J.transpose() * J;
-        const Eigen::VectorXd g = J.transpose() * R;
-        bool improved = false;
-        for (int tries = 0; tries < 8; ++tries) {
-            Eigen::MatrixXd Ad = A;
-            for (Eigen::Index k = 0; k < p; ++k) Ad(k, k) += lambda * A(k, k) + 1e-300;
-            const Eigen::VectorXd d = Ad.ldlt().solve(-g);
-            for (std::size_t k = 0; k < knobs.size(); ++k) {
-                old[k] = *knobs[k].value;
-                *knobs[k].value = std::clamp(old[k] + d[static_cast<Eigen::Index>(k)], knobs[k].lo, knobs[k].hi);
-            }
-            const double ss_new = eval(Rt);
-            if (std::isfinite(ss_new) && ss_new < ss) {
-                improved = (ss - ss_new) > min_gain * ss;
-                R.swap(Rt);
-                ss = ss_new;
-                lambda = std::max(lambda / 4, 1e-9);
-                break;
-            }
-            for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = old[k];
-            lambda *= 8;
-        }
-        if (!improved) break;
-        if (final_jacobian || it + 1 < max_iter) jacobian();
-    }
-}
-
 // Levenberg-Marquardt on the weak-form residual over `knobs` (numerical Jacobian). Returns the final
 // residual in R and the Jacobian dR/dknob in J.
 void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_iter, Eigen::VectorXd& R, Eigen::MatrixXd& J) {
@@ -90,7 +29,10 @@ void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_ite
     };
     // The knob's own step, taken downwards where upwards would leave its bounds.
     auto step_of = [](const Knob& kb, double v0) { return v0 + kb.step > kb.hi ? -kb.step : kb.step; };
-    lm_knobs(knobs, eval, step_of, max_iter, 1e-4, 1e-9, true, R, J);
+    LsqOptions lo;
+    lo.max_iterations = max_iter;
+    lo.function_tolerance = 1e-9;
+    least_squares(knobs, eval, step_of, lo, R, &J);
 }
 
 // The output-error fit uses samples [a, end]; the rest of the record validates it.
@@ -136,51 +78,44 @@ void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_i
         }
         return std::isfinite(ss) ? ss : INFINITY;
     };
-    auto step_of = [](const Knob& kb, double v0) { return std::max(1e-5 * std::abs(v0), kb.step); };
+    auto step_of = [](const Knob& kb, double v0) {
+        const double h = std::max(1e-5 * std::abs(v0), kb.step);
+        return v0 + h > kb.hi ? -h : h;
+    };
+    // A real record's free-run error has outliers (saturated samples, glitches, a slip between the wells):
+    // Huber's loss beyond 3 robust standard deviations of the starting error keeps them from steering the fit.
     Eigen::VectorXd e;
-    Eigen::MatrixXd J;
-    lm_knobs(knobs, err, step_of, max_iter, 1e-3, 1e-7, false, e, J);
+    err(e);
+    std::vector<double> a_e(static_cast<std::size_t>(e.size()));
+    for (Eigen::Index i = 0; i < e.size(); ++i) a_e[static_cast<std::size_t>(i)] = std::abs(e[i]);
+    LsqOptions lo;
+    lo.max_iterations = max_iter;
+    lo.function_tolerance = 1e-7;
+    lo.huber_delta = 3.0 * 1.4826 * std::max(median(a_e), 1e-300);
+    least_squares(knobs, err, step_of, lo, e);
 }
 
-// Small LM for the impact laws: minimises sum f(theta)^2 with bounds; returns the covariance scale (J'J)^-1.
+// The impact laws' small fit: minimises sum f(theta)^2 within bounds; returns the covariance scale (J'J)^-1.
 Eigen::MatrixXd lm_small(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, Eigen::VectorXd& th,
                          const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
     const Eigen::Index p = th.size();
-    Eigen::VectorXd r = f(th);
-    double ss = r.squaredNorm(), lambda = 1e-3;
-    Eigen::MatrixXd J(r.size(), p);
-    auto jac = [&] {
-        for (Eigen::Index k = 0; k < p; ++k) {
-            Eigen::VectorXd t2 = th;
-            const double h = 1e-6 * std::max(1.0, std::abs(th[k])) * (th[k] + 1e-6 * std::max(1.0, std::abs(th[k])) > hi[k] ? -1 : 1);
-            t2[k] += h;
-            J.col(k) = (f(t2) - r) / h;
-        }
+    std::vector<Knob> knobs;
+    for (Eigen::Index k = 0; k < p; ++k) knobs.push_back({&th[k], 1e-6, lo[k], hi[k], "theta"});
+    auto eval = [&](Eigen::VectorXd& r) {
+        r = f(th);
+        const double ss = r.squaredNorm();
+        return std::isfinite(ss) ? ss : INFINITY;
     };
-    jac();
-    for (int it = 0; it < 100; ++it) {
-        const Eigen::MatrixXd A = J.transpose() * J;
-        const Eigen::VectorXd g = J.transpose() * r;
-        bool ok = false;
-        for (int tries = 0; tries < 10; ++tries) {
-            Eigen::MatrixXd Ad = A;
-            for (Eigen::Index k = 0; k < p; ++k) Ad(k, k) += lambda * A(k, k) + 1e-12;
-            Eigen::VectorXd tn = th + Ad.ldlt().solve(-g);
-            for (Eigen::Index k = 0; k < p; ++k) tn[k] = std::clamp(tn[k], lo[k], hi[k]);
-            const Eigen::VectorXd rn = f(tn);
-            if (rn.squaredNorm() < ss) {
-                ok = (ss - rn.squaredNorm()) > 1e-12 * ss;
-                th = tn;
-                r = rn;
-                ss = r.squaredNorm();
-                lambda = std::max(lambda / 4, 1e-12);
-                break;
-            }
-            lambda *= 8;
-        }
-        if (!ok) break;
-        jac();
-    }
+    auto step_of = [](const Knob& kb, double v) {
+        const double h = 1e-6 * std::max(1.0, std::abs(v));
+        return v + h > kb.hi ? -h : h;
+    };
+    LsqOptions o;
+    o.max_iterations = 100;
+    o.function_tolerance = 1e-12;
+    Eigen::VectorXd r;
+    Eigen::MatrixXd J;
+    least_squares(knobs, eval, step_of, o, r, &J);
     Eigen::MatrixXd A = J.transpose() * J;
     for (Eigen::Index k = 0; k < p; ++k) A(k, k) += 1e-12 * A(k, k) + 1e-300;
     return A.ldlt().solve(Eigen::MatrixXd::Identity(p, p));

@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -107,6 +108,32 @@ void residual(const Prep& pr, const Model& m, Eigen::VectorXd& R, std::vector<do
 // i.e. the regressor column X = -dR/dp_k [N per unit]; `m` supplies the measurement map.
 void effect_column(const Prep& pr, const Model& m, const EffectInstance& e, int k, double h, Eigen::Ref<Eigen::VectorXd> X,
                    std::vector<double>& pointwise);
+
+// ---- least_squares.cpp ----------------------------------------------------------------------------------
+// A parameter a fit may move: its address, finite-difference step and bounds.
+struct Knob {
+    double* value;
+    double step, lo, hi;
+    std::string name;
+};
+// Fills the residual at the knobs' current values and returns |R|^2 (+inf if it cannot be evaluated).
+using ResidualFn = std::function<double(Eigen::VectorXd&)>;
+// The finite-difference step of a knob at a value.
+using StepFn = std::function<double(const Knob&, double)>;
+struct LsqOptions {
+    int max_iterations = 30;
+    double function_tolerance = 1e-9;   // stop when an iteration lowers the cost by less than this share
+    double huber_delta = 0;             // > 0: Huber loss with this scale (outliers, saturated samples)
+};
+struct LsqSummary {
+    double initial_cost = 0, final_cost = 0;   // |R|^2
+    int iterations = 0;
+    bool converged = false;
+};
+// Bounded Levenberg-Marquardt (Ceres) over the knobs, each clamped to [lo, hi]; leaves the knobs at the
+// solution, the residual there in R and, if J is given, its forward-difference Jacobian dR/dknob.
+LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const StepFn& step_of, const LsqOptions& options,
+                         Eigen::VectorXd& R, Eigen::MatrixXd* J = nullptr);
 
 // ---- wells.cpp ----------------------------------------------------------------------------------------
 WellReport well_report(const Model& m, const std::vector<FoundEffect>& found, const Prep& pr);

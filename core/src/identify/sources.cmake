@@ -13,4 +13,5 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/synth.cpp
   src/identify/recovery.cpp
   src/identify/wells.cpp
+  src/identify/least_squares.cpp
 )

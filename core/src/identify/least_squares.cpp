@@ -1,0 +1,109 @@
+// Bounded nonlinear least squares on Ceres (Debian's libceres-dev): the fits of impactlab fit hand it a
+// residual function over a few named knobs. The Jacobian is taken by forward differences with each knob's
+// own step (a step that would leave the knob's bounds is taken downwards), since the residuals come from
+// smoothers and simulations that have no analytic derivatives.
+#include <ceres/ceres.h>
+
+#include <cmath>
+
+#include "identify/internal.hpp"
+
+namespace impactlab::identify::detail {
+
+namespace {
+
+class KnobCost : public ceres::CostFunction {
+public:
+    KnobCost(std::vector<Knob>& knobs, const ResidualFn& eval, const StepFn& step_of, int m)
+        : knobs_(knobs), eval_(eval), step_of_(step_of) {
+        set_num_residuals(m);
+        mutable_parameter_block_sizes()->push_back(static_cast<int>(knobs.size()));
+    }
+
+    bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+        const double* x = parameters[0];
+        const auto p = knobs_.size();
+        for (std::size_t k = 0; k < p; ++k) *knobs_[k].value = x[k];
+        if (!(eval_(R_) < INFINITY) || R_.size() != num_residuals()) return false;
+        Eigen::Map<Eigen::VectorXd>(residuals, num_residuals()) = R_;
+        if (jacobians && jacobians[0]) {
+            // Row-major num_residuals x p, as Ceres wants it.
+            Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(jacobians[0], num_residuals(),
+                                                                                                 static_cast<Eigen::Index>(p));
+            for (std::size_t k = 0; k < p; ++k) {
+                const double h = step_of_(knobs_[k], x[k]);
+                *knobs_[k].value = x[k] + h;
+                const bool ok = eval_(Rt_) < INFINITY && Rt_.size() == num_residuals();
+                *knobs_[k].value = x[k];
+                if (!ok) return false;
+                J.col(static_cast<Eigen::Index>(k)) = (Rt_ - R_) / h;
+            }
+        }
+        return true;
+    }
+
+private:
+    std::vector<Knob>& knobs_;
+    const ResidualFn& eval_;
+    const StepFn& step_of_;
+    mutable Eigen::VectorXd R_, Rt_;
+};
+
+}  // namespace
+
+LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const StepFn& step_of, const LsqOptions& o,
+                         Eigen::VectorXd& R, Eigen::MatrixXd* J) {
+    LsqSummary out;
+    const double ss0 = eval(R);
+    out.initial_cost = ss0;
+    out.final_cost = ss0;
+    if (knobs.empty() || !(ss0 < INFINITY) || R.size() == 0) {
+        if (J) J->resize(R.size(), static_cast<Eigen::Index>(knobs.size()));
+        return out;
+    }
+    std::vector<double> x(knobs.size());
+    for (std::size_t k = 0; k < knobs.size(); ++k) x[k] = std::clamp(*knobs[k].value, knobs[k].lo, knobs[k].hi);
+    ceres::Problem::Options po;
+    po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+    po.loss_function_ownership = ceres::TAKE_OWNERSHIP;
+    ceres::Problem problem(po);
+    auto* cost = new KnobCost(knobs, eval, step_of, static_cast<int>(R.size()));
+    ceres::LossFunction* loss = o.huber_delta > 0 ? new ceres::HuberLoss(o.huber_delta) : nullptr;
+    problem.AddResidualBlock(cost, loss, x.data());
+    for (std::size_t k = 0; k < knobs.size(); ++k) {
+        if (knobs[k].lo > -1e11) problem.SetParameterLowerBound(x.data(), static_cast<int>(k), knobs[k].lo);
+        if (knobs[k].hi < 1e11) problem.SetParameterUpperBound(x.data(), static_cast<int>(k), knobs[k].hi);
+    }
+    ceres::Solver::Options so;
+    so.linear_solver_type = ceres::DENSE_QR;
+    so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+    so.max_num_iterations = o.max_iterations;
+    so.function_tolerance = o.function_tolerance;
+    so.parameter_tolerance = 1e-10;
+    so.gradient_tolerance = 1e-14;
+    so.num_threads = 1;   // results must not depend on the machine; the residuals are cheap to split anyway
+    so.logging_type = ceres::SILENT;
+    so.minimizer_progress_to_stdout = false;
+    ceres::Solver::Summary summary;
+    ceres::Solve(so, &problem, &summary);
+    out.iterations = static_cast<int>(summary.iterations.size());
+    out.converged = summary.termination_type == ceres::CONVERGENCE;
+    for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = x[k];
+    out.final_cost = eval(R);
+    if (!(out.final_cost <= ss0)) {   // never hand back a worse point than the start
+        // (Ceres keeps the best point; this guards the bounds' projection and a robust loss's different goal)
+    }
+    if (J) {
+        const double* block[] = {x.data()};
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Jr(R.size(), static_cast<Eigen::Index>(knobs.size()));
+        double* jac[] = {Jr.data()};
+        Eigen::VectorXd tmp(R.size());
+        if (cost->Evaluate(block, tmp.data(), jac)) *J = Jr;
+        else J->setZero(R.size(), static_cast<Eigen::Index>(knobs.size()));
+        for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = x[k];
+        eval(R);
+    }
+    return out;
+}
+
+}  // namespace impactlab::identify::detail
