@@ -90,9 +90,6 @@ LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const
     out.converged = summary.termination_type == ceres::CONVERGENCE;
     for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = x[k];
     out.final_cost = eval(R);
-    if (!(out.final_cost <= ss0)) {   // never hand back a worse point than the start
-        // (Ceres keeps the best point; this guards the bounds' projection and a robust loss's different goal)
-    }
     if (J) {
         const double* block[] = {x.data()};
         Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Jr(R.size(), static_cast<Eigen::Index>(knobs.size()));
