@@ -5,8 +5,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 
+#include "impactlab/identify.hpp"
 #include "impactlab/identify_data.hpp"
 
 namespace id = impactlab::identify;
@@ -168,4 +170,21 @@ TEST_CASE("loader: real deflate streams (the shared data files)") {
     const std::string text = id::read_data_file(f);   // checks the CRC of the whole member
     CHECK(text.rfind("t,x,phi\n0.000000,", 0) == 0);
     CHECK(std::count(text.begin(), text.end(), '\n') == 126002);
+}
+
+TEST_CASE("noise floor: holds for white noise on a smooth record and on one with power up to 0.6 Nyquist") {
+    std::mt19937_64 rng(9);
+    std::normal_distribution<double> noise(0.0, 1.0);
+    const std::size_t n = 40000;
+    const double sigma = 2e-5;
+    std::vector<double> smooth(n), busy(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double t = static_cast<double>(i) * 1e-3;   // 1 kHz, Nyquist 500 Hz
+        smooth[i] = 0.01 * std::sin(2 * 3.141592653589793 * 2.0 * t) + sigma * noise(rng);
+        busy[i] = sigma * noise(rng);
+        for (int k = 1; k <= 30; ++k)   // lines up to 300 Hz, 1e-4 each: far above the noise in 4th differences
+            busy[i] += 1e-4 * std::sin(2 * 3.141592653589793 * 10.0 * k * t + 0.7 * k * k);
+    }
+    CHECK(impactlab::identify::estimate_noise(smooth) == doctest::Approx(sigma).epsilon(0.1));
+    CHECK(impactlab::identify::estimate_noise(busy) == doctest::Approx(sigma).epsilon(0.15));
 }

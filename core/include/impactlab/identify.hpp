@@ -179,6 +179,11 @@ struct FitReport {
     WellReport wells_before, wells_after;
 };
 
+// The sensor noise of a uniformly sampled record [its units]: the smaller of the MAD of its 4th differences
+// (white noise on a smooth signal) and the spectrum's high-frequency floor (a signal with power up to a good
+// part of the band). Signal only ever raises either, so the smaller is the honest floor.
+double estimate_noise(const std::vector<double>& x);
+
 // The stages of a fit, in the order they run.
 enum class FitStage { Prepare, Baseline, Candidates, Selection, Refit, ImpactLaw, Validation, Errors, Count };
 const char* fit_stage_name(FitStage s);   // "preparing the data", "fitting the baseline", ...

@@ -21,6 +21,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // ---- signal.cpp ---------------------------------------------------------------------------------------
 // Standard deviation of white noise on a smooth signal, from the MAD of its 4th differences.
 double noise_sigma(const std::vector<double>& x);
+// The same from the spectrum's high-frequency floor (Welch, the top fifth of the band): it holds where the
+// signal itself has power up to a good part of the band (where 4th differences see signal). +inf for fewer
+// than 2048 samples.
+double noise_sigma_spectral(const std::vector<double>& x);
 // Savitzky-Golay weights c[0..2M] (offsets -M..M) of the `deriv`-th derivative of a degree-`degree` fit.
 std::vector<double> savgol(int half, int degree, int deriv, double dt);
 // Centred FIR: y[i] = sum_k c[k] x[i + k - M]; NaN where the window leaves the data.

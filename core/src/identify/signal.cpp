@@ -5,6 +5,8 @@
 #include <cmath>
 #include <complex>
 #include <unsupported/Eigen/FFT>
+#include <complex>
+#include <unsupported/Eigen/FFT>
 
 #include "identify/internal.hpp"
 
@@ -38,6 +40,42 @@ double noise_sigma(const std::vector<double>& x) {
         d.push_back(std::abs(x[i] - 4 * x[i + 1] + 6 * x[i + 2] - 4 * x[i + 3] + x[i + 4]));
     // var(4th difference) = 70 sigma^2; MAD of a normal = 0.6745 sigma.
     return median(std::move(d)) / 0.6745 / std::sqrt(70.0);
+}
+
+double noise_sigma_spectral(const std::vector<double>& x) {
+    // Welch: Hann-windowed segments of 1024 samples, half overlapping, each detrended; the one-sided PSD of
+    // white noise of variance s^2 is 2 s^2 / fs, so s^2 = PSD * fs / 2 with the PSD in units of 1/fs.
+    constexpr std::size_t kSeg = 1024;
+    if (x.size() < 2 * kSeg) return INFINITY;
+    std::vector<double> win(kSeg);
+    double wss = 0;
+    for (std::size_t k = 0; k < kSeg; ++k) {
+        win[k] = 0.5 - 0.5 * std::cos(2.0 * kPi * static_cast<double>(k) / static_cast<double>(kSeg));
+        wss += win[k] * win[k];
+    }
+    Eigen::FFT<double> fft;
+    std::vector<double> seg(kSeg), psd(kSeg / 2 + 1, 0.0);
+    std::vector<std::complex<double>> spec;
+    std::size_t count = 0;
+    for (std::size_t a = 0; a + kSeg <= x.size(); a += kSeg / 2) {
+        // Remove the segment's straight line (its mean and drift would leak into every bin).
+        double sx = 0, sxy = 0;
+        const double c = 0.5 * static_cast<double>(kSeg - 1);
+        for (std::size_t k = 0; k < kSeg; ++k) {
+            sx += x[a + k];
+            sxy += (static_cast<double>(k) - c) * x[a + k];
+        }
+        const double mean = sx / kSeg, slope = sxy / (static_cast<double>(kSeg) * (static_cast<double>(kSeg) * kSeg - 1) / 12.0);
+        for (std::size_t k = 0; k < kSeg; ++k) seg[k] = (x[a + k] - mean - slope * (static_cast<double>(k) - c)) * win[k];
+        fft.fwd(spec, seg);
+        for (std::size_t k = 0; k <= kSeg / 2; ++k) psd[k] += std::norm(spec[k]);
+        ++count;
+    }
+    // The floor: the median over the top fifth of the band (below Nyquist), where a sampled mechanical
+    // signal has least power. |X_k|^2 / sum(w^2) is the two-sided periodogram's variance density per bin.
+    std::vector<double> top;
+    for (std::size_t k = kSeg / 2 * 4 / 5; k < kSeg / 2; ++k) top.push_back(psd[k] / (static_cast<double>(count) * wss));
+    return std::sqrt(median(std::move(top)));
 }
 
 std::vector<double> savgol(int half, int degree, int deriv, double dt) {
@@ -223,3 +261,7 @@ double dominant_period(const std::vector<double>& x, double dt) {
 }
 
 }  // namespace impactlab::identify::detail
+
+namespace impactlab::identify {
+double estimate_noise(const std::vector<double>& x) { return std::min(detail::noise_sigma(x), detail::noise_sigma_spectral(x)); }
+}  // namespace impactlab::identify
