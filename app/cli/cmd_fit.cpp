@@ -137,10 +137,17 @@ int cmd_fit(const std::vector<std::string>& argv) {
         if (!identify::find_catalogue_effect(id)) throw UsageError("fit: --exclude: unknown effect '" + id + "'");
 
     identify::FitReport r;
-    try {
-        r = identify::run_fit(data, model, o, has_test ? &test : nullptr);
-    } catch (const identify::DataError& e) {
-        throw UsageError(e.what());
+    {
+        identify::FitProgress progress;
+        ProgressBar bar("fit " + model.p.name, progress.fraction, [&progress] {
+            const int s = progress.stage.load();
+            return s >= 0 ? std::string(identify::fit_stage_name(static_cast<identify::FitStage>(s))) : std::string();
+        });
+        try {
+            r = identify::run_fit(data, model, o, has_test ? &test : nullptr, &progress);
+        } catch (const identify::DataError& e) {
+            throw UsageError(e.what());
+        }
     }
     identify::write_report(r, dir, o.plots);
 

@@ -42,7 +42,10 @@ std::ofstream open_out(const std::string& path) {
     return out;
 }
 
-ProgressBar::ProgressBar(const std::string& label, Progress& progress) : label_(label), progress_(progress) {
+ProgressBar::ProgressBar(const std::string& label, Progress& progress) : ProgressBar(label, progress.fraction) {}
+
+ProgressBar::ProgressBar(const std::string& label, const std::atomic<double>& fraction, std::function<std::string()> stage)
+    : label_(label), fraction_(fraction), stage_(std::move(stage)) {
     // On a terminal the bar redraws in place; into a log file it writes a line per 10 %.
     const bool tty = isatty(fileno(stderr)) != 0;
     thread_ = std::thread([this, tty] {
@@ -52,16 +55,18 @@ ProgressBar::ProgressBar(const std::string& label, Progress& progress) : label_(
             std::this_thread::sleep_for(std::chrono::milliseconds(100));
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (elapsed < 1.0 || done_.load()) continue;
-            const double f = std::clamp(progress_.fraction.load(), 0.0, 1.0);
+            const double f = std::clamp(fraction_.load(), 0.0, 1.0);
+            const std::string stage = stage_ ? stage_() : std::string();
             if (!tty) {
                 const int decile = static_cast<int>(f * 10);
-                if (decile != last_decile) std::fprintf(stderr, "%s: %3d%%  %5.0f s\n", label_.c_str(), decile * 10, elapsed);
+                if (decile != last_decile)
+                    std::fprintf(stderr, "%s: %3d%%  %5.0f s%s%s\n", label_.c_str(), decile * 10, elapsed, stage.empty() ? "" : "  ", stage.c_str());
                 last_decile = decile;
                 continue;
             }
             const int width = 30, filled = static_cast<int>(f * width);
-            std::fprintf(stderr, "\r%-28s [%s%s] %5.1f%%  %5.0f s", label_.c_str(), std::string(filled, '#').c_str(),
-                         std::string(width - filled, '.').c_str(), 100 * f, elapsed);
+            std::fprintf(stderr, "\r%-28s [%s%s] %5.1f%%  %5.0f s  %-34.34s", label_.c_str(), std::string(filled, '#').c_str(),
+                         std::string(width - filled, '.').c_str(), 100 * f, elapsed, stage.c_str());
             std::fflush(stderr);
             drawn_ = true;
         }
@@ -71,7 +76,7 @@ ProgressBar::ProgressBar(const std::string& label, Progress& progress) : label_(
 void ProgressBar::finish() {
     if (done_.exchange(true)) return;
     thread_.join();
-    if (drawn_) std::fprintf(stderr, "\r%-28s done%50s\n", label_.c_str(), "");
+    if (drawn_) std::fprintf(stderr, "\r%-28s done%86s\n", label_.c_str(), "");
     else if (!isatty(fileno(stderr))) std::fflush(stderr);
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <chrono>
 #include <fstream>
 #include <string>
@@ -33,12 +34,16 @@ std::ofstream open_out(const std::string& path);
 class ProgressBar {
 public:
     ProgressBar(const std::string& label, Progress& progress);
+    // Any job's fraction (written by the job's thread); `stage` (optional, called on the bar's thread) names
+    // what the job is doing now.
+    ProgressBar(const std::string& label, const std::atomic<double>& fraction, std::function<std::string()> stage = {});
     ~ProgressBar();
     void finish();
 
 private:
     std::string label_;
-    Progress& progress_;
+    const std::atomic<double>& fraction_;
+    std::function<std::string()> stage_;
     std::atomic<bool> done_{false};
     std::thread thread_;
     bool drawn_ = false;
