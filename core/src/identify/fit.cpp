@@ -902,10 +902,27 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
                 f.parameters = {{"dx", delta}};
                 f.sigma = {{"dx", se}};
                 f.z = std::abs(delta) / se;
-                f.sentence = sentence("bumper_offset", after, f.parameters, f.sigma, sc);
+                const Model at_nominal = after;
                 apply_effect(after, "bumper_offset", {{"dx", delta}});
-                rep.effects_found.push_back(std::move(f));
                 pred = predict_impacts(pr, after, o.rtol);
+                // The forces at the moved bumper differ, and a compliant contact's apparent penetration with
+                // them: correct dx until the simulated flat tops sit on the measured ones.
+                double dx = delta;
+                for (int it = 0; it < 3; ++it) {
+                    std::vector<double> miss;
+                    for (std::size_t k = 0; k < pr.impacts.size(); ++k)
+                        if (pred.ok[k]) miss.push_back((pr.impacts[k].level - pred.obs[k].level) / g);
+                    if (miss.size() < 3) break;
+                    const double step = median(miss);
+                    if (std::abs(step) < 0.05 * se) break;
+                    dx += step;
+                    after.p.xI += step;
+                    pred = predict_impacts(pr, after, o.rtol);
+                }
+                f.parameters = {{"dx", dx}};
+                f.z = std::abs(dx) / se;
+                f.sentence = sentence("bumper_offset", at_nominal, f.parameters, f.sigma, sc);
+                rep.effects_found.push_back(std::move(f));
             }
         }
         // The dwell time and the restitution against the model's, impact by impact.
