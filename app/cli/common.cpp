@@ -56,17 +56,17 @@ ProgressBar::ProgressBar(const std::string& label, const std::atomic<double>& fr
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (elapsed < 1.0 || done_.load()) continue;
             const double f = std::clamp(fraction_.load(), 0.0, 1.0);
-            const std::string stage = stage_ ? stage_() : std::string();
+            const std::string now = stage_ ? stage_() : std::string();
             if (!tty) {
                 const int decile = static_cast<int>(f * 10);
                 if (decile != last_decile)
-                    std::fprintf(stderr, "%s: %3d%%  %5.0f s%s%s\n", label_.c_str(), decile * 10, elapsed, stage.empty() ? "" : "  ", stage.c_str());
+                    std::fprintf(stderr, "%s: %3d%%  %5.0f s%s%s\n", label_.c_str(), decile * 10, elapsed, now.empty() ? "" : "  ", now.c_str());
                 last_decile = decile;
                 continue;
             }
             const int width = 30, filled = static_cast<int>(f * width);
             std::fprintf(stderr, "\r%-28s [%s%s] %5.1f%%  %5.0f s  %-34.34s", label_.c_str(), std::string(filled, '#').c_str(),
-                         std::string(width - filled, '.').c_str(), 100 * f, elapsed, stage.c_str());
+                         std::string(width - filled, '.').c_str(), 100 * f, elapsed, now.c_str());
             std::fflush(stderr);
             drawn_ = true;
         }
