@@ -373,3 +373,45 @@ TEST_CASE("fit session: stages in order, progress to 1, and a cancel stops the f
     CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < r.runtime_s + 1.0);
     CHECK(stop.fraction.load() < 1.0);
 }
+
+TEST_CASE("chaotic double well forced by u: the baseline is recovered, stays bistable, and nothing is invented") {
+    // Holmes' forced double well x'' + 0.25 x' - x + x^3/L^2 = 0.3 L cos t (L = 10 mm): chaotic, crossing
+    // between the wells. The baseline starts 20 % off and is fitted; the record cannot be free-run.
+    id::Model truth = id::resolve_fit_model("duffing", id::Forcing::Input);
+    truth.p.k = -1.0;
+    truth.p.c = 0.25;
+    truth.p.a[1] = 1e4;
+    truth.p.input_gain = 0.003;
+    id::SynthOptions so;
+    so.rate = 20.0;
+    so.duration = 600.0;
+    so.noise = 1e-5;
+    so.quantum = 0.0;
+    so.x0 = 0.01;
+    so.input_dt = 0.05;
+    for (int i = 0; i <= 12000; ++i) so.input.push_back(std::cos(0.05 * i));
+    so.knot_t = {0.0};
+    so.knot_omega = {0.0};
+    const id::MeasuredData d = id::synthesize(truth, so);
+    int crossings = 0;
+    for (std::size_t i = 1; i < d.size(); ++i) crossings += (d.x[i - 1] < 0) != (d.x[i] < 0);
+    REQUIRE(crossings > 10);   // chaotic: it hops between the wells
+    id::Model start = truth;
+    start.p.k = -0.8;
+    start.p.c = 0.2;
+    start.p.a[1] = 8e3;
+    start.p.input_gain = 0.0025;
+    id::FitOptions fo;
+    fo.plots = false;
+    fo.fit_baseline = true;
+    fo.fit_params = {"c", "k", "a3", "gain"};
+    const id::FitReport r = id::run_fit(d, start, fo);
+    CHECK(r.effects_found.empty());
+    CHECK(r.after.p.k == doctest::Approx(-1.0).epsilon(0.02));
+    CHECK(r.after.p.c == doctest::Approx(0.25).epsilon(0.05));
+    CHECK(r.after.p.a[1] == doctest::Approx(1e4).epsilon(0.02));
+    CHECK(r.after.p.input_gain == doctest::Approx(0.003).epsilon(0.02));
+    CHECK(r.wells_after.wells.size() == 2);
+    CHECK(r.verdict.find("at its noise floor") != std::string::npos);
+    CHECK(r.horizon_periods > 0);
+}

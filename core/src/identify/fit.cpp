@@ -53,6 +53,23 @@ double free_run_rms(const std::vector<double>& fr, const std::vector<double>& x,
     return c ? std::sqrt(s / static_cast<double>(c)) : -1.0;
 }
 
+// Short-horizon shooting error (windows of one dominant period, initial states fitted) on the part of the
+// record the output-error fit does not use: how an output-error refinement is judged before it is kept. A
+// long free run of a chaotic record drifts onto another trajectory whatever the model, so the free-run
+// error alone cannot say whether a refinement helped.
+double held_out_shooting_sse(const Prep& pr, const Model& m, double rtol) {
+    std::size_t a = 0;
+    while (a + 2 < pr.n && (pr.zone[a] || !std::isfinite(pr.xs[a]) || !std::isfinite(pr.vs[a]))) ++a;
+    const std::size_t fit_end = oe_fit_end(pr, a, 30000);
+    std::vector<std::pair<std::size_t, std::size_t>> wins;
+    for (const auto& w : windows(pr, 1.0))
+        if (w.first > fit_end) wins.push_back(w);
+    if (wins.size() < 10) wins = windows(pr, 1.0);
+    double s = 0;
+    for (double e : window_sse(pr, m, wins, true, rtol)) s += std::isfinite(e) ? e : 1e300;
+    return s;
+}
+
 // Levenberg-Marquardt on the free-run simulation error (input-forced data only: there a free run over the
 // record is meaningful, and it weighs the resonance the way the benchmark's simulation error does).
 void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_iter, double rtol) {
@@ -525,8 +542,16 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             const Model ee = base;
             knobs = base_knobs(base, base_names);
             lm_simulation(pr, base, knobs, 30, o.rtol);
-            if (keeps_wells(base, "output-error")) rep.notes.push_back("baseline refined on the free-run simulation error (output error)");
-            else base = ee;
+            if (!keeps_wells(base, "output-error")) {
+                base = ee;
+            } else if (held_out_shooting_sse(pr, base, o.rtol) > held_out_shooting_sse(pr, ee, o.rtol)) {
+                // A chaotic record's free run: the refinement fitted drift, not the rig.
+                rep.notes.push_back("the output-error refinement of the baseline predicts the held-out part worse over one period "
+                                    "(a chaotic record?); the equation-error baseline is kept");
+                base = ee;
+            } else {
+                rep.notes.push_back("baseline refined on the free-run simulation error (output error)");
+            }
         }
         if (const std::string why = unphysical(base); !why.empty())
             throw ParamError("the baseline fit leaves the physical range (" + why + "); fix the starting values or --fit-params");
@@ -823,14 +848,22 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             const double rms = free_run_rms(fr, data.x, fit_end + 1);
             return rms < 0 ? INFINITY : rms;
         };
-        // Which of them stay is the held-out validation's decision (stage 6).
+        // Which of them stay is the held-out validation's decision (stage 6); the refinement itself stays only
+        // if it predicts the held-out part better over one period than the equation-error values do.
+        const Model ee_after = after;
         oe_fit(after, chosen.size(), 20);
+        const bool oe_kept = held_out_shooting_sse(pr, after, o.rtol) <= held_out_shooting_sse(pr, ee_after, o.rtol);
+        if (!oe_kept) {
+            after = ee_after;
+            rep.notes.push_back("the output-error refit of the effects predicts the held-out part worse over one period; "
+                                "their equation-error values are kept");
+        }
         // The reported values are the simulation-error fit's; their uncertainties stay the equation error's.
         for (std::size_t k = 0; k < force_found.size(); ++k) {
             force_found[k].parameters = named(after.p.effects[first_new + k]);
             force_found[k].sentence = sentence(force_found[k].id, base, force_found[k].parameters, force_found[k].sigma, sc);
         }
-        rep.notes.push_back("effects refitted on the free-run simulation error (output error)");
+        if (oe_kept) rep.notes.push_back("effects refitted on the free-run simulation error (output error)");
     }
     // A sensor effect moves the measured bumper level too: if the impacts' flat tops contradict it, it is an
     // artefact of the free-flight fit and goes (the impact stage then sees the level as it is).
