@@ -269,6 +269,70 @@ double rms_of(const Eigen::VectorXd& R) { return R.size() ? std::sqrt(R.squaredN
 
 namespace {
 
+// The flat-top shift that puts a model's simulated impacts on the measured ones, from the impacts with
+// use[k] set: the median of the paired level differences, corrected until the moved bumper's own forces
+// (and a compliant contact's penetration with them) are accounted for. Returns the shift of xI [m]; the model
+// is left with it.
+double fit_bumper_shift(const Prep& pr, Model& m, const std::vector<char>& use, double rtol, double tol) {
+    const double g = m.sensor_gain();
+    double dx = 0;
+    for (int it = 0; it < 4; ++it) {
+        const PredictedImpacts pred = predict_impacts(pr, m, rtol);
+        std::vector<double> miss;
+        for (std::size_t k = 0; k < pr.impacts.size(); ++k)
+            if (use[k] && pred.ok[k]) miss.push_back((pr.impacts[k].level - pred.obs[k].level) / g);
+        if (miss.size() < 3) break;
+        const double step = median(miss);
+        dx += step;
+        m.p.xI += step;
+        if (std::abs(step) < tol) break;
+    }
+    return dx;
+}
+
+// An impact law (impact_duration or restitution) refitted to the impacts with use[k] set, in the form the
+// whole record chose (a constant when its decay rate is 0, else the full law from the whole record's values).
+std::vector<std::pair<std::string, double>> refit_impact_law(const Prep& pr, const Model& m, const FoundEffect& f,
+                                                             const std::vector<char>& use) {
+    const bool dur = f.id == "impact_duration";
+    const double g = m.sensor_gain();
+    std::vector<double> vm, obs;
+    for (std::size_t k = 0; k < pr.impacts.size(); ++k) {
+        const ImpactObs& im = pr.impacts[k];
+        if (!use[k] || (!dur && im.v_minus < 0.02)) continue;
+        vm.push_back(im.v_minus / g);
+        obs.push_back(dur ? im.t_out - im.t_in : (im.v_minus > 0 ? -im.v_plus / im.v_minus : 0.0));
+    }
+    auto value = [&](const char* k) {
+        for (const auto& [n, v] : f.parameters)
+            if (n == k) return v;
+        return 0.0;
+    };
+    const char* nm[3] = {dur ? "Ti0" : "kappa0", dur ? "Ti1" : "kappa1", dur ? "a_T" : "a_kappa"};
+    if (obs.size() < 3) return f.parameters;
+    double mean = 0;
+    for (double v : obs) mean += v;
+    mean /= static_cast<double>(obs.size());
+    if (value(nm[2]) == 0.0) return {{nm[0], mean}, {nm[1], mean}, {nm[2], 0.0}};
+    const auto n = static_cast<Eigen::Index>(obs.size());
+    auto law = [&](const Eigen::VectorXd& th) {
+        Eigen::VectorXd r(n);
+        for (Eigen::Index i = 0; i < n; ++i)
+            r[i] = (th[0] - th[1]) * std::exp(-th[2] * vm[static_cast<std::size_t>(i)]) + th[1] - obs[static_cast<std::size_t>(i)];
+        return r;
+    };
+    Eigen::VectorXd th(3), lo(3), hi(3);
+    th << value(nm[0]), value(nm[1]), value(nm[2]);
+    lo << 0, 0, 0;
+    hi << 1.0, 1.0, 50.0;
+    lm_small(law, th, lo, hi);
+    return {{nm[0], th[0]}, {nm[1], th[1]}, {nm[2], th[2]}};
+}
+
+}  // namespace
+
+namespace {
+
 // The held-out validation of the effects found (stage 6 of run_fit). The record is cut into blocks of about
 // an eighth of its length, alternately in fold 0 and fold 1. For each fold, the force effects' parameters are
 // refitted on the equation error of the other fold's rows (the base-changing impact effects keep the values
@@ -303,11 +367,12 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
     for (std::size_t w = 0; w < wins.size(); ++w) fold_wins[static_cast<std::size_t>(fold_of(wins[w].first))].push_back(w);
     const std::size_t n_base_effects = base.p.effects.size();
 
-    // Held-out SSE of each window for model m (its force effects refitted on the other fold).
-    auto held_out = [&](const Model& m) {
+    // Held-out SSE of each window: fold f's windows simulated with model_for[f], its force effects refitted
+    // on the other fold's rows (the impact-law effects come refitted on the other fold's impacts).
+    auto held_out_folds = [&](const std::array<Model, 2>& model_for) {
         std::vector<double> e(wins.size(), INFINITY);
         for (std::size_t f = 0; f < 2; ++f) {
-            Model mf = m;
+            Model mf = model_for[f];
             std::vector<Knob> knobs = found_effect_knobs(mf, n_base_effects, cands);
             const Prep& fit_on = fold_pr[1 - f];
             if (!knobs.empty() && fit_on.rows.size() >= 20) {
@@ -322,6 +387,13 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
         }
         return e;
     };
+    auto held_out = [&](const Model& m) { return held_out_folds({m, m}); };
+    // Impacts by fold (of their entry sample), for refitting an impact-law effect on one fold only.
+    std::array<std::vector<char>, 2> impacts_in;
+    for (std::size_t f = 0; f < 2; ++f) {
+        impacts_in[f].assign(pr.impacts.size(), 0);
+        for (std::size_t k = 0; k < pr.impacts.size(); ++k) impacts_in[f][k] = fold_of(pr.impacts[k].i_first) == static_cast<int>(f);
+    }
     std::size_t samples = 0;
     for (const auto& [a, b] : wins) samples += b - a + 1;
     const double noise_sse = static_cast<double>(samples) * pr.sigma_x * pr.sigma_x;
@@ -400,7 +472,22 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
             rep.effects_rejected.push_back(std::move(rej));
             continue;
         }
-        const std::vector<double> e_new = held_out(cand);
+        std::vector<double> e_new;
+        if (f.evidence == "impact law") {
+            // Refitted on the other fold's impacts, for each fold in turn.
+            std::array<Model, 2> per_fold{cur, cur};
+            for (std::size_t ff = 0; ff < 2; ++ff) {
+                const std::vector<char>& use = impacts_in[1 - ff];
+                // A fold with fewer than three impacts cannot refit the law: there the whole record's values
+                // stand (the windows are still held out).
+                if (std::count(use.begin(), use.end(), 1) < 3) per_fold[ff] = cand;
+                else if (f.id == "bumper_offset") fit_bumper_shift(pr, per_fold[ff], use, o.rtol, 0.05 * pr.sigma_x);
+                else apply_effect(per_fold[ff], f.id, refit_impact_law(pr, cur, f, use));
+            }
+            e_new = held_out_folds(per_fold);
+        } else {
+            e_new = held_out(cand);
+        }
         const Compare c = compare(e_cur, e_new);
         f.validation_gain = rej.validation_gain = c.gain;
         f.validation_z = rej.validation_z = c.z;
@@ -935,23 +1022,11 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
                 f.parameters = {{"dx", delta}};
                 f.sigma = {{"dx", se}};
                 f.z = std::abs(delta) / se;
+                // The shift that puts the simulated flat tops on the measured ones: the forces at the moved
+                // bumper differ, and a compliant contact's apparent penetration with them.
                 const Model at_nominal = after;
-                apply_effect(after, "bumper_offset", {{"dx", delta}});
+                const double dx = fit_bumper_shift(pr, after, std::vector<char>(pr.impacts.size(), 1), o.rtol, 0.05 * se);
                 pred = predict_impacts(pr, after, o.rtol);
-                // The forces at the moved bumper differ, and a compliant contact's apparent penetration with
-                // them: correct dx until the simulated flat tops sit on the measured ones.
-                double dx = delta;
-                for (int it = 0; it < 3; ++it) {
-                    std::vector<double> miss;
-                    for (std::size_t k = 0; k < pr.impacts.size(); ++k)
-                        if (pred.ok[k]) miss.push_back((pr.impacts[k].level - pred.obs[k].level) / g);
-                    if (miss.size() < 3) break;
-                    const double step = median(miss);
-                    if (std::abs(step) < 0.05 * se) break;
-                    dx += step;
-                    after.p.xI += step;
-                    pred = predict_impacts(pr, after, o.rtol);
-                }
                 f.parameters = {{"dx", dx}};
                 f.z = std::abs(dx) / se;
                 f.sentence = sentence("bumper_offset", at_nominal, f.parameters, f.sigma, sc);
