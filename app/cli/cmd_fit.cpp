@@ -46,14 +46,6 @@ constexpr const char* kFitHelp =
     "  --rtol R                integrator tolerance of the simulations (default 1e-8)\n"
     "  --no-plots              skip the PNGs\n";
 
-std::vector<std::string> split_list(const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string item;
-    while (std::getline(ss, item, ','))
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
 
 }  // namespace
 

@@ -25,14 +25,6 @@ constexpr const char* kRecoveryHelp =
     "  --null            instead: noise-only data of each version with N seeds (default 10); anything named\n"
     "                    is a false finding. Exit 1 if there is one.\n";
 
-std::vector<std::string> split_list(const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string item;
-    while (std::getline(ss, item, ','))
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
 }  // namespace
 
 int cmd_recovery(const std::vector<std::string>& argv) {

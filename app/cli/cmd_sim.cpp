@@ -78,47 +78,31 @@ int cmd_simulate(const std::vector<std::string>& argv) {
                          "                   columns with --u-col C, --x-col C, --t-col C, --input-rate HZ, --u-scale S.\n"
                          "                   The model's input_gain (a fitted model_after.json has it) sets the force.\n", kModelHelp))
         return 0;
-    const Args a("simulate", argv, with_model_flags({"--omega", "--duration", "--out", "--dt", "--x0", "--v0", "--input", "--u-col",
-                                                      "--x-col", "--t-col", "--input-rate", "--u-scale"}));
+    std::set<std::string> flags = with_model_flags({"--omega", "--duration", "--out", "--dt", "--x0", "--v0"});
+    flags.insert(kInputFlags.begin(), kInputFlags.end());
+    const Args a("simulate", argv, flags);
     const Params p = model_from(a);
-    const bool input = a.has("--input");
-    for (const char* f : {"--u-col", "--x-col", "--t-col", "--input-rate", "--u-scale"})
-        if (a.has(f) && !input) throw UsageError(std::string("simulate: ") + f + " needs --input");
-    identify::MeasuredData in;
+    const std::optional<identify::MeasuredData> rec = input_from(a, "simulate");
+    const bool input = rec.has_value();
     double in_dt = 0;
     if (input) {
-        identify::LoadOptions lo;
-        lo.columns.u = a.str("--u-col", "");
-        lo.columns.x = a.str("--x-col", "");
-        lo.columns.t = a.str("--t-col", "");
-        lo.rate = a.num("--input-rate", 0.0, 1e-6, 1e9);
-        lo.u_scale = a.num("--u-scale", 1.0, -1e12, 1e12);
-        lo.min_samples = 2;   // an input needs two samples to be a signal
-        try {
-            in = identify::load_measured(a.str("--input", ""), lo);
-        } catch (const identify::DataError& e) {
-            throw UsageError(std::string("simulate: --input: ") + e.what());
-        }
-        if (!in.has_u()) throw UsageError("simulate: --input: " + in.source + " has no input column u (map one with --u-col)");
-        in_dt = (in.t.back() - in.t.front()) / static_cast<double>(in.size() - 1);
-        if (p.input_gain == 0.0)
-            std::fprintf(stderr, "simulate: note: the model's input_gain is 0, so the input does not act on it\n");
+        in_dt = (rec->t.back() - rec->t.front()) / static_cast<double>(rec->size() - 1);
+        if (p.input_gain == 0.0) std::fprintf(stderr, "simulate: note: the model's input_gain is 0, so the input does not act on it\n");
     }
     const double omega = a.num("--omega", 0, 0.0, 1000.0);
     if (!a.has("--omega") && !input) throw UsageError("simulate: missing required option '--omega'");
     if (!a.has("--duration") && !input) throw UsageError("simulate: missing required option '--duration'");
-    const double duration = a.num("--duration", input ? in_dt * static_cast<double>(in.size() - 1) : 0.0, 1e-6, 1e6);
+    const double duration = a.num("--duration", input ? in_dt * static_cast<double>(rec->size() - 1) : 0.0, 1e-6, 1e6);
     const double dt = a.num("--dt", input ? in_dt : 1e-3, 1e-7, 1e3);
     std::ofstream out = open_out(a.required("--out"));
     Simulator sim(tolerances_from(a));
     Drive drive(omega);
-    if (input) drive.set_input(0.0, in_dt, in.u);
+    if (input) drive.set_input(0.0, in_dt, rec->u);
     State s;
     s.x = a.num("--x0", 0.0, -0.1, 0.1);
     s.v = a.num("--v0", 0.0, -10.0, 10.0);
     Simulator::make_consistent(p, drive, s);
     out << (input ? "t,x,v,u,regime\n" : "t,x,v,phi,regime\n");
-    out.precision(10);
     UniformSampler sampler(drive, dt, 0.0, [&](const Sample& smp) {
         out << smp.t << ',' << smp.x << ',' << smp.v << ',' << (input ? drive.input(smp.t) : smp.phi) << ',' << static_cast<int>(smp.regime)
             << '\n';

@@ -91,25 +91,9 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
                   "--t-col", "--input-rate", "--u-scale", "--gain"});
     if (!a.positional().empty()) throw UsageError("synth: unexpected argument '" + a.positional()[0] + "'");
     const std::string out_path = a.required("--out");
-    const bool input = a.has("--input");
-    for (const char* f : {"--u-col", "--x-col", "--t-col", "--input-rate", "--u-scale", "--gain"})
-        if (a.has(f) && !input) throw UsageError(std::string("synth: ") + f + " needs --input");
-    identify::MeasuredData in;
-    if (input) {
-        identify::LoadOptions lo;
-        lo.columns.u = a.str("--u-col", "");
-        lo.columns.x = a.str("--x-col", "");
-        lo.columns.t = a.str("--t-col", "");
-        lo.rate = a.num("--input-rate", 0.0, 1e-6, 1e9);
-        lo.u_scale = a.num("--u-scale", 1.0, -1e12, 1e12);
-        lo.min_samples = 2;   // an input needs two samples to be a signal
-        try {
-            in = identify::load_measured(a.str("--input", ""), lo);
-        } catch (const identify::DataError& e) {
-            throw UsageError(std::string("synth: --input: ") + e.what());
-        }
-        if (!in.has_u()) throw UsageError("synth: --input: " + in.source + " has no input column u (map one with --u-col)");
-    }
+    if (a.has("--gain") && !a.has("--input")) throw UsageError("synth: --gain needs --input");
+    const std::optional<identify::MeasuredData> rec = input_from(a, "synth");
+    const bool input = rec.has_value();
     identify::Model model;
     try {
         model = identify::resolve_fit_model(a.str("--model", "A1H"), input ? identify::Forcing::Input : identify::Forcing::Unbalance);
@@ -149,14 +133,14 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
 
     identify::SynthOptions o;
     if (input) {
-        o.input = in.u;
+        o.input = rec->u;
         o.input_t0 = 0.0;   // the record is re-timed from 0
-        o.input_dt = (in.t.back() - in.t.front()) / static_cast<double>(in.size() - 1);
+        o.input_dt = (rec->t.back() - rec->t.front()) / static_cast<double>(rec->size() - 1);
         o.phi_counts = 0;
         o.knot_t = {0.0};
         o.knot_omega = {0.0};
     }
-    const double in_len = input ? o.input_dt * static_cast<double>(in.size() - 1) : 60.0;
+    const double in_len = input ? o.input_dt * static_cast<double>(rec->size() - 1) : 60.0;
     o.duration = a.num("--duration", in_len, 1e-3, 1e6);
     o.rate = a.num("--rate", input ? 1.0 / o.input_dt : 1000.0, 1.0, 1e7);
     o.noise = a.num("--noise", 3e-6, 0.0, 1.0);

@@ -1,5 +1,7 @@
 #include "common.hpp"
 
+#include <sstream>
+
 #include <cstdio>
 #include <unistd.h>
 
@@ -40,6 +42,37 @@ std::ofstream open_out(const std::string& path) {
     if (!out) throw UsageError(path + ": cannot open for writing");
     out.precision(10);
     return out;
+}
+
+std::vector<std::string> split_list(const std::string& s) {
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, ','))
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+std::optional<identify::MeasuredData> input_from(const Args& a, const std::string& command) {
+    const bool input = a.has("--input");
+    for (const auto& f : kInputFlags)
+        if (f != "--input" && a.has(f) && !input) throw UsageError(command + ": " + f + " needs --input");
+    if (!input) return std::nullopt;
+    identify::LoadOptions lo;
+    lo.columns.u = a.str("--u-col", "");
+    lo.columns.x = a.str("--x-col", "");
+    lo.columns.t = a.str("--t-col", "");
+    lo.rate = a.num("--input-rate", 0.0, 1e-6, 1e9);
+    lo.u_scale = a.num("--u-scale", 1.0, -1e12, 1e12);
+    lo.min_samples = 2;   // an input needs two samples to be a signal
+    identify::MeasuredData in;
+    try {
+        in = identify::load_measured(a.str("--input", ""), lo);
+    } catch (const identify::DataError& e) {
+        throw UsageError(command + ": --input: " + e.what());
+    }
+    if (!in.has_u()) throw UsageError(command + ": --input: " + in.source + " has no input column u (map one with --u-col)");
+    return in;
 }
 
 ProgressBar::ProgressBar(const std::string& label, Progress& progress) : ProgressBar(label, progress.fraction) {}

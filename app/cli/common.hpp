@@ -5,10 +5,13 @@
 #include <functional>
 #include <chrono>
 #include <fstream>
+#include <optional>
+#include <vector>
 #include <string>
 #include <thread>
 
 #include "args.hpp"
+#include "impactlab/identify_data.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/rosenbrock.hpp"
 #include "impactlab/sweep.hpp"
@@ -28,6 +31,13 @@ Tolerances tolerances_from(const Args& a);
 std::set<std::string> with_model_flags(std::set<std::string> flags);
 // Opens a file for writing or throws UsageError naming it.
 std::ofstream open_out(const std::string& path);
+// "a,b,,c" -> {a, b, c}.
+std::vector<std::string> split_list(const std::string& s);
+
+// A measured input u(t) read from a record (simulate, synth): --input FILE and its column mapping.
+inline const std::set<std::string> kInputFlags{"--input", "--u-col", "--x-col", "--t-col", "--input-rate", "--u-scale"};
+// The record named by --input, or nothing without it; the mapping flags alone are a usage error.
+std::optional<identify::MeasuredData> input_from(const Args& a, const std::string& command);
 
 // Draws a progress bar on stderr while a job runs longer than a second. Runs its own thread; the job
 // updates `progress` from its thread.

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "effects/law_helpers.hpp"
 #include "identify/internal.hpp"
 #include "impactlab/params_json.hpp"
 
@@ -254,24 +255,8 @@ std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& nam
 }
 
 namespace {
-std::string fmt(const char* f, double a) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, f, a);
-    return buf;
-}
-// "1.23 +/- 0.04" with the uncertainty's two significant digits deciding the decimals.
-std::string pm(double v, double s, double scale = 1.0) {
-    v *= scale;
-    s *= scale;
-    char buf[96];
-    if (!(s > 0) || !std::isfinite(s)) {
-        std::snprintf(buf, sizeof buf, "%.3g", v);
-        return buf;
-    }
-    const int dec = std::clamp(1 - static_cast<int>(std::floor(std::log10(s))), 0, 12);
-    std::snprintf(buf, sizeof buf, "%.*f +/- %.*f", dec, v, dec, s);
-    return buf;
-}
+using effects::fmt;
+using effects::pm;
 double get(const std::vector<std::pair<std::string, double>>& v, const std::string& k) {
     for (const auto& [n, x] : v)
         if (n == k) return x;

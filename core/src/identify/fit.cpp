@@ -333,6 +333,19 @@ std::vector<std::pair<std::string, double>> refit_impact_law(const Prep& pr, con
 
 namespace {
 
+// One-sample t test of mean > 0, as the equivalent standard-normal z (read through F(1, n-1), signed).
+double t_test_z(const std::vector<double>& d) {
+    const double n = static_cast<double>(d.size());
+    if (d.size() < 2) return 0.0;
+    double mean = 0, var = 0;
+    for (double v : d) mean += v;
+    mean /= n;
+    for (double v : d) var += (v - mean) * (v - mean);
+    var /= (n - 1.0);
+    const double t = var > 0 ? mean / std::sqrt(var / n) : (mean > 0 ? 1e6 : -1e6);
+    return std::copysign(f_to_z(t * t, 1.0, n - 1.0), t);
+}
+
 // The held-out validation of the effects found (stage 6 of run_fit). The record is cut into blocks of about
 // an eighth of its length, alternately in fold 0 and fold 1. For each fold, the force effects' parameters are
 // refitted on the equation error of the other fold's rows (the base-changing impact effects keep the values
@@ -419,13 +432,7 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
         c.gain = c.sum_cur > 0 ? (c.sum_cur - c.sum_new) / c.sum_cur : 0.0;
         if (d.size() < 3) return c;
         const double n = static_cast<double>(d.size());
-        double mean = 0, var = 0;
-        for (double v : d) mean += v;
-        mean /= n;
-        for (double v : d) var += (v - mean) * (v - mean);
-        var /= (n - 1.0);
-        const double t = var > 0 ? mean / std::sqrt(var / n) : (mean > 0 ? 1e6 : -1e6);
-        const double z_t = std::copysign(f_to_z(t * t, 1.0, n - 1.0), t);
+        const double z_t = t_test_z(d);
         // Wilcoxon's signed-rank test as well: chaotic windows make the differences heavy-tailed, and a
         // consistent sign over the windows is what a real effect shows and a spurious one does not.
         std::vector<std::size_t> order(d.size());
@@ -437,14 +444,7 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
         const double z_w = (w_plus - n * (n + 1) / 4.0) / std::sqrt(n * (n + 1) * (2 * n + 1) / 24.0);
         // And the t test on each window's relative fall (bounded above by 1, so light-tailed): a bumper
         // offset removes most of the error of the few windows with impacts in them, every time.
-        double rm = 0, rv = 0;
-        for (double v : rel) rm += v;
-        rm /= n;
-        for (double v : rel) rv += (v - rm) * (v - rm);
-        rv /= (n - 1.0);
-        const double tr = rv > 0 ? rm / std::sqrt(rv / n) : (rm > 0 ? 1e6 : -1e6);
-        const double z_r = std::copysign(f_to_z(tr * tr, 1.0, n - 1.0), tr);
-        c.z = std::max({z_t, z_w, z_r});
+        c.z = std::max({z_t, z_w, t_test_z(rel)});
         return c;
     };
 
