@@ -414,4 +414,11 @@ TEST_CASE("chaotic double well forced by u: the baseline is recovered, stays bis
     CHECK(r.wells_after.wells.size() == 2);
     CHECK(r.verdict.find("at its noise floor") != std::string::npos);
     CHECK(r.horizon_periods > 0);
+    // The same record with the input's polarity reversed: the gain comes out negative, nothing else changes.
+    id::MeasuredData flipped = d;
+    for (double& u : flipped.u) u = -u;
+    const id::FitReport rf = id::run_fit(flipped, start, fo);
+    CHECK(rf.effects_found.empty());
+    CHECK(rf.after.p.input_gain == doctest::Approx(-0.003).epsilon(0.02));
+    CHECK(rf.after.p.k == doctest::Approx(-1.0).epsilon(0.02));
 }

@@ -622,6 +622,22 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         // A first pass from the starting values (linear parameters converge in one step), then refine.
         const Model start = base;
         lm_residual(pr, base, knobs, 40, R0, Jtmp);
+        // The input gain keeps its sign in a fit; which sign the record has (a voltage's polarity is a
+        // convention) is decided here, once: if the gain ran into zero, the other sign is tried.
+        const bool fits_gain = std::find(base_names.begin(), base_names.end(), "gain") != base_names.end();
+        if (fits_gain && start.p.input_gain != 0.0 && std::abs(base.p.input_gain) < 1e-9 * std::abs(start.p.input_gain)) {
+            Model flipped = start;
+            flipped.p.input_gain = -start.p.input_gain;
+            std::vector<Knob> kf = base_knobs(flipped, base_names);
+            Eigen::VectorXd Rf;
+            lm_residual(pr, flipped, kf, 40, Rf, Jtmp);
+            if (Rf.squaredNorm() < R0.squaredNorm()) {
+                base = flipped;
+                R0 = Rf;
+                rep.notes.push_back("the input acts with the opposite sign to the starting gain's");
+            }
+            knobs = base_knobs(base, base_names);
+        }
         if (!keeps_wells(base, "equation-error")) base = start;
         // Input-forced data: refine by the simulation error, which the equation error at a few samples per
         // period of the resonance cannot match.
