@@ -53,21 +53,27 @@ double free_run_rms(const std::vector<double>& fr, const std::vector<double>& x,
     return c ? std::sqrt(s / static_cast<double>(c)) : -1.0;
 }
 
-// Short-horizon shooting error (windows of one dominant period, initial states fitted) on the part of the
-// record the output-error fit does not use: how an output-error refinement is judged before it is kept. A
-// long free run of a chaotic record drifts onto another trajectory whatever the model, so the free-run
-// error alone cannot say whether a refinement helped.
-double held_out_shooting_sse(const Prep& pr, const Model& m, double rtol) {
+// Whether an output-error refinement (`refined`) predicts the part of the record its fit did not use better
+// than the equation-error values (`before`), by the shooting error over windows as long as the longer of
+// the two models' predictability horizons, initial states fitted. A long free run of a chaotic record drifts
+// onto another trajectory whatever the model, so the free-run error alone cannot say whether a refinement
+// helped; a record that is predictable for long is judged over long windows, where the equation error's
+// bias at a few samples per period shows.
+bool refinement_predicts_better(const Prep& pr, const Model& refined, const Model& before, double rtol) {
     std::size_t a = 0;
     while (a + 2 < pr.n && (pr.zone[a] || !std::isfinite(pr.xs[a]) || !std::isfinite(pr.vs[a]))) ++a;
     const std::size_t fit_end = oe_fit_end(pr, a, 30000);
+    const double L = std::max({predictability_horizon(pr, refined, rtol).periods, predictability_horizon(pr, before, rtol).periods, 0.25});
     std::vector<std::pair<std::size_t, std::size_t>> wins;
-    for (const auto& w : windows(pr, 1.0))
+    for (const auto& w : windows(pr, L))
         if (w.first > fit_end) wins.push_back(w);
-    if (wins.size() < 10) wins = windows(pr, 1.0);
-    double s = 0;
-    for (double e : window_sse(pr, m, wins, true, rtol)) s += std::isfinite(e) ? e : 1e300;
-    return s;
+    if (wins.size() < 10) wins = windows(pr, L);
+    auto sse = [&](const Model& m) {
+        double s = 0;
+        for (double e : window_sse(pr, m, wins, true, rtol)) s += std::isfinite(e) ? e : 1e300;
+        return s;
+    };
+    return sse(refined) <= sse(before);
 }
 
 // Levenberg-Marquardt on the free-run simulation error (input-forced data only: there a free run over the
@@ -647,10 +653,10 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             lm_simulation(pr, base, knobs, 30, o.rtol);
             if (!keeps_wells(base, "output-error")) {
                 base = ee;
-            } else if (held_out_shooting_sse(pr, base, o.rtol) > held_out_shooting_sse(pr, ee, o.rtol)) {
+            } else if (!refinement_predicts_better(pr, base, ee, o.rtol)) {
                 // A chaotic record's free run: the refinement fitted drift, not the rig.
-                rep.notes.push_back("the output-error refinement of the baseline predicts the held-out part worse over one period "
-                                    "(a chaotic record?); the equation-error baseline is kept");
+                rep.notes.push_back("the output-error refinement of the baseline predicts the held-out part worse within the "
+                                    "predictability horizon (a chaotic record?); the equation-error baseline is kept");
                 base = ee;
             } else {
                 rep.notes.push_back("baseline refined on the free-run simulation error (output error)");
@@ -952,14 +958,14 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             return rms < 0 ? INFINITY : rms;
         };
         // Which of them stay is the held-out validation's decision (stage 6); the refinement itself stays only
-        // if it predicts the held-out part better over one period than the equation-error values do.
+        // if it predicts the held-out part better than the equation-error values do.
         const Model ee_after = after;
         oe_fit(after, chosen.size(), 20);
-        const bool oe_kept = held_out_shooting_sse(pr, after, o.rtol) <= held_out_shooting_sse(pr, ee_after, o.rtol);
+        const bool oe_kept = refinement_predicts_better(pr, after, ee_after, o.rtol);
         if (!oe_kept) {
             after = ee_after;
-            rep.notes.push_back("the output-error refit of the effects predicts the held-out part worse over one period; "
-                                "their equation-error values are kept");
+            rep.notes.push_back("the output-error refit of the effects predicts the held-out part worse within the "
+                                "predictability horizon; their equation-error values are kept");
         }
         // The reported values are the simulation-error fit's; their uncertainties stay the equation error's.
         for (std::size_t k = 0; k < force_found.size(); ++k) {

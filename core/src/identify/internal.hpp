@@ -65,6 +65,7 @@ struct Prep {
     const MeasuredData* data = nullptr;
     std::size_t n = 0;
     double dt = 0, sigma_x = 0, period = 0, drive_rms = 0;
+    double x_span = 0;                       // the record's extent, 0.5 % to 99.5 % quantiles of x
     bool phi_forced = true;
     // One drive per run (MeasuredData::run_starts): omega(t) fitted to the run's phi, or its input u(t).
     std::vector<Drive> drives;

@@ -79,6 +79,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     // The sensor noise: the smaller of the two estimates, since signal can only add to either (a noise
     // floor too high would pass a real residual off as noise).
     pr.sigma_x = estimate_noise(d.x);
+    pr.x_span = quantile(d.x, 0.995) - quantile(d.x, 0.005);
     pr.phi_forced = d.has_phi();
     if (pr.phi_forced != (m.forcing == Forcing::Unbalance))
         throw ParamError(pr.phi_forced ? "the data are forced through phi, but the model expects an input u"

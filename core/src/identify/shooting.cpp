@@ -109,8 +109,10 @@ std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t 
             A(1, 1) *= 1.0 + 1e-6;
             if (!(A.determinant() > 0)) break;
             const Eigen::Vector2d step = A.ldlt().solve(b);
-            // Trust region: a refinement corrects the estimate, it does not replace it.
-            const double sx_lim = 50 * std::max(pr.sigma_x, 1e-6), sv_lim = 50 * std::max(pr.sigma_x, 1e-6) / (pr.dt * 5);
+            // Trust region: a refinement corrects the estimate, it does not replace it. Its size follows the
+            // sensor noise, or the smoother's own error on a record far cleaner than its signal's curvature.
+            const double scale = std::max({pr.sigma_x, 1e-3 * pr.x_span, 1e-12});
+            const double sx_lim = 50 * scale, sv_lim = 50 * scale / (pr.dt * 5);
             const double nx = x + std::clamp(step[0], -sx_lim, sx_lim), nv = v + std::clamp(step[1], -sv_lim, sv_lim);
             run(pr, m, i0, i1, nx, nv, rtol, trial);
             const double s2 = fit_sse(trial);
