@@ -34,7 +34,10 @@ void start(double* p, const EffectStartContext& c) {
     adapt(p, *c.model);
 }
 
-std::string describe(const double* p, const double* s, const EffectReportContext&) {
+std::string describe(const double* p, const double* s, const EffectReportContext& c) {
+    if (!c.rig)
+        return "the nonlinear restoring term acts about y = " + pm(p[0], s[0]) + " instead of 0 (in the data's units): an asymmetric "
+               "nonlinearity";
     return "the fixed magnet sits " + pm(std::abs(p[0]), s[0], 1e3) + " mm " + (p[0] > 0 ? "towards +x" : "towards -x") +
            " of x = 0 (misaligned magnets): the two wells are no longer mirror images";
 }
