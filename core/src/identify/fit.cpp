@@ -548,6 +548,315 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
 
 }  // namespace
 
+namespace {
+
+// Stage 1: the baseline. With fit_baseline, the base parameters `base_names` are fitted to the equation
+// error (the input's polarity found, a bistable model kept bistable) and, for an input-forced record,
+// refined on the free-run simulation error when that predicts the held-out part better. Throws ParamError
+// for a fit that leaves the physical range.
+Model fit_baseline_stage(const Prep& pr, const Model& model0, const FitOptions& o, const std::vector<std::string>& base_names,
+                         FitReport& rep) {
+    Model base = model0;
+    Eigen::VectorXd R0;
+    Eigen::MatrixXd Jtmp;
+    if (o.fit_baseline) {
+        std::vector<Knob> knobs = base_knobs(base, base_names);
+        // A bistable starting model stays bistable: a fit that merges the wells into one is a fit to the
+        // wrong attractor (a chaotic record's free run, say), and that stage is undone.
+        const std::size_t wells0 = well_report(base, {}, pr).wells.size();
+        auto keeps_wells = [&](const Model& m, const char* stage) {
+            const std::size_t w = well_report(m, {}, pr).wells.size();
+            if (wells0 == 2 && w < 2) {
+                rep.notes.push_back(std::string("the ") + stage + " fit of the baseline would merge its two wells into " +
+                                    (w ? "one" : "none") + "; that stage is undone");
+                return false;
+            }
+            return true;
+        };
+        // A first pass from the starting values (linear parameters converge in one step), then refine.
+        const Model start = base;
+        lm_residual(pr, base, knobs, 40, R0, Jtmp);
+        // The input gain keeps its sign in a fit; which sign the record has (a voltage's polarity is a
+        // convention) is decided here, once: if the gain ran into zero, the other sign is tried.
+        const bool fits_gain = std::find(base_names.begin(), base_names.end(), "gain") != base_names.end();
+        if (fits_gain && start.p.input_gain != 0.0 && std::abs(base.p.input_gain) < 1e-9 * std::abs(start.p.input_gain)) {
+            Model flipped = start;
+            flipped.p.input_gain = -start.p.input_gain;
+            std::vector<Knob> kf = base_knobs(flipped, base_names);
+            Eigen::VectorXd Rf;
+            lm_residual(pr, flipped, kf, 40, Rf, Jtmp);
+            if (Rf.squaredNorm() < R0.squaredNorm()) {
+                base = flipped;
+                R0 = Rf;
+                rep.notes.push_back("the input acts with the opposite sign to the starting gain's");
+            }
+            knobs = base_knobs(base, base_names);
+        }
+        if (!keeps_wells(base, "equation-error")) base = start;
+        // Input-forced data: refine by the simulation error, which the equation error at a few samples per
+        // period of the resonance cannot match.
+        if (!pr.phi_forced) {
+            const Model ee = base;
+            knobs = base_knobs(base, base_names);
+            lm_simulation(pr, base, knobs, 30, o.rtol);
+            if (!keeps_wells(base, "output-error")) {
+                base = ee;
+            } else if (!refinement_predicts_better(pr, base, ee, o.rtol)) {
+                // A chaotic record's free run: the refinement fitted drift, not the rig.
+                rep.notes.push_back("the output-error refinement of the baseline predicts the held-out part worse within the "
+                                    "predictability horizon (a chaotic record?); the equation-error baseline is kept");
+                base = ee;
+            } else {
+                rep.notes.push_back("baseline refined on the free-run simulation error (output error)");
+            }
+        }
+        if (const std::string why = unphysical(base); !why.empty())
+            throw ParamError("the baseline fit leaves the physical range (" + why + "); fix the starting values or --fit-params");
+    }
+    return base;
+}
+
+// Stage 5: the impact law. Each measured impact is compared with the same impact simulated with the model
+// (predict_impacts): a bumper offset moves the flat tops, a finite impact duration or another restitution
+// shifts or tilts the paired differences with the approach speed. What is found is applied to `after`.
+void impact_law_stage(const Prep& pr, const FitOptions& o, const SentenceContext& sc, Model& after, FitReport& rep) {
+    // So a compliant bumper's apparent penetration or a sampled flat top is never mistaken for an effect.
+    if (after.bumper() && pr.impacts.size() >= 3) {
+        const double g = after.sensor_gain();
+        PredictedImpacts pred = predict_impacts(pr, after, o.rtol);
+        std::vector<double> dlev;
+        for (std::size_t k = 0; k < pr.impacts.size(); ++k)
+            if (pred.ok[k]) dlev.push_back((pr.impacts[k].level - pred.obs[k].level) / g);
+        const std::size_t ni = dlev.size();
+        if (ni >= 3) {
+            const double med = median(dlev);
+            std::vector<double> dev;
+            for (double l : dlev) dev.push_back(std::abs(l - med));
+            const double se = std::max(1.2533 * 1.4826 * median(dev), 0.3 * pr.sigma_x) / std::sqrt(static_cast<double>(ni));
+            const double delta = med;
+            if (std::abs(delta) / se >= o.z_threshold && std::abs(delta) > 2.0 * pr.sigma_x + 1e-7) {
+                double sb = 0, sa = 0;
+                for (double l : dlev) {
+                    sb += l * l;
+                    sa += (l - med) * (l - med);
+                }
+                FoundEffect f;
+                f.id = "bumper_offset";
+                f.evidence = "impact law";
+                f.explained_fraction = sb > 0 ? 1.0 - sa / sb : 0.0;
+                f.parameters = {{"dx", delta}};
+                f.sigma = {{"dx", se}};
+                f.z = std::abs(delta) / se;
+                // The shift that puts the simulated flat tops on the measured ones: the forces at the moved
+                // bumper differ, and a compliant contact's apparent penetration with them.
+                const Model at_nominal = after;
+                const double dx = fit_bumper_shift(pr, after, std::vector<char>(pr.impacts.size(), 1), o.rtol, 0.05 * se);
+                pred = predict_impacts(pr, after, o.rtol);
+                f.parameters = {{"dx", dx}};
+                f.z = std::abs(dx) / se;
+                f.sentence = sentence("bumper_offset", at_nominal, f.parameters, f.sigma, sc);
+                rep.effects_found.push_back(std::move(f));
+            }
+        }
+        // The dwell time and the restitution against the model's, impact by impact.
+        for (const char* which : {"impact_duration", "restitution"}) {
+            const bool dur = std::strcmp(which, "impact_duration") == 0;
+            std::vector<double> vm, obs, simulated;
+            for (std::size_t k = 0; k < pr.impacts.size(); ++k) {
+                const ImpactObs& im = pr.impacts[k];
+                if (!pred.ok[k] || (!dur && im.v_minus < 0.02)) continue;
+                vm.push_back(im.v_minus / g);
+                obs.push_back(dur ? im.t_out - im.t_in : apparent_kappa(im));
+                simulated.push_back(dur ? pred.obs[k].t_out - pred.obs[k].t_in : apparent_kappa(pred.obs[k]));
+            }
+            const auto n = static_cast<Eigen::Index>(vm.size());
+            if (n < 3) continue;
+            Eigen::VectorXd model_pred(n);
+            for (Eigen::Index i = 0; i < n; ++i) model_pred[i] = simulated[static_cast<std::size_t>(i)];
+            auto law = [&](const Eigen::VectorXd& th) {
+                Eigen::VectorXd r(n);
+                for (Eigen::Index i = 0; i < n; ++i)
+                    r[i] = (th[0] - th[1]) * std::exp(-th[2] * vm[static_cast<std::size_t>(i)]) + th[1] - obs[static_cast<std::size_t>(i)];
+                return r;
+            };
+            double mean = 0;
+            for (double v : obs) mean += v;
+            mean /= static_cast<double>(n);
+            // A constant first; the full law (value at low speed, at high speed, decay rate) only if the data
+            // clearly ask for it.
+            Eigen::VectorXd th(3), lo(3), hi(3);
+            th << mean, mean, 0.0;
+            double ss_const = 0;
+            for (double v : obs) ss_const += (v - mean) * (v - mean);
+            Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3, 3);
+            C(0, 0) = C(1, 1) = C(0, 1) = C(1, 0) = 1.0 / static_cast<double>(n);
+            double sa = ss_const;
+            if (n >= 8) {
+                Eigen::VectorXd full(3);
+                full << mean, mean, 1.0;
+                lo << 0, 0, 0;
+                hi << 1.0, 1.0, 50.0;
+                const Eigen::MatrixXd Cf = lm_small(law, full, lo, hi);
+                const double sf = law(full).squaredNorm();
+                const double s2f = std::max(sf / (static_cast<double>(n) - 3.0), dur ? std::pow(0.05 * pr.dt, 2) : 1e-4);
+                if (chi2_to_z((ss_const - sf) / s2f, 2) >= 3.0) {
+                    th = full;
+                    C = Cf;
+                    sa = sf;
+                }
+            }
+            // The paired differences measured - simulated: an effect shifts them (a constant) or tilts them
+            // with the approach speed; under the model they scatter around zero. Wald test on both.
+            double sb = 0, vbar = 0;
+            for (Eigen::Index i = 0; i < n; ++i) {
+                sb += std::pow(obs[static_cast<std::size_t>(i)] - model_pred[i], 2);
+                vbar += vm[static_cast<std::size_t>(i)];
+            }
+            vbar /= static_cast<double>(n);
+            Eigen::MatrixXd Xd(n, 2);
+            Eigen::VectorXd dd(n);
+            for (Eigen::Index i = 0; i < n; ++i) {
+                Xd(i, 0) = 1.0;
+                Xd(i, 1) = vm[static_cast<std::size_t>(i)] - vbar;
+                dd[i] = obs[static_cast<std::size_t>(i)] - model_pred[i];
+            }
+            Eigen::Matrix2d XtX = Xd.transpose() * Xd;
+            XtX(1, 1) += 1e-12 * XtX(0, 0) + 1e-300;
+            const Eigen::Vector2d bd = XtX.ldlt().solve(Xd.transpose() * dd);
+            const double rss_d = (dd - Xd * bd).squaredNorm();
+            const double floor_var = dur ? std::pow(0.05 * pr.dt, 2) : 1e-4;
+            const double s2d = std::max(rss_d / std::max(1.0, static_cast<double>(n) - 2.0), 2.0 * floor_var);
+            const double W = bd.dot(XtX * bd) / s2d;
+            const double z = f_to_z(W / 2.0, 2.0, std::max(1.0, static_cast<double>(n) - 2.0));
+            const double s2 = std::max(sa / std::max<double>(1.0, static_cast<double>(n) - 3.0), floor_var);
+            // Practical size: the systematic part of the differences, not their scatter.
+            const double shift_rms = std::sqrt((Xd * bd).squaredNorm() / static_cast<double>(n));
+            const bool practical = dur ? shift_rms > 0.2 * pr.dt : shift_rms > 0.02;
+            // A handful of impacts cannot reach the equation error's z; the held-out validation decides.
+            if (z >= std::min(o.z_threshold, 3.0) && practical && sb > 0) {
+                FoundEffect f;
+                f.id = which;
+                f.evidence = "impact law";
+                f.explained_fraction = 1.0 - sa / sb;
+                const char* nm[3] = {dur ? "Ti0" : "kappa0", dur ? "Ti1" : "kappa1", dur ? "a_T" : "a_kappa"};
+                for (int k = 0; k < 3; ++k) {
+                    f.parameters.emplace_back(nm[k], th[k]);
+                    f.sigma.emplace_back(nm[k], std::sqrt(std::max(0.0, C(k, k) * s2)));
+                }
+                f.z = z;
+                f.sentence = sentence(which, after, f.parameters, f.sigma, sc);
+                apply_effect(after, which, f.parameters);
+                rep.effects_found.push_back(std::move(f));
+            }
+        }
+    }
+}
+
+// Stages 7 and 8: the errors of the baseline and the final model (equation error R0 for the baseline,
+// multiple shooting, impacts, diagrams, the test rows), the plots' material, and the verdict.
+void errors_stage(const Prep& pr, const Model& model0, const Model& base, const Model& after, const Eigen::VectorXd& R0,
+                  const FitOptions& o, const MeasuredData* test, FitReport& rep) {
+    const MeasuredData& data = *pr.data;
+    Eigen::VectorXd R1;
+    std::vector<double> pw;
+    residual(pr, after, R1, pw);
+    PredictedImpacts pred_before, pred_after;
+    auto errors = [&](const Model& m, const Eigen::VectorXd& R, ErrorSummary& e, ShootOut& so, PredictedImpacts& pred) {
+        e.residual_rms_N = rms_of(R);
+        so = shooting(pr, m, o);
+        e.shooting_rms_1_m = so.rms1;
+        e.shooting_rms_10_m = so.rms10;
+        pred = predict_impacts(pr, m, o.rtol);
+        e.impact = impact_error(pr, pred);
+        if (!pr.phi_forced) {
+            e.simulation_rms_m = free_run_rms(free_run(pr, m, o.rtol), data.x);
+        }
+    };
+    ShootOut sb, sa;
+    errors(base, R0, rep.error_before, sb, pred_before);
+    errors(after, R1, rep.error_after, sa, pred_after);
+    if (pr.phi_forced && rep.omega_max - rep.omega_min > 2 * o.omega_bin) {
+        rep.diagram_measured = measured_sections(pr);
+        rep.diagram_before = free_run_sections(pr, base, o.rtol);
+        rep.diagram_after = free_run_sections(pr, after, o.rtol);
+        rep.error_before.diagram_distance_m =
+            diagram_distance(rep.diagram_measured, rep.diagram_before, o.omega_bin, rep.error_before.diagram_bins,
+                             &rep.error_before.diagram_per_bin);
+        rep.error_after.diagram_distance_m =
+            diagram_distance(rep.diagram_measured, rep.diagram_after, o.omega_bin, rep.error_after.diagram_bins,
+                             &rep.error_after.diagram_per_bin);
+    }
+    if (test) {
+        std::vector<std::string> tnotes;
+        const Prep pt = prepare(*test, model0, o, tnotes);
+        for (auto [m, e] : {std::pair<const Model*, ErrorSummary*>{&base, &rep.error_before}, {&after, &rep.error_after}}) {
+            const std::vector<double> fr = free_run(pt, *m, o.rtol);
+            double s = 0;
+            std::size_t c = 0;
+            for (std::size_t i = 0; i < pt.n; ++i)
+                if (std::isfinite(fr[i])) {
+                    s += (fr[i] - test->x[i]) * (fr[i] - test->x[i]);
+                    ++c;
+                }
+            e->test_simulation_rms_m = c ? std::sqrt(s / static_cast<double>(c)) : -1;
+        }
+    }
+
+    // The material for the plots.
+    {
+        const std::size_t step = std::max<std::size_t>(1, pr.rows.size() / 20000);
+        for (std::size_t r = 0; r < pr.rows.size(); r += step) {
+            const std::size_t i = pr.rows[r];
+            rep.residual.x.push_back(data.x[i]);
+            rep.residual.v.push_back(pr.vs[i]);
+            rep.residual.phi.push_back(pr.phi_forced ? std::fmod(pr.phi[i], kTwoPi) : 0.0);
+            rep.residual.before.push_back(R0[static_cast<Eigen::Index>(r)]);
+            rep.residual.after.push_back(R1[static_cast<Eigen::Index>(r)]);
+        }
+        if (!sb.windows10.empty()) {
+            const auto worst = std::max_element(sb.windows10.begin(), sb.windows10.end(),
+                                                [](const auto& a, const auto& b) { return a.second < b.second; });
+            for (const auto& [a, b] : windows(pr, 10))
+                if (a == worst->first) {
+                    rep.trace.before = simulate_window(pr, base, a, b, o.refine_shooting, o.rtol);
+                    rep.trace.after = simulate_window(pr, after, a, b, o.refine_shooting, o.rtol);
+                    for (std::size_t i = a; i <= b; ++i) {
+                        rep.trace.t.push_back(data.t[i]);
+                        rep.trace.measured.push_back(data.x[i]);
+                    }
+                    break;
+                }
+        }
+        for (std::size_t k = 0; k < pr.impacts.size(); ++k) {
+            const ImpactObs& im = pr.impacts[k];
+            const bool b = k < pred_before.ok.size() && pred_before.ok[k], a = k < pred_after.ok.size() && pred_after.ok[k];
+            rep.impacts.push_back({im.t_in, im.v_minus, im.v_plus, im.t_out - im.t_in, im.level,
+                                   b ? apparent_kappa(pred_before.obs[k]) : kNaN, b ? pred_before.obs[k].t_out - pred_before.obs[k].t_in : kNaN,
+                                   a ? apparent_kappa(pred_after.obs[k]) : kNaN, a ? pred_after.obs[k].t_out - pred_after.obs[k].t_in : kNaN});
+        }
+    }
+    // The verdict says what the numbers say: at the noise floor only when the residual is.
+    {
+        const double ratio = rep.noise_floor_N > 0 ? rep.error_after.residual_rms_N / rep.noise_floor_N : INFINITY;
+        char buf[400];
+        if (ratio <= 1.5) {
+            std::snprintf(buf, sizeof buf, "the residual (%.3g %s RMS) is at its noise floor (%.3g %s)%s", rep.error_after.residual_rms_N,
+                          rep.force_unit.c_str(), rep.noise_floor_N, rep.force_unit.c_str(),
+                          rep.effects_found.empty() ? ": no missing effect" : " with the effects found");
+        } else {
+            std::snprintf(buf, sizeof buf,
+                          "the residual (%.3g %s RMS) is %.3g times its noise floor (%.3g %s): the model %s misses something that %s",
+                          rep.error_after.residual_rms_N, rep.force_unit.c_str(), ratio, rep.noise_floor_N, rep.force_unit.c_str(),
+                          rep.effects_found.empty() ? "still" : "with the effects found still",
+                          rep.effects_found.empty() ? "no library effect explains in a way that holds on held-out data"
+                                                    : "the library does not name or that does not hold on held-out data");
+        }
+        rep.verdict = buf;
+    }
+}
+
+}  // namespace
+
 const char* fit_stage_name(FitStage s) {
     switch (s) {
         case FitStage::Prepare: return "preparing the data";
@@ -605,66 +914,12 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
 
     enter(FitStage::Baseline);
     // ---- 1. the baseline --------------------------------------------------------------------------------
-    Model base = model0;
+    const std::vector<std::string> base_names =
+        o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0) : o.fit_params) : std::vector<std::string>{};
+    Model base = fit_baseline_stage(pr, model0, o, base_names, rep);
     std::vector<double> pw;
     Eigen::VectorXd R0, Rtmp;
     Eigen::MatrixXd Jtmp;
-    std::vector<std::string> base_names;
-    if (o.fit_baseline) {
-        base_names = o.fit_params.empty() ? default_fit_params(base) : o.fit_params;
-        std::vector<Knob> knobs = base_knobs(base, base_names);
-        // A bistable starting model stays bistable: a fit that merges the wells into one is a fit to the
-        // wrong attractor (a chaotic record's free run, say), and that stage is undone.
-        const std::size_t wells0 = well_report(base, {}, pr).wells.size();
-        auto keeps_wells = [&](const Model& m, const char* stage) {
-            const std::size_t w = well_report(m, {}, pr).wells.size();
-            if (wells0 == 2 && w < 2) {
-                rep.notes.push_back(std::string("the ") + stage + " fit of the baseline would merge its two wells into " +
-                                    (w ? "one" : "none") + "; that stage is undone");
-                return false;
-            }
-            return true;
-        };
-        // A first pass from the starting values (linear parameters converge in one step), then refine.
-        const Model start = base;
-        lm_residual(pr, base, knobs, 40, R0, Jtmp);
-        // The input gain keeps its sign in a fit; which sign the record has (a voltage's polarity is a
-        // convention) is decided here, once: if the gain ran into zero, the other sign is tried.
-        const bool fits_gain = std::find(base_names.begin(), base_names.end(), "gain") != base_names.end();
-        if (fits_gain && start.p.input_gain != 0.0 && std::abs(base.p.input_gain) < 1e-9 * std::abs(start.p.input_gain)) {
-            Model flipped = start;
-            flipped.p.input_gain = -start.p.input_gain;
-            std::vector<Knob> kf = base_knobs(flipped, base_names);
-            Eigen::VectorXd Rf;
-            lm_residual(pr, flipped, kf, 40, Rf, Jtmp);
-            if (Rf.squaredNorm() < R0.squaredNorm()) {
-                base = flipped;
-                R0 = Rf;
-                rep.notes.push_back("the input acts with the opposite sign to the starting gain's");
-            }
-            knobs = base_knobs(base, base_names);
-        }
-        if (!keeps_wells(base, "equation-error")) base = start;
-        // Input-forced data: refine by the simulation error, which the equation error at a few samples per
-        // period of the resonance cannot match.
-        if (!pr.phi_forced) {
-            const Model ee = base;
-            knobs = base_knobs(base, base_names);
-            lm_simulation(pr, base, knobs, 30, o.rtol);
-            if (!keeps_wells(base, "output-error")) {
-                base = ee;
-            } else if (!refinement_predicts_better(pr, base, ee, o.rtol)) {
-                // A chaotic record's free run: the refinement fitted drift, not the rig.
-                rep.notes.push_back("the output-error refinement of the baseline predicts the held-out part worse within the "
-                                    "predictability horizon (a chaotic record?); the equation-error baseline is kept");
-                base = ee;
-            } else {
-                rep.notes.push_back("baseline refined on the free-run simulation error (output error)");
-            }
-        }
-        if (const std::string why = unphysical(base); !why.empty())
-            throw ParamError("the baseline fit leaves the physical range (" + why + "); fix the starting values or --fit-params");
-    }
     residual(pr, base, R0, pw);
     rep.before = base;
     const double in0 = R0.squaredNorm();
@@ -1016,137 +1271,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
 
     enter(FitStage::ImpactLaw);
     // ---- 5. the impact law: bumper position, impact duration, restitution ----------------------------------
-    // Each measured impact is compared with the same impact simulated with the model (predict_impacts), so a
-    // compliant bumper's apparent penetration or a sampled flat top is never mistaken for an effect.
-    if (after.bumper() && pr.impacts.size() >= 3) {
-        const double g = after.sensor_gain();
-        PredictedImpacts pred = predict_impacts(pr, after, o.rtol);
-        std::vector<double> dlev;
-        for (std::size_t k = 0; k < pr.impacts.size(); ++k)
-            if (pred.ok[k]) dlev.push_back((pr.impacts[k].level - pred.obs[k].level) / g);
-        const std::size_t ni = dlev.size();
-        if (ni >= 3) {
-            const double med = median(dlev);
-            std::vector<double> dev;
-            for (double l : dlev) dev.push_back(std::abs(l - med));
-            const double se = std::max(1.2533 * 1.4826 * median(dev), 0.3 * pr.sigma_x) / std::sqrt(static_cast<double>(ni));
-            const double delta = med;
-            if (std::abs(delta) / se >= o.z_threshold && std::abs(delta) > 2.0 * pr.sigma_x + 1e-7) {
-                double sb = 0, sa = 0;
-                for (double l : dlev) {
-                    sb += l * l;
-                    sa += (l - med) * (l - med);
-                }
-                FoundEffect f;
-                f.id = "bumper_offset";
-                f.evidence = "impact law";
-                f.explained_fraction = sb > 0 ? 1.0 - sa / sb : 0.0;
-                f.parameters = {{"dx", delta}};
-                f.sigma = {{"dx", se}};
-                f.z = std::abs(delta) / se;
-                // The shift that puts the simulated flat tops on the measured ones: the forces at the moved
-                // bumper differ, and a compliant contact's apparent penetration with them.
-                const Model at_nominal = after;
-                const double dx = fit_bumper_shift(pr, after, std::vector<char>(pr.impacts.size(), 1), o.rtol, 0.05 * se);
-                pred = predict_impacts(pr, after, o.rtol);
-                f.parameters = {{"dx", dx}};
-                f.z = std::abs(dx) / se;
-                f.sentence = sentence("bumper_offset", at_nominal, f.parameters, f.sigma, sc);
-                rep.effects_found.push_back(std::move(f));
-            }
-        }
-        // The dwell time and the restitution against the model's, impact by impact.
-        for (const char* which : {"impact_duration", "restitution"}) {
-            const bool dur = std::strcmp(which, "impact_duration") == 0;
-            std::vector<double> vm, obs, simulated;
-            for (std::size_t k = 0; k < pr.impacts.size(); ++k) {
-                const ImpactObs& im = pr.impacts[k];
-                if (!pred.ok[k] || (!dur && im.v_minus < 0.02)) continue;
-                vm.push_back(im.v_minus / g);
-                obs.push_back(dur ? im.t_out - im.t_in : apparent_kappa(im));
-                simulated.push_back(dur ? pred.obs[k].t_out - pred.obs[k].t_in : apparent_kappa(pred.obs[k]));
-            }
-            const auto n = static_cast<Eigen::Index>(vm.size());
-            if (n < 3) continue;
-            Eigen::VectorXd model_pred(n);
-            for (Eigen::Index i = 0; i < n; ++i) model_pred[i] = simulated[static_cast<std::size_t>(i)];
-            auto law = [&](const Eigen::VectorXd& th) {
-                Eigen::VectorXd r(n);
-                for (Eigen::Index i = 0; i < n; ++i)
-                    r[i] = (th[0] - th[1]) * std::exp(-th[2] * vm[static_cast<std::size_t>(i)]) + th[1] - obs[static_cast<std::size_t>(i)];
-                return r;
-            };
-            double mean = 0;
-            for (double v : obs) mean += v;
-            mean /= static_cast<double>(n);
-            // A constant first; the full law (value at low speed, at high speed, decay rate) only if the data
-            // clearly ask for it.
-            Eigen::VectorXd th(3), lo(3), hi(3);
-            th << mean, mean, 0.0;
-            double ss_const = 0;
-            for (double v : obs) ss_const += (v - mean) * (v - mean);
-            Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3, 3);
-            C(0, 0) = C(1, 1) = C(0, 1) = C(1, 0) = 1.0 / static_cast<double>(n);
-            double sa = ss_const;
-            if (n >= 8) {
-                Eigen::VectorXd full(3);
-                full << mean, mean, 1.0;
-                lo << 0, 0, 0;
-                hi << 1.0, 1.0, 50.0;
-                const Eigen::MatrixXd Cf = lm_small(law, full, lo, hi);
-                const double sf = law(full).squaredNorm();
-                const double s2f = std::max(sf / (static_cast<double>(n) - 3.0), dur ? std::pow(0.05 * pr.dt, 2) : 1e-4);
-                if (chi2_to_z((ss_const - sf) / s2f, 2) >= 3.0) {
-                    th = full;
-                    C = Cf;
-                    sa = sf;
-                }
-            }
-            // The paired differences measured - simulated: an effect shifts them (a constant) or tilts them
-            // with the approach speed; under the model they scatter around zero. Wald test on both.
-            double sb = 0, vbar = 0;
-            for (Eigen::Index i = 0; i < n; ++i) {
-                sb += std::pow(obs[static_cast<std::size_t>(i)] - model_pred[i], 2);
-                vbar += vm[static_cast<std::size_t>(i)];
-            }
-            vbar /= static_cast<double>(n);
-            Eigen::MatrixXd Xd(n, 2);
-            Eigen::VectorXd dd(n);
-            for (Eigen::Index i = 0; i < n; ++i) {
-                Xd(i, 0) = 1.0;
-                Xd(i, 1) = vm[static_cast<std::size_t>(i)] - vbar;
-                dd[i] = obs[static_cast<std::size_t>(i)] - model_pred[i];
-            }
-            Eigen::Matrix2d XtX = Xd.transpose() * Xd;
-            XtX(1, 1) += 1e-12 * XtX(0, 0) + 1e-300;
-            const Eigen::Vector2d bd = XtX.ldlt().solve(Xd.transpose() * dd);
-            const double rss_d = (dd - Xd * bd).squaredNorm();
-            const double floor_var = dur ? std::pow(0.05 * pr.dt, 2) : 1e-4;
-            const double s2d = std::max(rss_d / std::max(1.0, static_cast<double>(n) - 2.0), 2.0 * floor_var);
-            const double W = bd.dot(XtX * bd) / s2d;
-            const double z = f_to_z(W / 2.0, 2.0, std::max(1.0, static_cast<double>(n) - 2.0));
-            const double s2 = std::max(sa / std::max<double>(1.0, static_cast<double>(n) - 3.0), floor_var);
-            // Practical size: the systematic part of the differences, not their scatter.
-            const double shift_rms = std::sqrt((Xd * bd).squaredNorm() / static_cast<double>(n));
-            const bool practical = dur ? shift_rms > 0.2 * pr.dt : shift_rms > 0.02;
-            // A handful of impacts cannot reach the equation error's z; the held-out validation decides.
-            if (z >= std::min(o.z_threshold, 3.0) && practical && sb > 0) {
-                FoundEffect f;
-                f.id = which;
-                f.evidence = "impact law";
-                f.explained_fraction = 1.0 - sa / sb;
-                const char* nm[3] = {dur ? "Ti0" : "kappa0", dur ? "Ti1" : "kappa1", dur ? "a_T" : "a_kappa"};
-                for (int k = 0; k < 3; ++k) {
-                    f.parameters.emplace_back(nm[k], th[k]);
-                    f.sigma.emplace_back(nm[k], std::sqrt(std::max(0.0, C(k, k) * s2)));
-                }
-                f.z = z;
-                f.sentence = sentence(which, after, f.parameters, f.sigma, sc);
-                apply_effect(after, which, f.parameters);
-                rep.effects_found.push_back(std::move(f));
-            }
-        }
-    }
+    impact_law_stage(pr, o, sc, after, rep);
     enter(FitStage::Validation);
     // ---- 6. validation: an effect stays only if it lowers the short-horizon simulation error on data held
     //         out from its fit, by more than the windows' scatter; the final model must beat the baseline ----
@@ -1162,102 +1287,8 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     rep.wells_after = well_report(after, rep.effects_found, pr);
 
     enter(FitStage::Errors);
-    // ---- 7. errors before and after ------------------------------------------------------------------------
-    Eigen::VectorXd R1;
-    residual(pr, after, R1, pw);
-    PredictedImpacts pred_before, pred_after;
-    auto errors = [&](const Model& m, const Eigen::VectorXd& R, ErrorSummary& e, ShootOut& so, PredictedImpacts& pred) {
-        e.residual_rms_N = rms_of(R);
-        so = shooting(pr, m, o);
-        e.shooting_rms_1_m = so.rms1;
-        e.shooting_rms_10_m = so.rms10;
-        pred = predict_impacts(pr, m, o.rtol);
-        e.impact = impact_error(pr, pred);
-        if (!pr.phi_forced) {
-            e.simulation_rms_m = free_run_rms(free_run(pr, m, o.rtol), data.x);
-        }
-    };
-    ShootOut sb, sa;
-    errors(base, R0, rep.error_before, sb, pred_before);
-    errors(after, R1, rep.error_after, sa, pred_after);
-    if (pr.phi_forced && rep.omega_max - rep.omega_min > 2 * o.omega_bin) {
-        rep.diagram_measured = measured_sections(pr);
-        rep.diagram_before = free_run_sections(pr, base, o.rtol);
-        rep.diagram_after = free_run_sections(pr, after, o.rtol);
-        rep.error_before.diagram_distance_m =
-            diagram_distance(rep.diagram_measured, rep.diagram_before, o.omega_bin, rep.error_before.diagram_bins,
-                             &rep.error_before.diagram_per_bin);
-        rep.error_after.diagram_distance_m =
-            diagram_distance(rep.diagram_measured, rep.diagram_after, o.omega_bin, rep.error_after.diagram_bins,
-                             &rep.error_after.diagram_per_bin);
-    }
-    if (test) {
-        std::vector<std::string> tnotes;
-        const Prep pt = prepare(*test, model0, o, tnotes);
-        for (auto [m, e] : {std::pair<const Model*, ErrorSummary*>{&base, &rep.error_before}, {&after, &rep.error_after}}) {
-            const std::vector<double> fr = free_run(pt, *m, o.rtol);
-            double s = 0;
-            std::size_t c = 0;
-            for (std::size_t i = 0; i < pt.n; ++i)
-                if (std::isfinite(fr[i])) {
-                    s += (fr[i] - test->x[i]) * (fr[i] - test->x[i]);
-                    ++c;
-                }
-            e->test_simulation_rms_m = c ? std::sqrt(s / static_cast<double>(c)) : -1;
-        }
-    }
-
-    // ---- 8. material for the plots -----------------------------------------------------------------------
-    {
-        const std::size_t step = std::max<std::size_t>(1, pr.rows.size() / 20000);
-        for (std::size_t r = 0; r < pr.rows.size(); r += step) {
-            const std::size_t i = pr.rows[r];
-            rep.residual.x.push_back(data.x[i]);
-            rep.residual.v.push_back(pr.vs[i]);
-            rep.residual.phi.push_back(pr.phi_forced ? std::fmod(pr.phi[i], kTwoPi) : 0.0);
-            rep.residual.before.push_back(R0[static_cast<Eigen::Index>(r)]);
-            rep.residual.after.push_back(R1[static_cast<Eigen::Index>(r)]);
-        }
-        if (!sb.windows10.empty()) {
-            const auto worst = std::max_element(sb.windows10.begin(), sb.windows10.end(),
-                                                [](const auto& a, const auto& b) { return a.second < b.second; });
-            for (const auto& [a, b] : windows(pr, 10))
-                if (a == worst->first) {
-                    rep.trace.before = simulate_window(pr, base, a, b, o.refine_shooting, o.rtol);
-                    rep.trace.after = simulate_window(pr, after, a, b, o.refine_shooting, o.rtol);
-                    for (std::size_t i = a; i <= b; ++i) {
-                        rep.trace.t.push_back(data.t[i]);
-                        rep.trace.measured.push_back(data.x[i]);
-                    }
-                    break;
-                }
-        }
-        for (std::size_t k = 0; k < pr.impacts.size(); ++k) {
-            const ImpactObs& im = pr.impacts[k];
-            const bool b = k < pred_before.ok.size() && pred_before.ok[k], a = k < pred_after.ok.size() && pred_after.ok[k];
-            rep.impacts.push_back({im.t_in, im.v_minus, im.v_plus, im.t_out - im.t_in, im.level,
-                                   b ? apparent_kappa(pred_before.obs[k]) : kNaN, b ? pred_before.obs[k].t_out - pred_before.obs[k].t_in : kNaN,
-                                   a ? apparent_kappa(pred_after.obs[k]) : kNaN, a ? pred_after.obs[k].t_out - pred_after.obs[k].t_in : kNaN});
-        }
-    }
-    // The verdict says what the numbers say: at the noise floor only when the residual is.
-    {
-        const double ratio = rep.noise_floor_N > 0 ? rep.error_after.residual_rms_N / rep.noise_floor_N : INFINITY;
-        char buf[400];
-        if (ratio <= 1.5) {
-            std::snprintf(buf, sizeof buf, "the residual (%.3g %s RMS) is at its noise floor (%.3g %s)%s", rep.error_after.residual_rms_N,
-                          rep.force_unit.c_str(), rep.noise_floor_N, rep.force_unit.c_str(),
-                          rep.effects_found.empty() ? ": no missing effect" : " with the effects found");
-        } else {
-            std::snprintf(buf, sizeof buf,
-                          "the residual (%.3g %s RMS) is %.3g times its noise floor (%.3g %s): the model %s misses something that %s",
-                          rep.error_after.residual_rms_N, rep.force_unit.c_str(), ratio, rep.noise_floor_N, rep.force_unit.c_str(),
-                          rep.effects_found.empty() ? "still" : "with the effects found still",
-                          rep.effects_found.empty() ? "no library effect explains in a way that holds on held-out data"
-                                                    : "the library does not name or that does not hold on held-out data");
-        }
-        rep.verdict = buf;
-    }
+    // ---- 7. errors before and after; 8. material for the plots; the verdict ----------------------------------
+    errors_stage(pr, model0, base, after, R0, o, test, rep);
     rep.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
     if (progress) progress->fraction.store(1.0, std::memory_order_relaxed);
     return rep;
