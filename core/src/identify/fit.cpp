@@ -855,100 +855,42 @@ void errors_stage(const Prep& pr, const Model& model0, const Model& base, const 
     }
 }
 
-}  // namespace
-
-const char* fit_stage_name(FitStage s) {
-    switch (s) {
-        case FitStage::Prepare: return "preparing the data";
-        case FitStage::Baseline: return "fitting the baseline";
-        case FitStage::Candidates: return "screening the candidate effects";
-        case FitStage::Selection: return "selecting effects";
-        case FitStage::Refit: return "refitting the effects";
-        case FitStage::ImpactLaw: return "comparing the impacts";
-        case FitStage::Validation: return "validating on held-out data";
-        case FitStage::Errors: return "errors before and after";
-        case FitStage::Count: break;
-    }
-    return "?";
-}
-
-FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOptions& o, const MeasuredData* test,
-                  FitProgress* progress) {
-    // Where each stage starts in the whole fit's progress (their typical share of the run time).
-    static constexpr double kStageStart[] = {0.0, 0.04, 0.10, 0.14, 0.18, 0.24, 0.34, 0.80, 1.0};
-    auto enter = [&](FitStage s) {
-        if (!progress) return;
-        if (progress->cancel.load(std::memory_order_relaxed)) throw FitCancelled();
-        progress->stage.store(static_cast<int>(s), std::memory_order_relaxed);
-        progress->fraction.store(kStageStart[static_cast<int>(s)], std::memory_order_relaxed);
-    };
-    enter(FitStage::Prepare);
-    const auto clock0 = std::chrono::steady_clock::now();
-    FitReport rep;
-    rep.data_source = data.source;
-    rep.model_name = model0.p.name;
-    rep.forcing = data.has_phi() ? "phi (unbalance)" : "u (measured input)";
-    rep.baseline = o.fit_baseline ? "fit" : "fixed";
-    if (model0.p.stiffness_id == "duffing") {
-        rep.x_unit = "data units";
-        rep.force_unit = "model force units (m = 1: data units / s^2)";
-    }
-    validate(model0.p, "model");
-    Prep prep = prepare(data, model0, o, rep.notes);
-    prep.progress = progress;
-    const Prep& pr = prep;
-    rep.samples = pr.n;
-    rep.rows_used = pr.rows.size();
-    rep.dt = pr.dt;
-    rep.duration = data.t.back() - data.t.front();
-    rep.sigma_x = pr.sigma_x;
-    rep.window_s = (pr.K.H + 1) * pr.dt;
-    rep.period_s = pr.period;
-    rep.drive_fit_rms_rad = pr.drive_rms;
-    if (pr.phi_forced) {
-        rep.omega_min = *std::min_element(pr.omega.begin(), pr.omega.end());
-        rep.omega_max = *std::max_element(pr.omega.begin(), pr.omega.end());
-    }
-    const int stride = std::max(1, pr.K.H / 4);
-    const int hac_lag = static_cast<int>(std::ceil(2.0 * (2 * pr.K.H + 1) / stride));
-
-    enter(FitStage::Baseline);
-    // ---- 1. the baseline --------------------------------------------------------------------------------
-    const std::vector<std::string> base_names =
-        o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0) : o.fit_params) : std::vector<std::string>{};
-    Model base = fit_baseline_stage(pr, model0, o, base_names, rep);
-    std::vector<double> pw;
-    Eigen::VectorXd R0, Rtmp;
-    Eigen::MatrixXd Jtmp;
-    residual(pr, base, R0, pw);
-    rep.before = base;
-    const double in0 = R0.squaredNorm();
-    rep.noise_floor_N = base.p.m * pr.sigma_x * pr.K.noise_gain / base.sensor_gain();
-
-    enter(FitStage::Candidates);
-    // ---- 2. candidate columns -----------------------------------------------------------------------------
-    struct Group {
-        std::size_t cand;
-        double start;
-        EffectInstance inst;
-        std::vector<int> cols;
-    };
-    const std::vector<Candidate> cands = library_candidates(base, pr, o);
-    std::vector<Eigen::VectorXd> columns;
+// The candidates' regressors (stage 2): for each library candidate, and each trial value of its nonlinear
+// parameter, the columns dR/dp of its linear parameters at the baseline (and the fitted base parameters'
+// columns first), with the 5-fold cross-validation blocks over them.
+struct Group {
+    std::size_t cand;
+    double start;
+    EffectInstance inst;
+    std::vector<int> cols;
+};
+struct Screen {
+    std::vector<Candidate> cands;
+    std::vector<Group> groups;
     std::vector<int> base_cols;
-    std::vector<BaseParam> bparams;
+    Eigen::MatrixXd X;
+    Folds folds;
+};
+Screen screen_candidates(const Prep& pr, const Model& base, const FitOptions& o, const std::vector<std::string>& base_names,
+                         const Eigen::VectorXd& R0) {
+    Screen sc;
+    sc.cands = library_candidates(base, pr, o);
+    const std::vector<Candidate>& cands = sc.cands;
+    std::vector<Eigen::VectorXd> columns;
+    std::vector<double> pw;
+    Eigen::VectorXd Rtmp;
     if (o.fit_baseline) {
-        bparams = base_params(base, base_names);
+        Model mb = base;
+        const std::vector<BaseParam> bparams = base_params(mb, base_names);
         for (const auto& b : bparams) {
             const double v0 = *b.value, h = std::max(1e-4 * std::abs(v0), 1e-6);
             *b.value = v0 + h;
-            residual(pr, base, Rtmp, pw);
+            residual(pr, mb, Rtmp, pw);
             *b.value = v0;
             columns.push_back(-(Rtmp - R0) / h);
-            base_cols.push_back(static_cast<int>(columns.size()) - 1);
+            sc.base_cols.push_back(static_cast<int>(columns.size()) - 1);
         }
     }
-    std::vector<Group> groups;
     for (std::size_t ci = 0; ci < cands.size(); ++ci) {
         const Candidate& c = cands[ci];
         const std::vector<double> starts = c.starts.empty() ? std::vector<double>{0.0} : c.starts;
@@ -974,13 +916,30 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
                 columns.push_back(col);
                 g.cols.push_back(static_cast<int>(columns.size()) - 1);
             }
-            groups.push_back(std::move(g));
+            sc.groups.push_back(std::move(g));
         }
     }
-    Eigen::MatrixXd X(R0.size(), static_cast<Eigen::Index>(columns.size()));
-    for (std::size_t k = 0; k < columns.size(); ++k) X.col(static_cast<Eigen::Index>(k)) = columns[k];
-    const Folds folds = make_folds(X, R0, 5);
+    sc.X.resize(R0.size(), static_cast<Eigen::Index>(columns.size()));
+    for (std::size_t k = 0; k < columns.size(); ++k) sc.X.col(static_cast<Eigen::Index>(k)) = columns[k];
+    sc.folds = make_folds(sc.X, R0, 5);
+    return sc;
 
+}
+
+// Stage 3: greedy forward selection over the screened candidates. Each round adds the candidate (at its best
+// trial value) that lowers the cross-validated residual most, if it explains at least o.min_gain of it and
+// its coefficients stand out of the noise (z from serially-correlation-robust errors); a generic smooth
+// force only where no library effect comes close. Fills rep.candidates from the first round.
+struct Selection {
+    std::vector<std::size_t> chosen;   // group indices, in the order chosen
+    std::vector<double> step_gain;     // the in-sample share each one added
+    double in_base = 0;                // in-sample SSE with the base columns alone
+};
+Selection select_effects(const Screen& screen, const Eigen::VectorXd& R0, const FitOptions& o, int hac_lag, FitReport& rep) {
+    const std::vector<Candidate>& cands = screen.cands;
+    const std::vector<Group>& groups = screen.groups;
+    const Eigen::MatrixXd& X = screen.X;
+    const Folds& folds = screen.folds;
     auto zscore = [&](const std::vector<int>& cols, const std::vector<int>& sub) {
         double cv, in;
         Eigen::VectorXd beta;
@@ -1003,14 +962,14 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         return std::min(z_hac, group_z_dss(Xs, e, sub, bs, 2 * hac_lag));
     };
 
-    enter(FitStage::Selection);
-    // ---- 3. greedy selection ------------------------------------------------------------------------------
-    std::vector<int> cur = base_cols;
+    std::vector<int> cur = screen.base_cols;
     double cv_cur, in_cur;
     cv_sse(folds, cur, cv_cur, in_cur);
+    Selection sel;
+    sel.in_base = in_cur;
     const double in_base = in_cur;
-    std::vector<std::size_t> chosen;   // group indices
-    std::vector<double> step_gain;
+    std::vector<std::size_t>& chosen = sel.chosen;
+    std::vector<double>& step_gain = sel.step_gain;
     std::vector<bool> cand_used(cands.size(), false);
     for (int round = 0; round < o.max_effects; ++round) {
         struct Eval {
@@ -1091,6 +1050,94 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         for (auto& cs : rep.candidates)
             if (cs.id == cands[g.cand].id) cs.selected = true;
     }
+
+    return sel;
+}
+
+}  // namespace
+
+const char* fit_stage_name(FitStage s) {
+    switch (s) {
+        case FitStage::Prepare: return "preparing the data";
+        case FitStage::Baseline: return "fitting the baseline";
+        case FitStage::Candidates: return "screening the candidate effects";
+        case FitStage::Selection: return "selecting effects";
+        case FitStage::Refit: return "refitting the effects";
+        case FitStage::ImpactLaw: return "comparing the impacts";
+        case FitStage::Validation: return "validating on held-out data";
+        case FitStage::Errors: return "errors before and after";
+        case FitStage::Count: break;
+    }
+    return "?";
+}
+
+FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOptions& o, const MeasuredData* test,
+                  FitProgress* progress) {
+    // Where each stage starts in the whole fit's progress (their typical share of the run time).
+    static constexpr double kStageStart[] = {0.0, 0.04, 0.10, 0.14, 0.18, 0.24, 0.34, 0.80, 1.0};
+    auto enter = [&](FitStage s) {
+        if (!progress) return;
+        if (progress->cancel.load(std::memory_order_relaxed)) throw FitCancelled();
+        progress->stage.store(static_cast<int>(s), std::memory_order_relaxed);
+        progress->fraction.store(kStageStart[static_cast<int>(s)], std::memory_order_relaxed);
+    };
+    enter(FitStage::Prepare);
+    const auto clock0 = std::chrono::steady_clock::now();
+    FitReport rep;
+    rep.data_source = data.source;
+    rep.model_name = model0.p.name;
+    rep.forcing = data.has_phi() ? "phi (unbalance)" : "u (measured input)";
+    rep.baseline = o.fit_baseline ? "fit" : "fixed";
+    if (model0.p.stiffness_id == "duffing") {
+        rep.x_unit = "data units";
+        rep.force_unit = "model force units (m = 1: data units / s^2)";
+    }
+    validate(model0.p, "model");
+    Prep prep = prepare(data, model0, o, rep.notes);
+    prep.progress = progress;
+    const Prep& pr = prep;
+    rep.samples = pr.n;
+    rep.rows_used = pr.rows.size();
+    rep.dt = pr.dt;
+    rep.duration = data.t.back() - data.t.front();
+    rep.sigma_x = pr.sigma_x;
+    rep.window_s = (pr.K.H + 1) * pr.dt;
+    rep.period_s = pr.period;
+    rep.drive_fit_rms_rad = pr.drive_rms;
+    if (pr.phi_forced) {
+        rep.omega_min = *std::min_element(pr.omega.begin(), pr.omega.end());
+        rep.omega_max = *std::max_element(pr.omega.begin(), pr.omega.end());
+    }
+    const int stride = std::max(1, pr.K.H / 4);
+    const int hac_lag = static_cast<int>(std::ceil(2.0 * (2 * pr.K.H + 1) / stride));
+
+    enter(FitStage::Baseline);
+    // ---- 1. the baseline --------------------------------------------------------------------------------
+    const std::vector<std::string> base_names =
+        o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0) : o.fit_params) : std::vector<std::string>{};
+    Model base = fit_baseline_stage(pr, model0, o, base_names, rep);
+    std::vector<double> pw;
+    Eigen::VectorXd R0, Rtmp;
+    Eigen::MatrixXd Jtmp;
+    residual(pr, base, R0, pw);
+    rep.before = base;
+    const double in0 = R0.squaredNorm();
+    rep.noise_floor_N = base.p.m * pr.sigma_x * pr.K.noise_gain / base.sensor_gain();
+
+    enter(FitStage::Candidates);
+    // ---- 2. candidate columns -----------------------------------------------------------------------------
+    const Screen screen = screen_candidates(pr, base, o, base_names, R0);
+    const std::vector<Candidate>& cands = screen.cands;
+    const std::vector<Group>& groups = screen.groups;
+    const std::vector<int>& base_cols = screen.base_cols;
+    const Folds& folds = screen.folds;
+
+    enter(FitStage::Selection);
+    // ---- 3. greedy selection ------------------------------------------------------------------------------
+    Selection sel = select_effects(screen, R0, o, hac_lag, rep);
+    std::vector<std::size_t>& chosen = sel.chosen;
+    std::vector<double>& step_gain = sel.step_gain;
+    const double in_base = sel.in_base;
 
     enter(FitStage::Refit);
     // ---- 4. the model with the effects: linear estimates, then joint nonlinear refinement; an effect whose
