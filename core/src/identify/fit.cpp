@@ -1054,106 +1054,23 @@ Selection select_effects(const Screen& screen, const Eigen::VectorXd& R0, const 
     return sel;
 }
 
-}  // namespace
-
-const char* fit_stage_name(FitStage s) {
-    switch (s) {
-        case FitStage::Prepare: return "preparing the data";
-        case FitStage::Baseline: return "fitting the baseline";
-        case FitStage::Candidates: return "screening the candidate effects";
-        case FitStage::Selection: return "selecting effects";
-        case FitStage::Refit: return "refitting the effects";
-        case FitStage::ImpactLaw: return "comparing the impacts";
-        case FitStage::Validation: return "validating on held-out data";
-        case FitStage::Errors: return "errors before and after";
-        case FitStage::Count: break;
-    }
-    return "?";
-}
-
-FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOptions& o, const MeasuredData* test,
-                  FitProgress* progress) {
-    // Where each stage starts in the whole fit's progress (their typical share of the run time).
-    static constexpr double kStageStart[] = {0.0, 0.04, 0.10, 0.14, 0.18, 0.24, 0.34, 0.80, 1.0};
-    auto enter = [&](FitStage s) {
-        if (!progress) return;
-        if (progress->cancel.load(std::memory_order_relaxed)) throw FitCancelled();
-        progress->stage.store(static_cast<int>(s), std::memory_order_relaxed);
-        progress->fraction.store(kStageStart[static_cast<int>(s)], std::memory_order_relaxed);
-    };
-    enter(FitStage::Prepare);
-    const auto clock0 = std::chrono::steady_clock::now();
-    FitReport rep;
-    rep.data_source = data.source;
-    rep.model_name = model0.p.name;
-    rep.forcing = data.has_phi() ? "phi (unbalance)" : "u (measured input)";
-    rep.baseline = o.fit_baseline ? "fit" : "fixed";
-    if (model0.p.stiffness_id == "duffing") {
-        rep.x_unit = "data units";
-        rep.force_unit = "model force units (m = 1: data units / s^2)";
-    }
-    validate(model0.p, "model");
-    Prep prep = prepare(data, model0, o, rep.notes);
-    prep.progress = progress;
-    const Prep& pr = prep;
-    rep.samples = pr.n;
-    rep.rows_used = pr.rows.size();
-    rep.dt = pr.dt;
-    rep.duration = data.t.back() - data.t.front();
-    rep.sigma_x = pr.sigma_x;
-    rep.window_s = (pr.K.H + 1) * pr.dt;
-    rep.period_s = pr.period;
-    rep.drive_fit_rms_rad = pr.drive_rms;
-    if (pr.phi_forced) {
-        rep.omega_min = *std::min_element(pr.omega.begin(), pr.omega.end());
-        rep.omega_max = *std::max_element(pr.omega.begin(), pr.omega.end());
-    }
-    const int stride = std::max(1, pr.K.H / 4);
-    const int hac_lag = static_cast<int>(std::ceil(2.0 * (2 * pr.K.H + 1) / stride));
-
-    enter(FitStage::Baseline);
-    // ---- 1. the baseline --------------------------------------------------------------------------------
-    const std::vector<std::string> base_names =
-        o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0) : o.fit_params) : std::vector<std::string>{};
-    Model base = fit_baseline_stage(pr, model0, o, base_names, rep);
-    std::vector<double> pw;
-    Eigen::VectorXd R0, Rtmp;
-    Eigen::MatrixXd Jtmp;
-    residual(pr, base, R0, pw);
-    rep.before = base;
-    const double in0 = R0.squaredNorm();
-    rep.noise_floor_N = base.p.m * pr.sigma_x * pr.K.noise_gain / base.sensor_gain();
-
-    enter(FitStage::Candidates);
-    // ---- 2. candidate columns -----------------------------------------------------------------------------
-    const Screen screen = screen_candidates(pr, base, o, base_names, R0);
+// Stage 4: the model with the chosen effects. Linear estimates from the screening, then a joint nonlinear
+// refinement of their parameters (and the fitted base parameters) on the equation error, with HAC
+// uncertainties; an effect whose significance does not survive the joint fit is dropped and the rest
+// refitted. An input-forced record then refines them on the free-run simulation error where that predicts
+// the held-out part better; a sensor effect the impacts' flat tops contradict goes. The effects found are
+// appended to rep.effects_found; returns the model with them.
+Model refit_stage(const Prep& pr, const Model& base, const Screen& screen, Selection sel, const std::vector<std::string>& base_names,
+                  const FitOptions& o, int hac_lag, double in0, const SentenceContext& sc, FitReport& rep) {
     const std::vector<Candidate>& cands = screen.cands;
     const std::vector<Group>& groups = screen.groups;
     const std::vector<int>& base_cols = screen.base_cols;
     const Folds& folds = screen.folds;
-
-    enter(FitStage::Selection);
-    // ---- 3. greedy selection ------------------------------------------------------------------------------
-    Selection sel = select_effects(screen, R0, o, hac_lag, rep);
     std::vector<std::size_t>& chosen = sel.chosen;
     std::vector<double>& step_gain = sel.step_gain;
     const double in_base = sel.in_base;
-
-    enter(FitStage::Refit);
-    // ---- 4. the model with the effects: linear estimates, then joint nonlinear refinement; an effect whose
-    //         significance does not survive the joint fit is dropped and the rest refitted ------------------
-    SentenceContext sc;
-    {
-        std::vector<double> av, ax;
-        for (std::size_t r : pr.rows) {
-            av.push_back(std::abs(pr.vs[r]));
-            ax.push_back(std::abs(data.x[r]));
-        }
-        double s = 0;
-        for (double v : av) s += v * v;
-        sc.v_typ = av.empty() ? 0.0 : std::sqrt(s / static_cast<double>(av.size()));
-        sc.x_typ = quantile(ax, 0.9);
-    }
+    const MeasuredData& data = *pr.data;
+    std::vector<double> pw;
     Model after = base;
     std::vector<FoundEffect> force_found;
     const std::size_t first_new = base.p.effects.size();
@@ -1315,6 +1232,102 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         }
     }
     for (auto& f : force_found) rep.effects_found.push_back(std::move(f));
+    return after;
+}
+
+}  // namespace
+
+const char* fit_stage_name(FitStage s) {
+    switch (s) {
+        case FitStage::Prepare: return "preparing the data";
+        case FitStage::Baseline: return "fitting the baseline";
+        case FitStage::Candidates: return "screening the candidate effects";
+        case FitStage::Selection: return "selecting effects";
+        case FitStage::Refit: return "refitting the effects";
+        case FitStage::ImpactLaw: return "comparing the impacts";
+        case FitStage::Validation: return "validating on held-out data";
+        case FitStage::Errors: return "errors before and after";
+        case FitStage::Count: break;
+    }
+    return "?";
+}
+
+FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOptions& o, const MeasuredData* test,
+                  FitProgress* progress) {
+    // Where each stage starts in the whole fit's progress (their typical share of the run time).
+    static constexpr double kStageStart[] = {0.0, 0.04, 0.10, 0.14, 0.18, 0.24, 0.34, 0.80, 1.0};
+    auto enter = [&](FitStage s) {
+        if (!progress) return;
+        if (progress->cancel.load(std::memory_order_relaxed)) throw FitCancelled();
+        progress->stage.store(static_cast<int>(s), std::memory_order_relaxed);
+        progress->fraction.store(kStageStart[static_cast<int>(s)], std::memory_order_relaxed);
+    };
+    enter(FitStage::Prepare);
+    const auto clock0 = std::chrono::steady_clock::now();
+    FitReport rep;
+    rep.data_source = data.source;
+    rep.model_name = model0.p.name;
+    rep.forcing = data.has_phi() ? "phi (unbalance)" : "u (measured input)";
+    rep.baseline = o.fit_baseline ? "fit" : "fixed";
+    if (model0.p.stiffness_id == "duffing") {
+        rep.x_unit = "data units";
+        rep.force_unit = "model force units (m = 1: data units / s^2)";
+    }
+    validate(model0.p, "model");
+    Prep prep = prepare(data, model0, o, rep.notes);
+    prep.progress = progress;
+    const Prep& pr = prep;
+    rep.samples = pr.n;
+    rep.rows_used = pr.rows.size();
+    rep.dt = pr.dt;
+    rep.duration = data.t.back() - data.t.front();
+    rep.sigma_x = pr.sigma_x;
+    rep.window_s = (pr.K.H + 1) * pr.dt;
+    rep.period_s = pr.period;
+    rep.drive_fit_rms_rad = pr.drive_rms;
+    if (pr.phi_forced) {
+        rep.omega_min = *std::min_element(pr.omega.begin(), pr.omega.end());
+        rep.omega_max = *std::max_element(pr.omega.begin(), pr.omega.end());
+    }
+    const int stride = std::max(1, pr.K.H / 4);
+    const int hac_lag = static_cast<int>(std::ceil(2.0 * (2 * pr.K.H + 1) / stride));
+
+    enter(FitStage::Baseline);
+    // ---- 1. the baseline --------------------------------------------------------------------------------
+    const std::vector<std::string> base_names =
+        o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0) : o.fit_params) : std::vector<std::string>{};
+    Model base = fit_baseline_stage(pr, model0, o, base_names, rep);
+    std::vector<double> pw;
+    Eigen::VectorXd R0;
+    residual(pr, base, R0, pw);
+    rep.before = base;
+    const double in0 = R0.squaredNorm();
+    rep.noise_floor_N = base.p.m * pr.sigma_x * pr.K.noise_gain / base.sensor_gain();
+
+    enter(FitStage::Candidates);
+    // ---- 2. candidate columns -----------------------------------------------------------------------------
+    const Screen screen = screen_candidates(pr, base, o, base_names, R0);
+
+    enter(FitStage::Selection);
+    // ---- 3. greedy selection ------------------------------------------------------------------------------
+    const Selection sel = select_effects(screen, R0, o, hac_lag, rep);
+
+    enter(FitStage::Refit);
+    // ---- 4. the model with the effects: linear estimates, then joint nonlinear refinement; an effect whose
+    //         significance does not survive the joint fit is dropped and the rest refitted ------------------
+    SentenceContext sc;
+    {
+        std::vector<double> av, ax;
+        for (std::size_t r : pr.rows) {
+            av.push_back(std::abs(pr.vs[r]));
+            ax.push_back(std::abs(data.x[r]));
+        }
+        double s = 0;
+        for (double v : av) s += v * v;
+        sc.v_typ = av.empty() ? 0.0 : std::sqrt(s / static_cast<double>(av.size()));
+        sc.x_typ = quantile(ax, 0.9);
+    }
+    Model after = refit_stage(pr, base, screen, sel, base_names, o, hac_lag, in0, sc, rep);
 
     enter(FitStage::ImpactLaw);
     // ---- 5. the impact law: bumper position, impact duration, restitution ----------------------------------
@@ -1322,7 +1335,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     enter(FitStage::Validation);
     // ---- 6. validation: an effect stays only if it lowers the short-horizon simulation error on data held
     //         out from its fit, by more than the windows' scatter; the final model must beat the baseline ----
-    validate_effects(pr, base, cands, o, rep, after);
+    validate_effects(pr, base, screen.cands, o, rep, after);
 
     std::stable_sort(rep.effects_found.begin(), rep.effects_found.end(),
                      [](const FoundEffect& a, const FoundEffect& b) { return a.explained_fraction > b.explained_fraction; });
