@@ -2,6 +2,8 @@
 //   CF diagram (run_cf_sweep, default CfSpec: 300 omegas x (20 + 70) periods) of A1C, A1C1, A3C, A1G, A1H,
 //   EF ramp (run_ef_ramp, 0 -> 25.1 rad/s in 2800 s) of A1C and A1H.
 // For each: wall seconds, simulated seconds, simulated seconds per wall second, accepted steps, impacts.
+//   --fit: the measured-data loop (identify::run_fit) on a 300 s record at 1 kHz of A1H with quadratic
+//   damping and of A1C with a sensor offset, without plots (target: under 10 s each on 2 cores).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -11,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "impactlab/identify.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/sweep.hpp"
 
@@ -18,18 +21,19 @@ namespace {
 
 struct Options {
     bool quick = false;
-    bool cf = true, ef = true;
+    bool cf = true, ef = true, fit = false;
     std::vector<std::string> only;   // empty: the paper's versions
     impactlab::Tolerances tol;
 };
 
 [[noreturn]] void usage(int rc) {
     std::printf(
-        "usage: bench [--quick] [--only VERSION]... [--rtol R] [--cf-only | --ef-only]\n"
+        "usage: bench [--quick] [--only VERSION]... [--rtol R] [--cf-only | --ef-only | --fit]\n"
         "  --quick       CF with 60 omegas instead of 300, EF ramp 5x faster (560 s instead of 2800 s)\n"
         "  --only V      this version only (repeatable; any XY name, e.g. A1H, A3G)\n"
         "  --rtol R      relative tolerance of the integrator (default %g)\n"
-        "  --cf-only     skip the EF ramps;  --ef-only  skip the CF diagrams\n",
+        "  --cf-only     skip the EF ramps;  --ef-only  skip the CF diagrams\n"
+        "  --fit         only the measured-data loop on 300 s records at 1 kHz (fit's speed target)\n",
         impactlab::Tolerances{}.rtol);
     std::exit(rc);
 }
@@ -47,6 +51,7 @@ Options parse(int argc, char** argv) {
         else if (a == "--rtol") o.tol.rtol = std::stod(value());
         else if (a == "--cf-only") o.ef = false;
         else if (a == "--ef-only") o.cf = false;
+        else if (a == "--fit") o.fit = true;
         else if (a == "-h" || a == "--help") usage(0);
         else {
             std::fprintf(stderr, "bench: unknown option '%s'\n", a.c_str());
@@ -87,8 +92,41 @@ void row(const impactlab::Diagram& d, Times t) {
 
 }  // namespace
 
+// The measured-data loop on a 300 s record at 1 kHz (synthesised, then fitted with the version's parameters).
+void bench_fit() {
+    namespace id = impactlab::identify;
+    std::printf("fit: 300 s at 1 kHz, steps at 9, 13.5, 16 and 18 rad/s, no plots\n\n%-6s %-20s %9s %9s %s\n", "model", "injected",
+                "wall[s]", "cpu[s]", "found");
+    const std::pair<const char*, std::pair<const char*, double>> cases[] = {{"A1H", {"quadratic_damping", 4.0}},
+                                                                            {"A1C", {"sensor_offset", 3e-4}}};
+    for (const auto& [version, effect] : cases) {
+        id::Model truth = id::resolve_fit_model(version, id::Forcing::Unbalance);
+        id::apply_effect(truth, effect.first, {{"", effect.second}});
+        id::SynthOptions so;
+        so.duration = 300.0;
+        id::steps_profile({9.0, 13.5, 16.0, 18.0}, 73.5, 2.0, so.knot_t, so.knot_omega);
+        const id::MeasuredData d = id::synthesize(truth, so);
+        id::FitOptions fo;
+        fo.plots = false;
+        id::FitReport r;
+        const Times t = timed([&] { r = id::run_fit(d, id::resolve_fit_model(version, id::Forcing::Unbalance), fo); });
+        std::printf("%-6s %-20s %9.3f %9.3f %s\n", version, effect.first, t.wall, t.cpu,
+                    r.effects_found.empty() ? "none" : r.effects_found.front().id.c_str());
+        std::fflush(stdout);
+    }
+}
+
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
+    if (o.fit) {
+        try {
+            bench_fit();
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "bench: %s\n", e.what());
+            return 1;
+        }
+        return 0;
+    }
     try {
         const std::vector<std::string> cf_versions =
             o.only.empty() ? std::vector<std::string>{"A1C", "A1C1", "A3C", "A1G", "A1H"} : o.only;
