@@ -125,3 +125,6 @@ impactlab_cli_test(fit_test_rows_with_runs --rc 2 --match "--test-rows needs a s
                    -- fit a.csv b.csv --model A1H --report r --test-rows 0:10)
 impactlab_cli_test(help_recovery --rc 0 --match "usage: impactlab recovery" --match "--null" -- recovery --help)
 impactlab_cli_test(recovery_bad_version --rc 2 --match "unknown model version 'A9Q'" -- recovery --versions A1C,A9Q)
+impactlab_cli_test(fit_runs_short_one --rc 2 --match "a.csv: only 3 samples"
+                   --write a.csv "t,x,phi\n0,0,0\n0.001,0,0.01\n0.002,0,0.02\n" --write b.csv "t,x,phi\n0,0,0\n0.001,0,0.01\n"
+                   -- fit a.csv b.csv --model A1H --report r)

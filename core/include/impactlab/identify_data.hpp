@@ -44,6 +44,7 @@ struct MeasuredData {
     // Several runs of one rig fitted together (join_records): the first sample of each run. Each run keeps
     // its own forcing and initial state; nothing (smoothing, windows, impacts) reaches across a start.
     std::vector<std::size_t> run_starts{0};
+    std::vector<std::string> run_sources;       // the file of each run (join_records); empty for one record
     bool has_phi() const { return !phi.empty(); }
     bool has_u() const { return !u.empty(); }
     std::size_t size() const { return t.size(); }

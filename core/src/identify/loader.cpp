@@ -279,6 +279,7 @@ MeasuredData join_records(const std::vector<MeasuredData>& runs) {
                             std::to_string(dt0) + " s: runs fitted together need the same rate");
         const double shift = k == 0 ? 0.0 : all.t.back() + dt0 - r.t.front();
         all.run_starts.push_back(all.t.size());
+        all.run_sources.push_back(r.source);
         for (std::size_t i = 0; i < r.size(); ++i) all.t.push_back(r.t[i] + shift);
         all.x.insert(all.x.end(), r.x.begin(), r.x.end());
         all.phi.insert(all.phi.end(), r.phi.begin(), r.phi.end());

@@ -92,8 +92,9 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     pr.run_start = d.run_starts.empty() ? std::vector<std::size_t>{0} : d.run_starts;
     for (std::size_t r = 0; r < pr.run_start.size(); ++r) {
         const std::size_t a = pr.run_start[r], b = r + 1 < pr.run_start.size() ? pr.run_start[r + 1] : n;
-        if (b - a < 200) throw DataError(d.source + ": run " + std::to_string(r + 1) + " has only " + std::to_string(b - a) +
-                                         " samples; impactlab fit needs at least 200 in each");
+        if (b - a < 200)
+            throw DataError((r < d.run_sources.size() ? d.run_sources[r] : d.source + ": run " + std::to_string(r + 1)) + ": only " +
+                            std::to_string(b - a) + " samples; impactlab fit needs at least 200 in each run");
         const std::vector<double> t(d.t.begin() + static_cast<long>(a), d.t.begin() + static_cast<long>(b));
         if (pr.phi_forced) {
             double rms = 0;
