@@ -1069,7 +1069,6 @@ Model refit_stage(const Prep& pr, const Model& base, const Screen& screen, Selec
     std::vector<std::size_t>& chosen = sel.chosen;
     std::vector<double>& step_gain = sel.step_gain;
     const double in_base = sel.in_base;
-    const MeasuredData& data = *pr.data;
     std::vector<double> pw;
     Model after = base;
     std::vector<FoundEffect> force_found;
@@ -1158,41 +1157,6 @@ Model refit_stage(const Prep& pr, const Model& base, const Screen& screen, Selec
         chosen.erase(chosen.begin() + static_cast<long>(weakest));
         step_gain.erase(step_gain.begin() + static_cast<long>(weakest));
     }
-    // Input-forced data: the simulation error decides. Refit everything on it, then keep an effect only if
-    // the refitted model without it simulates the validation part clearly worse (1 %).
-    if (!pr.phi_forced && o.fit_baseline && !chosen.empty()) {
-        auto oe_fit = [&](Model& m, std::size_t skip, int iters) {
-            std::vector<Knob> kn = base_knobs(m, base_names);
-            for (std::size_t k = 0, e = 0; k < chosen.size(); ++k) {
-                if (k == skip) continue;
-                effect_knobs(cands[groups[chosen[k]].cand], m.p.effects[first_new + e++], kn);
-            }
-            lm_simulation(pr, m, kn, iters, o.rtol);
-            // Judged out of sample: on the part of the record the fit did not use.
-            const std::vector<double> fr = free_run(pr, m, o.rtol);
-            std::size_t first = 0;
-            while (first < pr.n && !std::isfinite(fr[first])) ++first;
-            const std::size_t fit_end = oe_fit_end(pr, first, 30000);
-            const double rms = free_run_rms(fr, data.x, fit_end + 1);
-            return rms < 0 ? INFINITY : rms;
-        };
-        // Which of them stay is the held-out validation's decision (stage 6); the refinement itself stays only
-        // if it predicts the held-out part better than the equation-error values do.
-        const Model ee_after = after;
-        oe_fit(after, chosen.size(), 20);
-        const bool oe_kept = refinement_predicts_better(pr, after, ee_after, o.rtol);
-        if (!oe_kept) {
-            after = ee_after;
-            rep.notes.push_back("the output-error refit of the effects predicts the held-out part worse within the "
-                                "predictability horizon; their equation-error values are kept");
-        }
-        // The reported values are the simulation-error fit's; their uncertainties stay the equation error's.
-        for (std::size_t k = 0; k < force_found.size(); ++k) {
-            force_found[k].parameters = named(after.p.effects[first_new + k]);
-            force_found[k].sentence = sentence(force_found[k].id, base, force_found[k].parameters, force_found[k].sigma, sc);
-        }
-        if (oe_kept) rep.notes.push_back("effects refitted on the free-run simulation error (output error)");
-    }
     // A sensor effect moves the measured bumper level too: if the impacts' flat tops contradict it, it is an
     // artefact of the free-flight fit and goes (the impact stage then sees the level as it is).
     if (after.bumper() && pr.impacts.size() >= 3) {
@@ -1233,6 +1197,33 @@ Model refit_stage(const Prep& pr, const Model& base, const Screen& screen, Selec
     }
     for (auto& f : force_found) rep.effects_found.push_back(std::move(f));
     return after;
+}
+
+// Stage 6b, input-forced records with a fitted baseline: the effects that passed the validation, refitted
+// together with the base parameters on the free-run simulation error (which weighs the resonance the way an
+// equation error at a few samples per period cannot), kept only if that predicts the held-out part better.
+void output_error_stage(const Prep& pr, const Model& base, const std::vector<Candidate>& cands,
+                        const std::vector<std::string>& base_names, const FitOptions& o, const SentenceContext& sc,
+                        FitReport& rep, Model& after) {
+    if (pr.phi_forced || !o.fit_baseline || rep.effects_found.empty()) return;
+    Model refined = after;
+    std::vector<Knob> knobs = base_knobs(refined, base_names);
+    for (const Knob& k : found_effect_knobs(refined, base.p.effects.size(), cands)) knobs.push_back(k);
+    lm_simulation(pr, refined, knobs, 20, o.rtol);
+    if (!unphysical(refined).empty() || !refinement_predicts_better(pr, refined, after, o.rtol)) {
+        rep.notes.push_back("the output-error refit of the effects predicts the held-out part worse within the "
+                            "predictability horizon; their equation-error values are kept");
+        return;
+    }
+    after = refined;
+    rep.notes.push_back("effects refitted on the free-run simulation error (output error)");
+    // The reported values are the simulation-error fit's; their uncertainties stay the equation error's.
+    for (auto& f : rep.effects_found)
+        for (const auto& e : after.p.effects)
+            if (f.id == e.law->id) {
+                f.parameters = named(e);
+                f.sentence = sentence(f.id, base, f.parameters, f.sigma, sc);
+            }
 }
 
 }  // namespace
@@ -1336,6 +1327,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     // ---- 6. validation: an effect stays only if it lowers the short-horizon simulation error on data held
     //         out from its fit, by more than the windows' scatter; the final model must beat the baseline ----
     validate_effects(pr, base, screen.cands, o, rep, after);
+    output_error_stage(pr, base, screen.cands, base_names, o, sc, rep, after);
 
     std::stable_sort(rep.effects_found.begin(), rep.effects_found.end(),
                      [](const FoundEffect& a, const FoundEffect& b) { return a.explained_fraction > b.explained_fraction; });
