@@ -239,8 +239,12 @@ void DataPanel::draw_fit_row(const DataPanelContext& ctx) {
         }
     } else if (report_) {
         ImGui::SameLine();
-        ImGui::TextDisabled("fit of %s: %.2f s, noise %.1f um, %zu impacts", fit_model_name_.c_str(), report_->runtime_s,
-                            report_->sigma_x * 1e6, report_->impacts.size());
+        if (report_->x_unit == "m")
+            ImGui::TextDisabled("fit of %s: %.2f s, noise %.1f um, %zu impacts", fit_model_name_.c_str(), report_->runtime_s,
+                                report_->sigma_x * 1e6, report_->impacts.size());
+        else   // a plain Duffing model works in the data's own units
+            ImGui::TextDisabled("fit of %s: %.2f s, noise %.3g (%s)", fit_model_name_.c_str(), report_->runtime_s, report_->sigma_x,
+                                report_->x_unit.c_str());
     }
     if (!error_.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 80, 70, 255));
