@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <numeric>
@@ -60,9 +59,7 @@ double free_run_rms(const std::vector<double>& fr, const std::vector<double>& x,
 // helped; a record that is predictable for long is judged over long windows, where the equation error's
 // bias at a few samples per period shows.
 bool refinement_predicts_better(const Prep& pr, const Model& refined, const Model& before, double rtol) {
-    std::size_t a = 0;
-    while (a + 2 < pr.n && (pr.zone[a] || !std::isfinite(pr.xs[a]) || !std::isfinite(pr.vs[a]))) ++a;
-    const std::size_t fit_end = oe_fit_end(pr, a, 30000);
+    const std::size_t fit_end = oe_fit_end(pr, usable_start(pr, 0, pr.n - 2), 30000);
     const double L = std::max({predictability_horizon(pr, refined, rtol).periods, predictability_horizon(pr, before, rtol).periods, 0.25});
     std::vector<std::pair<std::size_t, std::size_t>> wins;
     for (const auto& w : windows(pr, L))
@@ -85,8 +82,7 @@ void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_i
     // The fit runs on the first stretch of at most kOeSamples samples (a free run is sequential; this bounds the
     // cost of each Jacobian), from the first usable sample.
     constexpr std::size_t kOeSamples = 30000;
-    std::size_t a = 0;
-    while (a + 2 < pr.n && (pr.zone[a] || !std::isfinite(pr.xs[a]) || !std::isfinite(pr.vs[a]))) ++a;
+    const std::size_t a = usable_start(pr, 0, pr.n - 2);
     const std::size_t b = oe_fit_end(pr, a, kOeSamples);
     // The fit needs the simulation far more accurate than the sensor, not to the reporting tolerance.
     const double fit_rtol = std::max(rtol, 1e-6);
@@ -235,8 +231,6 @@ std::string unphysical(const Model& m) {
     return {};
 }
 
-double apparent_kappa(const ImpactObs& im) { return im.v_minus > 0 ? -im.v_plus / im.v_minus : 0.0; }
-
 ImpactLawError impact_error(const Prep& pr, const PredictedImpacts& pred) {
     ImpactLawError e;
     double sk = 0, sd = 0;
@@ -271,10 +265,6 @@ std::vector<std::pair<std::string, double>> named(const EffectInstance& e) {
 
 double rms_of(const Eigen::VectorXd& R) { return R.size() ? std::sqrt(R.squaredNorm() / static_cast<double>(R.size())) : 0.0; }
 
-}  // namespace
-
-namespace {
-
 // The flat-top shift that puts a model's simulated impacts on the measured ones, from the impacts with
 // use[k] set: the median of the paired level differences, corrected until the moved bumper's own forces
 // (and a compliant contact's penetration with them) are accounted for. Returns the shift of xI [m]; the model
@@ -300,44 +290,25 @@ double fit_bumper_shift(const Prep& pr, Model& m, const std::vector<char>& use, 
 // whole record chose (a constant when its decay rate is 0, else the full law from the whole record's values).
 std::vector<std::pair<std::string, double>> refit_impact_law(const Prep& pr, const Model& m, const FoundEffect& f,
                                                              const std::vector<char>& use) {
-    const bool dur = f.id == "impact_duration";
-    const double g = m.sensor_gain();
-    std::vector<double> vm, obs;
-    for (std::size_t k = 0; k < pr.impacts.size(); ++k) {
-        const ImpactObs& im = pr.impacts[k];
-        if (!use[k] || (!dur && im.v_minus < 0.02)) continue;
-        vm.push_back(im.v_minus / g);
-        obs.push_back(dur ? im.t_out - im.t_in : (im.v_minus > 0 ? -im.v_plus / im.v_minus : 0.0));
-    }
+    const ImpactLawData d = impact_law_data(pr, m, f.id == "impact_duration", use);
+    const auto nm = impact_law_names(d.dwell);
     auto value = [&](const char* k) {
         for (const auto& [n, v] : f.parameters)
             if (n == k) return v;
         return 0.0;
     };
-    const char* nm[3] = {dur ? "Ti0" : "kappa0", dur ? "Ti1" : "kappa1", dur ? "a_T" : "a_kappa"};
-    if (obs.size() < 3) return f.parameters;
+    if (d.obs.size() < 3) return f.parameters;
     double mean = 0;
-    for (double v : obs) mean += v;
-    mean /= static_cast<double>(obs.size());
+    for (double v : d.obs) mean += v;
+    mean /= static_cast<double>(d.obs.size());
     if (value(nm[2]) == 0.0) return {{nm[0], mean}, {nm[1], mean}, {nm[2], 0.0}};
-    const auto n = static_cast<Eigen::Index>(obs.size());
-    auto law = [&](const Eigen::VectorXd& th) {
-        Eigen::VectorXd r(n);
-        for (Eigen::Index i = 0; i < n; ++i)
-            r[i] = (th[0] - th[1]) * std::exp(-th[2] * vm[static_cast<std::size_t>(i)]) + th[1] - obs[static_cast<std::size_t>(i)];
-        return r;
-    };
     Eigen::VectorXd th(3), lo(3), hi(3);
     th << value(nm[0]), value(nm[1]), value(nm[2]);
     lo << 0, 0, 0;
     hi << 1.0, 1.0, 50.0;
-    lm_small(law, th, lo, hi);
+    lm_small([&](const Eigen::VectorXd& t) { return impact_law_residual(d, t); }, th, lo, hi);
     return {{nm[0], th[0]}, {nm[1], th[1]}, {nm[2], th[2]}};
 }
-
-}  // namespace
-
-namespace {
 
 // One-sample t test of mean > 0, as the equivalent standard-normal z (read through F(1, n-1), signed).
 double t_test_z(const std::vector<double>& d) {
@@ -354,8 +325,8 @@ double t_test_z(const std::vector<double>& d) {
 
 // The held-out validation of the effects found (stage 6 of run_fit). The record is cut into blocks of about
 // an eighth of its length, alternately in fold 0 and fold 1. For each fold, the force effects' parameters are
-// refitted on the equation error of the other fold's rows (the base-changing impact effects keep the values
-// their impacts gave), and the model is simulated over the fold's windows, each as long as the record's
+// refitted on the equation error of the other fold's rows (an impact-law effect on the other fold's impacts),
+// and the model is simulated over the fold's windows, each as long as the record's
 // predictability horizon (a chaotic record cannot be judged by a long free run). Effects are tried in the
 // order they were found; each must lower the summed held-out error against the model without it, with a
 // paired z >= 3 over the windows and by at least 2 % of the error above the sensor noise.
@@ -546,10 +517,6 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
     after = cur;
 }
 
-}  // namespace
-
-namespace {
-
 // Stage 1: the baseline. With fit_baseline, the base parameters `base_names` are fitted to the equation
 // error (the input's polarity found, a bistable model kept bistable) and, for an input-forced record,
 // refined on the free-run simulation error when that predicts the held-out part better. Throws ParamError
@@ -661,24 +628,21 @@ void impact_law_stage(const Prep& pr, const FitOptions& o, const SentenceContext
         // The dwell time and the restitution against the model's, impact by impact.
         for (const char* which : {"impact_duration", "restitution"}) {
             const bool dur = std::strcmp(which, "impact_duration") == 0;
-            std::vector<double> vm, obs, simulated;
-            for (std::size_t k = 0; k < pr.impacts.size(); ++k) {
-                const ImpactObs& im = pr.impacts[k];
-                if (!pred.ok[k] || (!dur && im.v_minus < 0.02)) continue;
-                vm.push_back(im.v_minus / g);
-                obs.push_back(dur ? im.t_out - im.t_in : apparent_kappa(im));
-                simulated.push_back(dur ? pred.obs[k].t_out - pred.obs[k].t_in : apparent_kappa(pred.obs[k]));
-            }
+            // The impacts the model also makes, measured and simulated.
+            const ImpactLawData data = impact_law_data(pr, after, dur, pred.ok);
+            const ImpactLawData simulated_data = [&] {
+                ImpactLawData s;
+                for (std::size_t k = 0; k < pr.impacts.size(); ++k)
+                    if (pred.ok[k] && (dur || pr.impacts[k].v_minus >= 0.02))
+                        s.obs.push_back(dur ? pred.obs[k].t_out - pred.obs[k].t_in : apparent_kappa(pred.obs[k]));
+                return s;
+            }();
+            const std::vector<double>& vm = data.vm;
+            const std::vector<double>& obs = data.obs;
             const auto n = static_cast<Eigen::Index>(vm.size());
             if (n < 3) continue;
-            Eigen::VectorXd model_pred(n);
-            for (Eigen::Index i = 0; i < n; ++i) model_pred[i] = simulated[static_cast<std::size_t>(i)];
-            auto law = [&](const Eigen::VectorXd& th) {
-                Eigen::VectorXd r(n);
-                for (Eigen::Index i = 0; i < n; ++i)
-                    r[i] = (th[0] - th[1]) * std::exp(-th[2] * vm[static_cast<std::size_t>(i)]) + th[1] - obs[static_cast<std::size_t>(i)];
-                return r;
-            };
+            const Eigen::VectorXd model_pred = Eigen::Map<const Eigen::VectorXd>(simulated_data.obs.data(), n);
+            auto law = [&](const Eigen::VectorXd& th) { return impact_law_residual(data, th); };
             double mean = 0;
             for (double v : obs) mean += v;
             mean /= static_cast<double>(n);
@@ -738,7 +702,7 @@ void impact_law_stage(const Prep& pr, const FitOptions& o, const SentenceContext
                 f.id = which;
                 f.evidence = "impact law";
                 f.explained_fraction = 1.0 - sa / sb;
-                const char* nm[3] = {dur ? "Ti0" : "kappa0", dur ? "Ti1" : "kappa1", dur ? "a_T" : "a_kappa"};
+                const auto nm = impact_law_names(dur);
                 for (int k = 0; k < 3; ++k) {
                     f.parameters.emplace_back(nm[k], th[k]);
                     f.sigma.emplace_back(nm[k], std::sqrt(std::max(0.0, C(k, k) * s2)));

@@ -219,6 +219,35 @@ std::vector<ImpactObs> find_impacts(const std::vector<double>& t, const std::vec
     return out;
 }
 
+double apparent_kappa(const ImpactObs& im) { return im.v_minus > 0 ? -im.v_plus / im.v_minus : 0.0; }
+
+ImpactLawData impact_law_data(const Prep& pr, const Model& m, bool dwell, const std::vector<char>& use) {
+    ImpactLawData d;
+    d.dwell = dwell;
+    const double g = m.sensor_gain();
+    for (std::size_t k = 0; k < pr.impacts.size(); ++k) {
+        const ImpactObs& im = pr.impacts[k];
+        if ((!use.empty() && !use[k]) || (!dwell && im.v_minus < 0.02)) continue;
+        d.vm.push_back(im.v_minus / g);
+        d.obs.push_back(dwell ? im.t_out - im.t_in : apparent_kappa(im));
+    }
+    return d;
+}
+
+std::array<const char*, 3> impact_law_names(bool dwell) {
+    return dwell ? std::array<const char*, 3>{"Ti0", "Ti1", "a_T"} : std::array<const char*, 3>{"kappa0", "kappa1", "a_kappa"};
+}
+
+Eigen::VectorXd impact_law_residual(const ImpactLawData& d, const Eigen::VectorXd& th) {
+    const auto n = static_cast<Eigen::Index>(d.obs.size());
+    Eigen::VectorXd r(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        r[i] = (th[0] - th[1]) * std::exp(-th[2] * d.vm[k]) + th[1] - d.obs[k];
+    }
+    return r;
+}
+
 PredictedImpacts predict_impacts(const Prep& pr, const Model& m, double rtol) {
     PredictedImpacts out;
     const std::size_t ni = pr.impacts.size();

@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <limits>
@@ -95,6 +96,20 @@ struct Prep {
 };
 Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::vector<std::string>& notes);
 
+// The impact laws a fit can find (impact_duration: the dwell T_imp(v-); restitution: kappa(v-)), both
+// (p0 - p1) exp(-a v-) + p1: what each impact shows of them, and the law's residual over a set of impacts.
+double apparent_kappa(const ImpactObs& im);   // -v+/v- as the data show it (0 for no approach speed)
+struct ImpactLawData {
+    bool dwell = true;              // true: impact_duration, false: restitution
+    std::vector<double> vm, obs;    // approach speeds (true coordinates) and what each impact shows
+};
+// The impacts with use[k] set (all when use is empty); restitution only from approaches above 2 cm/s.
+ImpactLawData impact_law_data(const Prep& pr, const Model& m, bool dwell, const std::vector<char>& use = {});
+// Parameter names of the law, in order (Ti0, Ti1, a_T or kappa0, kappa1, a_kappa).
+std::array<const char*, 3> impact_law_names(bool dwell);
+// th = (p0, p1, a) -> law(v-) - observed, impact by impact.
+Eigen::VectorXd impact_law_residual(const ImpactLawData& d, const Eigen::VectorXd& th);
+
 // The impacts the model predicts where the data show one, as the data would show them: each measured
 // impact's approach is simulated with the full model (every force on, on the core Simulator) from the
 // flight before it, sampled at the data's times with the data's noise, and read by the same detector
@@ -179,6 +194,9 @@ struct ShootOut {
     std::vector<std::pair<std::size_t, double>> windows10;   // first sample and RMS of each 10-period window
 };
 ShootOut shooting(const Prep& pr, const Model& m, const FitOptions& o);
+// First sample at or after i (before limit) where a simulation may start: clear of impacts, with smoothed
+// estimates of x and v.
+std::size_t usable_start(const Prep& pr, std::size_t i, std::size_t limit);
 // Window boundaries (sample indices [a, b]) of `periods` forcing periods each.
 std::vector<std::pair<std::size_t, std::size_t>> windows(const Prep& pr, double periods);
 // Sum of squared errors (measured coordinates) of each window's simulation; +inf where it fails.

@@ -91,7 +91,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     pr.alpha.assign(n, 0.0);
     pr.run_start = d.run_starts.empty() ? std::vector<std::size_t>{0} : d.run_starts;
     for (std::size_t r = 0; r < pr.run_start.size(); ++r) {
-        const std::size_t a = pr.run_start[r], b = r + 1 < pr.run_start.size() ? pr.run_start[r + 1] : n;
+        const std::size_t a = pr.run_start[r], b = pr.run_last(a) + 1;
         if (b - a < 200)
             throw DataError((r < d.run_sources.size() ? d.run_sources[r] : d.source + ": run " + std::to_string(r + 1)) + ": only " +
                             std::to_string(b - a) + " samples; impactlab fit needs at least 200 in each run");
@@ -143,7 +143,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     if (m.bumper()) {
         // Impacts run by run, so that the jump from one run to the next is never read as one.
         for (std::size_t r = 0; r < pr.run_start.size(); ++r) {
-            const std::size_t a = pr.run_start[r], b = r + 1 < pr.run_start.size() ? pr.run_start[r + 1] : n;
+            const std::size_t a = pr.run_start[r], b = pr.run_last(a) + 1;
             const std::vector<double> t(d.t.begin() + static_cast<long>(a), d.t.begin() + static_cast<long>(b));
             const std::vector<double> x(d.x.begin() + static_cast<long>(a), d.x.begin() + static_cast<long>(b));
             for (ImpactObs im : find_impacts(t, x, pr.sigma_x, m.sensor_gain() * m.p.xI + m.sensor_offset())) {

@@ -1,6 +1,6 @@
 // The simulation error: multiple shooting over windows of 1 and 10 forcing periods, free runs, and the
 // distance between measured and simulated bifurcation diagrams. Every run is the core Simulator's, driven by
-// the omega(t) fitted to phi or by the record's input u(t) (Prep::drive).
+// the omega(t) fitted to phi or by the record's input u(t), one per run (Prep::drives).
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -63,13 +63,12 @@ double sse(const Prep& pr, const Model& m, std::size_t i0, const std::vector<dou
     return std::isfinite(s) ? s : INFINITY;
 }
 
-// First sample at or after i where a window may start: clear of impacts, with smoothed estimates.
+}  // namespace
+
 std::size_t usable_start(const Prep& pr, std::size_t i, std::size_t limit) {
     while (i < limit && (pr.zone[i] || !std::isfinite(pr.xs[i]) || !std::isfinite(pr.vs[i]))) ++i;
     return i;
 }
-
-}  // namespace
 
 std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, bool refine, double rtol,
                                     std::size_t refine_end) {
