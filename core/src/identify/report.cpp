@@ -167,14 +167,18 @@ void plots(const FitReport& r, const std::string& dir) {
         p1.series.push_back(points(vm, kap, {20, 20, 20, 255}, 1, 1, "measured"));
         p1.series.back().size = 2.5f;
         p1.series.push_back(points(vb, kb, {214, 39, 40, 200}, 1, 1, "model before"));
+        p1.series.back().size = 2.0f;
         p1.series.push_back(points(va, ka, {31, 119, 180, 200}, 1, 1, "model after"));
+        p1.series.back().size = 2.0f;
         p2.title = "time held at the bumper";
         p2.xlabel = "v- [m/s]";
         p2.ylabel = "dwell [ms]";
         p2.series.push_back(points(vm, dw, {20, 20, 20, 255}, 1, 1, "measured"));
         p2.series.back().size = 2.5f;
         p2.series.push_back(points(vb, tb, {214, 39, 40, 200}, 1, 1, "model before"));
+        p2.series.back().size = 2.0f;
         p2.series.push_back(points(va, ta, {31, 119, 180, 200}, 1, 1, "model after"));
+        p2.series.back().size = 2.0f;
         fig.panels.push_back(std::move(p1));
         fig.panels.push_back(std::move(p2));
         plot::save_png(fig, (fs::path(dir) / "impacts.png").string());
