@@ -1,0 +1,207 @@
+// Beyond the sweep (issue 9): periodic orbits as fixed points of the k-th Poincare map with their monodromy
+// and Floquet multipliers, pseudo-arclength continuation with bifurcation detection, Lyapunov exponents of
+// the hybrid flow, and basins of attraction.
+//
+// Every trajectory is the core Simulator's. The monodromy comes from the variational equation
+// d(Phi)/dt = A(t) Phi integrated along the Simulator's accepted pieces (A is the Jacobian of Eq. (1) at the
+// piece's dense output; only this linear 2x2 equation is integrated here, the rig's state never is), with
+// the saltation matrix of the impact law at every rigid impact, sticking and permanent contact. Long jobs
+// report through a Progress (sweep.hpp) and stop when its cancel flag is set. SI units throughout.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <complex>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "impactlab/params.hpp"
+#include "impactlab/rosenbrock.hpp"
+#include "impactlab/simulator.hpp"
+#include "impactlab/sweep.hpp"
+
+namespace impactlab::analysis {
+
+// Scales that make (x, v) dimensionless for norms, tolerances and the arclength (the cart moves over ~1 cm
+// at ~0.1 m/s): x / kXScale, v / kVScale.
+inline constexpr double kXScale = 1e-2;   // [m]
+inline constexpr double kVScale = 1e-1;   // [m/s]
+double scaled_norm(const Vec2& dy);       // max(|dx| / kXScale, |dv| / kVScale)
+
+// Tolerances of the simulator for analysis: tighter than a sweep's, since Newton and finite differences
+// need the map smooth to well below the orbit tolerance.
+Tolerances analysis_tolerances(double rtol = 1e-10);
+
+// ---- The Poincare map and its derivative ------------------------------------------------------------------
+
+// One application of the k-th stroboscopic map at constant omega: from (x, v) at t = 0, phi = 0 to the state
+// at phi = 2 pi k, with what happened on the way.
+struct MapResult {
+    Vec2 y = Vec2::Zero();               // (x, v) at phi = 2 pi k (the bumper point (xI, 0) when held there)
+    Mat2 M = Mat2::Identity();           // d y / d y0 (tangent + saltation), if asked for
+    std::vector<Vec2> sections;          // (x, v) at phi = 2 pi i, i = 1..k (the last equals y)
+    int impacts = 0;                     // rigid impacts, or compliant contacts entered, during the k periods
+    double max_x = -1e300;               // largest x reached [m]
+    double min_impact_speed = 1e300;     // smallest v- of a rigid impact [m/s] (1e300 without one)
+    bool held = false;                   // y is held at the bumper (regime II or III at the end)
+    bool contact = false;                // permanent contact (regime III) occurred
+    std::uint64_t steps = 0;
+};
+
+MapResult poincare_map(const Params& p, double omega, const Vec2& y0, int k, bool tangent, const Tolerances& tol);
+// The same derivative by central finite differences of the map (relative step h in scaled units): the check
+// of the variational equations and the saltation matrices.
+Mat2 monodromy_fd(const Params& p, double omega, const Vec2& y0, int k, const Tolerances& tol, double h = 1e-6);
+
+// ---- Periodic orbits --------------------------------------------------------------------------------------
+
+struct Floquet {
+    std::array<std::complex<double>, 2> mu{};   // multipliers, |mu[0]| >= |mu[1]|
+    bool stable = false;                        // both inside the unit circle
+};
+Floquet floquet(const Mat2& M);
+
+struct OrbitOptions {
+    int period = 1;              // k: the orbit repeats after k forcing periods
+    int max_iterations = 40;
+    double tol = 1e-9;           // on the scaled residual |P^k(y) - y|
+    Tolerances sim = analysis_tolerances();
+};
+
+struct Orbit {
+    bool converged = false;
+    int iterations = 0;
+    double omega = 0;            // [rad/s]
+    int period = 1;
+    Vec2 y = Vec2::Zero();       // section point at phi = 0 (x [m], v [m/s])
+    Mat2 M = Mat2::Identity();   // monodromy of the k-th map
+    Floquet floquet;
+    double residual = 0;         // scaled |P^k(y) - y|
+    int impacts = 0;             // per k periods
+    double max_x = 0;            // [m]
+    double min_impact_speed = 1e300;
+    std::vector<Vec2> sections;  // the k section points of the orbit, starting after y
+    std::string message;         // why it did not converge
+};
+
+// Newton on P^k(y) - y = 0 from `guess`, with the monodromy as Jacobian (damped when a full step does not
+// lower the residual). An orbit that turns out to have a smaller period than asked stays as found.
+Orbit find_orbit(const Params& p, double omega, const Vec2& guess, const OrbitOptions& opt = {});
+// The section point after `periods` forcing periods from y0 (a start for Newton that sits on an attractor).
+Vec2 settle(const Params& p, double omega, const Vec2& y0, int periods, const Tolerances& tol);
+// The bottom of the left well (x < 0, where F_SA = 0), the usual start of a search [m].
+double left_well(const Params& p);
+
+// ---- Continuation -----------------------------------------------------------------------------------------
+
+enum class ContParam : std::uint8_t { Omega, XI, M0e };
+const char* cont_param_name(ContParam c);   // "omega", "xI", "m0e"
+
+enum class BifKind : std::uint8_t { Fold, PeriodDoubling, NeimarkSacker, Grazing };
+const char* bif_kind_name(BifKind k);       // "fold", "period_doubling", "neimark_sacker", "grazing"
+
+struct BranchPoint {
+    double param = 0;            // the continued parameter's value (omega [rad/s], xI [m] or m0e [kg m])
+    Vec2 y = Vec2::Zero();       // section point
+    int period = 1;
+    bool stable = false;
+    Floquet floquet;
+    int impacts = 0;
+    double max_x = 0;
+};
+struct Branch {
+    int id = 0;
+    int period = 1;
+    int parent = -1;             // the branch it was switched from at a period doubling (-1: the first)
+    std::vector<BranchPoint> points;   // ordered along the arclength
+    std::string end;             // why it ended at each end ("omega range", "Newton failed", ...)
+};
+struct BifPoint {
+    BifKind kind;
+    double param = 0;
+    Vec2 y = Vec2::Zero();
+    int period = 1;
+    int branch = 0;
+    double precision = 0;        // width of the final bracket in the parameter
+};
+
+struct ContinuationSpec {
+    ContParam param = ContParam::Omega;
+    double omega = 10;           // fixed omega when another parameter is continued [rad/s]
+    double lo = 5, hi = 25;      // parameter range
+    double start = NAN;          // parameter value of the first orbit (NaN: lo)
+    Vec2 guess = Vec2(NAN, NAN); // its start (NaN: settle from the left well's bottom)
+    int period = 1;
+    int max_period = 8;          // period-doubled branches followed up to this period
+    int max_branches = 12;
+    int max_points = 800;        // per branch
+    double ds = 0.02, ds_min = 1e-6, ds_max = 0.25;   // arclength in scaled units (x/1 cm, v/0.1 m/s, param/scale)
+    double locate_tol = 1e-7;    // bifurcation points located to this width in the parameter
+    Tolerances sim = analysis_tolerances();
+};
+struct ContinuationResult {
+    std::vector<Branch> branches;
+    std::vector<BifPoint> points;
+    bool cancelled = false;
+    double seconds = 0;          // wall time
+    std::uint64_t map_evaluations = 0;
+};
+ContinuationResult continue_orbits(const Params& p, const ContinuationSpec& spec, Progress* progress = nullptr);
+
+// ---- Lyapunov exponents -----------------------------------------------------------------------------------
+
+struct LyapunovResult {
+    double lambda_max = 0;       // [1/s]
+    double lambda_min = 0;       // the second exponent [1/s] (lambda_max + lambda_min = mean phase-volume rate)
+    double seconds = 0;          // simulated time averaged over [s]
+    std::vector<Vec2> sections;  // the recorded section points (the sweep's classification uses them)
+    bool cancelled = false;
+};
+// Benettin: tangent (with saltation) over `periods` forcing periods after `transient`, re-orthonormalised
+// (QR) once per period. State s is advanced (a sweep carries it on); the drive starts at s.t with phi = 0.
+LyapunovResult lyapunov(const Params& p, double omega, State& s, int transient, int periods,
+                        const Tolerances& tol = {}, Progress* progress = nullptr);
+// The check: two trajectories d0 apart (scaled), the distance renormalised once per period.
+double lyapunov_two_trajectory(const Params& p, double omega, State s, int transient, int periods,
+                               const Tolerances& tol = {}, double d0 = 1e-7);
+
+struct LyapunovPoint { double omega, lambda_max, lambda_min; int period; };
+// Along a CF sweep (each omega from the previous state, as run_cf_sweep): spec.transient periods dropped,
+// spec.record periods averaged; period = count_period of the recorded section points (as the sweep counts).
+std::vector<LyapunovPoint> lyapunov_sweep(const Params& p, const CfSpec& spec, Progress* progress = nullptr,
+                                          const Tolerances& tol = {});
+
+// ---- Basins of attraction ---------------------------------------------------------------------------------
+
+struct BasinSpec {
+    double omega = 13;
+    double x_min = -0.04, x_max = 0.0, v_min = -0.6, v_max = 0.6;   // grid of initial states at phi = 0
+    int nx = 100, ny = 100;
+    int transient = 40;          // periods before the periodicity check starts
+    int max_periods = 240;       // no period <= 16 by then: chaotic (or longer than 16)
+    double tol = 1e-5;           // scaled distance for periodicity and for matching cycles
+    int threads = 0;             // 0: all hardware threads
+    Tolerances sim = [] { Tolerances t; t.rtol = 1e-7; return t; }();
+};
+struct Attractor {
+    int label = 0;
+    int period = 0;              // 0: chaotic (no period <= 16)
+    bool at_bumper = false;      // resting on the bumper
+    std::vector<Vec2> points;    // its section points (a cycle, or a sample of the chaotic cloud)
+    std::string name;            // "period 1, left well", "chaos", ...
+    int cells = 0;
+};
+struct Basins {
+    BasinSpec spec;
+    std::vector<int> label;      // ny rows (v) of nx columns (x): label[j * nx + i]
+    std::vector<Attractor> attractors;
+    bool cancelled = false;
+    double seconds = 0;          // wall time
+    int threads = 1;
+};
+// Each cell runs on its own (any thread count gives the same labels: attractors are matched in grid order
+// after all cells have run).
+Basins compute_basins(const Params& p, const BasinSpec& spec, Progress* progress = nullptr);
+
+}  // namespace impactlab::analysis

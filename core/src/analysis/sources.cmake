@@ -1,0 +1,5 @@
+# Periodic orbits, continuation, Lyapunov exponents and basins (issue 9); paths relative to core/.
+set(IMPACTLAB_ANALYSIS_SOURCES
+  src/analysis/tangent.cpp
+  src/analysis/orbit.cpp
+)

@@ -1,0 +1,263 @@
+#include "analysis/tangent.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "impactlab/forces.hpp"
+
+namespace impactlab::analysis::detail {
+
+namespace {
+
+// Local-error target of one Magnus substep on the scaled propagator (x / 1 cm, v / 0.1 m/s).
+constexpr double kStepTol = 1e-11;
+constexpr int kMaxDepth = 30;
+// Graded mesh around a zero of v: the smoothed friction's slope T eps^2 / (v^2 + eps^2)^1.5 is a spike
+// about eps/|a| ~ 1e-6 s wide that an adaptive rule sampling at Gauss points could step over unseen; the
+// mesh puts substeps of 1e-10 s at the zero and grows them by 4 outwards.
+constexpr double kSpikeInner = 1e-10;   // [s]
+constexpr double kSpikeGrowth = 4.0;
+
+// exp(M) of a 2x2 matrix in closed form: M = s I + N with tr N = 0, N^2 = q2 I.
+Mat2 expm2(const Mat2& M) {
+    const double s = 0.5 * (M(0, 0) + M(1, 1));
+    Mat2 N = M;
+    N(0, 0) -= s;
+    N(1, 1) -= s;
+    const double q2 = N(0, 0) * N(0, 0) + N(0, 1) * N(1, 0);
+    double c, sq;   // e^s cosh(q) and e^s sinh(q)/q (or cos, sin for q2 < 0)
+    if (std::abs(q2) < 1e-8) {
+        const double es = std::exp(s);
+        c = es * (1.0 + q2 / 2.0 + q2 * q2 / 24.0);
+        sq = es * (1.0 + q2 / 6.0 + q2 * q2 / 120.0);
+    } else if (q2 > 0) {
+        // Written as exponentials of s +/- q: a stiff friction gives s ~ -q, large, and cosh(q) alone overflows.
+        const double q = std::sqrt(q2);
+        const double ep = std::exp(s + q), em = std::exp(s - q);
+        c = 0.5 * (ep + em);
+        sq = 0.5 * (ep - em) / q;
+    } else {
+        const double q = std::sqrt(-q2), es = std::exp(s);
+        c = es * std::cos(q);
+        sq = es * std::sin(q) / q;
+    }
+    return c * Mat2::Identity() + sq * N;
+}
+
+double scaled_max(const Mat2& E) {
+    // D E D^-1 with D = diag(1/xs, 1/vs): the propagator in the scaled variables.
+    constexpr double xs = 1e-2, vs = 1e-1;
+    return std::max({std::abs(E(0, 0)), std::abs(E(0, 1)) * vs / xs, std::abs(E(1, 0)) * xs / vs, std::abs(E(1, 1))});
+}
+
+}  // namespace
+
+double acceleration(const Params& p, const Drive& d, double t, double x, double v) {
+    const ForceTerms f = force_terms(p, t, x, v, d.phi(t), d.omega(t), d.alpha(t));
+    double F = f.net();
+    if (p.input_gain != 0.0) F += p.input_gain * d.input(t);
+    return F / p.m;
+}
+
+Mat2 jacobian(const Params& p, const Drive& d, double t, double x, double v) {
+    double dFdx = -spring_magnet(p, x).dF, dFdv = -resistance(p, v).dF;
+    if (p.compliant() && x > p.xI) {
+        const double h = x - p.xI;
+        const ContactForce c = p.impact->contact(p.ip.data(), h, v);
+        dFdx -= c.dF_dh;
+        // The law hands the integrator a bounded secant slope in h' (MODEL.md); the tangent needs the true
+        // one, so it is taken here by central differences of the force itself.
+        const double dv = 1e-6 * std::abs(v) + 1e-12;
+        const double Fp = p.impact->contact(p.ip.data(), h, v + dv).F, Fm = p.impact->contact(p.ip.data(), h, v - dv).F;
+        dFdv -= (Fp - Fm) / (2.0 * dv);
+    }
+    if (!p.effects.empty()) {
+        const ForceContext ctx{t, x, v, d.phi(t), d.omega(t), d.alpha(t), p.m0e, p.xI};
+        for (const auto& e : p.effects) {
+            const EffectForce f = e.law->force(e.p.data(), ctx);
+            dFdx += f.dF_dx;
+            dFdv += f.dF_dv;
+        }
+    }
+    Mat2 A;
+    A << 0.0, 1.0, dFdx / p.m, dFdv / p.m;
+    return A;
+}
+
+void TangentTracker::on_piece(const Piece& piece) {
+    if (piece.regime != Regime::Free || !piece.step) return;   // held: Phi is carried by the saltation
+    const Vec2 y1 = piece.at(piece.t1);
+    max_x = std::max(max_x, y1[0]);
+    const Vec2 y0 = piece.at(piece.t0);
+    if (y0[1] > 0 && y1[1] < 0) {   // a turning point inside: bisect v = 0 on the dense output
+        double a = piece.t0, b = piece.t1;
+        for (int i = 0; i < 60; ++i) {
+            const double m = 0.5 * (a + b);
+            (piece.at(m)[1] > 0 ? a : b) = m;
+        }
+        max_x = std::max(max_x, piece.at(0.5 * (a + b))[0]);
+    }
+    if (p_.compliant()) {
+        const bool inside = piece.at(0.5 * (piece.t0 + piece.t1))[0] > p_.xI;
+        if (inside && !inside_) ++impacts;
+        inside_ = inside;
+    }
+    if (!tangent_ || piece.t1 <= piece.t0) return;
+
+    // Zeros of v inside the piece: the friction spike (and the Hunt-Crossley damping's infinite slope).
+    std::array<double, 8> zeros{};
+    int nz = 0;
+    constexpr int kScan = 8;
+    double ta = piece.t0, va = y0[1];
+    for (int k = 1; k <= kScan && nz < 8; ++k) {
+        const double tb = piece.t0 + (piece.t1 - piece.t0) * k / kScan;
+        const double vb = piece.at(tb)[1];
+        if ((va < 0) != (vb < 0) && va != 0) {
+            double a = ta, b = tb;
+            for (int i = 0; i < 80 && b - a > 0; ++i) {
+                const double m = 0.5 * (a + b);
+                if (m <= a || m >= b) break;
+                ((piece.at(m)[1] < 0) == (va < 0) ? a : b) = m;
+            }
+            zeros[static_cast<std::size_t>(nz++)] = 0.5 * (a + b);
+        }
+        ta = tb;
+        va = vb;
+    }
+    double t = piece.t0;
+    for (int z = 0; z <= nz; ++z) {
+        const double tz = z < nz ? zeros[static_cast<std::size_t>(z)] : piece.t1;
+        if (z < nz) {
+            // Outward-graded steps from t up to the zero: largest first, then ever smaller.
+            double tau = kSpikeInner;
+            while (tz - tau * kSpikeGrowth > t) tau *= kSpikeGrowth;
+            while (tau >= kSpikeInner && tz - tau > t) {
+                propagate(piece, t, tz - tau);
+                t = tz - tau;
+                tau /= kSpikeGrowth;
+            }
+            const double next = z + 1 < nz ? zeros[static_cast<std::size_t>(z + 1)] : piece.t1;
+            const double te = std::min(tz + kSpikeInner, 0.5 * (tz + next));
+            propagate_across_zero(piece, t, te);
+            t = te;
+            // And graded outwards after it, up to the next zero or the end.
+            tau = kSpikeGrowth * kSpikeInner;
+            while (tz + tau < next) {
+                propagate(piece, t, tz + tau);
+                t = tz + tau;
+                tau *= kSpikeGrowth;
+            }
+        } else if (t < tz) {
+            propagate(piece, t, tz);
+            t = tz;
+        }
+    }
+}
+
+void TangentTracker::propagate(const Piece& piece, double a, double b) {
+    // Magnus order 4 (two Gauss points), step halving until the step and its two halves agree.
+    struct Frame { double a, b; int depth; };
+    std::array<Frame, kMaxDepth + 2> stack{};
+    int top = 0;
+    stack[0] = {a, b, 0};
+    constexpr double g = 0.28867513459481287;   // sqrt(3)/6
+    auto magnus = [&](double ta, double tb) {
+        const double h = tb - ta, tm = 0.5 * (ta + tb);
+        const double t1 = tm - g * h, t2 = tm + g * h;
+        const Vec2 y1 = piece.at(t1), y2 = piece.at(t2);
+        const Mat2 A1 = jacobian(p_, d_, t1, y1[0], y1[1]), A2 = jacobian(p_, d_, t2, y2[0], y2[1]);
+        const Mat2 Om = 0.5 * h * (A1 + A2) + (std::sqrt(3.0) / 12.0) * h * h * (A2 * A1 - A1 * A2);
+        return expm2(Om);
+    };
+    // Depth-first, left to right: each accepted interval is applied in time order.
+    while (top >= 0) {
+        const Frame f = stack[static_cast<std::size_t>(top--)];
+        const double m = 0.5 * (f.a + f.b);
+        const Mat2 full = magnus(f.a, f.b);
+        const Mat2 half = magnus(m, f.b) * magnus(f.a, m);
+        if (f.depth >= kMaxDepth || m <= f.a || m >= f.b || scaled_max(full - half) <= kStepTol) {
+            Phi = half * Phi;
+            continue;
+        }
+        stack[static_cast<std::size_t>(++top)] = {m, f.b, f.depth + 1};
+        stack[static_cast<std::size_t>(++top)] = {f.a, m, f.depth + 1};
+    }
+}
+
+void TangentTracker::propagate_across_zero(const Piece& piece, double a, double b) {
+    // The innermost interval around a zero of v, where the v-slopes are singular (|h'|^(n3-1) of the
+    // Hunt-Crossley damping) or a spike (the smoothed friction). Over so short an interval v is linear in t
+    // and x constant, so the integral of dF/dv dt is exactly dt times the secant slope (F(v_b) - F(v_a)) /
+    // (v_b - v_a): the integrable singularity enters with its true weight, which no quadrature rule at
+    // points inside the interval could give.
+    const double tm = 0.5 * (a + b), h = b - a;
+    const Vec2 ym = piece.at(tm);
+    const double va = piece.at(a)[1], vb = piece.at(b)[1];
+    Mat2 A = jacobian(p_, d_, tm, ym[0], ym[1]);
+    if (vb != va) {
+        auto Fv = [&](double v) {
+            double F = resistance(p_, v).F;
+            if (p_.compliant() && ym[0] > p_.xI) F += p_.impact->contact(p_.ip.data(), ym[0] - p_.xI, v).F;
+            return F;
+        };
+        // Replace the pointwise friction and contact slopes by their secant; effects keep their own slope.
+        double point = resistance(p_, ym[1]).dF;
+        if (p_.compliant() && ym[0] > p_.xI) {
+            const double dv = 1e-6 * std::abs(ym[1]) + 1e-12;
+            point += (p_.impact->contact(p_.ip.data(), ym[0] - p_.xI, ym[1] + dv).F -
+                      p_.impact->contact(p_.ip.data(), ym[0] - p_.xI, ym[1] - dv).F) / (2 * dv);
+        }
+        A(1, 1) += (point - (Fv(vb) - Fv(va)) / (vb - va)) / p_.m;
+    }
+    Phi = expm2(h * A) * Phi;
+}
+
+void TangentTracker::on_section(const SectionPoint& sp) {
+    if (sections) sections->emplace_back(sp.x, sp.v);
+}
+
+void TangentTracker::on_impact(const ImpactEvent& ev) {
+    ++impacts;
+    min_impact_speed = std::min(min_impact_speed, ev.v_minus);
+    t_hit_ = ev.t;
+    v_minus_ = ev.v_minus;
+    v_plus_ = ev.v_plus;
+    if (tangent_ && ev.duration == 0.0) apply_impact_saltation(ev.t, ev.v_minus, ev.t, ev.v_plus);
+}
+
+void TangentTracker::on_regime(double t, Regime from, Regime to) {
+    if (to == Regime::Contact) contact = true;
+    if (!tangent_) return;
+    // Regime III holds the cart at (xI, 0) and releases it when N(t), a function of time alone, crosses
+    // zero: nothing of the initial perturbation survives it.
+    if (to == Regime::Contact || from == Regime::Contact) Phi.setZero();
+    else if (from == Regime::Sticking && to == Regime::Free) apply_impact_saltation(t_hit_, v_minus_, t, v_plus_);
+}
+
+void TangentTracker::apply_impact_saltation(double t_hit, double vm, double t_rel, double vp) {
+    // The perturbed cart hits at t* + dt* (dt* = -dx/v-), with v- + dv-; it is held for T_imp(v-) and leaves
+    // with v+ = -kappa(v-) v-; the perturbation after release is measured on the free branch at the nominal
+    // release time (the release state minus f+ times the release-time shift). For T_imp = 0 this is the
+    // classical S = DR + (f+ - DR f-) e1^T / v-.
+    const double xI = p_.xI;
+    const double am = acceleration(p_, d_, t_hit, xI, vm), ap = acceleration(p_, d_, t_rel, xI, vp);
+    const double hv = 1e-6 * std::max(vm, 1e-3);
+    const auto* law = p_.impact;
+    const double* ip = p_.ip.data();
+    const double kap = law->restitution(ip, vm);
+    const double dkap = (law->restitution(ip, vm + hv) - law->restitution(ip, std::max(vm - hv, 0.0))) /
+                        (vm + hv - std::max(vm - hv, 0.0));
+    const double dT = (law->duration(ip, vm + hv) - law->duration(ip, std::max(vm - hv, 0.0))) /
+                      (vm + hv - std::max(vm - hv, 0.0));
+    const double D = -(kap + dkap * vm);   // dv+/dv-
+    const Eigen::RowVector2d dt_hit(-1.0 / vm, 0.0);
+    const Eigen::RowVector2d dv_minus(-am / vm, 1.0);
+    const Eigen::RowVector2d dt_rel = dt_hit + dT * dv_minus;
+    Mat2 S;
+    S.row(0) = -vp * dt_rel;
+    S.row(1) = D * dv_minus - ap * dt_rel;
+    Phi = S * Phi;
+}
+
+}  // namespace impactlab::analysis::detail

@@ -1,0 +1,53 @@
+// The variational (tangent) equation of the rig, carried along the Simulator's own trajectory.
+//
+// Why this is not a second integrator of the rig: the state (x, v) is never integrated here. TangentTracker
+// is an Observer; the Simulator hands it each accepted piece with its dense output y(t), and the tracker
+// integrates only the linear equation d(Phi)/dt = A(t) Phi with A = df/dy evaluated at that y(t) (Magnus
+// order 4, adaptive). At the events the Simulator reports (impact, end of sticking, permanent contact) the
+// tracker applies the saltation matrix of the impact law. So the trajectory, its events and the sections
+// are exactly the Simulator's, and Phi is their derivative.
+#pragma once
+
+#include <vector>
+
+#include "impactlab/drive.hpp"
+#include "impactlab/params.hpp"
+#include "impactlab/rosenbrock.hpp"
+#include "impactlab/simulator.hpp"
+
+namespace impactlab::analysis::detail {
+
+// Acceleration of Eq. (1) at one instant (free flight; with a compliant bumper's force) [m/s^2].
+double acceleration(const Params& p, const Drive& d, double t, double x, double v);
+// The Jacobian A = df/dy of Eq. (1) at one instant (exact slopes, also the Hunt-Crossley damping's).
+Mat2 jacobian(const Params& p, const Drive& d, double t, double x, double v);
+
+class TangentTracker : public Observer {
+public:
+    TangentTracker(const Params& p, const Drive& d, bool tangent) : p_(p), d_(d), tangent_(tangent) {}
+
+    Mat2 Phi = Mat2::Identity();          // d y(t) / d y(t_start), on the free-flight representation
+    int impacts = 0;                      // rigid impacts and compliant contacts entered
+    double max_x = -1e300;                // [m]
+    double min_impact_speed = 1e300;      // [m/s]
+    bool contact = false;                 // regime III met
+    std::vector<Vec2>* sections = nullptr;   // optional: each section's (x, v) appended
+
+    void on_piece(const Piece& piece) override;
+    void on_section(const SectionPoint& sp) override;
+    void on_impact(const ImpactEvent& ev) override;
+    void on_regime(double t, Regime from, Regime to) override;
+
+private:
+    void propagate(const Piece& piece, double a, double b);
+    void propagate_across_zero(const Piece& piece, double a, double b);
+    void apply_impact_saltation(double t_hit, double v_minus, double t_release, double v_plus);
+
+    const Params& p_;
+    const Drive& d_;
+    bool tangent_;
+    bool inside_ = false;                 // compliant: the last piece ended in contact
+    double t_hit_ = 0, v_minus_ = 0, v_plus_ = 0;   // the impact whose sticking is in progress
+};
+
+}  // namespace impactlab::analysis::detail

@@ -1,0 +1,4 @@
+# Periodic orbits, continuation, Lyapunov exponents, basins (paths relative to tests/).
+set(IMPACTLAB_ANALYSIS_TEST_SOURCES
+  analysis/orbit_test.cpp
+)
