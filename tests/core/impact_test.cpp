@@ -441,3 +441,30 @@ TEST_CASE("Hunt-Crossley with damping (C, C1): slower exit, energy lost = work o
         }
     }
 }
+
+TEST_CASE("a cart resting on a compliant bumper costs few steps (issue 12: it crawled at 2e6 steps/s)") {
+    // The damping factor |h'|^n3 continues linearly below kLinearVelocity, so the force has a finite slope
+    // where the resting cart's h' changes sign; before that 100 s took 8.5e7 steps.
+    struct Case { const char* version; double m0e, omega, duration; std::uint64_t max_steps; };
+    for (const Case c : {Case{"A1C1", 0.1, 0.0833, 100.0, 20000}, Case{"A3C1", 0.25152, 4.0, 50.0, 20000}}) {
+        Params p = make_version(c.version);
+        p.m0e = c.m0e;
+        p.xI = -0.02;
+        const Drive drive(c.omega);
+        Simulator sim;
+        State s;
+        Simulator::make_consistent(p, drive, s);
+        sim.advance(p, drive, s, c.duration);
+        CAPTURE(c.version);
+        CHECK(s.t == c.duration);
+        CHECK(s.x > p.xI);   // it does rest pressed into the bumper
+        CHECK(s.steps < c.max_steps);
+    }
+    // The force is continuous where the linear part meets the power law, and its slope there is finite.
+    const ImpactModel* c1 = find_impact("C1");
+    const double h = 3e-8, vl = 1e-7;   // hunt_crossley::kLinearVelocity
+    const ContactForce below = c1->contact(c1->defaults.data(), h, vl * (1 - 1e-9));
+    const ContactForce above = c1->contact(c1->defaults.data(), h, vl * (1 + 1e-9));
+    CHECK(below.F == doctest::Approx(above.F).epsilon(1e-6));
+    CHECK(std::isfinite(c1->contact(c1->defaults.data(), h, 0.0).dF_dhdot));
+}
