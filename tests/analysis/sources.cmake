@@ -1,4 +1,5 @@
 # Periodic orbits, continuation, Lyapunov exponents, basins (paths relative to tests/).
 set(IMPACTLAB_ANALYSIS_TEST_SOURCES
   analysis/orbit_test.cpp
+  analysis/continuation_test.cpp
 )

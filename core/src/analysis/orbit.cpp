@@ -73,9 +73,10 @@ Floquet floquet(const Mat2& M) {
 }
 
 double left_well(const Params& p) {
-    // F_SA(x) = 0 for x < 0 by bisection between the hilltop and -0.1 m (A1: -10.88 mm).
+    // F_SA(x) = 0 for x < 0 by bisection between the hilltop and -0.1 m (A1: -10.88 mm); a double well has
+    // F_SA > 0 just left of the hilltop (the magnets push the cart away from it).
     double a = -0.1, b = -1e-6;
-    if (spring_magnet(p, b).F >= 0) return 0.0;   // a single well: its bottom is x = 0
+    if (spring_magnet(p, b).F <= 0 || spring_magnet(p, a).F >= 0) return 0.0;   // a single well at x = 0
     for (int i = 0; i < 100; ++i) {
         const double m = 0.5 * (a + b);
         (spring_magnet(p, m).F < 0 ? a : b) = m;

@@ -2,4 +2,5 @@
 set(IMPACTLAB_ANALYSIS_SOURCES
   src/analysis/tangent.cpp
   src/analysis/orbit.cpp
+  src/analysis/continuation.cpp
 )

@@ -13,6 +13,10 @@ namespace {
 // Local-error target of one Magnus substep on the scaled propagator (x / 1 cm, v / 0.1 m/s).
 constexpr double kStepTol = 1e-11;
 constexpr int kMaxDepth = 30;
+// No substep refined below this [s] away from the zeros of v: where the cart creeps (|v| ~ eps, the friction
+// relaxing at ~1e5 1/s) the propagator's fast part has decayed within the substep and what is left of the
+// error cannot be seen in a period's multipliers; without a floor a creeping second would cost 1e6 substeps.
+constexpr double kMinSubstep = 2e-6;
 // Graded mesh around a zero of v: the smoothed friction's slope T eps^2 / (v^2 + eps^2)^1.5 is a spike
 // about eps/|a| ~ 1e-6 s wide that an adaptive rule sampling at Gauss points could step over unseen; the
 // mesh puts substeps of 1e-10 s at the zero and grows them by 4 outwards.
@@ -170,13 +174,16 @@ void TangentTracker::propagate(const Piece& piece, double a, double b) {
         const Mat2 Om = 0.5 * h * (A1 + A2) + (std::sqrt(3.0) / 12.0) * h * h * (A2 * A1 - A1 * A2);
         return expm2(Om);
     };
+    // The floor on substeps is for creeping; a compliant contact's fast dynamics are always resolved.
+    const bool in_contact = p_.compliant() && std::max(piece.at(a)[0], piece.at(b)[0]) > p_.xI;
     // Depth-first, left to right: each accepted interval is applied in time order.
     while (top >= 0) {
         const Frame f = stack[static_cast<std::size_t>(top--)];
         const double m = 0.5 * (f.a + f.b);
         const Mat2 full = magnus(f.a, f.b);
         const Mat2 half = magnus(m, f.b) * magnus(f.a, m);
-        if (f.depth >= kMaxDepth || m <= f.a || m >= f.b || scaled_max(full - half) <= kStepTol) {
+        if (f.depth >= kMaxDepth || (f.b - f.a < kMinSubstep && !in_contact) || m <= f.a || m >= f.b ||
+            scaled_max(full - half) <= kStepTol) {
             Phi = half * Phi;
             continue;
         }

@@ -1,0 +1,425 @@
+// Pseudo-arclength continuation of periodic orbits (fixed points of P^k) in omega, xI or m0e, with test
+// functions for folds (det(M - I)), period doublings (det(M + I)), Neimark-Sacker (det M - 1 with complex
+// multipliers) and grazing (the largest x of the orbit reaching xI, or the smallest impact speed reaching 0),
+// each located by bisection along the arclength; at a period doubling the period-2k branch is switched onto.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+
+#include "impactlab/analysis.hpp"
+
+namespace impactlab::analysis {
+
+const char* cont_param_name(ContParam c) {
+    switch (c) {
+        case ContParam::Omega: return "omega";
+        case ContParam::XI: return "xI";
+        case ContParam::M0e: return "m0e";
+    }
+    return "?";
+}
+
+const char* bif_kind_name(BifKind k) {
+    switch (k) {
+        case BifKind::Fold: return "fold";
+        case BifKind::PeriodDoubling: return "period_doubling";
+        case BifKind::NeimarkSacker: return "neimark_sacker";
+        case BifKind::Grazing: return "grazing";
+    }
+    return "?";
+}
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+constexpr double kResidualTol = 1e-9;   // scaled |P^k(y) - y| of a converged point
+constexpr int kMaxCorrector = 10;
+
+// A converged point of a branch and what the test functions need.
+struct Sol {
+    Vec3 u = Vec3::Zero();          // scaled (x / kXScale, v / kVScale, q / q_scale)
+    MapResult r;                    // at u, with the monodromy
+    Eigen::Matrix<double, 2, 3> J;  // scaled d G / d u (G = scaled P^k(y) - y)
+    int iterations = 0;
+};
+
+class Continuer {
+public:
+    Continuer(const Params& p, const ContinuationSpec& spec, Progress* progress)
+        : base_(p), work_(p), spec_(spec), progress_(progress) {
+        q_scale_ = spec.param == ContParam::Omega ? 1.0 : spec.param == ContParam::XI ? 1e-3 : 1e-3;
+    }
+
+    ContinuationResult run();
+
+private:
+    struct Job { int period; int parent; Vec3 u; Vec3 t; bool both_ways; };
+
+    double q_of(const Vec3& u) const { return u[2] * q_scale_; }
+    Vec2 y_of(const Vec3& u) const { return Vec2(u[0] * kXScale, u[1] * kVScale); }
+    Vec3 u_of(const Vec2& y, double q) const { return Vec3(y[0] / kXScale, y[1] / kVScale, q / q_scale_); }
+
+    // Puts the parameter value q into work_; returns the omega to run at.
+    double apply(double q) {
+        if (spec_.param == ContParam::Omega) return q;
+        if (spec_.param == ContParam::XI) work_.xI = q;
+        else work_.m0e = q;
+        return spec_.omega;
+    }
+
+    MapResult map(const Vec3& u, int k, bool tangent) {
+        const double omega = apply(q_of(u));
+        ++evaluations_;
+        return poincare_map(work_, omega, y_of(u), k, tangent, spec_.sim);
+    }
+
+    Vec2 residual(const MapResult& r, const Vec3& u) const {
+        return Vec2(r.y[0] / kXScale - u[0], r.y[1] / kVScale - u[1]);
+    }
+
+    // Newton on G(u) = 0 and n . (u - u_pred) = 0.
+    bool correct(const Vec3& u_pred, const Vec3& n, int k, Sol& out) {
+        Vec3 u = u_pred;
+        for (int it = 0; it <= kMaxCorrector; ++it) {
+            MapResult r = map(u, k, true);
+            const Vec2 G = residual(r, u);
+            if (!G.allFinite()) return false;
+            Eigen::Matrix<double, 2, 3> J;
+            J(0, 0) = r.M(0, 0) - 1.0;
+            J(0, 1) = r.M(0, 1) * kVScale / kXScale;
+            J(1, 0) = r.M(1, 0) * kXScale / kVScale;
+            J(1, 1) = r.M(1, 1) - 1.0;
+            // d P / d q by a forward difference (one more map; the tangent in the parameter would need the
+            // section time's dependence on omega and the law's on xI).
+            const double dq = 1e-6;
+            Vec3 uq = u;
+            uq[2] += dq;
+            const MapResult rq = map(uq, k, false);
+            J(0, 2) = (rq.y[0] - r.y[0]) / kXScale / dq;
+            J(1, 2) = (rq.y[1] - r.y[1]) / kVScale / dq;
+            const double h = n.dot(u - u_pred);
+            if (G.cwiseAbs().maxCoeff() < kResidualTol && std::abs(h) < 1e-9) {
+                out.u = u;
+                out.r = std::move(r);
+                out.J = J;
+                out.iterations = it;
+                return true;
+            }
+            if (it == kMaxCorrector) break;
+            Mat3 A;
+            A.topRows<2>() = J;
+            A.row(2) = n.transpose();
+            const Vec3 rhs(G[0], G[1], h);
+            const Vec3 du = A.fullPivLu().solve(-rhs);
+            if (!du.allFinite() || du.norm() > 1.0) return false;   // left the neighbourhood of the branch
+            u += du;
+        }
+        return false;
+    }
+
+    static Vec3 tangent_of(const Sol& s, const Vec3& prev) {
+        Vec3 t = Vec3(s.J.row(0).transpose()).cross(Vec3(s.J.row(1).transpose()));
+        if (t.norm() == 0 || !t.allFinite()) return prev;
+        t.normalize();
+        if (t.dot(prev) < 0) t = -t;
+        return t;
+    }
+
+    // Test functions: each changes sign at its bifurcation.
+    double test(BifKind kind, const Sol& s) const {
+        const Mat2& M = s.r.M;
+        switch (kind) {
+            case BifKind::Fold: return (M - Mat2::Identity()).determinant();
+            case BifKind::PeriodDoubling: return (M + Mat2::Identity()).determinant();
+            case BifKind::NeimarkSacker: return M.determinant() - 1.0;
+            case BifKind::Grazing:
+                if (!base_.has_bumper()) return -1.0;
+                if (!work_.has_bumper()) return (s.r.max_x - work_.xI) / kXScale;   // locating a rigid grazing
+                if (work_.rigid() && s.r.impacts > 0) return s.r.min_impact_speed / kVScale;
+                return (s.r.max_x - work_.xI) / kXScale;
+        }
+        return 0;
+    }
+    // Scaled distance between the section point and the one k/2 periods later (0: the orbit has period k/2).
+    double half_gap(const Sol& s, int k) const {
+        if (s.r.sections.size() < static_cast<std::size_t>(k)) return 1.0;
+        return scaled_norm(s.r.sections[static_cast<std::size_t>(k / 2 - 1)] - y_of(s.u));
+    }
+    static bool complex_pair(const Mat2& M) {
+        const double tr = M.trace(), det = M.determinant();
+        return 0.25 * tr * tr - det < 0;
+    }
+
+    BranchPoint point_of(const Sol& s, int k) const {
+        BranchPoint b;
+        b.param = q_of(s.u);
+        b.y = y_of(s.u);
+        b.period = k;
+        b.floquet = floquet(s.r.M);
+        b.stable = b.floquet.stable;
+        b.impacts = s.r.impacts;
+        b.max_x = s.r.max_x;
+        return b;
+    }
+
+    // Bisection along the step from a (with tangent t) to the point at arclength ds.
+    void locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch);
+    void follow(const Job& job, Branch& br);
+
+    bool cancelled() const { return progress_ && progress_->cancel.load(std::memory_order_relaxed); }
+
+    const Params& base_;
+    Params work_;
+    ContinuationSpec spec_;
+    Progress* progress_;
+    double q_scale_ = 1;
+    std::uint64_t evaluations_ = 0;
+    ContinuationResult result_;
+    std::deque<Job> jobs_;
+    double branch_fraction_ = 0;
+};
+
+void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch) {
+    double s_lo = 0, s_hi = ds, f_lo = test(kind, a), f_hi = test(kind, b);
+    Sol lo = a, hi = b;
+    // A rigid grazing is located on the orbit without the bumper, whose largest x is smooth in the parameter
+    // and equals xI exactly at the grazing (on the impacting side the map's derivative grows without bound
+    // and the corrector may fail inside the bracket).
+    const ImpactModel* rigid_law = nullptr;
+    if (kind == BifKind::Grazing && work_.rigid()) {
+        rigid_law = work_.impact;
+        work_.impact = find_impact("none");
+        // Walk along the step (and a little past it) on the bumperless orbit until its largest x passes xI.
+        Sol la, lb;
+        bool bracketed = false;
+        if (correct(a.u, t, k, la)) {
+            double s_prev = 0;
+            for (double sg = ds / 16; sg <= 2 * ds && !bracketed; sg *= 2) {
+                if (!correct(a.u + sg * t, t, k, lb)) break;
+                if (((la.r.max_x - work_.xI) > 0) != ((lb.r.max_x - work_.xI) > 0)) {
+                    bracketed = true;
+                    s_lo = s_prev;
+                    s_hi = sg;
+                } else {
+                    la = lb;
+                    s_prev = sg;
+                }
+            }
+        }
+        if (bracketed) {
+            lo = la;
+            hi = lb;
+            f_lo = test(kind, lo);
+            f_hi = test(kind, hi);
+        } else {
+            work_.impact = rigid_law;
+            rigid_law = nullptr;
+        }
+    }
+    if ((f_lo > 0) == (f_hi > 0)) return;   // nothing bracketed (a rigid grazing the corrector cannot reach)
+    for (int it = 0; it < 80 && std::abs(q_of(hi.u) - q_of(lo.u)) > spec_.locate_tol; ++it) {
+        // Illinois step on the arclength, kept inside the bracket.
+        double s = (f_hi == f_lo) ? 0.5 * (s_lo + s_hi) : s_hi - f_hi * (s_hi - s_lo) / (f_hi - f_lo);
+        const double w = s_hi - s_lo;
+        s = std::clamp(s, s_lo + 0.02 * w, s_hi - 0.02 * w);
+        Sol m;
+        if (!correct(a.u + s * t, t, k, m)) break;
+        const double fm = test(kind, m);
+        if ((fm > 0) == (f_hi > 0)) {
+            s_hi = s;
+            hi = m;
+            f_hi = fm;
+            f_lo *= 0.5;
+        } else {
+            s_lo = s;
+            lo = m;
+            f_lo = fm;
+            f_hi *= 0.5;
+        }
+    }
+    if (rigid_law) work_.impact = rigid_law;
+    const Sol& best = std::abs(f_lo) < std::abs(f_hi) ? lo : hi;
+    BifPoint bp{kind, q_of(best.u), y_of(best.u), k, branch, std::abs(q_of(hi.u) - q_of(lo.u))};
+    result_.points.push_back(bp);
+    if (kind != BifKind::PeriodDoubling || 2 * k > spec_.max_period) return;
+    // Switch onto the period-2k branch: it leaves the period-k orbit along the eigenvector of mu = -1.
+    Eigen::EigenSolver<Mat2> es(best.r.M);
+    int i = std::abs(es.eigenvalues()[0] + 1.0) < std::abs(es.eigenvalues()[1] + 1.0) ? 0 : 1;
+    Vec2 e = es.eigenvectors().col(i).real();
+    e = Vec2(e[0] / kXScale, e[1] / kVScale);
+    if (e.norm() == 0) return;
+    e.normalize();
+    jobs_.push_back({2 * k, branch, best.u, Vec3(e[0], e[1], 0.0), false});
+}
+
+void Continuer::follow(const Job& job, Branch& br) {
+    const int k = job.period;
+    std::vector<BranchPoint> fwd, bwd;
+    std::string end_fwd, end_bwd;
+    const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
+    for (int dir = 0; dir < (job.both_ways ? 2 : 1); ++dir) {
+        auto& pts = dir == 0 ? fwd : bwd;
+        auto& end = dir == 0 ? end_fwd : end_bwd;
+        Vec3 t = dir == 0 ? job.t : Vec3(-job.t);
+        Sol cur;
+        double ds = spec_.ds;
+        if (job.both_ways) {   // the start is a converged point of this branch
+            if (!correct(job.u, t, k, cur)) {
+                end = "the start did not converge";
+                continue;
+            }
+            if (dir == 0) pts.push_back(point_of(cur, k));
+            t = tangent_of(cur, t);
+        } else {               // a switch: the start is the period-doubling point, step off along t
+            cur.u = job.u;
+            cur.r = map(job.u, k, true);
+            pts.push_back(point_of(cur, k));
+        }
+        bool first = !job.both_ways;
+        while (true) {
+            if (cancelled()) {
+                end = "cancelled";
+                break;
+            }
+            if (static_cast<int>(fwd.size() + bwd.size()) >= spec_.max_points) {
+                end = "point limit";
+                break;
+            }
+            Sol next;
+            if (!correct(cur.u + ds * t, t, k, next)) {
+                ds *= 0.5;
+                if (ds < spec_.ds_min) {
+                    end = "Newton failed near " + std::string(cont_param_name(spec_.param)) + " = " +
+                          std::to_string(q_of(cur.u));
+                    // A rigid orbit about to graze: the impacting side is out of the corrector's reach, the
+                    // grazing itself is still located on the bumperless orbit.
+                    const double g = test(BifKind::Grazing, cur);
+                    if (work_.rigid() && g < 0 && g > -0.1) {
+                        locate(BifKind::Grazing, cur, t, 0.05, cur, k, br.id);
+                        end = "grazing (rigid impacts begin)";
+                    }
+                    break;
+                }
+                continue;
+            }
+            // A period-2k branch that shrinks back onto its period-k orbit has reached the other period
+            // doubling of a bubble: stop there (the period-k branch holds the rest).
+            if (k > 1 && job.parent >= 0) {
+                const double gap = half_gap(next, k);
+                if (gap < 1e-5) {
+                    // A collapse from far in one step is a corrector that jumped onto the period-k orbit
+                    // (which P^2k also fixes): retry shorter. A gradual one is the bubble's other end.
+                    if (!first && half_gap(cur, k) > 100 * std::max(gap, 1e-4) && ds > 10 * spec_.ds_min) {
+                        ds *= 0.25;
+                        continue;
+                    }
+                    end = "rejoined the period-" + std::to_string(k / 2) + " branch";
+                    break;
+                }
+            }
+            // Approaching a grazing (the test function falls towards 0): shorten the step so that the
+            // corrector, whose map loses smoothness there, is not thrown across it.
+            if (work_.has_bumper() && !first) {
+                const double g0 = test(BifKind::Grazing, cur), g1 = test(BifKind::Grazing, next);
+                if (g1 < 0 && g1 > g0 && ds > std::max(4 * std::abs(g1), 20 * spec_.ds_min)) {
+                    ds = std::max(2 * std::abs(g1), 10 * spec_.ds_min);
+                    continue;
+                }
+            }
+            const Vec3 t_next = tangent_of(next, t);
+            if (!first) {
+                for (BifKind kind : {BifKind::Fold, BifKind::PeriodDoubling, BifKind::NeimarkSacker, BifKind::Grazing}) {
+                    const double fa = test(kind, cur), fb = test(kind, next);
+                    if (!((fa > 0) != (fb > 0)) || !std::isfinite(fa) || !std::isfinite(fb)) continue;
+                    if (kind == BifKind::NeimarkSacker && !(complex_pair(cur.r.M) && complex_pair(next.r.M))) continue;
+                    locate(kind, cur, t, ds, next, k, br.id);
+                }
+            }
+            first = false;
+            const double q = q_of(next.u);
+            if (q < lo || q > hi) {
+                end = std::string(cont_param_name(spec_.param)) + " range";
+                break;
+            }
+            pts.push_back(point_of(next, k));
+            cur = std::move(next);
+            t = t_next;
+            if (progress_ && dir == 0) {
+                const double f = (q - lo) / (hi - lo);
+                progress_->fraction.store(std::clamp(branch_fraction_ + f / std::max<double>(1, 1 + jobs_.size()), 0.0, 1.0),
+                                          std::memory_order_relaxed);
+            }
+            // Step control: grow after an easy correction, shrink after a hard one.
+            ds = cur.iterations <= 2 ? std::min(ds * 1.5, spec_.ds_max) : cur.iterations >= 5 ? ds * 0.6 : ds;
+        }
+    }
+    br.points.assign(bwd.rbegin(), bwd.rend());
+    br.points.insert(br.points.end(), fwd.begin(), fwd.end());
+    br.end = job.both_ways ? end_bwd + " / " + end_fwd : end_fwd;
+}
+
+ContinuationResult Continuer::run() {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
+    const double q0 = std::isnan(spec_.start) ? lo : spec_.start;
+    // The first orbit: settle from the guess (or the left well's bottom) and polish by Newton.
+    const double omega0 = apply(q0);
+    Vec2 guess = spec_.guess;
+    if (!guess.allFinite()) guess = settle(work_, omega0, Vec2(left_well(work_), 0.0), 200, spec_.sim);
+    OrbitOptions oo;
+    oo.period = spec_.period;
+    oo.sim = spec_.sim;
+    const Orbit o = find_orbit(work_, omega0, guess, oo);
+    if (!o.converged) {
+        result_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        Branch b;
+        b.end = "no periodic orbit of period " + std::to_string(spec_.period) + " found at the start: " + o.message;
+        result_.branches.push_back(b);
+        return std::move(result_);
+    }
+    jobs_.push_back({spec_.period, -1, u_of(o.y, q0), Vec3(0, 0, 1), q0 > lo && q0 < hi});
+    if (!(q0 > lo && q0 < hi) && q0 >= hi) jobs_.back().t = Vec3(0, 0, -1);
+    while (!jobs_.empty() && static_cast<int>(result_.branches.size()) < spec_.max_branches) {
+        const Job job = jobs_.front();
+        jobs_.pop_front();
+        if (cancelled()) {
+            result_.cancelled = true;
+            break;
+        }
+        // A period doubling that an earlier period-2k branch already reached (the far end of a bubble).
+        bool known = false;
+        for (const auto& b : result_.branches)
+            if (b.period == job.period)
+                for (const auto& pt : b.points)
+                    if (std::abs(pt.param / q_scale_ - job.u[2]) < 0.3 &&
+                        scaled_norm(pt.y - y_of(job.u)) < 0.3) known = true;
+        if (known) continue;
+        Branch br;
+        br.id = static_cast<int>(result_.branches.size());
+        br.period = job.period;
+        br.parent = job.parent;
+        follow(job, br);
+        result_.branches.push_back(std::move(br));
+        branch_fraction_ += (1.0 - branch_fraction_) / static_cast<double>(1 + jobs_.size());
+    }
+    if (cancelled()) result_.cancelled = true;
+    std::sort(result_.points.begin(), result_.points.end(),
+              [](const BifPoint& a, const BifPoint& b) { return a.param < b.param; });
+    result_.map_evaluations = evaluations_;
+    result_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (progress_) progress_->fraction.store(1.0, std::memory_order_relaxed);
+    return std::move(result_);
+}
+
+}  // namespace
+
+ContinuationResult continue_orbits(const Params& p, const ContinuationSpec& spec, Progress* progress) {
+    Continuer c(p, spec, progress);
+    return c.run();
+}
+
+}  // namespace impactlab::analysis
