@@ -3,4 +3,5 @@ set(IMPACTLAB_ANALYSIS_SOURCES
   src/analysis/tangent.cpp
   src/analysis/orbit.cpp
   src/analysis/continuation.cpp
+  src/analysis/lyapunov.cpp
 )
