@@ -189,7 +189,7 @@ TEST_CASE("JSON: values out of range are refused, naming the key") {
     const std::string mass = error_of_text(R"({"base": "A1H", "m": -2})");
     CAPTURE(mass);
     CHECK(contains(mass, "'m'"));
-    CHECK(contains(mass, "positive"));
+    CHECK(contains(mass, "[0.001, 10000] kg"));
     const std::string kappa = error_of_text(R"({"base": "A1H", "impact": {"model": "H", "kappa0": 1.3}})");
     CAPTURE(kappa);
     CHECK(contains(kappa, "impact.kappa0"));
@@ -199,6 +199,34 @@ TEST_CASE("JSON: values out of range are refused, naming the key") {
     CHECK(contains(error_of_text(R"({"base": "A1H", "eps": 0})"), "'eps'"));
     CHECK(contains(error_of_text(R"({"base": "A1H", "xI": 1.0})"), "'xI'"));
     CHECK(contains(error_of_text(R"({"base": "A1C", "impact": {"model": "C", "kI": -5}})"), "impact.kI"));
+}
+
+TEST_CASE("JSON: magnitudes that stalled the integrator are refused with the key and the range (issue 12)") {
+    struct Case { const char* text; const char* key; const char* why; };
+    const Case cases[] = {
+        {R"({"base": "A1G", "m": 1e-20})", "'m'", "[0.001, 10000] kg"},
+        {R"({"base": "A1G", "m": 1e-12})", "'m'", "[0.001, 10000] kg"},
+        {R"({"base": "A1H", "eps": 1e-300})", "'eps'", "[1e-09, 0.01] m/s"},
+        {R"({"base": "A1H", "eps": 1e-20})", "'eps'", "[1e-09, 0.01] m/s"},
+        {R"({"base": "A1C1", "impact": {"model": "C1", "b": 1e308}})", "impact.b", "[0, 10000]"},
+        {R"({"base": "A1C", "impact": {"model": "C", "n2": 1e-12}})", "impact.n2", "[1, 3]"},
+        {R"({"base": "A1H", "effects": [{"id": "stribeck_friction", "Fs": 1e308, "vs": 0.01}]})", "effects.stribeck_friction",
+         "no law on the rig exceeds"},
+        {R"({"base": "A1H", "effects": [{"id": "unexplained_phi", "a1": 0, "b1": 0, "a2": 0, "b2": 9e18, "a3": 0, "b3": 0}]})", "effects.unexplained_phi",
+         "no law on the rig exceeds"},
+        {R"({"base": "A1H", "a": [1e12]})", "'a'", "no law on the rig exceeds"},
+        {R"({"base": "A1H", "m0e": 50})", "'m0e'", "[0, 10] kg m"},
+    };
+    for (const Case& c : cases) {
+        const std::string msg = error_of_text(c.text);
+        CAPTURE(c.text);
+        CAPTURE(msg);
+        CHECK(contains(msg, c.key));
+        CHECK(contains(msg, c.why));
+    }
+    // The edges of the ranges are accepted.
+    CHECK_NOTHROW(params_from_json_text(R"({"base": "A1H", "m": 0.001, "eps": 1e-9})", "edge.json"));
+    CHECK_NOTHROW(params_from_json_text(R"({"base": "A1C", "impact": {"model": "C", "n1": 3, "n3": 2}})", "edge.json"));
 }
 
 TEST_CASE("JSON: unknown impact model, base version and effect id are named") {

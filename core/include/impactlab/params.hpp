@@ -172,7 +172,19 @@ const EffectLaw* find_effect(const std::string& id);
 Params make_version(const std::string& name);
 // All XY combinations, paper's versions first.
 std::vector<std::string> version_names();
-// Checks every value (finite, signs, ranges); throws ParamError naming `source` and the key.
+// The physically meaningful range of a parameter: validate refuses values outside it, naming key and range
+// (`impactlab models` prints the table). Keys are the JSON keys; "impact.X" for the impact law's.
+struct ParamRange {
+    const char* key;
+    double lo, hi;
+    const char* unit;
+    const char* why;
+};
+const std::vector<ParamRange>& param_ranges();
+// The largest force any law (stiffness, bumper, effect) may exert on the rail |x| <= 0.1 m at |v| <= 10 m/s
+// and omega <= 1000 rad/s [N]: a law beyond it is a typo or a unit slip, and would make the equations stall.
+inline constexpr double kMaxLawForce = 1e8;
+// Checks every value (finite, signs, ranges, forces); throws ParamError naming `source` and the key.
 void validate(const Params& p, const std::string& source = "parameters");
 // Value of an impact-law parameter by name; throws ParamError if the law has no such parameter.
 double impact_param(const Params& p, const std::string& key);
