@@ -312,6 +312,7 @@ void App::drain_samples() {
 }
 
 void App::poll_bifurcation() {
+    if (const std::string err = bif_.take_error(); !err.empty()) toast("bifurcation diagram failed: " + err);
     if (auto d = bif_.take_result()) {
         if (!d->points.empty()) {
             diagram_ = std::move(*d);

@@ -1,5 +1,8 @@
 #include "bifurcation_job.hpp"
 
+#include <string>
+#include <utility>
+
 namespace impactlab::gui {
 
 const char* bif_protocol_name(BifProtocol p) {
@@ -32,6 +35,8 @@ void BifurcationJob::start(const BifRequest& req) {
     Progress* prog = progress_.get();
     thread_ = std::thread([this, req, prog] {
         Diagram d;
+        std::string error;
+        try {
         if (req.protocol == BifProtocol::Ef) {
             EfSpec spec;
             spec.omega_max = req.omega_max;
@@ -47,12 +52,21 @@ void BifurcationJob::start(const BifRequest& req) {
             spec.direction = req.protocol == BifProtocol::CfUp ? SweepDirection::Up : SweepDirection::Down;
             d = run_cf_sweep(req.params, spec, prog);
         }
+        } catch (const std::exception& e) {   // a stalled run (SimulationStalled): reported, not fatal
+            error = e.what();
+        }
         {
             std::lock_guard<std::mutex> lock(mutex_);
-            result_ = std::move(d);
+            if (error.empty()) result_ = std::move(d);
+            else error_ = std::move(error);
         }
         running_.store(false, std::memory_order_release);
     });
+}
+
+std::string BifurcationJob::take_error() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return std::exchange(error_, std::string());
 }
 
 std::optional<Diagram> BifurcationJob::take_result() {

@@ -43,6 +43,8 @@ public:
     double progress() const { return progress_ ? progress_->fraction.load(std::memory_order_relaxed) : 0.0; }
     // UI thread. The finished diagram, once (then empty until the next job finishes).
     std::optional<Diagram> take_result();
+    // UI thread. Why the last job failed, once ("" if it did not).
+    std::string take_error();
 
 private:
     void join();
@@ -51,6 +53,7 @@ private:
     std::atomic<bool> running_{false};
     std::mutex mutex_;                 // guards result_ (handed over whole, once)
     std::optional<Diagram> result_;
+    std::string error_;
 };
 
 }  // namespace impactlab::gui

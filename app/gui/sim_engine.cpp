@@ -1,6 +1,7 @@
 #include "sim_engine.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -197,7 +198,14 @@ double SimEngine::advance_to(double t_end, std::chrono::steady_clock::time_point
     if (stepping_) t_end = std::min(t_end, step_target_);
     if (t_end > s_.t) {
         Tap tap(*this, deadline);
-        sim_.advance(p_, d_, s_, t_end, &tap);
+        try {
+            sim_.advance(p_, d_, s_, t_end, &tap);
+        } catch (const SimulationStalled& e) {
+            // Never with the built-in versions; a stall pauses the run (the state stays inspectable).
+            std::fprintf(stderr, "impactlab-gui: %s; paused\n", e.what());
+            paused_ = true;
+            stepping_ = false;
+        }
     }
     if (stepping_ && s_.t >= step_target_) stepping_ = false;   // stays paused
     return s_.t;

@@ -1,13 +1,21 @@
 #include "impactlab/simulator.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <sstream>
 
 #include "impactlab/forces.hpp"
 
 namespace impactlab {
+
+namespace {
+const char* regime_words(Regime r) {
+    return r == Regime::Free ? "free flight" : r == Regime::Sticking ? "sticking at the bumper" : "permanent contact";
+}
+}  // namespace
 
 const char* regime_name(Regime r) {
     switch (r) {
@@ -197,6 +205,7 @@ bool Simulator::step(const Params& p, const Drive& d, State& s, double t_limit, 
 
     if (s.regime == Regime::Free) {
         free_step(p, d, s, t_stop, obs);
+        if (s.steps + s.rejected - s.steps_mark >= kStallWindow) check_step_budget(s);
     } else {
         hold_step(p, d, s, t_stop, obs);
     }
@@ -208,12 +217,47 @@ bool Simulator::step(const Params& p, const Drive& d, State& s, double t_limit, 
     return true;
 }
 
+void Simulator::check_step_budget(State& s) const {
+    const std::uint64_t done = s.steps + s.rejected;
+    const double advanced = s.t - s.t_mark;
+    // A state moved back in time (a reset) or a fresh mark only restarts the count.
+    if (advanced >= 0 && s.steps_mark != 0 &&
+        advanced * tol_.max_step_rate < static_cast<double>(done - s.steps_mark)) {
+        std::ostringstream msg;
+        msg << "simulation stalled in regime " << regime_name(s.regime) << " (" << regime_words(s.regime)
+            << ") at t = " << s.t << " s, x = " << s.x << " m, v = " << s.v << " m/s: " << (done - s.steps_mark)
+            << " steps advanced only " << advanced << " s (step size " << s.h
+            << " s); the equations are too stiff or discontinuous there: look at m, eps, the impact law and "
+               "the effects' sizes";
+        throw SimulationStalled(msg.str());
+    }
+    s.t_mark = s.t;
+    s.steps_mark = done;
+}
+
 void Simulator::advance(const Params& p, const Drive& d, State& s, double t_end, Observer* obs) {
     fsal_valid_ = false;
     in_advance_ = true;
-    while (s.t < t_end) {
-        if (!step(p, d, s, t_end, obs)) break;
-        if (obs && obs->stop()) break;
+    const auto wall_start = std::chrono::steady_clock::now();
+    std::uint32_t pieces = 0;
+    try {
+        while (s.t < t_end) {
+            if (!step(p, d, s, t_end, obs)) break;
+            if (obs && obs->stop()) break;
+            if (tol_.max_wall_s > 0 && (++pieces & 0xFFFu) == 0) {
+                const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+                if (wall > tol_.max_wall_s) {
+                    std::ostringstream msg;
+                    msg << "simulation ran past its wall-clock budget of " << tol_.max_wall_s << " s in regime "
+                        << regime_name(s.regime) << " (" << regime_words(s.regime) << ") at t = " << s.t
+                        << " s of " << t_end << " s (step size " << s.h << " s, " << s.steps << " steps)";
+                    throw SimulationStalled(msg.str());
+                }
+            }
+        }
+    } catch (...) {
+        in_advance_ = false;
+        throw;
     }
     in_advance_ = false;
 }

@@ -479,3 +479,45 @@ TEST_CASE("move_bumper: a bumper moved onto the cart pushes it back to the conta
     CHECK(s.x == 0.0);
     CHECK(s.v == 0.0);
 }
+
+TEST_CASE("budgets: a stalled run ends in SimulationStalled naming the regime, t and the step size") {
+    // Parameters no validation would pass (eps = 1e-300; m = 1e-20 on a compliant bumper): before the budget the
+    // step loop spun forever at h_min.
+    for (const int which : {1, 2, 3}) {
+        Params p = make_version(which < 2 ? "A1H" : "A1C");
+        if (which % 2 == 0) p.m = 1e-20;
+        else p.eps = 1e-300;
+        const Drive drive(10.0);
+        Simulator sim;
+        State s;
+        s.x = 0.001;
+        Simulator::make_consistent(p, drive, s);
+        std::string msg;
+        try {
+            sim.advance(p, drive, s, 10.0);
+        } catch (const SimulationStalled& e) {
+            msg = e.what();
+        }
+        CAPTURE(which);
+        CAPTURE(s.t);
+        CAPTURE(s.steps);
+        CAPTURE(msg);
+        CHECK(msg.find("stalled in regime I (free flight)") != std::string::npos);
+        CHECK(msg.find("at t = ") != std::string::npos);
+        CHECK(msg.find("step size") != std::string::npos);
+        CHECK(s.steps + s.rejected < 4 * kStallWindow);   // caught within two windows
+    }
+    // The same check on a legal run with a budget it cannot meet: the budget is what throws.
+    const Params p = make_version("A1C");
+    Tolerances tight_budget;
+    tight_budget.max_step_rate = 10.0;
+    Simulator sim(tight_budget);
+    State s;
+    CHECK_THROWS_AS(sim.advance(p, Drive(10.0), s, 1e5), SimulationStalled);
+    // A wall-clock budget ends a long run the same way.
+    Tolerances wall;
+    wall.max_wall_s = 0.05;
+    Simulator slow(wall);
+    State w;
+    CHECK_THROWS_WITH_AS(slow.advance(p, Drive(10.0), w, 1e7), doctest::Contains("wall-clock budget"), SimulationStalled);
+}

@@ -31,7 +31,12 @@ struct Tolerances {
     double x_scale = 1e-2;   // [m]
     double v_scale = 1e-1;   // [m/s]
     double h_max = 0.5;      // [s]
-    double h_min = 1e-14;    // [s] below this a step is forced through (never hangs)
+    double h_min = 1e-14;    // [s] below this a step is forced through
+    // Budgets (Simulator throws SimulationStalled past them): a run that needs more than max_step_rate
+    // steps per simulated second over kStallWindow steps is stalled, not slow (the stiffest legal run, C1
+    // hammering, needs ~1e5); max_wall_s > 0 caps the wall-clock time of one advance() call.
+    double max_step_rate = 1e7;   // [steps / simulated s]
+    double max_wall_s = 0;        // [s], 0: no limit
 };
 
 // One step of either method with its error estimate and a cubic dense output

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <stdexcept>
 
 #include "impactlab/drive.hpp"
 #include "impactlab/params.hpp"
@@ -28,7 +29,14 @@ struct State {
     std::int64_t next_section = 1;       // i of the next Poincare section phi = 2 pi i
     std::int8_t side = 0;                // compliant bumper: +1 in contact, -1 clear, 0 unknown
     std::uint64_t steps = 0, rejected = 0, impacts = 0;
+    double t_mark = 0;                   // the step budget's last checkpoint: time and steps + rejected there
+    std::uint64_t steps_mark = 0;
 };
+
+// A run that exceeded its step or wall-clock budget (Tolerances): the message names the regime, t and the
+// step size, and what to look at. Thrown by Simulator::step/advance on the simulating thread.
+struct SimulationStalled : std::runtime_error { using std::runtime_error::runtime_error; };
+inline constexpr std::uint64_t kStallWindow = 1u << 16;   // steps between two checks of the step budget
 
 struct SectionPoint { std::int64_t n; double t, x, v; Regime regime; };
 struct ImpactEvent { double t, v_minus, v_plus, duration; };
@@ -73,15 +81,17 @@ public:
     static void sync_sections(const Drive& d, State& s);
 
     // One piece: an accepted integration step, a located event, or a stretch held at the bumper; never
-    // past t_limit. Returns false if nothing could be done (t_limit reached).
+    // past t_limit. Returns false if nothing could be done (t_limit reached). Throws SimulationStalled
+    // past the step budget.
     bool step(const Params& p, const Drive& d, State& s, double t_limit, Observer* obs = nullptr);
-    // Steps until s.t == t_end or the observer asks to stop.
+    // Steps until s.t == t_end or the observer asks to stop. Throws SimulationStalled past the budgets.
     void advance(const Params& p, const Drive& d, State& s, double t_end, Observer* obs = nullptr);
 
 private:
     bool free_step(const Params& p, const Drive& d, State& s, double t_stop, Observer* obs);
     void hold_step(const Params& p, const Drive& d, State& s, double t_stop, Observer* obs);
     void release(const Params& p, const Drive& d, State& s, double v_plus, Observer* obs);
+    void check_step_budget(State& s) const;
     Tolerances tol_;
     DenseStep work_, retry_;
     // First-same-as-last cache of the explicit method: f at (fsal_t_, fsal_y_).

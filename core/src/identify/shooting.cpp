@@ -46,7 +46,11 @@ void run(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, double 
     const Drive& drive = pr.drive_of(i0);
     Simulator::make_consistent(m.p, drive, s);
     Collect c(drive, pr.dt, d.t[i0], out, i1 - i0 + 1);
-    sim.advance(m.p, drive, s, d.t[i1] + 0.5 * pr.dt, &c);
+    try {
+        sim.advance(m.p, drive, s, d.t[i1] + 0.5 * pr.dt, &c);
+    } catch (const SimulationStalled&) {
+        return;   // a trial model the integrator cannot run: NaN from the stall on, an infinite error
+    }
     // Samples the sampler could not reach (rounding at the end) repeat the last state.
     for (std::size_t k = c.filled(); k < out.size(); ++k) out[k] = k ? out[k - 1] : s.x;
 }
@@ -275,7 +279,11 @@ std::vector<std::pair<double, double>> free_run_sections(const Prep& pr, const M
         Simulator::make_consistent(m.p, drive, s);
         const std::size_t before = out.size();
         Sections obs(drive, out);
-        sim.advance(m.p, drive, s, d.t[last], &obs);
+        try {
+            sim.advance(m.p, drive, s, d.t[last], &obs);
+        } catch (const SimulationStalled&) {
+            // the sections up to the stall are what this model gives
+        }
         for (std::size_t k = before; k < out.size(); ++k) out[k].second = g * out[k].second + o;
     }
     return out;
