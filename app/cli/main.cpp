@@ -20,6 +20,9 @@ const std::vector<Command>& commands() {
         {"fit", "close the loop with measured data: residual, missing effect, model with it, error before/after", cmd_fit},
         {"synth", "synthetic measured data with effects, sensor noise and quantisation (t,x,phi CSV)", cmd_synth},
         {"recovery", "the recovery matrix: every library effect injected into each version, is it named first?", cmd_recovery},
+        {"orbit", "a periodic orbit by Newton on the k-th Poincare map: section point, Floquet multipliers", cmd_orbit},
+        {"continue", "continuation of periodic orbits: branches, folds, period doublings, grazings (CSV, PNG)", cmd_continue},
+        {"lyapunov", "largest Lyapunov exponent at one omega, or along a CF sweep", cmd_lyapunov},
     };
     return table;
 }

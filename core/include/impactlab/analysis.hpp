@@ -1,6 +1,6 @@
 // Beyond the sweep (issue 9): periodic orbits as fixed points of the k-th Poincare map with their monodromy
-// and Floquet multipliers, pseudo-arclength continuation with bifurcation detection, Lyapunov exponents of
-// the hybrid flow, and basins of attraction.
+// and Floquet multipliers, pseudo-arclength continuation with bifurcation detection, and Lyapunov exponents of
+// the hybrid flow.
 //
 // Every trajectory is the core Simulator's. The monodromy comes from the variational equation
 // d(Phi)/dt = A(t) Phi integrated along the Simulator's accepted pieces (A is the Jacobian of Eq. (1) at the
@@ -171,37 +171,5 @@ struct LyapunovPoint { double omega, lambda_max, lambda_min; int period; };
 // spec.record periods averaged; period = count_period of the recorded section points (as the sweep counts).
 std::vector<LyapunovPoint> lyapunov_sweep(const Params& p, const CfSpec& spec, Progress* progress = nullptr,
                                           const Tolerances& tol = {});
-
-// ---- Basins of attraction ---------------------------------------------------------------------------------
-
-struct BasinSpec {
-    double omega = 13;
-    double x_min = -0.04, x_max = 0.0, v_min = -0.6, v_max = 0.6;   // grid of initial states at phi = 0
-    int nx = 100, ny = 100;
-    int transient = 40;          // periods before the periodicity check starts
-    int max_periods = 240;       // no period <= 16 by then: chaotic (or longer than 16)
-    double tol = 1e-5;           // scaled distance for periodicity and for matching cycles
-    int threads = 0;             // 0: all hardware threads
-    Tolerances sim = [] { Tolerances t; t.rtol = 1e-7; return t; }();
-};
-struct Attractor {
-    int label = 0;
-    int period = 0;              // 0: chaotic (no period <= 16)
-    bool at_bumper = false;      // resting on the bumper
-    std::vector<Vec2> points;    // its section points (a cycle, or a sample of the chaotic cloud)
-    std::string name;            // "period 1, left well", "chaos", ...
-    int cells = 0;
-};
-struct Basins {
-    BasinSpec spec;
-    std::vector<int> label;      // ny rows (v) of nx columns (x): label[j * nx + i]
-    std::vector<Attractor> attractors;
-    bool cancelled = false;
-    double seconds = 0;          // wall time
-    int threads = 1;
-};
-// Each cell runs on its own (any thread count gives the same labels: attractors are matched in grid order
-// after all cells have run).
-Basins compute_basins(const Params& p, const BasinSpec& spec, Progress* progress = nullptr);
 
 }  // namespace impactlab::analysis

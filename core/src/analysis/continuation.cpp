@@ -350,8 +350,9 @@ void Continuer::follow(const Job& job, Branch& br) {
             t = t_next;
             if (progress_ && dir == 0) {
                 const double f = (q - lo) / (hi - lo);
-                progress_->fraction.store(std::clamp(branch_fraction_ + f / std::max<double>(1, 1 + jobs_.size()), 0.0, 1.0),
-                                          std::memory_order_relaxed);
+                const double now = std::clamp(branch_fraction_ + f / std::max<double>(1, 1 + jobs_.size()), 0.0, 1.0);
+                if (now > progress_->fraction.load(std::memory_order_relaxed))   // never backwards
+                    progress_->fraction.store(now, std::memory_order_relaxed);
             }
             // Step control: grow after an easy correction, shrink after a hard one.
             ds = cur.iterations <= 2 ? std::min(ds * 1.5, spec_.ds_max) : cur.iterations >= 5 ? ds * 0.6 : ds;

@@ -1,0 +1,22 @@
+# Command-line behaviour of orbit, continue and lyapunov (issue 9): exit codes, messages naming the flag,
+# the files written (run_cli_test.sh does the checks).
+if(NOT TARGET impactlab)
+  return()
+endif()
+
+foreach(cmd orbit continue lyapunov)
+  impactlab_cli_test(help_${cmd} --rc 0 --match "usage: impactlab ${cmd}" -- ${cmd} --help)
+endforeach()
+impactlab_cli_test(orbit_period1 --rc 0 --match "Floquet multipliers" --match "stable: yes"
+                   --csv orbit.csv "t,x,v,phi" 600 700
+                   -- orbit --model A1C --omega 10 --out orbit.csv)
+impactlab_cli_test(orbit_missing_omega --rc 2 --match "'--omega'" -- orbit --model A1C --out orbit.csv)
+impactlab_cli_test(orbit_bad_from --rc 2 --match "'--from'" -- orbit --model A1C --omega 10 --from 1 --out o.csv)
+impactlab_cli_test(continue_short --rc 0 --match "period_doubling +omega = 10.86"
+                   --csv out/branches.csv "branch,omega,x,v,period,stable" 3 1000
+                   -- continue --model A1C --omega-min 10 --omega-max 11.5 --max-period 1 --out out)
+impactlab_cli_test(continue_bad_param --rc 2 --match "'--param'" -- continue --param bogus --out out)
+impactlab_cli_test(continue_inverted --rc 2 --match "--omega-max" -- continue --omega-min 12 --omega-max 11 --out out)
+impactlab_cli_test(lyapunov_one --rc 0 --match "lambda_max = " -- lyapunov --model A1G --omega 16 --periods 100)
+impactlab_cli_test(lyapunov_missing_omega --rc 2 --match "'--omega'" -- lyapunov --model A1G)
+impactlab_cli_test(lyapunov_sweep_bogus --rc 2 --match "'--sweep'" -- lyapunov --sweep sideways --out l.csv)
