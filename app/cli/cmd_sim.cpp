@@ -61,6 +61,11 @@ int cmd_models(const std::vector<std::string>& argv) {
     for (std::size_t i = 0; i < names.size(); ++i) std::printf("%s%s", names[i].c_str(), i + 1 < names.size() ? " " : "\n");
     std::printf("\nExtra effects (for parameter files and impactlab fit):\n");
     for (const auto& e : effect_laws()) std::printf("  %-22s %s\n", e.id, e.meaning);
+    std::printf("\nValid ranges (a parameter file outside them is refused, naming the key):\n");
+    for (const auto& r : param_ranges())
+        std::printf("  %-16s [%g, %g] %s  (%s)\n", r.key, r.lo, r.hi, r.unit, r.why);
+    std::printf("  every force law (a, b of F_SA, the bumper at penetrations up to 0.1 mm, each effect) stays within "
+                "%g N on |x| <= 0.1 m, |v| <= 10 m/s, omega <= 1000 rad/s\n", kMaxLawForce);
     return 0;
 }
 

@@ -95,7 +95,7 @@ const std::vector<ParamRange>& param_ranges() {
         {"k", -1e9, 1e9, "N/m", "spring stiffness"},
         {"c", 0.0, 1e6, "N s/m", "viscous resistance"},
         {"T", 0.0, 1e5, "N", "dry rolling resistance"},
-        {"eps", 1e-9, 1e-2, "m/s", "friction smoothing speed (below 1e-9 m/s the friction is a step the integrator cannot resolve)"},
+        {"eps", 1e-9, 1e-2, "m/s", "friction smoothing speed; below 1e-9 m/s friction is a step no integrator resolves"},
         {"xI", -0.1, 0.1, "m", "bumper within the rail's travel"},
         {"input_gain", -1e9, 1e9, "N per unit of u", "input gain"},
         {"impact.kI", 1e-3, 1e14, "N/m^n1", "contact stiffness"},

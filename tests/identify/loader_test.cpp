@@ -10,6 +10,7 @@
 
 #include "impactlab/identify.hpp"
 #include "impactlab/identify_data.hpp"
+#include "shared_data.hpp"
 
 namespace id = impactlab::identify;
 
@@ -164,9 +165,9 @@ TEST_CASE("loader: gzip through zlib: round trip, concatenated members, truncati
     CHECK_THROWS_AS(id::gunzip(id::gzip_stored(mib), "cap.gz", mib.size() - 1), id::DataError);
 }
 
-TEST_CASE("loader: real deflate streams (the shared data files)") {
-    const std::string f = std::string(IMPACTLAB_SHARED_DIR) + "/data/synthetic/s3_noise_only.csv.gz";
-    if (!std::filesystem::exists(f)) return;
+TEST_CASE("loader: real deflate streams (the shared data files)" *
+          doctest::skip(impactlab::test::shared_missing("data/synthetic/s3_noise_only.csv.gz"))) {
+    const std::string f = impactlab::test::shared_path("data/synthetic/s3_noise_only.csv.gz");
     const std::string text = id::read_data_file(f);   // checks the CRC of the whole member
     CHECK(text.rfind("t,x,phi\n0.000000,", 0) == 0);
     CHECK(std::count(text.begin(), text.end(), '\n') == 126002);
@@ -187,4 +188,63 @@ TEST_CASE("noise floor: holds for white noise on a smooth record and on one with
     }
     CHECK(impactlab::identify::estimate_noise(smooth) == doctest::Approx(sigma).epsilon(0.1));
     CHECK(impactlab::identify::estimate_noise(busy) == doctest::Approx(sigma).epsilon(0.15));
+}
+
+TEST_CASE("loader: issue 12's inputs: CR-only lines, 100k columns, scales that overflow, corrupt samples, time units") {
+    // Old Mac line endings: read as lines, not as one header with a repeated name.
+    std::string cr = "t,x,phi\n" + rows(100);
+    std::replace(cr.begin(), cr.end(), '\n', '\r');
+    CHECK(id::parse_measured(cr, "cr.csv").size() == 100);
+
+    // A header of 100k columns is checked for repeats in linear time; a repeat names both columns.
+    std::string wide = "t,x,phi";
+    for (int k = 0; k < 100000; ++k) wide += ",c" + std::to_string(k);
+    wide += "\n";
+    for (const char* row : {"0,0.001,0", "0.001,0.002,0.01"}) {
+        wide += row;
+        for (int k = 0; k < 100000; ++k) wide += ",1";
+        wide += "\n";
+    }
+    id::LoadOptions two;
+    two.min_samples = 2;
+    CHECK(id::parse_measured(wide, "wide.csv", two).size() == 2);
+    const std::string dup = refusal("t,x,phi,x\n" + rows(40));
+    CAPTURE(dup);
+    CHECK(has(dup, "'x' appears twice (columns 2 and 4)"));
+
+    // A scale that overflows is refused at the sample it overflows, not passed on as inf or NaN.
+    id::LoadOptions huge;
+    huge.x_scale = 1e308;
+    const std::string over = refusal("t,x,phi\n" + rows(100), huge);
+    CAPTURE(over);
+    CHECK(has(over, "f.csv: line 3"));
+    CHECK(has(over, "beyond 1e15"));
+    id::LoadOptions tiny;
+    tiny.x_scale = 1e-320;   // every nonzero x underflows to zero
+    const std::string under = refusal("t,x,phi\n" + rows(100), tiny);
+    CAPTURE(under);
+    CHECK(has(under, "not a representable number"));
+
+    // Values no sensor reads, and a single corrupt sample, named with their line.
+    std::string spike = "t,x,phi\n" + rows(200);
+    const std::string bad_row = "0.100000,1e298,1.000000\n";
+    spike.replace(spike.find("0.100000,"), spike.find('\n', spike.find("0.100000,")) + 1 - spike.find("0.100000,"), bad_row);
+    const std::string sp = refusal(spike);
+    CAPTURE(sp);
+    CHECK(has(sp, "line 102"));
+    CHECK(has(sp, "beyond 1e15"));
+    std::string glitch = "t,x,phi\n" + rows(200);
+    glitch.replace(glitch.find("0.100000,"), glitch.find('\n', glitch.find("0.100000,")) + 1 - glitch.find("0.100000,"),
+                   "0.100000,900000,1.000000\n");
+    CHECK(has(refusal(glitch), "times the record's spread"));
+
+    // Time near 1e300 (no longer "cannot create std::vector larger than max_size()"), or nanoseconds as s.
+    std::string far = "t,x,phi\n";
+    for (int i = 0; i < 40; ++i) far += std::to_string(1e300 * (1 + i)) + ",0.001," + std::to_string(0.01 * i) + "\n";
+    const std::string f = refusal(far);
+    CAPTURE(f);
+    CHECK(has(f, "beyond 1e9 s"));
+    id::LoadOptions ns;
+    ns.t_scale = 1e-12;
+    CHECK(has(refusal("t,x,phi\n" + rows(100), ns), "within 1 ns of the previous sample"));
 }

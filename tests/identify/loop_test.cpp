@@ -422,3 +422,37 @@ TEST_CASE("chaotic double well forced by u: the baseline is recovered, stays bis
     CHECK(rf.after.p.input_gain == doctest::Approx(-0.003).epsilon(0.02));
     CHECK(rf.after.p.k == doctest::Approx(-1.0).epsilon(0.02));
 }
+
+TEST_CASE("fit refuses implausible positions with a hint, before any fitting (issue 12)") {
+    id::SynthOptions so = short_run(5);
+    so.duration = 4.0;
+    id::MeasuredData d = id::synthesize(a1h(), so);
+    id::FitOptions fo;
+    fo.plots = false;
+    // Millimetres read as metres: beyond the rail, with the --x-scale hint.
+    id::MeasuredData mm = d;
+    for (double& x : mm.x) x *= 1e3;
+    std::string msg;
+    try {
+        id::run_fit(mm, a1h(), fo);
+    } catch (const id::DataError& e) {
+        msg = e.what();
+    }
+    CAPTURE(msg);
+    CHECK(msg.find("beyond the rail's travel") != std::string::npos);
+    CHECK(msg.find("--x-scale 1e-3") != std::string::npos);
+    // A record that lives beyond the bumper (its sign flipped): another geometry, refused with the options.
+    id::MeasuredData flipped = d;
+    for (double& x : flipped.x) x = -x;
+    msg.clear();
+    try {
+        id::evaluate_model(flipped, a1h(), fo);
+    } catch (const id::DataError& e) {
+        msg = e.what();
+    }
+    CAPTURE(msg);
+    CHECK(msg.find("beyond the bumper at xI = 0") != std::string::npos);
+    CHECK(msg.find("--xI") != std::string::npos);
+    // The same flipped record is fine for a model without a bumper.
+    CHECK_NOTHROW(id::evaluate_model(flipped, id::resolve_fit_model("A1none", id::Forcing::Unbalance), fo));
+}

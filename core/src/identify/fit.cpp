@@ -34,6 +34,49 @@ void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_ite
     least_squares(knobs, eval, step_of, lo, R, &J);
 }
 
+// Measured positions a rig model can describe, or a DataError that says what is wrong and what to try: a
+// position beyond the rail's travel (a unit slip, mm as m) or a record that runs through the bumper.
+void check_plausible(const MeasuredData& data, const Model& m, const FitOptions& o) {
+    if (m.p.stiffness_id == "duffing") return;   // data units: no rail, no bumper
+    constexpr double kRail = 0.1;                // [m] the rail's travel either side of the springs' zero
+    double x_max = 0;
+    std::size_t i_max = 0;
+    for (std::size_t i = 0; i < data.x.size(); ++i)
+        if (std::abs(data.x[i]) > x_max) {
+            x_max = std::abs(data.x[i]);
+            i_max = i;
+        }
+    auto where = [&](std::size_t i) {
+        return data.source + (i < data.line.size() ? ": line " + std::to_string(data.line[i]) : std::string()) + ": ";
+    };
+    if (x_max > kRail) {
+        std::ostringstream msg;
+        msg << where(i_max) << "x = " << data.x[i_max] << " m lies beyond the rail's travel (|x| <= " << kRail << " m)";
+        if (x_max < 1e3 * kRail) msg << "; positions in mm? --x-scale 1e-3";
+        else if (x_max < 1e6 * kRail) msg << "; positions in um? --x-scale 1e-6";
+        else msg << "; check the position column and its unit (--x-col, --x-scale)";
+        throw DataError(msg.str());
+    }
+    const bool xI_fitted = o.fit_baseline && std::find(o.fit_params.begin(), o.fit_params.end(), "xI") != o.fit_params.end();
+    if (!m.p.has_bumper() || xI_fitted) return;
+    // The bumper stops the cart at xI: a few mm of sensor offset or bumper shift are effects the fit looks
+    // for; a record that lives beyond it is another geometry, sign or unit.
+    constexpr double kMargin = 5e-3;   // [m]
+    std::size_t beyond = 0, i_far = 0;
+    for (std::size_t i = 0; i < data.x.size(); ++i)
+        if (data.x[i] > m.p.xI + kMargin) {
+            if (beyond++ == 0 || data.x[i] > data.x[i_far]) i_far = i;
+        }
+    if (beyond > data.x.size() / 100) {
+        std::ostringstream msg;
+        msg << where(i_far) << "x = " << data.x[i_far] << " m: " << beyond << " of " << data.x.size()
+            << " samples lie more than " << kMargin * 1e3 << " mm beyond the bumper at xI = " << m.p.xI
+            << " m, which stops the cart there. Is the bumper elsewhere (--xI, or --baseline fit --fit-params xI), or is "
+               "x's sign or unit wrong (--x-scale -1, 1e-3)?";
+        throw DataError(msg.str());
+    }
+}
+
 // The output-error fit uses samples [a, end]; the rest of the record validates it.
 std::size_t oe_fit_end(const Prep& pr, std::size_t a, std::size_t max_samples) {
     const std::size_t last = pr.run_last(a);   // a free run stays within its run
@@ -1229,6 +1272,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         rep.force_unit = "model force units (m = 1: data units / s^2)";
     }
     validate(model0.p, "model");
+    check_plausible(data, model0, o);
     Prep prep = prepare(data, model0, o, rep.notes);
     prep.progress = progress;
     const Prep& pr = prep;
@@ -1313,6 +1357,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
 ErrorSummary evaluate_model(const MeasuredData& data, const Model& model, const FitOptions& o) {
     std::vector<std::string> notes;
     validate(model.p, "model");
+    check_plausible(data, model, o);
     const Prep pr = prepare(data, model, o, notes);
     ErrorSummary e;
     Eigen::VectorXd R;

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <unordered_map>
 
 #include "impactlab/identify_data.hpp"
 
@@ -105,10 +106,12 @@ MeasuredData parse_measured(std::string_view text, const std::string& src, const
         // Empty names are allowed only at the end (a trailing comma on every line).
         std::size_t named = header.size();
         while (named > 0 && header[named - 1].empty()) --named;
+        std::unordered_map<std::string_view, std::size_t> seen;   // linear in the columns (100k of them)
         for (std::size_t k = 0; k < named; ++k) {
             if (header[k].empty()) fail(src, header_line, "column " + std::to_string(k + 1) + " of the header has no name");
-            for (std::size_t j = 0; j < k; ++j)
-                if (header[j] == header[k]) fail(src, header_line, "column name '" + header[k] + "' appears twice");
+            if (!seen.emplace(header[k], k).second)
+                fail(src, header_line, "column name '" + header[k] + "' appears twice (columns " +
+                                           std::to_string(seen[header[k]] + 1) + " and " + std::to_string(k + 1) + ")");
         }
         auto list = [&] {
             std::string s;
@@ -161,8 +164,10 @@ MeasuredData parse_measured(std::string_view text, const std::string& src, const
 
     long lineno = 0;
     std::size_t pos = 0;
+    // Lines end in LF, CRLF or (old Mac files) a lone CR.
+    const char eol_char = text.find('\n') == std::string_view::npos && text.find('\r') != std::string_view::npos ? '\r' : '\n';
     while (pos < text.size()) {
-        std::size_t eol = text.find('\n', pos);
+        std::size_t eol = text.find(eol_char, pos);
         if (eol == std::string_view::npos) eol = text.size();
         std::string_view line = text.substr(pos, eol - pos);
         pos = eol + 1;
@@ -242,7 +247,40 @@ MeasuredData parse_measured(std::string_view text, const std::string& src, const
         if (col[s] < 0) return;
         out.assign(rows[s].begin() + static_cast<long>(b), rows[s].begin() + static_cast<long>(e));
         if (scale != 1.0)
-            for (double& v : out) v *= scale;
+            for (std::size_t i = 0; i < out.size(); ++i) {
+                out[i] *= scale;
+                if (!std::isfinite(out[i]) || (out[i] == 0.0) != (rows[s][b + i] == 0.0)) {
+                    std::ostringstream msg;
+                    msg << "column '" << header[static_cast<std::size_t>(col[s])] << "' (" << sig_name[s] << "): "
+                        << rows[s][b + i] << " times the scale " << scale << " is not a representable number";
+                    fail(src, lines[b + i], msg.str());
+                }
+            }
+        // No sensor in any unit reads beyond 1e15; a value a million times beyond the record's own spread is a
+        // corrupt sample, not a measurement. Both would overflow the fit's sums of squares.
+        if (s == X || s == U || s == V)
+            for (std::size_t i = 0; i < out.size(); ++i)
+                if (!(std::abs(out[i]) <= 1e15)) {
+                    std::ostringstream msg;
+                    msg << "column '" << header[static_cast<std::size_t>(col[s])] << "' (" << sig_name[s] << "): " << out[i]
+                        << " lies beyond 1e15: not a measurement in any unit";
+                    fail(src, lines[b + i], msg.str());
+                }
+        if (s != T && out.size() >= 8) {
+            std::vector<double> sorted(out);
+            std::sort(sorted.begin(), sorted.end());
+            const double med = sorted[sorted.size() / 2];
+            const double q_lo = sorted[sorted.size() / 100], q_hi = sorted[sorted.size() - 1 - sorted.size() / 100];
+            const double spread = std::max(q_hi - q_lo, 1e-300 + 1e-12 * std::abs(med));
+            for (std::size_t i = 0; i < out.size(); ++i)
+                if (std::abs(out[i] - med) > 1e6 * spread) {
+                    std::ostringstream msg;
+                    msg << "column '" << header[static_cast<std::size_t>(col[s])] << "' (" << sig_name[s] << "): " << out[i]
+                        << " lies " << std::abs(out[i] - med) / spread << " times the record's spread (" << spread
+                        << ") from its median: a corrupt sample; remove the row or select rows with --rows";
+                    fail(src, lines[b + i], msg.str());
+                }
+        }
     };
     if (col[T] >= 0) {
         take(T, opt.t_scale, d.t);
@@ -255,6 +293,20 @@ MeasuredData parse_measured(std::string_view text, const std::string& src, const
     take(U, opt.u_scale, d.u);
     take(OMEGA, 1.0, d.omega);
     take(V, opt.x_scale, d.v);
+    // Time in seconds: a record within a few decades, samples at least a nanosecond apart (a unit slip makes
+    // the sample count of the span overflow every array sized from it).
+    for (std::size_t i = 0; i < d.t.size(); ++i) {
+        const bool too_far = !(std::abs(d.t[i]) <= 1e9);
+        const bool too_close = i > 0 && !(d.t[i] - d.t[i - 1] >= 1e-9);
+        if (too_far || too_close) {
+            std::ostringstream msg;
+            msg << std::setprecision(10) << "time t = " << d.t[i] << " s"
+                << (too_far ? " lies beyond 1e9 s (30 years) of the record's zero"
+                            : " is within 1 ns of the previous sample")
+                << ": time must be in seconds (--t-scale, or --rate for a file without time)";
+            fail(src, col[T] >= 0 ? lines[b + i] : 0, msg.str());
+        }
+    }
     d.line.assign(lines.begin() + static_cast<long>(b), lines.begin() + static_cast<long>(e));
     return d;
 }
