@@ -176,13 +176,17 @@ void TangentTracker::propagate(const Piece& piece, double a, double b) {
     };
     // The floor on substeps is for creeping; a compliant contact's fast dynamics are always resolved.
     const bool in_contact = p_.compliant() && std::max(piece.at(a)[0], piece.at(b)[0]) > p_.xI;
+    // Creeping (|v| below 0.1 mm/s at both ends): the tangent is slaved to the friction's fast relaxation and
+    // an exact exponential over 10 ms substeps follows its slow part.
+    const bool creeping = std::max(std::abs(piece.at(a)[1]), std::abs(piece.at(b)[1])) < 1e-4;
+    const double floor = in_contact ? 0.0 : creeping ? 1e-2 : kMinSubstep;
     // Depth-first, left to right: each accepted interval is applied in time order.
     while (top >= 0) {
         const Frame f = stack[static_cast<std::size_t>(top--)];
         const double m = 0.5 * (f.a + f.b);
         const Mat2 full = magnus(f.a, f.b);
         const Mat2 half = magnus(m, f.b) * magnus(f.a, m);
-        if (f.depth >= kMaxDepth || (f.b - f.a < kMinSubstep && !in_contact) || m <= f.a || m >= f.b ||
+        if (f.depth >= kMaxDepth || f.b - f.a < floor || m <= f.a || m >= f.b ||
             scaled_max(full - half) <= kStepTol) {
             Phi = half * Phi;
             continue;
