@@ -8,7 +8,7 @@
 namespace impactlab::cli {
 
 Args::Args(const std::string& command, const std::vector<std::string>& argv, const std::set<std::string>& valued,
-           const std::set<std::string>& switches)
+           const std::set<std::string>& switches, bool takes_files)
     : command_(command) {
     for (std::size_t i = 0; i < argv.size(); ++i) {
         const std::string& a = argv[i];
@@ -39,6 +39,9 @@ Args::Args(const std::string& command, const std::vector<std::string>& argv, con
             throw UsageError(command_ + ": unknown option '" + flag + "' (see: impactlab " + command_ + " --help)");
         }
     }
+    if (!takes_files && !positional_.empty())
+        throw UsageError(command_ + ": unexpected argument '" + positional_[0] + "' (options start with --; see: impactlab " +
+                         command_ + " --help)");
 }
 
 bool Args::has(const std::string& flag) const { return values_.count(flag) || switches_set_.count(flag); }

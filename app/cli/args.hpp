@@ -14,9 +14,10 @@ struct UsageError : std::runtime_error { using std::runtime_error::runtime_error
 
 class Args {
 public:
-    // argv after the command name. `valued`: flags that take a value; `switches`: flags that do not.
+    // argv after the command name. `valued`: flags that take a value; `switches`: flags that do not;
+    // `takes_files`: bare arguments are file names (fit), else a bare argument is a usage error.
     Args(const std::string& command, const std::vector<std::string>& argv, const std::set<std::string>& valued,
-         const std::set<std::string>& switches = {});
+         const std::set<std::string>& switches = {}, bool takes_files = false);
     bool has(const std::string& flag) const;
     std::string str(const std::string& flag, const std::string& fallback) const;
     std::string required(const std::string& flag) const;

@@ -70,7 +70,7 @@ int cmd_orbit(const std::vector<std::string>& argv) {
     const int k = a.integer("--period", 1, 1, 64);
     const double dt = a.num("--dt", 1e-3, 1e-7, 1.0);
     const std::string out_path = a.required("--out");
-    std::ofstream out = open_out(out_path);
+    auto out = open_out(out_path);
     const Tolerances tol = analysis_tol(a);
     analysis::OrbitOptions opt;
     opt.period = k;
@@ -177,8 +177,8 @@ int cmd_continue(const std::vector<std::string>& argv) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) throw UsageError("continue: option '--out': cannot create directory '" + dir + "'");
-    std::ofstream br = open_out(dir + "/branches.csv");
-    std::ofstream pt = open_out(dir + "/points.csv");
+    auto br = open_out(dir + "/branches.csv");
+    auto pt = open_out(dir + "/points.csv");
     Progress progress;
     analysis::ContinuationResult r;
     {
@@ -290,7 +290,7 @@ int cmd_lyapunov(const std::vector<std::string>& argv) {
         spec.record = a.integer("--record", spec.record, 1, 1000000);
         spec.direction = sw == "up" ? SweepDirection::Up : SweepDirection::Down;
         const std::string out_path = a.required("--out");
-        std::ofstream out = open_out(out_path);
+        auto out = open_out(out_path);
         Progress progress;
         std::vector<analysis::LyapunovPoint> pts;
         {

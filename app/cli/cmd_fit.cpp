@@ -5,6 +5,8 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+
+#include <filesystem>
 #include "impactlab/identify.hpp"
 
 namespace impactlab::cli {
@@ -59,13 +61,21 @@ int cmd_fit(const std::vector<std::string>& argv) {
                  {"--model", "--xI", "--m0e", "--rtol", "--report", "--baseline", "--fit-params", "--gain", "--t-col", "--x-col",
                   "--phi-col", "--u-col", "--rate", "--x-scale", "--u-scale", "--phi-scale", "--t-scale", "--rows", "--test-rows",
                   "--window", "--z", "--min-gain", "--max-effects", "--only", "--exclude", "--knots", "--omega-bin"},
-                 {"--no-generic", "--no-refine", "--no-plots"});
+                 {"--no-generic", "--no-refine", "--no-plots"}, /*takes_files=*/true);
     if (a.positional().empty()) throw UsageError("fit: give a data file, or several runs of one rig (see impactlab fit --help)");
     const std::vector<std::string> paths = a.positional();
     const std::string path = paths.size() == 1 ? paths[0] : paths[0] + " + " + std::to_string(paths.size() - 1) + " more";
     if (paths.size() > 1 && a.has("--test-rows")) throw UsageError("fit: --test-rows needs a single data file");
     const std::string dir = a.required("--report");
-
+    for (const auto& p : paths) note_input(p);
+    note_input(a.str("--model", "A1H"));
+    // Before anything is read: the report's files can be written and none of them is an input.
+    check_report_dir(dir);
+    for (const char* name : {"report.json", "report.md", "model_after.json"})
+        check_not_input((std::filesystem::path(dir) / name).string(), "--report");
+    for (const auto& p : paths)
+        if (std::filesystem::path(p).extension() == ".png")
+            check_not_input((std::filesystem::path(dir) / std::filesystem::path(p).filename()).string(), "--report");
     identify::LoadOptions lo;
     lo.columns.t = a.str("--t-col", "");
     lo.columns.x = a.str("--x-col", "");

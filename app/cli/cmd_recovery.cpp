@@ -46,11 +46,8 @@ int cmd_recovery(const std::vector<std::string>& argv) {
     const double duration = a.num("--duration", 60.0, 10.0, 3600.0);
     const int seed = a.integer("--seed", 1, 0, 1000000000);
     const std::string out_path = a.str("--out", "");
-    std::ofstream out;
-    if (!out_path.empty()) {
-        out.open(out_path);
-        if (!out) throw UsageError("recovery: --out: cannot write '" + out_path + "'");
-    }
+    std::optional<OutputFile> out;
+    if (!out_path.empty()) out.emplace(out_path, "--out");
     if (a.has("--null")) {
         const int seeds = a.integer("--seeds", 10, 1, 1000);
         std::ostringstream md;
@@ -75,7 +72,10 @@ int cmd_recovery(const std::vector<std::string>& argv) {
             std::printf("%s", line);
             std::fflush(stdout);
         }
-        if (out) out << md.str();
+        if (out) {
+            *out << md.str();
+            out->commit();
+        }
         std::printf("%d false findings\n", false_findings);
         return false_findings ? 1 : 0;
     }
@@ -98,7 +98,10 @@ int cmd_recovery(const std::vector<std::string>& argv) {
     }
     md << "\n" << total - failed << " of " << total << " cases recovered.\n";
     std::printf("%d of %d cases recovered\n", total - failed, total);
-    if (out) out << md.str();
+    if (out) {
+        *out << md.str();
+        out->commit();
+    }
     return failed ? 1 : 0;
 }
 

@@ -99,7 +99,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     if (!a.has("--duration") && !input) throw UsageError("simulate: missing required option '--duration'");
     const double duration = a.num("--duration", input ? in_dt * static_cast<double>(rec->size() - 1) : 0.0, 1e-6, 1e6);
     const double dt = a.num("--dt", input ? in_dt : 1e-3, 1e-7, 1e3);
-    std::ofstream out = open_out(a.required("--out"));
+    auto out = open_out(a.required("--out"));
     Simulator sim(tolerances_from(a));
     Drive drive(omega);
     if (input) drive.set_input(0.0, in_dt, rec->u);
@@ -121,7 +121,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
         progress.fraction.store(static_cast<double>(i) / slices);
     }
     bar.finish();
-    if (!out) throw std::runtime_error(a.required("--out") + ": write failed");
+    out.commit();
     std::fprintf(stderr, "%s: %.6g s simulated, %llu steps, %llu impacts -> %s\n", p.name.c_str(), duration,
                  static_cast<unsigned long long>(s.steps), static_cast<unsigned long long>(s.impacts),
                  a.required("--out").c_str());
@@ -144,7 +144,7 @@ int cmd_poincare(const std::vector<std::string>& argv) {
     const double omega = a.num("--omega", 0, 1e-3, 1000.0);
     const int periods = a.integer("--periods", 0, 1, 10000000);
     const int transient = a.integer("--transient", 0, 0, 10000000);
-    std::ofstream out = open_out(a.required("--out"));
+    auto out = open_out(a.required("--out"));
     State s;
     s.x = a.num("--x0", 0.0, -0.1, 0.1);
     s.v = a.num("--v0", 0.0, -10.0, 10.0);
@@ -154,6 +154,7 @@ int cmd_poincare(const std::vector<std::string>& argv) {
     bar.finish();
     out << "n,x,v\n";
     for (const auto& sp : pts) out << sp.n - transient << ',' << sp.x << ',' << sp.v << '\n';
+    out.commit();
     std::fprintf(stderr, "%s: %zu section points -> %s\n", p.name.c_str(), pts.size(), a.required("--out").c_str());
     return 0;
 }
@@ -178,7 +179,8 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
     if (sweep != "up" && sweep != "down" && sweep != "ramp")
         throw UsageError("bifurcation: option '--sweep': '" + sweep + "' is not one of up, down, ramp");
     const std::string out_path = a.required("--out");
-    std::ofstream out = open_out(out_path);
+    auto out = open_out(out_path);
+    if (a.has("--png")) check_writable(a.str("--png", ""), "--png");
     Progress progress;
     Diagram d;
     {
@@ -201,7 +203,7 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
         }
     }
     write_diagram_csv(d, out);
-    if (!out) throw std::runtime_error(out_path + ": write failed");
+    out.commit();
     std::fprintf(stderr, "%s %s: %zu points, %.0f s simulated, %llu steps -> %s\n", p.name.c_str(), d.protocol.c_str(),
                  d.points.size(), d.simulated_seconds, static_cast<unsigned long long>(d.steps), out_path.c_str());
     if (sweep != "ramp") {
@@ -228,6 +230,7 @@ int cmd_figure3(const std::vector<std::string>& argv) {
     const std::string out_path = a.required("--out");
     const int steps = a.integer("--steps", 300, 2, 100000);
     const Tolerances tol = tolerances_from(a);
+    check_writable(out_path, "--out");
     Figure3Data data;
     Progress progress;
     {

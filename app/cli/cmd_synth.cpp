@@ -66,6 +66,14 @@ double number(const std::string& what, const std::string& s) {
 
 }  // namespace
 
+namespace {
+std::string shortest(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+}  // namespace
+
 int cmd_synth(const std::vector<std::string>& argv_in) {
     for (const auto& a : argv_in)
         if (a == "--help" || a == "-h") {
@@ -91,6 +99,7 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
                   "--t-col", "--input-rate", "--u-scale", "--gain"});
     if (!a.positional().empty()) throw UsageError("synth: unexpected argument '" + a.positional()[0] + "'");
     const std::string out_path = a.required("--out");
+    note_input(a.str("--model", "A1H"));
     if (a.has("--gain") && !a.has("--input")) throw UsageError("synth: --gain needs --input");
     const std::optional<identify::MeasuredData> rec = input_from(a, "synth");
     const bool input = rec.has_value();
@@ -130,6 +139,7 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
     } catch (const ParamError& e) {
         throw UsageError(std::string("synth: ") + e.what());
     }
+    OutputFile out(out_path, "--out", std::ios::out | std::ios::binary);
 
     identify::SynthOptions o;
     if (input) {
@@ -182,18 +192,21 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
         identify::steps_profile(w, plateau, ramp, o.knot_t, o.knot_omega);
     }
     for (std::size_t i = 0; i < o.knot_omega.size(); ++i)
-        if (o.knot_omega[i] < 0) throw UsageError("synth: omega must not be negative");
+        if (!(o.knot_omega[i] >= 0 && o.knot_omega[i] <= 1000.0))
+            throw UsageError("synth: omega " + shortest(o.knot_omega[i]) + " rad/s is outside [0, 1000] (as for simulate)");
+    // The whole record is held in memory as text: 5e7 samples (~2 GB of CSV) is the most a run may ask for.
+    if (o.duration * o.rate > 5e7)
+        throw UsageError("synth: --rate " + a.str("--rate", "1000") + " x --duration " + a.str("--duration", "60") + " = " +
+                         shortest(o.duration * o.rate) + " samples, more than 5e7; shorten the run or lower the rate");
     for (std::size_t i = 1; i < o.knot_t.size(); ++i)
         if (o.knot_t[i] < o.knot_t[i - 1]) throw UsageError("synth: the omega knots' times must not decrease");
 
     const identify::MeasuredData d = identify::synthesize(model, o);
     std::ostringstream text;
     identify::write_measured_csv(text, d);
-    std::ofstream out(out_path, std::ios::binary);
-    if (!out) throw UsageError("synth: " + out_path + ": cannot open for writing");
     const bool gz = out_path.size() > 3 && out_path.substr(out_path.size() - 3) == ".gz";
     out << (gz ? identify::gzip_stored(text.str()) : text.str());
-    if (!out) throw std::runtime_error(out_path + ": write failed");
+    out.commit();
     std::fprintf(stderr, "synth: %s, %zu samples over %.6g s, %s impacts, effects: %s -> %s\n", model.p.name.c_str(), d.size(),
                  o.duration, d.meta.at("impacts").c_str(), d.meta.at("effects").c_str(), out_path.c_str());
     return 0;

@@ -3,6 +3,8 @@
 #include <sstream>
 
 #include <cstdio>
+#include <exception>
+#include <filesystem>
 #include <unistd.h>
 
 #include "impactlab/params_json.hpp"
@@ -12,6 +14,7 @@ namespace impactlab::cli {
 Params model_from(const Args& a, const std::string& fallback) {
     Params p;
     const std::string name = a.str("--model", fallback);
+    note_input(name);
     try {
         p = resolve_model(name);
     } catch (const ParamError& e) {
@@ -37,9 +40,127 @@ std::set<std::string> with_model_flags(std::set<std::string> flags) {
     return flags;
 }
 
-std::ofstream open_out(const std::string& path) {
-    std::ofstream out(path);
-    if (!out) throw UsageError(path + ": cannot open for writing");
+namespace {
+std::vector<std::string>& inputs() {
+    static std::vector<std::string> list;
+    return list;
+}
+bool same_file(const std::string& a, const std::string& b) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+    return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+}
+}  // namespace
+
+void note_input(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(path, ec)) inputs().push_back(path);
+}
+
+void check_not_input(const std::string& path, const std::string& flag) {
+    for (const auto& in : inputs())
+        if (same_file(path, in))
+            throw UsageError(flag + ": '" + path + "' is an input of this command ('" + in +
+                             "'); writing it would destroy it: choose another output name");
+}
+
+std::string temp_beside(const std::string& path) {
+    namespace fs = std::filesystem;
+    const fs::path p(path);
+    std::string name = p.filename().string();
+    name.insert(0, 1, '.');   // (not "." + name: GCC 12's -Wrestrict false positive)
+    name.append(".partial-").append(std::to_string(::getpid()));
+    return (p.parent_path() / name).string();
+}
+
+void commit_file(const std::string& tmp, const std::string& path) {
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::filesystem::remove(tmp, ec);
+        throw std::runtime_error(path + ": cannot write it (" + ec.message() + ")");
+    }
+}
+
+void check_writable(const std::string& path, const std::string& flag) {
+    namespace fs = std::filesystem;
+    check_not_input(path, flag);
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw UsageError(flag + ": '" + path + "' is a directory, not a file name");
+    const std::string probe = temp_beside(path);
+    {
+        std::ofstream out(probe);
+        if (!out) throw UsageError(flag + ": cannot write '" + path + "' (its directory is missing or not writable)");
+    }
+    fs::remove(probe, ec);
+}
+
+void check_report_dir(const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::exists(dir, ec)) {
+        if (!fs::is_directory(dir, ec)) throw UsageError("--report: '" + dir + "' is a file, not a directory");
+        check_writable((fs::path(dir) / "report.md").string(), "--report");
+        return;
+    }
+    // Made and removed again (only what was made here): permission bits do not tell root about /proc.
+    fs::path existing = fs::absolute(dir, ec);
+    while (!existing.empty() && !fs::exists(existing, ec) && existing != existing.parent_path()) existing = existing.parent_path();
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir))
+        throw UsageError("--report: cannot create the directory '" + dir + "'" + (ec ? " (" + ec.message() + ")" : ""));
+    check_writable((fs::path(dir) / "report.md").string(), "--report");
+    for (fs::path p = fs::absolute(dir, ec); !p.empty() && p != existing && p != p.parent_path(); p = p.parent_path())
+        fs::remove(p, ec);
+}
+
+OutputFile::OutputFile(const std::string& path, const std::string& flag, std::ios::openmode mode)
+    : path_(path), tmp_(temp_beside(path)), uncaught_(std::uncaught_exceptions()) {
+    check_not_input(path, flag);
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw UsageError(flag + ": '" + path + "' is a directory, not a file name");
+    open(tmp_, mode);
+    if (!is_open()) throw UsageError(flag + ": cannot write '" + path + "' (its directory is missing or not writable)");
+}
+
+OutputFile::OutputFile(OutputFile&& o) noexcept
+    : std::ofstream(std::move(o)), path_(std::move(o.path_)), tmp_(std::move(o.tmp_)), uncaught_(o.uncaught_), done_(o.done_) {
+    o.done_ = true;
+}
+
+void OutputFile::commit() {
+    if (done_) return;
+    done_ = true;
+    flush();
+    const bool ok = static_cast<bool>(*this);
+    close();
+    std::error_code ec;
+    if (!ok) {
+        std::filesystem::remove(tmp_, ec);
+        throw std::runtime_error(path_ + ": write failed (disk full?)");
+    }
+    commit_file(tmp_, path_);
+}
+
+OutputFile::~OutputFile() {
+    if (done_) return;
+    if (std::uncaught_exceptions() > uncaught_) {   // the command failed: leave the old file as it was
+        done_ = true;
+        close();
+        std::error_code ec;
+        std::filesystem::remove(tmp_, ec);
+        return;
+    }
+    try {
+        commit();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "impactlab: error: %s\n", e.what());
+    }
+}
+
+OutputFile open_out(const std::string& path, const std::string& flag) {
+    OutputFile out(path, flag);
     out.precision(10);
     return out;
 }
@@ -66,6 +187,7 @@ std::optional<identify::MeasuredData> input_from(const Args& a, const std::strin
     lo.u_scale = a.num("--u-scale", 1.0, -1e12, 1e12);
     lo.min_samples = 2;   // an input needs two samples to be a signal
     identify::MeasuredData in;
+    note_input(a.str("--input", ""));
     try {
         in = identify::load_measured(a.str("--input", ""), lo);
     } catch (const identify::DataError& e) {

@@ -29,8 +29,39 @@ inline constexpr const char* kModelHelp =
 Params model_from(const Args& a, const std::string& fallback = "A1H");
 Tolerances tolerances_from(const Args& a);
 std::set<std::string> with_model_flags(std::set<std::string> flags);
-// Opens a file for writing or throws UsageError naming it.
-std::ofstream open_out(const std::string& path);
+// Every file a command reads (a model file, a record, an input): an output that is one of them is refused.
+// Main thread only.
+void note_input(const std::string& path);
+// Throws UsageError if `path` is one of the noted inputs (the same file by any name), naming the flag.
+void check_not_input(const std::string& path, const std::string& flag);
+// Before any computing: `path` can be created (a probe file beside it) and is no input; else UsageError.
+void check_writable(const std::string& path, const std::string& flag);
+// Before any computing: `dir` is a writable directory, or can be made in a writable one (--report).
+void check_report_dir(const std::string& dir);
+
+// An output written whole or not at all: the text goes to a hidden file beside PATH and is renamed over PATH
+// when the command succeeds (commit(), or the end of its scope without an exception in flight); a failed run
+// leaves an old PATH as it was and nothing behind. Opening it checks that PATH is writable and no input.
+class OutputFile : public std::ofstream {
+public:
+    OutputFile(const std::string& path, const std::string& flag, std::ios::openmode mode = std::ios::out);
+    OutputFile(OutputFile&& o) noexcept;
+    OutputFile& operator=(OutputFile&&) = delete;
+    ~OutputFile() override;
+    // Flushes, checks the stream and renames into place; throws std::runtime_error naming PATH if that fails.
+    void commit();
+    const std::string& path() const { return path_; }
+
+private:
+    std::string path_, tmp_;
+    int uncaught_ = 0;
+    bool done_ = false;
+};
+// Opens an OutputFile for CSV (10 significant digits) or throws UsageError naming it.
+OutputFile open_out(const std::string& path, const std::string& flag = "--out");
+// A hidden temporary name beside `path`, and the rename that puts it in place (throws naming `path`).
+std::string temp_beside(const std::string& path);
+void commit_file(const std::string& tmp, const std::string& path);
 // "a,b,,c" -> {a, b, c}.
 std::vector<std::string> split_list(const std::string& s);
 

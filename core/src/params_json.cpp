@@ -1,6 +1,7 @@
 #include "impactlab/params_json.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -69,35 +70,46 @@ public:
     bool string(string_t&) override { return value(); }
     bool binary(binary_t&) override { return value(); }
     bool start_object(std::size_t) override {
-        frames_.push_back({false, 0, ""});
+        frames_.push_back({false, 0, "", {}});
         return true;
     }
     bool key(string_t& k) override {
-        frames_.back().key = k;
+        Frame& f = frames_.back();
+        f.key = k;
+        if (!f.seen.insert(k).second) {   // JSON allows it, nlohmann keeps the last: a typo nobody would see
+            duplicate = key_path();
+            return false;
+        }
         return true;
     }
     bool end_object() override { return end(); }
     bool start_array(std::size_t) override {
-        frames_.push_back({true, 0, ""});
+        frames_.push_back({true, 0, "", {}});
         return true;
     }
     bool end_array() override { return end(); }
     bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& ex) override {
         byte = position;
         what = ex.what();
-        for (const auto& f : frames_) {
-            if (f.array) {
-                path.append("[").append(std::to_string(f.index)).append("]");
-            } else if (!f.key.empty()) {
-                if (!path.empty()) path.append(".");
-                path.append(f.key);
-            }
-        }
+        path = key_path();
         return false;
     }
+    std::string duplicate;   // the key path of a key given twice in one object
 
 private:
-    struct Frame { bool array; std::size_t index; std::string key; };
+    struct Frame { bool array; std::size_t index; std::string key; std::set<std::string> seen; };
+    std::string key_path() const {
+        std::string out;
+        for (const auto& f : frames_) {
+            if (f.array) {
+                out.append("[").append(std::to_string(f.index)).append("]");
+            } else if (!f.key.empty()) {
+                if (!out.empty()) out.append(".");
+                out.append(f.key);
+            }
+        }
+        return out;
+    }
     bool value() {
         if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
         return true;
@@ -141,6 +153,11 @@ Params params_from_json_text(const std::string& text, const std::string& src) {
         fail(src, msg);
     }
     if (!j.is_object()) fail(src, "expected a JSON object at the top level");
+    {
+        KeyPathSax keys;
+        json::sax_parse(text, &keys);
+        if (!keys.duplicate.empty()) fail(src, "key '" + keys.duplicate + "' appears twice (JSON would keep the last silently)");
+    }
     check_keys(j, {"name", "base", "stiffness", "m", "m0e", "k", "c", "T", "eps", "a", "b", "xI", "input_gain", "impact",
                    "effects"},
                "", src);
@@ -168,6 +185,10 @@ Params params_from_json_text(const std::string& text, const std::string& src) {
     if (j.contains("stiffness")) {
         if (!j["stiffness"].is_string()) fail(src, "key 'stiffness': expected a string");
         p.stiffness_id = j["stiffness"].get<std::string>();
+        std::string known = "duffing";
+        for (const auto& st : stiffness_sets()) known += ", " + std::string(st.id);
+        if (p.stiffness_id != "duffing" && !find_stiffness(p.stiffness_id))
+            fail(src, "key 'stiffness': unknown label '" + p.stiffness_id + "' (known: " + known + ")");
     }
     read(j, "m", p.m, required, "", src);
     read(j, "m0e", p.m0e, required, "", src);
@@ -227,6 +248,8 @@ Params params_from_json_text(const std::string& text, const std::string& src) {
 }
 
 Params load_params(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw ParamError(path + ": a directory, not a parameter file");
     std::ifstream in(path);
     if (!in) throw ParamError(path + ": cannot open the parameter file");
     std::stringstream ss;

@@ -11,6 +11,7 @@
 #   --csv FILE HEADER MIN MAX   FILE must exist, start with the line HEADER and have MIN..MAX data rows
 #                               of comma-separated finite numbers with as many fields as HEADER
 #   --absent FILE               FILE must not exist after the run (no half-written output)
+#   --unchanged FILE            FILE (from --write) must be byte for byte as written; no *.partial* file left
 # ARGS are passed to EXE as they are, run inside the scratch directory (relative paths land there).
 set -u
 
@@ -33,6 +34,7 @@ NOMATCH=()
 WRITES=()
 CSVS=()
 ABSENT=()
+UNCHANGED=()
 while [[ $# -gt 0 && $1 != "--" ]]; do
   case $1 in
     --rc) EXPECT_RC=$2; shift 2 ;;
@@ -41,6 +43,7 @@ while [[ $# -gt 0 && $1 != "--" ]]; do
     --write) WRITES+=("$2" "$3"); shift 3 ;;
     --csv) CSVS+=("$2" "$3" "$4" "$5"); shift 5 ;;
     --absent) ABSENT+=("$2"); shift 2 ;;
+    --unchanged) UNCHANGED+=("$2"); shift 2 ;;
     *) echo "run_cli_test.sh: unknown check '$1'" >&2; exit 2 ;;
   esac
 done
@@ -54,6 +57,9 @@ WORK=$(mktemp -d "${TMPDIR:-/tmp}/impactlab_cli_test.XXXXXX")
 trap 'rm -rf "$WORK"' EXIT
 for ((i = 0; i < ${#WRITES[@]}; i += 2)); do
   printf '%s\n' "${WRITES[i + 1]}" >"$WORK/${WRITES[i]}"
+done
+for f in "${UNCHANGED[@]+"${UNCHANGED[@]}"}"; do
+  cp "$WORK/$f" "$WORK/.orig_$(basename "$f")"
 done
 
 cd "$WORK" || exit 2
@@ -77,6 +83,10 @@ done
 for f in "${ABSENT[@]+"${ABSENT[@]}"}"; do
   [[ ! -e $WORK/$f ]] || fail "$f exists"
 done
+for f in "${UNCHANGED[@]+"${UNCHANGED[@]}"}"; do
+  cmp -s "$WORK/$f" "$WORK/.orig_$(basename "$f")" || fail "$f was changed"
+done
+if [[ ${#UNCHANGED[@]} -gt 0 ]] && find "$WORK" -name '*.partial*' | grep -q .; then fail "a partial file was left behind"; fi
 
 for ((i = 0; i < ${#CSVS[@]}; i += 4)); do
   file=${CSVS[i]} header=${CSVS[i + 1]} min=${CSVS[i + 2]} max=${CSVS[i + 3]}

@@ -128,3 +128,48 @@ impactlab_cli_test(recovery_bad_version --rc 2 --match "unknown model version 'A
 impactlab_cli_test(fit_runs_short_one --rc 2 --match "a.csv: only 3 samples"
                    --write a.csv "t,x,phi\n0,0,0\n0.001,0,0.01\n0.002,0,0.02\n" --write b.csv "t,x,phi\n0,0,0\n0.001,0,0.01\n"
                    -- fit a.csv b.csv --model A1H --report r)
+
+# --- issue 12: files never clobbered, outputs checked before computing, errors that name the culprit ----------
+set(_model_json "{\"base\": \"A1H\"}")
+impactlab_cli_test(out_is_model_input --rc 2 --match "'model.json' is an input of this command" --unchanged model.json
+                   --write model.json "${_model_json}"
+                   -- simulate --model model.json --omega 10 --duration 1 --out model.json)
+impactlab_cli_test(synth_out_is_model_input --rc 2 --match "is an input of this command" --unchanged m.json
+                   --write m.json "${_model_json}" -- synth --model m.json --out m.json)
+impactlab_cli_test(fit_report_holds_input --rc 2 --match "--report: './report.md' is an input" --unchanged report.md
+                   --write report.md "t,x,phi" -- fit report.md --model A1H --report .)
+impactlab_cli_test(bad_flag_keeps_old_output --rc 2 --match "'--rtol'" --unchanged k.csv --write k.csv "old"
+                   -- simulate --model A1C --omega 10 --duration 1 --rtol 0 --out k.csv)
+impactlab_cli_test(bad_steps_keeps_old_output --rc 2 --match "'--steps'" --unchanged d.csv --write d.csv "old"
+                   -- bifurcation --steps 0 --out d.csv)
+impactlab_cli_test(bad_x0_keeps_old_output --rc 2 --match "'--x0'" --unchanged p.csv --write p.csv "old"
+                   -- poincare --omega 10 --periods 3 --x0 9 --out p.csv)
+impactlab_cli_test(png_unwritable_before_computing --rc 2 --match "--png: cannot write '/nonexistent/b.png'" --absent d.csv
+                   -- bifurcation --steps 2 --out d.csv --png /nonexistent/b.png)
+impactlab_cli_test(figure3_unwritable --rc 2 --match "--out: cannot write '/nonexistent/f.png'" -- figure3 --out /nonexistent/f.png)
+impactlab_cli_test(fit_report_unwritable --rc 2 --match "--report: cannot create the directory '/proc/x'" --absent d.csv.never
+                   --write d.csv "t,x,phi" -- fit d.csv --model A1H --report /proc/x)
+impactlab_cli_test(out_is_directory --rc 2 --match "is a directory, not a file name"
+                   -- simulate --model A1C --omega 10 --duration 1 --out .)
+impactlab_cli_test(stray_argument --rc 2 --match "unexpected argument 'stray'" --absent o.csv
+                   -- simulate stray --model A1C --omega 1 --duration 1 --out o.csv)
+impactlab_cli_test(json_duplicate_key --rc 2 --match "dup.json: key 'm' appears twice"
+                   --write dup.json "{\"base\": \"A1H\", \"m\": 7, \"m\": 8}"
+                   -- simulate --model dup.json --omega 1 --duration 1 --out o.csv)
+impactlab_cli_test(json_unknown_stiffness --rc 2 --match "key 'stiffness': unknown label 'Z9'"
+                   --write st.json "{\"base\": \"A1H\", \"stiffness\": \"Z9\"}"
+                   -- simulate --model st.json --omega 1 --duration 1 --out o.csv)
+impactlab_cli_test(json_magnitude --rc 2 --match "key 'm': must lie in \\[0.001, 10000\\] kg"
+                   --write tiny.json "{\"base\": \"A1G\", \"m\": 1e-20}"
+                   -- simulate --model tiny.json --omega 10 --duration 1 --out o.csv)
+impactlab_cli_test(x_col_huge --rc 2 --match "column 99999999999999999999 names no column" --no-match "stol"
+                   --write d.csv "t,x,phi\n0,0,0" -- fit d.csv --x-col 99999999999999999999 --report r)
+impactlab_cli_test(synth_too_many_samples --rc 2 --match "more than 5e7" --no-match "bad_alloc"
+                   -- synth --rate 1e7 --duration 1e6 --out s.csv)
+impactlab_cli_test(synth_omega_cap --rc 2 --match "omega 1e\\+06 rad/s is outside \\[0, 1000\\]" -- synth --omega 1e6 --out s.csv)
+set(_mm_csv "t,x,phi")   # 40 samples of a cart near x = -10 mm, written in mm
+foreach(i RANGE 39)
+  string(APPEND _mm_csv "\n${i}e-3,-10.${i},${i}e-2")
+endforeach()
+impactlab_cli_test(fit_mm_as_m --rc 2 --match "beyond the rail's travel" --match "--x-scale 1e-3" --absent r
+                   --write mm.csv "${_mm_csv}" -- fit mm.csv --model A1H --report r)

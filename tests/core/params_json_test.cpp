@@ -345,3 +345,17 @@ TEST_CASE("JSON files: not found names the path; resolve_model takes names and .
         CHECK(contains(e.what(), nowhere));
     }
 }
+
+TEST_CASE("JSON: a directory given as a parameter file is named as such (not basic_filebuf::underflow)") {
+    const auto dir = std::filesystem::temp_directory_path() / "impactlab_dir_model.json";
+    std::filesystem::create_directories(dir);
+    std::string msg;
+    try {
+        (void)load_params(dir.string());
+    } catch (const ParamError& e) {
+        msg = e.what();
+    }
+    std::filesystem::remove(dir);
+    CAPTURE(msg);
+    CHECK(contains(msg, "a directory, not a parameter file"));
+}

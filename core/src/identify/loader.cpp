@@ -126,7 +126,7 @@ MeasuredData parse_measured(std::string_view text, const std::string& src, const
                 continue;
             }
             if (all_digits(m)) {
-                const long k = std::stol(m);
+                const long k = m.size() > 9 ? 0 : std::stol(m);   // longer: beyond any header (and stol's range)
                 if (k < 1 || static_cast<std::size_t>(k) > named)
                     fail(src, header_line, std::string("the mapping of '") + sig_name[s] + "' to column " + m +
                                                " names no column (the header has " + std::to_string(named) +

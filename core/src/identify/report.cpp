@@ -412,10 +412,20 @@ void write_report(const FitReport& r, const std::string& dir, bool with_plots) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec || !fs::is_directory(dir)) throw std::runtime_error(dir + ": cannot create the report directory");
+    // Each file written beside its name and renamed over it: a failed write leaves an old report whole.
     auto write = [&](const std::string& name, const std::string& text) {
-        std::ofstream out(fs::path(dir) / name);
-        out << text;
-        if (!out) throw std::runtime_error((fs::path(dir) / name).string() + ": write failed");
+        const fs::path target = fs::path(dir) / name, tmp = fs::path(dir) / (name + ".partial");
+        {
+            std::ofstream out(tmp);
+            out << text;
+            if (!out) {
+                out.close();
+                fs::remove(tmp, ec);
+                throw std::runtime_error(target.string() + ": write failed");
+            }
+        }
+        fs::rename(tmp, target, ec);
+        if (ec) throw std::runtime_error(target.string() + ": cannot write it (" + ec.message() + ")");
     };
     write("report.json", report_json_text(r));
     write("model_after.json", params_to_json_text(r.after.p));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -508,15 +509,22 @@ void save_png(const Image& image, const std::string& path) {
     bool opaque = true;
     for (std::size_t i = 0; i < n && opaque; ++i) opaque = image.rgba[i * 4 + 3] == 255;
     int ok = 0;
+    // Written beside the target and renamed over it: a failed write never leaves half a PNG or clobbers an old one.
+    const std::string tmp = path + ".partial";
     if (opaque) {   // what render() makes: store RGB, a quarter smaller
         std::vector<std::uint8_t> rgb(n * 3);
         for (std::size_t i = 0; i < n; ++i)
             for (std::size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = image.rgba[i * 4 + c];
-        ok = stbi_write_png(path.c_str(), image.width, image.height, 3, rgb.data(), image.width * 3);
+        ok = stbi_write_png(tmp.c_str(), image.width, image.height, 3, rgb.data(), image.width * 3);
     } else {
-        ok = stbi_write_png(path.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4);
+        ok = stbi_write_png(tmp.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4);
     }
-    if (ok == 0) throw std::runtime_error(path + ": cannot write PNG");
+    std::error_code ec;
+    if (ok != 0) std::filesystem::rename(tmp, path, ec);
+    if (ok == 0 || ec) {
+        std::filesystem::remove(tmp, ec);
+        throw std::runtime_error(path + ": cannot write PNG");
+    }
 }
 
 void save_png(const Figure& fig, const std::string& path) { save_png(render(fig), path); }
