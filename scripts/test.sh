@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The test job (CI runs exactly this): install what is missing, then
 #  1. build the headless core, CLI and tests with the GUI OFF (the core must not need GL) and run them;
-#  2. build everything (GUI and benchmarks included) and run the GUI smoke test under Xvfb.
+#  2. build everything (GUI and benchmarks included) and run the GUI smoke test under Xvfb;
+#  3. fuzz the loaders and the simulator for 20 s each (clang, libFuzzer, ASan + UBSan).
 # Release builds, -Wall -Wextra warnings as errors.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,3 +18,6 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DIMPACTLAB_WERROR=ON \
       -DIMPACTLAB_BUILD_APP=ON -DIMPACTLAB_BUILD_BENCH=ON -DIMPACTLAB_BUILD_TESTS=ON
 cmake --build build -j"$jobs"
 ctest --test-dir build --output-on-failure -L gui
+
+# 3. a short fuzz run of the loaders and the simulator (libFuzzer, ASan + UBSan; scripts/fuzz.sh 3600 for a long one).
+bash scripts/fuzz.sh 20
