@@ -1349,6 +1349,24 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     enter(FitStage::Errors);
     // ---- 7. errors before and after; 8. material for the plots; the verdict ----------------------------------
     errors_stage(pr, model0, base, after, R0, o, test, rep);
+    // Never a report whose headline numbers are not numbers: name the first and refuse to hand it over.
+    const std::pair<const char*, double> headline[] = {
+        {"sensor noise", rep.sigma_x},
+        {"noise floor", rep.noise_floor_N},
+        {"residual RMS before", rep.error_before.residual_rms_N},
+        {"residual RMS after", rep.error_after.residual_rms_N},
+        {"1-period shooting RMS before", rep.error_before.shooting_rms_1_m},
+        {"1-period shooting RMS after", rep.error_after.shooting_rms_1_m},
+    };
+    for (const auto& [what, v] : headline)
+        if (!std::isfinite(v))
+            throw std::runtime_error(data.source + ": the fit's " + what + " came out " + std::to_string(v) +
+                                     "; no report is written (check the data's columns and units)");
+    for (const auto& e : rep.effects_found)
+        for (const auto& [name, v] : e.parameters)
+            if (!std::isfinite(v))
+                throw std::runtime_error(data.source + ": effect " + e.id + "." + name + " came out " + std::to_string(v) +
+                                         "; no report is written");
     rep.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
     if (progress) progress->fraction.store(1.0, std::memory_order_relaxed);
     return rep;
