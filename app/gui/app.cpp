@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <ctime>
 #include <numbers>
+#include <unistd.h>
 
 #include "gl_util.hpp"
 #include "plot2d.hpp"
@@ -551,6 +552,8 @@ int App::run() {
         return 0;
     }
 
+    if (opt_.soak > 0) return soak();
+
     while (!glfwWindowShouldClose(win_)) {
         frame();
         if (opt_.frames <= 0) continue;
@@ -590,6 +593,58 @@ int App::run() {
                 static_cast<unsigned long long>(st.dropped), epoch_);
     std::fflush(stdout);
     return exit_code_;
+}
+
+namespace {
+// Resident set size of this process [MB] (Linux /proc; 0 where unknown).
+double rss_mb() {
+    std::FILE* f = std::fopen("/proc/self/statm", "r");
+    if (!f) return 0;
+    long pages = 0, resident = 0;
+    const int n = std::fscanf(f, "%ld %ld", &pages, &resident);
+    std::fclose(f);
+    return n == 2 ? static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / 1048576.0 : 0.0;
+}
+}  // namespace
+
+int App::soak() {
+    // Every version in turn, 3 s each, at 100x: what a class sees when the teacher flips through the models.
+    std::vector<std::string> versions;
+    for (const auto& st : stiffness_sets())
+        for (const auto& im : impact_models())
+            if (im.kind != ImpactKind::None) versions.push_back(std::string(st.id) + im.id);
+    set_speed(kMaxSpeed);
+    const double t0 = now_s();
+    double next_switch = t0 + 3.0, next_report = t0 + 10.0, rss_ref = -1;
+    std::size_t k = 0;
+    long frames_at_report = frame_count_;
+    double worst_growth = 0;
+    std::printf("soak: %.0f s at %gx, switching through %zu versions every 3 s\n", opt_.soak, kMaxSpeed, versions.size());
+    while (!glfwWindowShouldClose(win_)) {
+        frame();
+        const double now = now_s();
+        if (now >= next_switch) {
+            const Params p = make_version(versions[++k % versions.size()]);
+            set_model(index_of_stiffness(p.stiffness_id), index_of_impact(p.impact));
+            next_switch += 3.0;
+        }
+        if (now >= next_report || now - t0 >= opt_.soak) {
+            const SimStatus st = sim_->status();
+            const double rss = rss_mb();
+            if (rss_ref < 0 && now - t0 >= 0.25 * opt_.soak) rss_ref = rss;   // after the caches and pools filled
+            if (rss_ref >= 0) worst_growth = std::max(worst_growth, rss - rss_ref);
+            std::printf("soak: t=%6.0f s rss=%7.1f MB dropped=%llu samples=%llu sim_time=%.0f s fps=%.1f model=%s\n", now - t0, rss,
+                        static_cast<unsigned long long>(st.dropped), static_cast<unsigned long long>(samples_seen_),
+                        have_last_ ? last_.t : st.sim_time, static_cast<double>(frame_count_ - frames_at_report) / 10.0,
+                        model_name().c_str());
+            std::fflush(stdout);
+            frames_at_report = frame_count_;
+            next_report += 10.0;
+            if (now - t0 >= opt_.soak) break;
+        }
+    }
+    std::printf("soak: RSS grew by %.1f MB after the first quarter (limit 16 MB)\n", worst_growth);
+    return worst_growth > 16.0 ? 1 : 0;
 }
 
 }  // namespace impactlab::gui

@@ -57,6 +57,7 @@ private:
     void toast(const std::string& msg);
     std::string model_name() const;
     double now_s() const;
+    int soak();   // --soak: model switches at 100x with an RSS report
     void fill_bench_data(int points);
     void feed_bench_frame();   // appends one frame's worth of new samples (bench mode)
 

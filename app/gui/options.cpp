@@ -44,6 +44,9 @@ const char* usage_text() {
            "                     shaders), imgui (ImDrawList polylines)\n"
            "  --bench-ring       samples per second through the SPSC ring buffer (two threads)\n"
            "  --bench-sim        the simulation's real-time factor, A1H and A1C at omega = 18\n"
+           "  --soak S           run S wall seconds at 100x, switching the model every 3 s through all\n"
+           "                     versions; print RSS and dropped samples every 10 s; exit 1 if the\n"
+           "                     memory grows by more than 16 MB after the first quarter\n"
            "  --help             this text\n"
            "\n"
            "Keys: space pause, N step one period, R reset, left/right omega, up/down xI, [ ] speed,\n"
@@ -131,6 +134,7 @@ Options parse_options(const std::vector<std::string>& args) {
                 throw OptionsError("--bifurcation: '" + p + "' is not one of cf-up, cf-down, ef");
             o.bifurcation = p;
         } else if (a == "--bif-steps") o.bif_steps = integer(a, value(), 10, 2000);
+        else if (a == "--soak") o.soak = number(a, value(), 1.0, 86400.0);
         else if (a == "--bench-plot") o.bench_plot = true;
         else if (a == "--bench-ring") o.bench_ring = true;
         else if (a == "--bench-sim") o.bench_sim = true;

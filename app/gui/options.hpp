@@ -27,6 +27,7 @@ struct Options {
     std::string bifurcation;     // "", "cf-up", "cf-down", "ef": start computing at launch
     int bif_steps = 300;
 
+    double soak = 0;             // > 0: run this many wall seconds at 100x, switching the model every 3 s; RSS report
     bool bench_plot = false, bench_ring = false, bench_sim = false;
     int bench_points = 100000;
     std::string plot_backend = "raster";   // raster, gpu, imgui
