@@ -24,6 +24,7 @@ int cmd_recovery(const std::vector<std::string>& args);
 int cmd_orbit(const std::vector<std::string>& args);
 int cmd_continue(const std::vector<std::string>& args);
 int cmd_lyapunov(const std::vector<std::string>& args);
+int cmd_basins(const std::vector<std::string>& args);
 
 const std::vector<Command>& commands();
 

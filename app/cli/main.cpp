@@ -23,6 +23,7 @@ const std::vector<Command>& commands() {
         {"orbit", "a periodic orbit by Newton on the k-th Poincare map: section point, Floquet multipliers", cmd_orbit},
         {"continue", "continuation of periodic orbits: branches, folds, period doublings, grazings (CSV, PNG)", cmd_continue},
         {"lyapunov", "largest Lyapunov exponent at one omega, or along a CF sweep", cmd_lyapunov},
+        {"basins", "basins of attraction on a grid of starts (x0, v0): labels, legend of attractors (CSV, PNG)", cmd_basins},
     };
     return table;
 }

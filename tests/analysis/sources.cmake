@@ -3,4 +3,5 @@ set(IMPACTLAB_ANALYSIS_TEST_SOURCES
   analysis/orbit_test.cpp
   analysis/continuation_test.cpp
   analysis/lyapunov_test.cpp
+  analysis/basins_test.cpp
 )

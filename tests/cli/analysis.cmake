@@ -1,10 +1,10 @@
-# Command-line behaviour of orbit, continue and lyapunov (issue 9): exit codes, messages naming the flag,
+# Command-line behaviour of orbit, continue, lyapunov and basins (issue 9): exit codes, messages naming the flag,
 # the files written (run_cli_test.sh does the checks).
 if(NOT TARGET impactlab)
   return()
 endif()
 
-foreach(cmd orbit continue lyapunov)
+foreach(cmd orbit continue lyapunov basins)
   impactlab_cli_test(help_${cmd} --rc 0 --match "usage: impactlab ${cmd}" -- ${cmd} --help)
 endforeach()
 impactlab_cli_test(orbit_period1 --rc 0 --match "Floquet multipliers" --match "stable: yes"
@@ -20,3 +20,13 @@ impactlab_cli_test(continue_inverted --rc 2 --match "--omega-max" -- continue --
 impactlab_cli_test(lyapunov_one --rc 0 --match "lambda_max = " -- lyapunov --model A1G --omega 16 --periods 100)
 impactlab_cli_test(lyapunov_missing_omega --rc 2 --match "'--omega'" -- lyapunov --model A1G)
 impactlab_cli_test(lyapunov_sweep_bogus --rc 2 --match "'--sweep'" -- lyapunov --sweep sideways --out l.csv)
+impactlab_cli_test(basins_tiny --rc 0 --match "^label,kind,period,well,x,v,cells,fraction" --match "[0-9]+,(period|chaos),"
+                   --csv basins.csv "x0,v0,label" 16 16
+                   -- basins --model A1G --omega 13 --grid 4 --threads 2 --out basins.csv --png basins.png)
+impactlab_cli_test(basins_bad_grid --rc 2 --match "'--grid'" -- basins --model A1G --omega 13 --grid 0 --out b.csv)
+impactlab_cli_test(basins_grid_not_integer --rc 2 --match "'--grid'" -- basins --model A1G --omega 13 --grid 4x4 --out b.csv)
+impactlab_cli_test(basins_missing_omega --rc 2 --match "'--omega'" -- basins --model A1G --grid 4 --out b.csv)
+impactlab_cli_test(basins_bad_range --rc 2 --match "'--x-range'" -- basins --omega 13 --grid 4 --x-range 0.01:-0.01 --out b.csv)
+impactlab_cli_test(basins_range_no_colon --rc 2 --match "'--v-range'" -- basins --omega 13 --grid 4 --v-range 0.3 --out b.csv)
+impactlab_cli_test(basins_png_unwritable --rc 2 --match "'--png'" --no-match "basins A1G"
+                   -- basins --omega 13 --grid 4 --out b.csv --png /nonexistent_dir/b.png)

@@ -1,6 +1,6 @@
 // Beyond the sweep (issue 9): periodic orbits as fixed points of the k-th Poincare map with their monodromy
-// and Floquet multipliers, pseudo-arclength continuation with bifurcation detection, and Lyapunov exponents of
-// the hybrid flow.
+// and Floquet multipliers, pseudo-arclength continuation with bifurcation detection, Lyapunov exponents of
+// the hybrid flow, and basins of attraction.
 //
 // Every trajectory is the core Simulator's. The monodromy comes from the variational equation
 // d(Phi)/dt = A(t) Phi integrated along the Simulator's accepted pieces (A is the Jacobian of Eq. (1) at the
@@ -171,5 +171,71 @@ struct LyapunovPoint { double omega, lambda_max, lambda_min; int period; };
 // spec.record periods averaged; period = count_period of the recorded section points (as the sweep counts).
 std::vector<LyapunovPoint> lyapunov_sweep(const Params& p, const CfSpec& spec, Progress* progress = nullptr,
                                           const Tolerances& tol = {});
+
+// ---- Basins of attraction ---------------------------------------------------------------------------------
+
+enum class AttractorKind : std::uint8_t { Periodic, Chaos, Resting, Failed };
+// "period", "chaos" (no recurrence up to max_period: chaotic or a longer period), "resting" (held at the
+// bumper in regime III through whole periods), "failed" (the simulator stalled).
+const char* attractor_kind_name(AttractorKind k);
+
+struct BasinSpec {
+    double omega = 13;                        // [rad/s], constant; every cell starts at t = 0, phi = 0
+    double x_min = -0.03, x_max = 0.0;        // [m] grid of cell centres x0_i = x_min + (i + 1/2) dx
+    double v_min = -0.3, v_max = 0.3;         // [m/s]
+    int nx = 200, nv = 200;
+    // A cell runs at most transient + periods forcing periods; it stops as soon as its section points recur
+    // (period k: |y_j - y_{j-k}| < recur_tol for `confirm` whole cycles, and at least 4 points). One that
+    // never recurs keeps its last `periods` section points as a chaotic attractor, unless these repeat within
+    // match_tol over the whole window (a slowly converging cycle). A1G at omega 13: every periodic cell has
+    // recurred within 60 periods (300 give the same labels).
+    int transient = 60;
+    int periods = 40;
+    int max_period = 16;
+    int confirm = 3;
+    double recur_tol = 1e-5;                  // scaled (x / 1 cm, v / 0.1 m/s): early stop of a cell
+    double match_tol = 1e-3;                  // scaled: two cycles are the same orbit (and the late check)
+    double chaos_tol = 0.2;                   // scaled: median nearest-neighbour distance of two chaotic sets
+    int threads = 0;                          // 0: std::thread::hardware_concurrency()
+    Tolerances sim{};                         // the sweep's (rtol 1e-8): a basin needs the attractor, not digits
+};
+
+// Where one start ends: its attractor as section points at phi = 2 pi i.
+struct CellOutcome {
+    AttractorKind kind = AttractorKind::Chaos;
+    int period = 0;                           // k (Periodic, Resting); 0 otherwise
+    int periods_run = 0;                      // forcing periods simulated
+    std::vector<Vec2> points;                 // one cycle (k points), or the last `periods` points (chaos)
+};
+// Runs (x0, v0) at t = 0, phi = 0 through the Simulator until its section points recur or the budget ends.
+CellOutcome run_to_attractor(const Params& p, const BasinSpec& spec, const Vec2& y0);
+
+struct Attractor {
+    int id = 0;                               // the label; ids follow the first grid cell (row-major) reaching it
+    AttractorKind kind = AttractorKind::Chaos;
+    int period = 0;
+    int well = 0;                             // sign of the mean section x: -1 left, +1 right, 0 at x = 0
+    std::vector<Vec2> points;                 // the first cell's outcome points
+    Vec2 representative = Vec2::Zero();       // the point of smallest x (a cycle's canonical point)
+    std::size_t first_cell = 0, cells = 0;
+    double mean_periods = 0;                  // mean forcing periods its cells ran
+};
+struct BasinResult {
+    BasinSpec spec;
+    std::vector<int> label;                   // nv rows of nx: label[j * nx + i] at (x0_i, v0_j); -1 not run
+    std::vector<Attractor> attractors;
+    bool cancelled = false;
+    double seconds = 0;                       // wall time
+    std::uint64_t periods_run = 0;            // forcing periods simulated over all cells
+    int threads = 1;
+    double x0(int i) const { return spec.x_min + (i + 0.5) * (spec.x_max - spec.x_min) / spec.nx; }
+    double v0(int j) const { return spec.v_min + (j + 0.5) * (spec.v_max - spec.v_min) / spec.nv; }
+};
+// The grid on a pool of spec.threads threads (rows handed out one at a time). Labels are assigned after all
+// cells are done, in cell order, so the result is identical for any thread count. Throws
+// std::invalid_argument for an empty grid or an inverted range.
+BasinResult compute_basins(const Params& p, const BasinSpec& spec, Progress* progress = nullptr);
+// Whether two outcomes are the same attractor (the matching compute_basins uses).
+bool same_attractor(const CellOutcome& a, const CellOutcome& b, const BasinSpec& spec);
 
 }  // namespace impactlab::analysis

@@ -4,4 +4,5 @@ set(IMPACTLAB_ANALYSIS_SOURCES
   src/analysis/orbit.cpp
   src/analysis/continuation.cpp
   src/analysis/lyapunov.cpp
+  src/analysis/basins.cpp
 )

@@ -1,0 +1,239 @@
+// Basins of attraction: a grid of starts (x0, v0) at phi = 0, each run through the Simulator until its
+// Poincare section points recur (period k), or its budget ends (chaos); the outcomes matched into attractors
+// after all cells are done, in cell order, so that the labels never depend on the thread count.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <numbers>
+#include <stdexcept>
+#include <thread>
+
+#include "impactlab/analysis.hpp"
+
+namespace impactlab::analysis {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+// Notes whether the cart flew at all during a period: held through whole periods is "resting", not a
+// periodic orbit that happens to be at the bumper at each section.
+class FreeWatch : public Observer {
+public:
+    bool flew = false;
+    void on_piece(const Piece& piece) override {
+        if (piece.regime == Regime::Free && piece.t1 > piece.t0) flew = true;
+    }
+};
+
+// The smallest k <= max_period for which the last max(confirm k, min_points) points each lie within tol of
+// the point k periods earlier; 0 if none. y[0] is the start, y[n-1] the newest section point.
+int recurrence(const std::vector<Vec2>& y, std::size_t n, int max_period, int confirm, int min_points, double tol) {
+    for (int k = 1; k <= max_period; ++k) {
+        const std::size_t need = static_cast<std::size_t>(std::max(confirm * k, min_points));
+        if (n < need + static_cast<std::size_t>(k)) break;
+        bool ok = true;
+        for (std::size_t j = n - 1; j + need >= n && ok; --j) ok = scaled_norm(y[j] - y[j - static_cast<std::size_t>(k)]) < tol;
+        if (ok) return k;
+    }
+    return 0;
+}
+
+// Distance of point q to the nearest point of set B (scaled).
+double nearest(const Vec2& q, const std::vector<Vec2>& B) {
+    double d = 1e300;
+    for (const auto& b : B) d = std::min(d, scaled_norm(q - b));
+    return d;
+}
+
+// Median over A of the nearest-neighbour distance to B.
+double median_nearest(const std::vector<Vec2>& A, const std::vector<Vec2>& B) {
+    std::vector<double> d;
+    d.reserve(A.size());
+    for (const auto& a : A) d.push_back(nearest(a, B));
+    std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+    return d[d.size() / 2];
+}
+
+void validate(const BasinSpec& s) {
+    if (s.nx < 1 || s.nv < 1) throw std::invalid_argument("basins: the grid needs at least 1 x 1 cells");
+    if (!(s.x_max > s.x_min) || !(s.v_max > s.v_min)) throw std::invalid_argument("basins: an empty or inverted range");
+    if (!(s.omega > 0) || !std::isfinite(s.omega)) throw std::invalid_argument("basins: omega must be positive");
+    if (s.periods < 1 || s.transient < 0 || s.max_period < 1 || s.confirm < 1)
+        throw std::invalid_argument("basins: periods, max_period and confirm must be at least 1");
+}
+
+}  // namespace
+
+const char* attractor_kind_name(AttractorKind k) {
+    switch (k) {
+        case AttractorKind::Periodic: return "period";
+        case AttractorKind::Chaos: return "chaos";
+        case AttractorKind::Resting: return "resting";
+        case AttractorKind::Failed: return "failed";
+    }
+    return "?";
+}
+
+CellOutcome run_to_attractor(const Params& p, const BasinSpec& spec, const Vec2& y0) {
+    CellOutcome out;
+    const Drive d(spec.omega, 0.0, 0.0);
+    Simulator sim(spec.sim);
+    State s;
+    s.x = y0[0];
+    s.v = y0[1];
+    Simulator::make_consistent(p, d, s);
+    const int budget = spec.transient + spec.periods;
+    // y[0] is the (consistent) start; y[i] the section point after i periods. Allocated before the loop.
+    std::vector<Vec2> y(static_cast<std::size_t>(budget) + 1);
+    std::vector<char> flew(static_cast<std::size_t>(budget) + 1, 1);
+    y[0] = s.regime == Regime::Free ? Vec2(s.x, s.v) : Vec2(p.xI, 0.0);
+    FreeWatch watch;
+    int k = 0;
+    int i = 1;
+    try {
+        for (; i <= budget; ++i) {
+            watch.flew = false;
+            sim.advance(p, d, s, d.time_of_phase(kTwoPi * i), &watch);
+            y[static_cast<std::size_t>(i)] = s.regime == Regime::Free ? Vec2(s.x, s.v) : Vec2(p.xI, 0.0);
+            flew[static_cast<std::size_t>(i)] = watch.flew ? 1 : 0;
+            k = recurrence(y, static_cast<std::size_t>(i) + 1, spec.max_period, spec.confirm, 4, spec.recur_tol);
+            if (k > 0) break;
+        }
+    } catch (const SimulationStalled&) {
+        out.kind = AttractorKind::Failed;
+        out.periods_run = i;
+        return out;
+    }
+    const std::size_t n = static_cast<std::size_t>(std::min(i, budget)) + 1;
+    out.periods_run = static_cast<int>(n) - 1;
+    // A cycle that converges slowly (a multiplier near the unit circle) may not reach recur_tol within the
+    // budget; it still repeats to within match_tol, and over the whole recorded window, which a chaotic
+    // trajectory lingering near a saddle cycle for a few turns does not.
+    if (k == 0) k = recurrence(y, n, spec.max_period, spec.confirm, spec.periods, spec.match_tol);
+    if (k > 0) {
+        out.kind = AttractorKind::Periodic;
+        out.period = k;
+        out.points.assign(y.begin() + static_cast<std::ptrdiff_t>(n) - k, y.begin() + static_cast<std::ptrdiff_t>(n));
+        const bool held = std::none_of(flew.begin() + static_cast<std::ptrdiff_t>(n) - k, flew.begin() + static_cast<std::ptrdiff_t>(n),
+                                       [](char f) { return f != 0; });
+        if (held) out.kind = AttractorKind::Resting;
+        return out;
+    }
+    out.kind = AttractorKind::Chaos;
+    const std::size_t keep = std::min(n - 1, static_cast<std::size_t>(spec.periods));
+    out.points.assign(y.begin() + static_cast<std::ptrdiff_t>(n - keep), y.begin() + static_cast<std::ptrdiff_t>(n));
+    return out;
+}
+
+bool same_attractor(const CellOutcome& a, const CellOutcome& b, const BasinSpec& spec) {
+    if (a.kind != b.kind) return false;
+    switch (a.kind) {
+        case AttractorKind::Failed: return true;
+        case AttractorKind::Periodic:
+        case AttractorKind::Resting:
+            // The same cycle: the same period and every point of one within match_tol of a point of the other.
+            if (a.period != b.period) return false;
+            for (const auto& q : a.points)
+                if (nearest(q, b.points) >= spec.match_tol) return false;
+            for (const auto& q : b.points)
+                if (nearest(q, a.points) >= spec.match_tol) return false;
+            return true;
+        case AttractorKind::Chaos:
+            // Two finite samples of one strange attractor never coincide; they lie close to each other
+            // everywhere (median nearest-neighbour distance, both ways), two different attractors do not.
+            if (a.points.empty() || b.points.empty()) return a.points.empty() && b.points.empty();
+            return median_nearest(a.points, b.points) < spec.chaos_tol && median_nearest(b.points, a.points) < spec.chaos_tol;
+    }
+    return false;
+}
+
+BasinResult compute_basins(const Params& p, const BasinSpec& spec, Progress* progress) {
+    validate(spec);
+    const auto t_start = std::chrono::steady_clock::now();
+    BasinResult res;
+    res.spec = spec;
+    const std::size_t nx = static_cast<std::size_t>(spec.nx), nv = static_cast<std::size_t>(spec.nv);
+    std::vector<CellOutcome> cells(nx * nv);
+    std::vector<char> done(nx * nv, 0);
+    int threads = spec.threads > 0 ? spec.threads : static_cast<int>(std::thread::hardware_concurrency());
+    threads = std::clamp(threads, 1, std::max(1, spec.nv));
+    res.threads = threads;
+
+    // Rows are handed out one at a time: chaotic rows cost ten times periodic ones, so a static split would
+    // leave a thread idle. Each cell is written by exactly one thread; join() publishes them.
+    std::atomic<int> next_row{0}, rows_done{0};
+    std::exception_ptr error;
+    std::mutex error_mutex;
+    auto cancelled = [&] { return progress && progress->cancel.load(std::memory_order_relaxed); };
+    auto worker = [&] {
+        try {
+            for (int j; (j = next_row.fetch_add(1, std::memory_order_relaxed)) < spec.nv;) {
+                for (int i = 0; i < spec.nx; ++i) {
+                    if (cancelled()) return;
+                    const std::size_t c = static_cast<std::size_t>(j) * nx + static_cast<std::size_t>(i);
+                    cells[c] = run_to_attractor(p, spec, Vec2(res.x0(i), res.v0(j)));
+                    done[c] = 1;
+                }
+                const int finished = rows_done.fetch_add(1, std::memory_order_relaxed) + 1;
+                if (progress) progress->fraction.store(static_cast<double>(finished) / spec.nv, std::memory_order_relaxed);
+            }
+        } catch (...) {
+            const std::lock_guard<std::mutex> lock(error_mutex);
+            if (!error) error = std::current_exception();
+            next_row.store(spec.nv, std::memory_order_relaxed);   // the others stop at their next row
+        }
+    };
+    std::vector<std::thread> pool;
+    pool.reserve(static_cast<std::size_t>(threads - 1));
+    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    if (error) std::rethrow_exception(error);
+    res.cancelled = cancelled();
+
+    // Labels in cell order: attractor ids follow the first cell that reached them, whatever ran where.
+    res.label.assign(nx * nv, -1);
+    std::vector<double> period_sum;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+        if (!done[c]) continue;
+        res.periods_run += static_cast<std::uint64_t>(cells[c].periods_run);
+        int id = -1;
+        for (const auto& a : res.attractors)
+            if (same_attractor(cells[a.first_cell], cells[c], spec)) {
+                id = a.id;
+                break;
+            }
+        if (id < 0) {
+            Attractor a;
+            a.id = static_cast<int>(res.attractors.size());
+            a.kind = cells[c].kind;
+            a.period = cells[c].period;
+            a.points = cells[c].points;
+            a.first_cell = c;
+            if (!a.points.empty()) {
+                double mean_x = 0;
+                for (const auto& q : a.points) mean_x += q[0];
+                mean_x /= static_cast<double>(a.points.size());
+                a.well = mean_x < -1e-9 ? -1 : mean_x > 1e-9 ? 1 : 0;
+                a.representative = *std::min_element(a.points.begin(), a.points.end(),
+                                                     [](const Vec2& u, const Vec2& w) { return u[0] < w[0]; });
+            }
+            res.attractors.push_back(std::move(a));
+            period_sum.push_back(0);
+            id = res.attractors.back().id;
+        }
+        res.label[c] = id;
+        ++res.attractors[static_cast<std::size_t>(id)].cells;
+        period_sum[static_cast<std::size_t>(id)] += cells[c].periods_run;
+    }
+    for (auto& a : res.attractors)
+        a.mean_periods = a.cells ? period_sum[static_cast<std::size_t>(a.id)] / static_cast<double>(a.cells) : 0.0;
+    res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    return res;
+}
+
+}  // namespace impactlab::analysis
