@@ -28,5 +28,5 @@ impactlab_cli_test(basins_grid_not_integer --rc 2 --match "'--grid'" -- basins -
 impactlab_cli_test(basins_missing_omega --rc 2 --match "'--omega'" -- basins --model A1G --grid 4 --out b.csv)
 impactlab_cli_test(basins_bad_range --rc 2 --match "'--x-range'" -- basins --omega 13 --grid 4 --x-range 0.01:-0.01 --out b.csv)
 impactlab_cli_test(basins_range_no_colon --rc 2 --match "'--v-range'" -- basins --omega 13 --grid 4 --v-range 0.3 --out b.csv)
-impactlab_cli_test(basins_png_unwritable --rc 2 --match "'--png'" --no-match "basins A1G"
+impactlab_cli_test(basins_png_unwritable --rc 2 --match "--png: cannot write" --no-match "basins A1G"
                    -- basins --omega 13 --grid 4 --out b.csv --png /nonexistent_dir/b.png)
