@@ -6,6 +6,7 @@ packages=(
   libeigen3-dev nlohmann-json3-dev libstb-dev doctest-dev fonts-dejavu-core zlib1g-dev libceres-dev
   libsundials-dev libboost-dev
   libimgui-dev libglfw3-dev libgl-dev libgl1-mesa-dri xvfb xauth
+  libopenmpi-dev openmpi-bin
   clang
 )
 missing=()

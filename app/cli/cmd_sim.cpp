@@ -15,21 +15,8 @@
 
 namespace impactlab::cli {
 
-namespace {
-// Prints the command's help (and the model flags it shares, if any) when asked.
-bool wants_help(const std::vector<std::string>& args, const char* text, const char* shared = nullptr) {
-    for (const auto& a : args)
-        if (a == "--help" || a == "-h") {
-            std::printf("%s", text);
-            if (shared) std::printf("%s", shared);
-            return true;
-        }
-    return false;
-}
-}  // namespace
-
 int cmd_models(const std::vector<std::string>& argv) {
-    if (wants_help(argv, "usage: impactlab models [--json NAME]\n\n"
+    if (show_help_if_asked(argv, "usage: impactlab models [--json NAME]\n\n"
                          "Lists every model version XY (stiffness X, impact Y) with its parameters (SI units).\n"
                          "  --json NAME   print the parameter file of version NAME (a starting point for --model FILE.json)\n"))
         return 0;
@@ -70,7 +57,7 @@ int cmd_models(const std::vector<std::string>& argv) {
 }
 
 int cmd_simulate(const std::vector<std::string>& argv) {
-    if (wants_help(argv, "usage: impactlab simulate --model A1H --omega 18 --duration 60 --out traj.csv [options]\n\n"
+    if (show_help_if_asked(argv, "usage: impactlab simulate --model A1H --omega 18 --duration 60 --out traj.csv [options]\n\n"
                          "Integrates one run at constant omega from rest (or --x0/--v0) and writes\n"
                          "t,x,v,phi,regime (regime 1 = free flight, 2 = sticking, 3 = permanent contact).\n"
                          "  --omega W        forcing frequency [rad/s] (required)\n"
@@ -129,7 +116,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
 }
 
 int cmd_poincare(const std::vector<std::string>& argv) {
-    if (wants_help(argv, "usage: impactlab poincare --model A1H --omega 18 --periods 200 --out sec.csv [options]\n\n"
+    if (show_help_if_asked(argv, "usage: impactlab poincare --model A1H --omega 18 --periods 200 --out sec.csv [options]\n\n"
                          "Samples (x, v) once per revolution of the unbalance (phi = 2 pi n) and writes n,x,v.\n"
                          "  --omega W        forcing frequency [rad/s] (required)\n"
                          "  --periods N      section points to record (required)\n"
@@ -160,7 +147,7 @@ int cmd_poincare(const std::vector<std::string>& argv) {
 }
 
 int cmd_bifurcation(const std::vector<std::string>& argv) {
-    if (wants_help(argv,
+    if (show_help_if_asked(argv,
                    "usage: impactlab bifurcation --model A1H --sweep up|down|ramp --out diag.csv [--png diag.png] [options]\n\n"
                    "  --sweep up       CF sweep: omega_j = 25 j/300, 20 transient + 70 recorded periods each,\n"
                    "                   each omega starting from the previous final state (MODEL.md)\n"
@@ -221,7 +208,7 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
 }
 
 int cmd_figure3(const std::vector<std::string>& argv) {
-    if (wants_help(argv, "usage: impactlab figure3 --out fig3.png [--steps N] [--rtol R]\n\n"
+    if (show_help_if_asked(argv, "usage: impactlab figure3 --out fig3.png [--steps N] [--rtol R]\n\n"
                          "Computes and stacks the panels of the paper's Fig. 3: the EF forcing omega(t), A1C-EF, and the\n"
                          "CF diagrams of A1C, A1C1, A3C, A1G, A1H (increasing omega).\n"
                          "  --steps N   omegas per CF diagram (default 300)\n"))

@@ -21,6 +21,7 @@ int cmd_figure3(const std::vector<std::string>& args);
 int cmd_fit(const std::vector<std::string>& args);
 int cmd_synth(const std::vector<std::string>& args);
 int cmd_recovery(const std::vector<std::string>& args);
+int cmd_scan(const std::vector<std::string>& args);
 int cmd_orbit(const std::vector<std::string>& args);
 int cmd_continue(const std::vector<std::string>& args);
 int cmd_lyapunov(const std::vector<std::string>& args);

@@ -11,6 +11,16 @@
 
 namespace impactlab::cli {
 
+bool show_help_if_asked(const std::vector<std::string>& args, const char* text, const char* shared) {
+    for (const auto& a : args)
+        if (a == "--help" || a == "-h") {
+            std::printf("%s", text);
+            if (shared) std::printf("%s", shared);
+            return true;
+        }
+    return false;
+}
+
 Params model_from(const Args& a, const std::string& fallback) {
     Params p;
     const std::string name = a.str("--model", fallback);

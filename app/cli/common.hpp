@@ -26,6 +26,8 @@ inline constexpr const char* kModelHelp =
     "  --m0e M                 forcing amplitude m0*e [kg m] (default: the model's)\n"
     "  --rtol R                relative tolerance of the integrator (default 1e-8)\n";
 
+// Prints the command's help, and the flags it shares (kModelHelp) if given, when --help or -h is among args.
+bool show_help_if_asked(const std::vector<std::string>& args, const char* text, const char* shared = nullptr);
 Params model_from(const Args& a, const std::string& fallback = "A1H");
 Tolerances tolerances_from(const Args& a);
 std::set<std::string> with_model_flags(std::set<std::string> flags);

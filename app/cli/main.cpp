@@ -19,6 +19,7 @@ const std::vector<Command>& commands() {
         {"figure3", "the paper's Fig. 3 as one PNG", cmd_figure3},
         {"fit", "close the loop with measured data: residual, missing effect, model with it, error before/after", cmd_fit},
         {"synth", "synthetic measured data with effects, sensor noise and quantisation (t,x,phi CSV)", cmd_synth},
+        {"scan", "a parameter plane (omega, xI, m0e): period, Lyapunov exponent, impacts, x range per point; threads or MPI", cmd_scan},
         {"recovery", "the recovery matrix: every library effect injected into each version, is it named first?", cmd_recovery},
         {"orbit", "a periodic orbit by Newton on the k-th Poincare map: section point, Floquet multipliers", cmd_orbit},
         {"continue", "continuation of periodic orbits: branches, folds, period doublings, grazings (CSV, PNG)", cmd_continue},

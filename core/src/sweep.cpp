@@ -14,10 +14,21 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // Collects section points with n in [first, last] and watches for cancellation.
 class SectionCollector : public Observer {
 public:
-    SectionCollector(std::int64_t first, Progress* progress) : first_(first), progress_(progress) {}
+    SectionCollector(std::int64_t first, Progress* progress, Observer* extra = nullptr)
+        : first_(first), progress_(progress), extra_(extra) {}
     void on_section(const SectionPoint& sp) override {
         if (sp.n >= first_) points.push_back(sp);
         if (on_section_progress) on_section_progress(sp);
+        if (extra_) extra_->on_section(sp);
+    }
+    void on_piece(const Piece& piece) override {
+        if (extra_) extra_->on_piece(piece);
+    }
+    void on_impact(const ImpactEvent& ev) override {
+        if (extra_) extra_->on_impact(ev);
+    }
+    void on_regime(double t, Regime from, Regime to) override {
+        if (extra_) extra_->on_regime(t, from, to);
     }
     bool stop() const override { return progress_ && progress_->cancel.load(std::memory_order_relaxed); }
     std::vector<SectionPoint> points;
@@ -26,6 +37,7 @@ public:
 private:
     std::int64_t first_;
     Progress* progress_;
+    Observer* extra_;
 };
 
 bool cancelled(const Progress* p) { return p && p->cancel.load(std::memory_order_relaxed); }
@@ -46,34 +58,51 @@ std::vector<SectionPoint> poincare_section(const Params& p, double omega, int pe
 }
 
 Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress, const Tolerances& tol) {
-    Diagram diag;
-    diag.model = p.name;
+    std::vector<CfLevel> levels(static_cast<std::size_t>(spec.steps));
+    for (int j = 0; j < spec.steps; ++j) {
+        const double w = spec.steps == 1 ? spec.omega_min
+                                         : spec.omega_min + (spec.omega_max - spec.omega_min) * j / (spec.steps - 1);
+        levels[static_cast<std::size_t>(j)] = {w, p.xI, p.m0e};
+    }
+    if (spec.direction == SweepDirection::Down) std::reverse(levels.begin(), levels.end());
+    Diagram diag = run_cf_levels(p, levels, spec.transient, spec.record, progress, tol);
     diag.protocol = spec.direction == SweepDirection::Up ? "cf-up" : "cf-down";
-    std::vector<double> omegas(static_cast<std::size_t>(spec.steps));
-    for (int j = 0; j < spec.steps; ++j)
-        omegas[static_cast<std::size_t>(j)] =
-            spec.steps == 1 ? spec.omega_min
-                            : spec.omega_min + (spec.omega_max - spec.omega_min) * j / (spec.steps - 1);
-    if (spec.direction == SweepDirection::Down) std::reverse(omegas.begin(), omegas.end());
-    // Progress counted in levels: the work per level is roughly constant (steps go with periods).
-    const double total = static_cast<double>(omegas.size());
-    double done = 0;
-    diag.points.reserve(omegas.size() * static_cast<std::size_t>(spec.record));
+    return diag;
+}
 
+Diagram run_cf_levels(const Params& p0, const std::vector<CfLevel>& levels, int transient, int record, Progress* progress,
+                      const Tolerances& tol, LevelObserver* extra) {
+    Diagram diag;
+    diag.model = p0.name;
+    diag.protocol = "cf";
+    // Progress counted in levels: the work per level is roughly constant (steps go with periods).
+    const double total = static_cast<double>(levels.size());
+    double done = 0;
+    diag.points.reserve(levels.size() * static_cast<std::size_t>(record));
+
+    Params p = p0;
     Simulator sim(tol);
     State s;   // at rest at x = 0
-    const int n_total = spec.transient + spec.record;
+    const int n_total = transient + record;
     bool first = true;
-    for (double w : omegas) {
+    for (std::size_t j = 0; j < levels.size(); ++j) {
         if (cancelled(progress)) {
             diag.cancelled = true;
             break;
         }
-        const Drive drive(w, s.t, 0.0);   // each level starts at a section instant: phi = 0 mod 2 pi
-        if (first) Simulator::make_consistent(p, drive, s);
-        else Simulator::sync_sections(drive, s);
+        const CfLevel& lv = levels[j];
+        const Drive drive(lv.omega, s.t, 0.0);   // each level starts at a section instant: phi = 0 mod 2 pi
+        p.m0e = lv.m0e;
+        if (first) {
+            p.xI = lv.xI;
+            Simulator::make_consistent(p, drive, s);
+        } else {
+            if (lv.xI != p.xI) Simulator::move_bumper(p, drive, s, lv.xI);
+            Simulator::sync_sections(drive, s);
+        }
         first = false;
-        SectionCollector col(spec.transient + 1, progress);
+        if (extra) extra->begin_level(j, lv);
+        SectionCollector col(transient + 1, progress, extra);
         if (progress)
             col.on_section_progress = [&](const SectionPoint& sp) {
                 progress->fraction.store((done + static_cast<double>(sp.n) / n_total) / total, std::memory_order_relaxed);
@@ -83,7 +112,8 @@ Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress, co
             diag.cancelled = true;
             break;
         }
-        for (const auto& sp : col.points) diag.points.push_back({w, sp.x, sp.v});
+        for (const auto& sp : col.points) diag.points.push_back({lv.omega, sp.x, sp.v});
+        if (extra) extra->end_level(j, p, s);
         done += 1.0;
     }
     diag.simulated_seconds = s.t;

@@ -173,3 +173,17 @@ foreach(i RANGE 39)
 endforeach()
 impactlab_cli_test(fit_mm_as_m --rc 2 --match "beyond the rail's travel" --match "--x-scale 1e-3" --absent r
                    --write mm.csv "${_mm_csv}" -- fit mm.csv --model A1H --report r)
+
+# --- impactlab scan ------------------------------------------------------------------------------------------
+add_test(NAME cli.scan_identity COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/scan_identity.sh $<TARGET_FILE:impactlab>)
+set_tests_properties(cli.scan_identity PROPERTIES LABELS cli TIMEOUT 300)
+impactlab_cli_test(scan_bad_axis --rc 2 --match "--x: 'omega:0:25'" --absent p.csv
+                   -- scan --x omega:0:25 --y xI:-0.01:0.01:3 --out p.csv)
+impactlab_cli_test(scan_same_axis --rc 2 --match "vary the same parameter"
+                   -- scan --x omega:1:2:3 --y omega:3:4:3 --out p.csv)
+impactlab_cli_test(scan_needs_omega --rc 2 --match "give --omega W"
+                   -- scan --x xI:-0.01:0.01:3 --y m0e:0.01:0.03:3 --out p.csv)
+impactlab_cli_test(scan_bad_measure --rc 2 --match "'colour'" -- scan --x omega:1:2:3 --y xI:0:0.01:2 --measure colour --out p.csv)
+impactlab_cli_test(scan_small --rc 0 --csv p.csv "omega,m0e,period,impacts,xmin,xmax" 6 6
+                   -- scan --model A1H --x omega:10:12:3 --y m0e:0.02:0.03:2 --measure period,impacts,xrange
+                      --transient 5 --record 10 --threads 2 --out p.csv)

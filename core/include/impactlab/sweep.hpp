@@ -50,6 +50,21 @@ struct EfSpec {
     double t_ramp = 2800.0;              // [s]
 };
 
+// One level of a CF-style sweep: the forcing frequency and the parameters a parameter plane varies.
+struct CfLevel { double omega, xI, m0e; };
+// Watches a CF-style sweep beside its section collector (the scan's measures): every piece, impact and
+// section of every level in time order, plus where each level begins and ends. Simulating thread.
+class LevelObserver : public Observer {
+public:
+    virtual void begin_level(std::size_t /*j*/, const CfLevel&) {}
+    virtual void end_level(std::size_t /*j*/, const Params& /*p*/, const State& /*s*/) {}
+};
+// The CF loop itself: from rest at x = 0, each level sets its omega (phi continuous, restarted at a section
+// instant), its m0e and its bumper position (moved quasi-statically, Simulator::move_bumper) and runs
+// transient + record periods from the previous level's final state; the diagram holds the recorded section
+// points, with each level's omega. run_cf_sweep is this with xI and m0e fixed.
+Diagram run_cf_levels(const Params& p, const std::vector<CfLevel>& levels, int transient, int record,
+                      Progress* progress = nullptr, const Tolerances& tol = {}, LevelObserver* extra = nullptr);
 // Starts at rest at x = 0 (made consistent with the bumper), as MODEL.md prescribes.
 Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress = nullptr, const Tolerances& tol = {});
 Diagram run_ef_ramp(const Params& p, const EfSpec& spec, Progress* progress = nullptr, const Tolerances& tol = {});

@@ -1,0 +1,253 @@
+// impactlab scan: a parameter plane on every core (a thread pool) and, started by mpirun, across processes
+// and machines (Open MPI: rank 0 hands out rows and writes, the other ranks compute). Rows are independent,
+// so the file is the same bit for bit whatever the number of threads or ranks. A tile log beside the output
+// holds every finished row; --resume reads it back and computes only what is missing.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "impactlab/scan.hpp"
+
+#ifdef IMPACTLAB_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace impactlab::cli {
+
+namespace {
+
+const char* kScanHelp =
+    "usage: impactlab scan --model A1C --x omega:0:25:400 --y xI:-0.01:0.01:300 --measure period,lyapunov,impacts,xrange\n"
+    "                      --out plane.csv [--png plane.png] [--threads N] [--resume] [options]\n"
+    "       mpirun -np N impactlab scan ...   (across processes and machines; rank 0 writes)\n\n"
+    "A parameter plane: each row (fixed y) a CF-style sweep along x, each point continued from the previous\n"
+    "point's final state (--start continue, the CF sweep's physics), or each point from rest (--start fresh).\n"
+    "  --x NAME:LO:HI:N    the fast axis (omega, xI or m0e), N points from LO to HI\n"
+    "  --y NAME:LO:HI:N    the slow axis\n"
+    "  --measure LIST      period (section values, 0 = chaos), lyapunov (largest exponent [1/s]), impacts (per\n"
+    "                      forcing period), xrange (xmin,xmax [m]); default period\n"
+    "  --out FILE          CSV: the axes, then one column per measure, x fastest (required)\n"
+    "  --png FILE          one map per measure with its legend\n"
+    "  --omega W           forcing frequency [rad/s] when neither axis is omega\n"
+    "  --start continue|fresh   (default continue)\n"
+    "  --transient N, --record N   periods per point (default 20, 70: the CF sweep's)\n"
+    "  --threads N         worker threads of this process (default: all cores)\n"
+    "  --resume            go on from FILE.tiles, the log a killed scan left (rows done are not redone)\n";
+
+std::vector<std::vector<ScanPoint>> empty_rows(const ScanSpec& spec) {
+    return std::vector<std::vector<ScanPoint>>(static_cast<std::size_t>(spec.y.n));
+}
+
+#ifdef IMPACTLAB_HAVE_MPI
+// Launched by mpirun (Open MPI sets these): only then is MPI started, so a plain run never needs a daemon.
+bool launched_by_mpirun() {
+    return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK") || std::getenv("PMI_SIZE");
+}
+struct MpiSession {
+    int rank = 0, size = 1;
+    bool active = false;
+    MpiSession() {
+        if (!launched_by_mpirun()) return;
+        MPI_Init(nullptr, nullptr);
+        MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+        MPI_Comm_size(MPI_COMM_WORLD, &size);
+        active = true;
+    }
+    ~MpiSession() {
+        if (active) MPI_Finalize();
+    }
+};
+constexpr int kTagRequest = 1, kTagRow = 2, kTagResult = 3;
+#endif
+
+}  // namespace
+
+int cmd_scan(const std::vector<std::string>& argv) {
+    if (show_help_if_asked(argv, kScanHelp, kModelHelp)) return 0;
+#ifdef IMPACTLAB_HAVE_MPI
+    MpiSession mpi;
+    const int rank = mpi.rank, ranks = mpi.size;
+#else
+    const int rank = 0, ranks = 1;
+#endif
+    // Every rank parses the same argv; only rank 0 touches files, and it tells the others whether to go on.
+    int ok = 1;
+    ScanSpec spec;
+    Params p;
+    std::string out_path, png, log_path;
+    std::vector<std::vector<ScanPoint>> rows;
+    std::vector<int> todo;
+    int threads = 1;
+    Tolerances tol;
+    std::optional<OutputFile> out;
+    std::ofstream log;
+    try {
+        const Args a("scan", argv,
+                     with_model_flags({"--x", "--y", "--measure", "--out", "--png", "--threads", "--transient", "--record",
+                                       "--start", "--omega"}),
+                     {"--resume"});
+        p = model_from(a);
+        tol = tolerances_from(a);
+        try {
+            spec.x = parse_scan_axis(a.required("--x"));
+        } catch (const ScanError& e) {
+            throw UsageError(std::string("scan: --x: ") + e.what());
+        }
+        try {
+            spec.y = parse_scan_axis(a.required("--y"));
+        } catch (const ScanError& e) {
+            throw UsageError(std::string("scan: --y: ") + e.what());
+        }
+        if (spec.x.param == spec.y.param) throw UsageError("scan: --x and --y vary the same parameter");
+        try {
+            spec.measures = parse_scan_measures(a.str("--measure", "period"));
+        } catch (const ScanError& e) {
+            throw UsageError(std::string("scan: --measure: ") + e.what());
+        }
+        const bool omega_axis = spec.x.param == ScanParam::Omega || spec.y.param == ScanParam::Omega;
+        if (!omega_axis && !a.has("--omega")) throw UsageError("scan: neither axis is omega: give --omega W");
+        if (omega_axis && a.has("--omega")) throw UsageError("scan: --omega is an axis already");
+        spec.omega = a.num("--omega", 0.0, 1e-3, 1000.0);
+        const std::string start = a.str("--start", "continue");
+        if (start != "continue" && start != "fresh") throw UsageError("scan: --start: '" + start + "' is not continue or fresh");
+        spec.start = start == "continue" ? ScanStart::Continue : ScanStart::Fresh;
+        spec.transient = a.integer("--transient", 20, 0, 1000000);
+        spec.record = a.integer("--record", 70, 1, 1000000);
+        const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+        threads = a.integer("--threads", static_cast<int>(hw), 1, 1024);
+        // Every parameter of the plane must be one the model accepts: check its corners.
+        for (int j : {0, spec.y.n - 1})
+            for (int i : {0, spec.x.n - 1}) {
+                Params q = p;
+                for (const ScanAxis* ax : {&spec.x, &spec.y}) {
+                    const double v = ax->at(ax == &spec.x ? i : j);
+                    if (ax->param == ScanParam::XI) q.xI = v;
+                    if (ax->param == ScanParam::M0e) q.m0e = v;
+                }
+                validate(q, "scan plane corner");
+            }
+        out_path = a.required("--out");
+        png = a.str("--png", "");
+        log_path = out_path + ".tiles";
+        rows = empty_rows(spec);
+        if (rank == 0) {
+            out.emplace(out_path, "--out");
+            if (!png.empty()) check_writable(png, "--png");
+            std::vector<bool> done(static_cast<std::size_t>(spec.y.n), false);
+            const std::string header = scan_log_header(p, spec);
+            std::size_t resumed = 0;
+            if (a.has("--resume") && std::filesystem::exists(log_path)) {
+                std::ifstream in(log_path);
+                try {
+                    for (auto& [row, pts] : read_scan_log(in, header, spec)) {
+                        if (!done[static_cast<std::size_t>(row)]) ++resumed;
+                        done[static_cast<std::size_t>(row)] = true;
+                        rows[static_cast<std::size_t>(row)] = std::move(pts);
+                    }
+                } catch (const ScanError& e) {
+                    throw UsageError("scan: --resume: " + log_path + ": " + e.what());
+                }
+            }
+            for (int j = 0; j < spec.y.n; ++j)
+                if (!done[static_cast<std::size_t>(j)]) todo.push_back(j);
+            // The log is rewritten whole (the rows read back, then the new ones as they finish).
+            log.open(log_path, std::ios::trunc);
+            if (!log) throw UsageError("scan: cannot write the tile log " + log_path);
+            log << header << '\n';
+            for (int j = 0; j < spec.y.n; ++j)
+                if (done[static_cast<std::size_t>(j)]) log << scan_log_line(j, rows[static_cast<std::size_t>(j)]) << '\n';
+            log.flush();
+            if (a.has("--resume"))
+                std::fprintf(stderr, "scan: resumed %zu of %d rows from %s\n", resumed, spec.y.n, log_path.c_str());
+        }
+    } catch (...) {
+        ok = 0;
+#ifdef IMPACTLAB_HAVE_MPI
+        if (mpi.active) {
+            MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+            if (rank != 0) return 2;   // rank 0 says what was wrong
+        }
+#endif
+        throw;
+    }
+#ifdef IMPACTLAB_HAVE_MPI
+    if (mpi.active) {
+        MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+        if (!ok) return 2;
+    }
+#endif
+
+    const std::size_t nx = static_cast<std::size_t>(spec.x.n);
+    auto record_row = [&](int row, const std::vector<ScanPoint>& pts) {   // rank 0, one call at a time
+        rows[static_cast<std::size_t>(row)] = pts;
+        log << scan_log_line(row, pts) << '\n';
+        log.flush();   // a kill loses at most the rows in flight
+    };
+    Progress progress;
+    if (ranks == 1) {
+        ProgressBar bar("scan " + p.name, progress);
+        scan_rows(p, spec, todo, threads, &progress, tol, record_row);
+    }
+#ifdef IMPACTLAB_HAVE_MPI
+    else if (rank == 0) {
+        // Dynamic hand-out: a worker asks, gets the next row (or -1: done), and sends the row's values back.
+        ProgressBar bar("scan " + p.name + " (" + std::to_string(ranks - 1) + " MPI workers)", progress);
+        std::size_t next = 0, finished = 0;
+        int stopped = 0;
+        std::vector<double> buf(1 + 5 * nx);
+        while (stopped < ranks - 1) {
+            MPI_Status st;
+            MPI_Recv(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
+            if (st.MPI_TAG == kTagResult) {
+                std::vector<ScanPoint> pts(nx);
+                for (std::size_t i = 0; i < nx; ++i)
+                    pts[i] = {buf[1 + 5 * i], buf[2 + 5 * i], buf[3 + 5 * i], buf[4 + 5 * i], buf[5 + 5 * i]};
+                record_row(static_cast<int>(buf[0]), pts);
+                progress.fraction.store(static_cast<double>(++finished) / std::max<std::size_t>(1, todo.size()));
+            }
+            int row = -1;
+            if (next < todo.size()) row = todo[next++];
+            else ++stopped;
+            MPI_Send(&row, 1, MPI_INT, st.MPI_SOURCE, kTagRow, MPI_COMM_WORLD);
+        }
+    } else {
+        std::vector<double> buf(1 + 5 * nx);
+        double dummy = 0;
+        MPI_Send(&dummy, 1, MPI_DOUBLE, 0, kTagRequest, MPI_COMM_WORLD);
+        for (;;) {
+            int row = -1;
+            MPI_Recv(&row, 1, MPI_INT, 0, kTagRow, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+            if (row < 0) break;
+            const std::vector<ScanPoint> pts = scan_row(p, spec, row, tol);
+            buf[0] = row;
+            for (std::size_t i = 0; i < nx; ++i) {
+                buf[1 + 5 * i] = pts[i].period;
+                buf[2 + 5 * i] = pts[i].lyapunov;
+                buf[3 + 5 * i] = pts[i].impacts;
+                buf[4 + 5 * i] = pts[i].xmin;
+                buf[5 + 5 * i] = pts[i].xmax;
+            }
+            MPI_Send(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, 0, kTagResult, MPI_COMM_WORLD);
+        }
+        return 0;
+    }
+#endif
+    write_scan_csv(spec, rows, *out);
+    out->commit();
+    if (!png.empty()) save_scan_png(spec, rows, p.name, png);
+    log.close();
+    std::filesystem::remove(log_path);   // complete: nothing to resume
+    std::fprintf(stderr, "scan %s: %d x %d points (%zu rows computed, %d %s) -> %s%s%s\n", p.name.c_str(), spec.x.n,
+                 spec.y.n, todo.size(), ranks > 1 ? ranks - 1 : threads,
+                 ranks > 1 ? "MPI workers" : "threads", out_path.c_str(), png.empty() ? "" : ", ", png.c_str());
+    return 0;
+}
+
+}  // namespace impactlab::cli

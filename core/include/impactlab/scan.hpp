@@ -1,0 +1,82 @@
+// Parameter planes: a grid over two of (omega, xI, m0e), each row a CF-style sweep along the first axis
+// (continued from the previous point's final state) or each point from rest (fresh), with measures per
+// point: the period of the section points, the largest Lyapunov exponent, impacts per period, the x range.
+// Rows are the unit of work: independent of one another, so a result never depends on how many threads,
+// processes or machines computed it, or in which order (the CLI spreads rows over threads and MPI ranks).
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <iosfwd>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "impactlab/params.hpp"
+#include "impactlab/rosenbrock.hpp"
+#include "impactlab/sweep.hpp"
+
+namespace impactlab {
+
+struct ScanError : std::runtime_error { using std::runtime_error::runtime_error; };
+
+enum class ScanParam { Omega, XI, M0e };
+struct ScanAxis {
+    ScanParam param = ScanParam::Omega;
+    double lo = 0, hi = 0;   // [rad/s], [m] or [kg m]
+    int n = 1;               // points, lo and hi included
+    double at(int i) const { return n == 1 ? lo : lo + (hi - lo) * i / (n - 1); }
+    const char* name() const;
+};
+// "omega:0:25:400", "xI:-0.01:0.01:300", "m0e:0.01:0.05:50"; throws ScanError naming the problem.
+ScanAxis parse_scan_axis(const std::string& spec);
+
+struct ScanMeasures {
+    bool period = true, lyapunov = false, impacts = false, xrange = false;
+};
+// "period,lyapunov,impacts,xrange"; throws ScanError for an unknown name.
+ScanMeasures parse_scan_measures(const std::string& list);
+
+enum class ScanStart { Continue, Fresh };
+struct ScanSpec {
+    ScanAxis x, y;              // x: the fast axis, along which a row continues
+    ScanMeasures measures;
+    ScanStart start = ScanStart::Continue;
+    double omega = 0;           // [rad/s] when neither axis is omega
+    int transient = 20, record = 70;   // periods per point, as the CF sweep
+};
+
+// What one point shows. period: 1..16 distinct section values (as the CF sweep counts them), 0 for more
+// (chaos or a long period); impacts per forcing period (rigid impacts, or contacts of a compliant bumper);
+// x range over the recorded periods [m]; lyapunov [1/s] (NaN when not measured).
+struct ScanPoint {
+    double period = 0, lyapunov = 0, impacts = 0, xmin = 0, xmax = 0;
+};
+
+// One row (y = spec.y.at(row)) of the plane; any thread. Cancelled rows return empty.
+std::vector<ScanPoint> scan_row(const Params& p, const ScanSpec& spec, int row, const Tolerances& tol = {},
+                                const std::atomic<bool>* cancel = nullptr);
+
+// The rows `todo` on `threads` workers, handing rows out one at a time (a chaotic row costs several
+// periodic ones). on_row is called once per finished row, serialised (one call at a time), on a worker
+// thread. Progress counts the rows of `todo`.
+void scan_rows(const Params& p, const ScanSpec& spec, const std::vector<int>& todo, int threads, Progress* progress,
+               const Tolerances& tol, const std::function<void(int row, const std::vector<ScanPoint>&)>& on_row);
+
+// The CSV: the two axis names, then one column per measure (period, lyapunov, impacts, xmin, xmax), rows
+// with the first axis fastest; numbers printed to round-trip exactly.
+void write_scan_csv(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, std::ostream& out);
+
+// The tile log of a scan: a header naming the model and the spec, then one line per finished row with its
+// values in hexadecimal floating point (exact). A resumed scan reads it back; a torn last line is ignored.
+std::string scan_log_header(const Params& p, const ScanSpec& spec);
+std::string scan_log_line(int row, const std::vector<ScanPoint>& points);
+// Rows read from a log; throws ScanError if the header belongs to another scan.
+std::vector<std::pair<int, std::vector<ScanPoint>>> read_scan_log(std::istream& in, const std::string& header,
+                                                                  const ScanSpec& spec);
+
+// A PNG with one map per measure (period classes, impacts, lambda, x range) and a legend for each.
+void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, const std::string& model,
+                   const std::string& path);
+
+}  // namespace impactlab

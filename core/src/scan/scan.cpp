@@ -1,0 +1,299 @@
+#include "impactlab/scan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <istream>
+#include <limits>
+#include <mutex>
+#include <ostream>
+#include <sstream>
+#include <thread>
+
+#include "impactlab/analysis.hpp"
+
+namespace impactlab {
+
+const char* ScanAxis::name() const {
+    switch (param) {
+        case ScanParam::Omega: return "omega";
+        case ScanParam::XI: return "xI";
+        case ScanParam::M0e: return "m0e";
+    }
+    return "?";
+}
+
+namespace {
+
+double number(const std::string& what, const std::string& s) {
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v))
+        throw ScanError(what + ": '" + s + "' is not a finite number");
+    return v;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> out;
+    std::string item;
+    std::stringstream ss(s);
+    while (std::getline(ss, item, sep)) out.push_back(item);
+    if (!s.empty() && s.back() == sep) out.emplace_back();
+    return out;
+}
+
+// The measures of one CF level, taken in its record window (after `transient` sections).
+class ScanObserver : public LevelObserver {
+public:
+    ScanObserver(const ScanSpec& spec, const Tolerances& tol, std::vector<ScanPoint>& out, std::size_t first_index)
+        : spec_(spec), tol_(tol), out_(out), first_(first_index) {}
+    void begin_level(std::size_t, const CfLevel& lv) override {
+        level_ = lv;
+        sections_ = 0;
+        impacts_ = 0;
+        xs_.clear();
+        xmin_ = std::numeric_limits<double>::infinity();
+        xmax_ = -xmin_;
+        inside_ = false;
+        inside_known_ = false;
+    }
+    void on_section(const SectionPoint& sp) override {
+        ++sections_;
+        if (recording()) xs_.push_back(sp.x);
+    }
+    void on_impact(const ImpactEvent&) override {
+        if (recording()) ++impacts_;
+    }
+    void on_piece(const Piece& piece) override {
+        if (!recording()) return;
+        for (int k = 0; k <= 4; ++k) {   // the ends and three interior points of the dense output
+            const double x = piece.at(piece.t0 + (piece.t1 - piece.t0) * k / 4)[0];
+            xmin_ = std::min(xmin_, x);
+            xmax_ = std::max(xmax_, x);
+        }
+        // A compliant bumper's contacts: the cart crosses into x > xI (rigid impacts come through on_impact).
+        const bool inside = piece.at(piece.t1)[0] > level_.xI;
+        if (compliant_ && inside_known_ && inside && !inside_) ++impacts_;
+        inside_ = inside;
+        inside_known_ = true;
+    }
+    void end_level(std::size_t j, const Params& p, const State& s) override {
+        ScanPoint pt;
+        const int distinct = count_period(xs_, 1e-5);
+        pt.period = distinct > 16 ? 0.0 : distinct;
+        pt.impacts = static_cast<double>(impacts_) / spec_.record;
+        pt.xmin = xmin_;
+        pt.xmax = xmax_;
+        pt.lyapunov = std::numeric_limits<double>::quiet_NaN();
+        if (spec_.measures.lyapunov) {
+            State copy = s;   // the continuation goes on from s, untouched
+            pt.lyapunov = analysis::lyapunov(p, level_.omega, copy, 0, spec_.record, tol_).lambda_max;
+        }
+        out_[first_ + j] = pt;
+    }
+    void set_compliant(bool c) { compliant_ = c; }
+
+private:
+    bool recording() const { return sections_ > spec_.transient; }
+    const ScanSpec& spec_;
+    const Tolerances& tol_;
+    std::vector<ScanPoint>& out_;
+    std::size_t first_;
+    CfLevel level_{};
+    int sections_ = 0;
+    long impacts_ = 0;
+    std::vector<double> xs_;
+    double xmin_ = 0, xmax_ = 0;
+    bool inside_ = false, inside_known_ = false, compliant_ = false;
+};
+
+CfLevel level_at(const Params& p, const ScanSpec& spec, int i, int row) {
+    CfLevel lv{spec.omega, p.xI, p.m0e};
+    auto set = [&](ScanParam which, double v) {
+        if (which == ScanParam::Omega) lv.omega = v;
+        else if (which == ScanParam::XI) lv.xI = v;
+        else lv.m0e = v;
+    };
+    set(spec.y.param, spec.y.at(row));
+    set(spec.x.param, spec.x.at(i));
+    return lv;
+}
+
+}  // namespace
+
+ScanAxis parse_scan_axis(const std::string& spec) {
+    const auto parts = split(spec, ':');
+    if (parts.size() != 4) throw ScanError("'" + spec + "': expected NAME:LO:HI:N (e.g. omega:0:25:400)");
+    ScanAxis a;
+    if (parts[0] == "omega") a.param = ScanParam::Omega;
+    else if (parts[0] == "xI") a.param = ScanParam::XI;
+    else if (parts[0] == "m0e") a.param = ScanParam::M0e;
+    else throw ScanError("'" + spec + "': '" + parts[0] + "' is not one of omega, xI, m0e");
+    a.lo = number(spec, parts[1]);
+    a.hi = number(spec, parts[2]);
+    const double n = number(spec, parts[3]);
+    if (n != std::floor(n) || n < 1 || n > 100000) throw ScanError("'" + spec + "': N must be an integer in [1, 100000]");
+    a.n = static_cast<int>(n);
+    if (a.n > 1 && !(a.hi > a.lo)) throw ScanError("'" + spec + "': HI must exceed LO");
+    // The same physical ranges the parameter files and the CLI flags accept.
+    const double lo_ok = a.param == ScanParam::Omega ? 1e-3 : a.param == ScanParam::XI ? -0.1 : 0.0;
+    const double hi_ok = a.param == ScanParam::Omega ? 1000.0 : a.param == ScanParam::XI ? 0.1 : 10.0;
+    if (a.lo < lo_ok || a.hi > hi_ok) {
+        std::ostringstream m;
+        m << "'" << spec << "': " << parts[0] << " must lie in [" << lo_ok << ", " << hi_ok << "]";
+        throw ScanError(m.str());
+    }
+    return a;
+}
+
+ScanMeasures parse_scan_measures(const std::string& list) {
+    ScanMeasures m;
+    m.period = false;
+    for (const auto& name : split(list, ',')) {
+        if (name == "period") m.period = true;
+        else if (name == "lyapunov") m.lyapunov = true;
+        else if (name == "impacts") m.impacts = true;
+        else if (name == "xrange") m.xrange = true;
+        else throw ScanError("'" + name + "' is not one of period, lyapunov, impacts, xrange");
+    }
+    if (!(m.period || m.lyapunov || m.impacts || m.xrange)) throw ScanError("no measure given");
+    return m;
+}
+
+std::vector<ScanPoint> scan_row(const Params& p, const ScanSpec& spec, int row, const Tolerances& tol,
+                                const std::atomic<bool>* cancel) {
+    const auto nx = static_cast<std::size_t>(spec.x.n);
+    std::vector<ScanPoint> out(nx);
+    Progress local;   // carries the caller's cancel flag into the sweep
+    auto run = [&](const std::vector<CfLevel>& levels, std::size_t first) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) local.cancel.store(true);
+        ScanObserver obs(spec, tol, out, first);
+        obs.set_compliant(p.compliant());
+        const Diagram d = run_cf_levels(p, levels, spec.transient, spec.record, cancel ? &local : nullptr, tol, &obs);
+        return !d.cancelled;
+    };
+    if (spec.start == ScanStart::Continue) {
+        std::vector<CfLevel> levels(nx);
+        for (std::size_t i = 0; i < nx; ++i) levels[i] = level_at(p, spec, static_cast<int>(i), row);
+        if (!run(levels, 0)) return {};
+    } else {
+        for (std::size_t i = 0; i < nx; ++i)
+            if (!run({level_at(p, spec, static_cast<int>(i), row)}, i)) return {};
+    }
+    return out;
+}
+
+void scan_rows(const Params& p, const ScanSpec& spec, const std::vector<int>& todo, int threads, Progress* progress,
+               const Tolerances& tol, const std::function<void(int, const std::vector<ScanPoint>&)>& on_row) {
+    std::atomic<std::size_t> next{0};
+    std::atomic<std::size_t> done{0};
+    std::mutex hand_over;
+    const std::atomic<bool>* cancel = progress ? &progress->cancel : nullptr;
+    auto worker = [&] {
+        for (;;) {
+            const std::size_t k = next.fetch_add(1);
+            if (k >= todo.size() || (cancel && cancel->load())) return;
+            std::vector<ScanPoint> r = scan_row(p, spec, todo[k], tol, cancel);
+            if (r.empty()) return;   // cancelled
+            {
+                std::lock_guard<std::mutex> lock(hand_over);
+                on_row(todo[k], r);
+            }
+            if (progress)
+                progress->fraction.store(static_cast<double>(++done) / static_cast<double>(todo.size()),
+                                         std::memory_order_relaxed);
+        }
+    };
+    const int n = std::max(1, std::min(threads, static_cast<int>(todo.size())));
+    std::vector<std::thread> pool;
+    for (int t = 1; t < n; ++t) pool.emplace_back(worker);
+    worker();   // the calling thread works too
+    for (auto& t : pool) t.join();
+}
+
+void write_scan_csv(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, std::ostream& out) {
+    const ScanMeasures& m = spec.measures;
+    out << spec.x.name() << ',' << spec.y.name();
+    if (m.period) out << ",period";
+    if (m.lyapunov) out << ",lyapunov";
+    if (m.impacts) out << ",impacts";
+    if (m.xrange) out << ",xmin,xmax";
+    out << '\n';
+    char buf[64];
+    auto put = [&](double v) {
+        std::snprintf(buf, sizeof buf, ",%.17g", v);
+        out << buf;
+    };
+    for (int j = 0; j < spec.y.n; ++j)
+        for (int i = 0; i < spec.x.n; ++i) {
+            const ScanPoint& pt = rows[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)];
+            std::snprintf(buf, sizeof buf, "%.10g,%.10g", spec.x.at(i), spec.y.at(j));
+            out << buf;
+            if (m.period) put(pt.period);
+            if (m.lyapunov) put(pt.lyapunov);
+            if (m.impacts) put(pt.impacts);
+            if (m.xrange) {
+                put(pt.xmin);
+                put(pt.xmax);
+            }
+            out << '\n';
+        }
+}
+
+std::string scan_log_header(const Params& p, const ScanSpec& spec) {
+    std::ostringstream h;
+    h.precision(17);
+    h << "# impactlab scan log v1 model=" << p.name << " x=" << spec.x.name() << ':' << spec.x.lo << ':' << spec.x.hi << ':'
+      << spec.x.n << " y=" << spec.y.name() << ':' << spec.y.lo << ':' << spec.y.hi << ':' << spec.y.n
+      << " omega=" << spec.omega << " xI=" << p.xI << " m0e=" << p.m0e << " transient=" << spec.transient
+      << " record=" << spec.record << " start=" << (spec.start == ScanStart::Continue ? "continue" : "fresh")
+      << " lyapunov=" << spec.measures.lyapunov;
+    return h.str();
+}
+
+std::string scan_log_line(int row, const std::vector<ScanPoint>& points) {
+    std::string line = "row " + std::to_string(row);
+    char buf[40];
+    for (const ScanPoint& pt : points)
+        for (const double v : {pt.period, pt.lyapunov, pt.impacts, pt.xmin, pt.xmax}) {
+            std::snprintf(buf, sizeof buf, " %a", v);
+            line += buf;
+        }
+    return line + " end";
+}
+
+std::vector<std::pair<int, std::vector<ScanPoint>>> read_scan_log(std::istream& in, const std::string& header,
+                                                                  const ScanSpec& spec) {
+    std::string line;
+    if (!std::getline(in, line)) return {};
+    if (line != header)
+        throw ScanError("the tile log belongs to another scan (its header: '" + line + "'); remove it or drop --resume");
+    std::vector<std::pair<int, std::vector<ScanPoint>>> rows;
+    const std::size_t nx = static_cast<std::size_t>(spec.x.n);
+    while (std::getline(in, line)) {
+        std::istringstream ls(line);
+        std::string word, tail;
+        int row = -1;
+        if (!(ls >> word >> row) || word != "row" || row < 0 || row >= spec.y.n) continue;
+        std::vector<ScanPoint> pts(nx);
+        bool ok = true;
+        for (std::size_t i = 0; i < nx && ok; ++i) {
+            double v[5];
+            for (double& x : v) {
+                std::string tok;
+                if (!(ls >> tok)) {
+                    ok = false;
+                    break;
+                }
+                x = std::strtod(tok.c_str(), nullptr);
+            }
+            if (ok) pts[i] = {v[0], v[1], v[2], v[3], v[4]};
+        }
+        // A row killed while being written lacks its "end": it is computed again.
+        if (ok && (ls >> tail) && tail == "end") rows.emplace_back(row, std::move(pts));
+    }
+    return rows;
+}
+
+}  // namespace impactlab

@@ -1,0 +1,126 @@
+// impactlab scan: a row is the CF sweep, any thread count gives the same plane, the tile log is exact.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "impactlab/params.hpp"
+#include "impactlab/scan.hpp"
+#include "impactlab/sweep.hpp"
+
+using namespace impactlab;
+
+namespace {
+
+ScanSpec small_plane() {
+    ScanSpec s;
+    s.x = parse_scan_axis("omega:9:13.5:7");
+    s.y = parse_scan_axis("xI:-0.003:0.003:3");
+    s.measures = parse_scan_measures("period,impacts,xrange");
+    s.transient = 20;
+    s.record = 30;
+    return s;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+}  // namespace
+
+TEST_CASE("scan: a row at fixed xI is the CF sweep at the same omegas") {
+    const ScanSpec spec = small_plane();
+    for (const char* version : {"A1C", "A1G"}) {
+        Params p = make_version(version);
+        const int row = 2;
+        const std::vector<ScanPoint> pts = scan_row(p, spec, row, {});
+        REQUIRE(pts.size() == 7u);
+        p.xI = spec.y.at(row);
+        CfSpec cf;
+        cf.omega_min = spec.x.lo;
+        cf.omega_max = spec.x.hi;
+        cf.steps = spec.x.n;
+        cf.transient = spec.transient;
+        cf.record = spec.record;
+        const Diagram d = run_cf_sweep(p, cf);
+        std::map<double, std::vector<double>> xs;
+        for (const auto& pt : d.points) xs[pt.omega].push_back(pt.x);
+        REQUIRE(xs.size() == 7u);
+        int i = 0;
+        for (const auto& [w, x] : xs) {
+            CAPTURE(version);
+            CAPTURE(w);
+            CHECK(w == spec.x.at(i));
+            const int distinct = count_period(x, 1e-5);
+            CHECK(pts[static_cast<std::size_t>(i)].period == (distinct > 16 ? 0 : distinct));
+            // The x range holds every section point.
+            for (double xv : x) {
+                CHECK(xv >= pts[static_cast<std::size_t>(i)].xmin - 1e-12);
+                CHECK(xv <= pts[static_cast<std::size_t>(i)].xmax + 1e-12);
+            }
+            ++i;
+        }
+    }
+}
+
+TEST_CASE("scan: one thread and two threads give the same plane, bit for bit") {
+    const ScanSpec spec = small_plane();
+    const Params p = make_version("A1G");
+    std::vector<std::vector<ScanPoint>> one(3), two(3);
+    const std::vector<int> todo{0, 1, 2};
+    scan_rows(p, spec, todo, 1, nullptr, {}, [&](int r, const std::vector<ScanPoint>& v) { one[static_cast<std::size_t>(r)] = v; });
+    scan_rows(p, spec, todo, 2, nullptr, {}, [&](int r, const std::vector<ScanPoint>& v) { two[static_cast<std::size_t>(r)] = v; });
+    std::ostringstream a, b;
+    write_scan_csv(spec, one, a);
+    write_scan_csv(spec, two, b);
+    CHECK(a.str() == b.str());
+    CHECK(a.str().rfind("omega,xI,period,impacts,xmin,xmax\n9,-0.003,", 0) == 0);
+    // Impacts happen somewhere in this plane (A1G's bumper is reached at 13.5 rad/s), and never a negative count.
+    double most = 0;
+    for (const auto& row : one)
+        for (const auto& pt : row) {
+            CHECK(pt.impacts >= 0);
+            most = std::max(most, pt.impacts);
+        }
+    CHECK(most > 0);
+}
+
+TEST_CASE("scan: the tile log round-trips exactly; a torn row is dropped; another scan's log is refused") {
+    ScanSpec spec = small_plane();
+    spec.x.n = 2;
+    const Params p = make_version("A1H");
+    const std::vector<ScanPoint> row{{1, NAN, 0.5, -0.0123456789012345, 1e-300}, {0, -2.5, 3, -1.0 / 3.0, 2.0 / 3.0}};
+    const std::string header = scan_log_header(p, spec);
+    std::stringstream log;
+    log << header << '\n' << scan_log_line(1, row) << '\n';
+    const std::string torn = scan_log_line(2, row);
+    log << torn.substr(0, torn.size() - 10) << '\n';   // killed while writing row 2
+    const auto back = read_scan_log(log, header, spec);
+    REQUIRE(back.size() == 1u);
+    CHECK(back[0].first == 1);
+    for (std::size_t i = 0; i < row.size(); ++i) {
+        CHECK(same_bits(back[0].second[i].xmin, row[i].xmin));
+        CHECK(same_bits(back[0].second[i].xmax, row[i].xmax));
+        CHECK(back[0].second[i].period == row[i].period);
+    }
+    CHECK(std::isnan(back[0].second[0].lyapunov));
+    ScanSpec other = spec;
+    other.record = 71;
+    std::stringstream again;
+    again << header << '\n';
+    CHECK_THROWS_AS(read_scan_log(again, scan_log_header(p, other), other), ScanError);
+}
+
+TEST_CASE("scan: axes and measures are checked, naming the problem") {
+    CHECK_THROWS_WITH_AS(parse_scan_axis("omega:0:25"), doctest::Contains("NAME:LO:HI:N"), ScanError);
+    CHECK_THROWS_WITH_AS(parse_scan_axis("k:0:25:10"), doctest::Contains("not one of omega, xI, m0e"), ScanError);
+    CHECK_THROWS_WITH_AS(parse_scan_axis("omega:5:1:10"), doctest::Contains("HI must exceed LO"), ScanError);
+    CHECK_THROWS_WITH_AS(parse_scan_axis("omega:0:25:2.5"), doctest::Contains("integer"), ScanError);
+    CHECK_THROWS_WITH_AS(parse_scan_axis("xI:-0.5:0.01:10"), doctest::Contains("[-0.1, 0.1]"), ScanError);
+    CHECK_THROWS_WITH_AS(parse_scan_axis("omega:0:1e400:10"), doctest::Contains("not a finite number"), ScanError);
+    CHECK_THROWS_WITH_AS(parse_scan_measures("period,colour"), doctest::Contains("'colour'"), ScanError);
+    CHECK(parse_scan_measures("lyapunov").lyapunov);
+    CHECK_FALSE(parse_scan_measures("lyapunov").period);
+}
