@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "impactlab/analysis.hpp"
 #include "impactlab/forces.hpp"
@@ -105,6 +106,22 @@ TEST_CASE("basins: a start on a stable periodic orbit gets that orbit's label, a
     // Far from it, a start reaches the chaotic attractor, not this orbit.
     const CellOutcome far = run_to_attractor(p, s, Vec2(-0.005, 0.0));
     CHECK_FALSE(same_attractor(far, c, s));
+}
+
+TEST_CASE("basins: a chaotic start that lands on a saddle cycle through permanent contact is not labelled with it") {
+    // A1G at omega 13: these starts reach the unstable period-6 orbit (mu = -1.74) to round-off through a
+    // permanent contact, and repeat it for dozens of periods; the recurrence alone took it for period 6 / 12.
+    // Cells (96, 110) and (171, 112) of the default 200 x 200 grid.
+    const Params p = make_version("A1G");
+    BasinResult grid;
+    grid.spec.omega = 13;
+    const BasinSpec& s = grid.spec;
+    for (const auto& [i, j] : {std::pair{96, 110}, std::pair{171, 112}}) {
+        const CellOutcome c = run_to_attractor(p, s, Vec2(grid.x0(i), grid.v0(j)));
+        CHECK((c.kind == AttractorKind::Chaos || c.period == 1));
+        CHECK(c.period != 6);
+        CHECK(c.period != 12);
+    }
 }
 
 TEST_CASE("basins: a cart pressed onto a bumper moved into the right well rests there") {

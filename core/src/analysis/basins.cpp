@@ -58,6 +58,37 @@ double median_nearest(const std::vector<Vec2>& A, const std::vector<Vec2>& B) {
     return d[d.size() / 2];
 }
 
+// A cycle whose stability has been computed, kept per worker thread: the decision is a property of the orbit,
+// so a cache hit and a recomputation agree and the labels stay independent of the thread count.
+struct CheckedCycle { int period; std::vector<Vec2> points; bool stable; };
+
+// Whether the recurring cycle (the last k points, ending at y_end) is a stable orbit. An unstable one can
+// recur for dozens of periods: a permanent contact (regime III) forgets the state, so a chaotic trajectory
+// may land on a saddle cycle to round-off (A1G, omega 13: a period-6 orbit with mu = -1.74) and needs
+// ln(1e-5 / 1e-16) / ln 1.74 ~ 45 periods to leave it.
+bool cycle_stable(const Params& p, const BasinSpec& spec, const std::vector<Vec2>& y, std::size_t n, int k,
+                  std::vector<CheckedCycle>& cache) {
+    const auto first = y.begin() + static_cast<std::ptrdiff_t>(n) - k, last = y.begin() + static_cast<std::ptrdiff_t>(n);
+    for (const auto& c : cache) {
+        if (c.period != k) continue;
+        bool same = true;
+        for (auto it = first; it != last && same; ++it) {
+            double d = 1e300;
+            for (const auto& q : c.points) d = std::min(d, scaled_norm(*it - q));
+            same = d < spec.match_tol;
+        }
+        if (same) return c.stable;
+    }
+    // The monodromy of the k-th map (tangent with saltation) at the analysis tolerance.
+    bool stable = false;   // a stalled check counts as unstable: the cell then runs its whole budget
+    try {
+        stable = floquet(poincare_map(p, spec.omega, y[n - 1], k, true, analysis_tolerances()).M).stable;
+    } catch (const SimulationStalled&) {
+    }
+    cache.push_back({k, std::vector<Vec2>(first, last), stable});
+    return stable;
+}
+
 void validate(const BasinSpec& s) {
     if (s.nx < 1 || s.nv < 1) throw std::invalid_argument("basins: the grid needs at least 1 x 1 cells");
     if (!(s.x_max > s.x_min) || !(s.v_max > s.v_min)) throw std::invalid_argument("basins: an empty or inverted range");
@@ -78,7 +109,9 @@ const char* attractor_kind_name(AttractorKind k) {
     return "?";
 }
 
-CellOutcome run_to_attractor(const Params& p, const BasinSpec& spec, const Vec2& y0) {
+namespace {
+
+CellOutcome run_cell(const Params& p, const BasinSpec& spec, const Vec2& y0, std::vector<CheckedCycle>& cache) {
     CellOutcome out;
     const Drive d(spec.omega, 0.0, 0.0);
     Simulator sim(spec.sim);
@@ -101,7 +134,8 @@ CellOutcome run_to_attractor(const Params& p, const BasinSpec& spec, const Vec2&
             y[static_cast<std::size_t>(i)] = s.regime == Regime::Free ? Vec2(s.x, s.v) : Vec2(p.xI, 0.0);
             flew[static_cast<std::size_t>(i)] = watch.flew ? 1 : 0;
             k = recurrence(y, static_cast<std::size_t>(i) + 1, spec.max_period, spec.confirm, 4, spec.recur_tol);
-            if (k > 0) break;
+            if (k > 0 && cycle_stable(p, spec, y, static_cast<std::size_t>(i) + 1, k, cache)) break;
+            k = 0;
         }
     } catch (const SimulationStalled&) {
         out.kind = AttractorKind::Failed;
@@ -113,7 +147,10 @@ CellOutcome run_to_attractor(const Params& p, const BasinSpec& spec, const Vec2&
     // A cycle that converges slowly (a multiplier near the unit circle) may not reach recur_tol within the
     // budget; it still repeats to within match_tol, and over the whole recorded window, which a chaotic
     // trajectory lingering near a saddle cycle for a few turns does not.
-    if (k == 0) k = recurrence(y, n, spec.max_period, spec.confirm, spec.periods, spec.match_tol);
+    if (k == 0) {
+        k = recurrence(y, n, spec.max_period, spec.confirm, spec.periods, spec.match_tol);
+        if (k > 0 && !cycle_stable(p, spec, y, n, k, cache)) k = 0;
+    }
     if (k > 0) {
         out.kind = AttractorKind::Periodic;
         out.period = k;
@@ -127,6 +164,13 @@ CellOutcome run_to_attractor(const Params& p, const BasinSpec& spec, const Vec2&
     const std::size_t keep = std::min(n - 1, static_cast<std::size_t>(spec.periods));
     out.points.assign(y.begin() + static_cast<std::ptrdiff_t>(n - keep), y.begin() + static_cast<std::ptrdiff_t>(n));
     return out;
+}
+
+}  // namespace
+
+CellOutcome run_to_attractor(const Params& p, const BasinSpec& spec, const Vec2& y0) {
+    std::vector<CheckedCycle> cache;
+    return run_cell(p, spec, y0, cache);
 }
 
 bool same_attractor(const CellOutcome& a, const CellOutcome& b, const BasinSpec& spec) {
@@ -170,12 +214,13 @@ BasinResult compute_basins(const Params& p, const BasinSpec& spec, Progress* pro
     std::mutex error_mutex;
     auto cancelled = [&] { return progress && progress->cancel.load(std::memory_order_relaxed); };
     auto worker = [&] {
+        std::vector<CheckedCycle> cache;
         try {
             for (int j; (j = next_row.fetch_add(1, std::memory_order_relaxed)) < spec.nv;) {
                 for (int i = 0; i < spec.nx; ++i) {
                     if (cancelled()) return;
                     const std::size_t c = static_cast<std::size_t>(j) * nx + static_cast<std::size_t>(i);
-                    cells[c] = run_to_attractor(p, spec, Vec2(res.x0(i), res.v0(j)));
+                    cells[c] = run_cell(p, spec, Vec2(res.x0(i), res.v0(j)), cache);
                     done[c] = 1;
                 }
                 const int finished = rows_done.fetch_add(1, std::memory_order_relaxed) + 1;
