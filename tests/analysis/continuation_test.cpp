@@ -71,3 +71,31 @@ TEST_CASE("analysis: A1G's period doubling and grazing match the sweep") {
     CHECK(gr->param > 12.75);
     CHECK(gr->param < 12.83 + 25.0 / 300);
 }
+
+TEST_CASE("continuation: the period-1 branch of A1C covers 0.05..25 rad/s across the friction-held range") {
+    // Around 6.4..6.6 rad/s the cart is still held by dry friction (a multiplier of 0.9993): the corrector
+    // fails there and the branch is restarted at fixed omega instead of ending.
+    const Params p = make_version("A1C");
+    ContinuationSpec spec;
+    spec.lo = 0.05;
+    spec.hi = 25;
+    spec.max_period = 1;
+    const ContinuationResult r = continue_orbits(p, spec);
+    REQUIRE(r.branches.size() == 1);
+    const auto& pts = r.branches[0].points;
+    REQUIRE(pts.size() > 20);
+    double lo = 1e9, hi = -1e9;
+    for (const auto& q : pts) {
+        lo = std::min(lo, q.param);
+        hi = std::max(hi, q.param);
+    }
+    CHECK(lo < 0.1);
+    CHECK(hi > 24.9);
+    CHECK(r.branches[0].end.find("omega range") == 0);
+    // The largest gap between neighbouring points stays below a restart's longest jump.
+    for (std::size_t i = 1; i < pts.size(); ++i) CHECK(std::abs(pts[i].param - pts[i - 1].param) < 0.26);
+    int doublings = 0;
+    for (const auto& b : r.points) doublings += b.kind == BifKind::PeriodDoubling;
+    CHECK(doublings == 2);   // 10.8613 and 22.1473
+    CHECK(r.seconds < 10);
+}

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <deque>
+#include <string>
 
 #include "impactlab/analysis.hpp"
 
@@ -85,6 +87,9 @@ private:
     bool correct(const Vec3& u_pred, const Vec3& n, int k, Sol& out) {
         Vec3 u = u_pred;
         for (int it = 0; it <= kMaxCorrector; ++it) {
+            // A step past omega = 0 (a range that starts near it) has no forcing period: a failed step, which
+            // the step control shortens until the point lands in (0, lo) and the branch ends at the range.
+            if (spec_.param == ContParam::Omega && !(q_of(u) > 0)) return false;
             MapResult r = map(u, k, true);
             const Vec2 G = residual(r, u);
             if (!G.allFinite()) return false;
@@ -164,6 +169,39 @@ private:
         b.impacts = s.r.impacts;
         b.max_x = s.r.max_x;
         return b;
+    }
+
+    // Natural-parameter restart past a corrector failure on a near-neutral orbit (see follow()); on success
+    // cur, t and ds are the restarted point, its tangent and the initial step, and the jump is noted.
+    bool restart(Sol& cur, Vec3& t, int k, double& ds, std::string& skipped) {
+        const Floquet f = floquet(cur.r.M);
+        if (std::abs(f.mu[0].imag()) > 0 || f.mu[0].real() < 0.99) return false;
+        const double dir = t[2] >= 0 ? 1.0 : -1.0;
+        for (double jump : {0.01, 0.03, 0.1}) {
+            Vec3 u = cur.u;
+            u[2] += dir * jump;
+            const double q = q_of(u);
+            if (q < std::min(spec_.lo, spec_.hi) || q > std::max(spec_.lo, spec_.hi)) return false;
+            OrbitOptions oo;
+            oo.period = k;
+            oo.sim = spec_.sim;
+            const double omega = apply(q);
+            ++evaluations_;
+            const Orbit o = find_orbit(work_, omega, y_of(cur.u), oo);
+            if (!o.converged || scaled_norm(o.y - y_of(cur.u)) > 0.1) continue;   // not the same branch
+            Sol next;
+            const Vec3 n(0, 0, 1);
+            if (!correct(u_of(o.y, q), n, k, next)) continue;
+            char buf[96];
+            std::snprintf(buf, sizeof buf, "%s%.6g..%.6g", skipped.empty() ? "" : ", ", std::min(q_of(cur.u), q),
+                          std::max(q_of(cur.u), q));
+            skipped += buf;
+            cur = std::move(next);
+            t = tangent_of(cur, Vec3(0, 0, dir));
+            ds = spec_.ds;
+            return true;
+        }
+        return false;
     }
 
     // Bisection along the step from a (with tangent t) to the point at arclength ds.
@@ -259,7 +297,7 @@ void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, con
 void Continuer::follow(const Job& job, Branch& br) {
     const int k = job.period;
     std::vector<BranchPoint> fwd, bwd;
-    std::string end_fwd, end_bwd;
+    std::string end_fwd, end_bwd, skipped;
     const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
     for (int dir = 0; dir < (job.both_ways ? 2 : 1); ++dir) {
         auto& pts = dir == 0 ? fwd : bwd;
@@ -293,6 +331,10 @@ void Continuer::follow(const Job& job, Branch& br) {
             if (!correct(cur.u + ds * t, t, k, next)) {
                 ds *= 0.5;
                 if (ds < spec_.ds_min) {
+                    // A cart held by dry friction (a real multiplier within 1 % of +1: the creeping mode)
+                    // has a nearly singular M - I, and the corrector fails where the damped Newton of
+                    // find_orbit still converges: restart a little further on at fixed q, the same branch.
+                    if (restart(cur, t, k, ds, skipped)) continue;
                     end = "Newton failed near " + std::string(cont_param_name(spec_.param)) + " = " +
                           std::to_string(q_of(cur.u));
                     // A rigid orbit about to graze: the impacting side is out of the corrector's reach, the
@@ -361,6 +403,7 @@ void Continuer::follow(const Job& job, Branch& br) {
     br.points.assign(bwd.rbegin(), bwd.rend());
     br.points.insert(br.points.end(), fwd.begin(), fwd.end());
     br.end = job.both_ways ? end_bwd + " / " + end_fwd : end_fwd;
+    if (!skipped.empty()) br.end += " (restarted across " + skipped + ": near-neutral orbit, corrector failed)";
 }
 
 ContinuationResult Continuer::run() {
