@@ -4,6 +4,8 @@
 // For each: wall seconds, simulated seconds, simulated seconds per wall second, accepted steps, impacts.
 //   --fit: the measured-data loop (identify::run_fit) on a 300 s record at 1 kHz of A1H with quadratic
 //   damping and of A1C with a sensor offset, without plots (target: under 10 s each on 2 cores).
+//   --scan: impactlab scan's thread pool on a 24 x 16 plane of A1C (omega 8..14 rad/s, xI -4..4 mm): points
+//   per second on 1 thread and on every core, and the parallel efficiency (target >= 90 %).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -11,29 +13,32 @@
 #include <ctime>
 #include <exception>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "impactlab/identify.hpp"
 #include "impactlab/params.hpp"
+#include "impactlab/scan.hpp"
 #include "impactlab/sweep.hpp"
 
 namespace {
 
 struct Options {
     bool quick = false;
-    bool cf = true, ef = true, fit = false;
+    bool cf = true, ef = true, fit = false, scan = false;
     std::vector<std::string> only;   // empty: the paper's versions
     impactlab::Tolerances tol;
 };
 
 [[noreturn]] void usage(int rc) {
     std::printf(
-        "usage: bench [--quick] [--only VERSION]... [--rtol R] [--cf-only | --ef-only | --fit]\n"
+        "usage: bench [--quick] [--only VERSION]... [--rtol R] [--cf-only | --ef-only | --fit | --scan]\n"
         "  --quick       CF with 60 omegas instead of 300, EF ramp 5x faster (560 s instead of 2800 s)\n"
         "  --only V      this version only (repeatable; any XY name, e.g. A1H, A3G)\n"
         "  --rtol R      relative tolerance of the integrator (default %g)\n"
         "  --cf-only     skip the EF ramps;  --ef-only  skip the CF diagrams\n"
-        "  --fit         only the measured-data loop on 300 s records at 1 kHz (fit's speed target)\n",
+        "  --fit         only the measured-data loop on 300 s records at 1 kHz (fit's speed target)\n"
+        "  --scan        only impactlab scan's thread pool: points per second on 1 thread and on every core\n",
         impactlab::Tolerances{}.rtol);
     std::exit(rc);
 }
@@ -52,6 +57,7 @@ Options parse(int argc, char** argv) {
         else if (a == "--cf-only") o.ef = false;
         else if (a == "--ef-only") o.cf = false;
         else if (a == "--fit") o.fit = true;
+        else if (a == "--scan") o.scan = true;
         else if (a == "-h" || a == "--help") usage(0);
         else {
             std::fprintf(stderr, "bench: unknown option '%s'\n", a.c_str());
@@ -116,8 +122,37 @@ void bench_fit() {
     }
 }
 
+// impactlab scan's rows on a thread pool: the same plane on 1 thread and on every core.
+void bench_scan() {
+    using namespace impactlab;
+    ScanSpec spec;
+    spec.x = parse_scan_axis("omega:8:14:24");
+    spec.y = parse_scan_axis("xI:-0.004:0.004:16");
+    spec.measures = parse_scan_measures("period,impacts,xrange");
+    const Params p = make_version("A1C");
+    std::vector<int> todo(static_cast<std::size_t>(spec.y.n));
+    for (int j = 0; j < spec.y.n; ++j) todo[static_cast<std::size_t>(j)] = j;
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const double points = static_cast<double>(spec.x.n) * spec.y.n;
+    std::printf("scan: A1C, omega 8..14 rad/s x xI -4..4 mm, %d x %d points, 20 + 70 periods each\n\n%8s %9s %9s %12s %10s\n",
+                spec.x.n, spec.y.n, "threads", "wall[s]", "cpu[s]", "points/s", "efficiency");
+    double one = 0;
+    for (int threads : {1, cores}) {
+        if (threads == 1 && one > 0) continue;
+        const Times t = timed([&] { scan_rows(p, spec, todo, threads, nullptr, {}, [](int, const std::vector<ScanPoint>&) {}); });
+        if (threads == 1) one = t.wall;
+        std::printf("%8d %9.2f %9.2f %12.1f %9.0f%%\n", threads, t.wall, t.cpu, points / t.wall, 100.0 * one / (t.wall * threads));
+        std::fflush(stdout);
+        if (cores == 1) break;
+    }
+}
+
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
+    if (o.scan) {
+        bench_scan();
+        return 0;
+    }
     if (o.fit) {
         try {
             bench_fit();
