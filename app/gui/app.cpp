@@ -131,12 +131,20 @@ bool App::init(std::string& error) {
     if (std::string perr; !plot_gpu::init(perr))
         std::fprintf(stderr, "impactlab-gui: GPU plot shaders refused, drawing plots with ImDrawList: %s\n", perr.c_str());
 
+    if (opt_.preset > 0) {
+        // --preset N: the engine starts on it (no epoch change, nothing transient from the default omega).
+        const Preset p = presets_for(model_name())[static_cast<std::size_t>(opt_.preset - 1)];
+        omega_ = p.omega;
+        x0_ = p.x0;
+        xI_ = 0.0;
+        params_.xI = 0.0;
+    }
     EngineConfig cfg;
     cfg.model = model_name();
     cfg.omega = omega_;
     cfg.xI = xI_;
     cfg.x0 = x0_;
-    cfg.v0 = opt_.v0;
+    cfg.v0 = opt_.preset > 0 ? 0.0 : opt_.v0;
     warming_ = opt_.warmup > 0 && !bench_mode_;
     if (warming_) {
         speed_ = kMaxSpeed;
@@ -256,6 +264,12 @@ void App::apply_preset(const Preset& p) {
     toast(model_name() + ": " + p.label + " (omega = " + std::to_string(p.omega).substr(0, 5) + " rad/s)");
 }
 
+void App::clear_poincare() {
+    sections_.clear();
+    pc_map_.reset();
+    pc_feed_.reset();
+}
+
 void App::start_bifurcation() {
     BifRequest req;
     req.params = params_;
@@ -285,12 +299,16 @@ void App::drain_samples() {
     const double phi_before = have_last_ ? last_.phi : 0.0;
     sim_->samples().drain([&](const SimMsg& m) {
         if (m.epoch != epoch_) {
-            // The dynamics changed: the Poincare map of the old attractor no longer applies.
+            // The dynamics changed: the Poincare map of the old attractor no longer applies, and the new
+            // one is transient until the map has settled again.
             sections_.clear();
+            pc_map_.reset();
+            pc_feed_.reset();
             impacts_seen_ = 0;
             if (have_last_ && m.t < last_.t) traj_.clear();   // a reset: time starts over
             epoch_ = m.epoch;
         }
+        pc_feed_.on_msg(m, pc_map_);
         switch (m.kind) {
             case MsgKind::Sample:
                 traj_.push(m);
@@ -352,7 +370,7 @@ void App::handle_keys() {
     if (pressed(GLFW_KEY_LEFT_BRACKET, true) || (!ctrl && pressed(GLFW_KEY_KP_SUBTRACT, true))) set_speed(speed_ / 2.0);
     if (pressed(GLFW_KEY_M)) set_model(stiffness_, (impact_ + 1) % static_cast<int>(impact_models().size()));
     if (pressed(GLFW_KEY_K)) set_model((stiffness_ + 1) % static_cast<int>(stiffness_sets().size()), impact_);
-    if (pressed(GLFW_KEY_C) && !ctrl) sections_.clear();
+    if (pressed(GLFW_KEY_C) && !ctrl) clear_poincare();
     if (pressed(GLFW_KEY_B)) {
         if (bif_.running()) bif_.cancel();
         else start_bifurcation();
@@ -475,7 +493,9 @@ void App::fill_bench_data(int points) {
     have_last_ = true;
     omega_ = 18.0;
     // Synthetic section points and diagram (shapes like the real ones; the draw cost is what is measured).
+    // The map's points carry 0, 1 or 2 impacts in turn, so the bench draws every colour.
     sections_.clear();
+    pc_map_.reset();
     double a = 0.1, b = 0.2;
     for (int i = 0; i < points; ++i) {   // a Henon map, scaled into the left well
         const double na = 1.0 - 1.4 * a * a + b;
@@ -487,6 +507,7 @@ void App::fill_bench_data(int points) {
         m.v = 0.12 * b / 0.4;
         m.t = i;
         sections_.push(m);
+        pc_map_.push({m.x, m.v, i % 3, 0.02, 0.2});
     }
     Diagram d;
     d.model = model_name();
@@ -566,8 +587,10 @@ int App::run() {
             continue;
         }
         ++counted_frames_;
-        // With --data the fit is for the start model: no switch unless one is asked for.
-        if (!switched_ && counted_frames_ >= opt_.frames / 2 && (opt_.data.empty() || !opt_.switch_model.empty())) {
+        // With --data the fit is for the start model, and --preset or --state-json look at one model: no
+        // switch unless one is asked for.
+        const bool keep_model = !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty();
+        if (!switched_ && counted_frames_ >= opt_.frames / 2 && (!keep_model || !opt_.switch_model.empty())) {
             switched_ = true;
             // Switch the model once, live: to --switch-model, or H <-> G with the same stiffness.
             std::string target = opt_.switch_model;
@@ -592,6 +615,13 @@ int App::run() {
                 model_name().c_str(), t_reached, static_cast<unsigned long long>(samples_seen_),
                 static_cast<unsigned long long>(st.dropped), epoch_);
     std::fflush(stdout);
+    if (opt_.frames > 0 && !opt_.data.empty()) {
+        if (const std::string& err = data_panel_.error(); !err.empty()) {
+            std::fprintf(stderr, "impactlab-gui: error: --data %s: %s\n", opt_.data.c_str(), err.c_str());
+            exit_code_ = 1;
+        }
+    }
+    if (!opt_.state_json.empty() && !write_state_json(opt_.state_json)) exit_code_ = 1;
     return exit_code_;
 }
 

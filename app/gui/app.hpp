@@ -16,6 +16,7 @@
 #include "impactlab/sweep.hpp"
 #include "options.hpp"
 #include "plot2d.hpp"
+#include "poincare_map.hpp"
 #include "presets.hpp"
 #include "rig_view.hpp"
 #include "sim_thread.hpp"
@@ -50,6 +51,8 @@ private:
     void reset();
     void set_speed(double s);
     void apply_preset(const Preset& p);
+    void clear_poincare();   // the user's "clear": the map settles afresh from the next point
+    bool write_state_json(const std::string& path);   // --state-json: what the panels show, as JSON
     void start_bifurcation();
     void screenshot(const std::string& path);
     std::string screenshot_name() const;
@@ -99,7 +102,9 @@ private:
 
     // What the simulation published.
     History<SimMsg> traj_{std::size_t{1} << 19};   // 9 min at 1x, 5 s at 100x
-    History<SimMsg> sections_{std::size_t{1} << 18};
+    History<SimMsg> sections_{std::size_t{1} << 18};   // every section point of the epoch (CSV, x(t) dots)
+    PoincareMap pc_map_;                               // what the Poincare map shows: settled points only
+    SectionFeeder pc_feed_;
     SimMsg last_{};
     bool have_last_ = false;
     std::uint32_t epoch_ = 0;
@@ -144,6 +149,8 @@ private:
     std::size_t bench_window_ = 0;
     // Auto-fit extents of the plots' windows, kept incrementally (100k points would cost a pass a frame).
     WindowExtent phase_x_extent_, phase_v_extent_, pc_x_extent_, pc_v_extent_, strip_x_extent_;
+    std::uint64_t pc_fit_generation_ = ~std::uint64_t{0};   // the map's generation the fit last snapped to
+    std::vector<std::uint32_t> pc_buckets_[16];              // per frame: map points by age band and impacts
     std::unique_ptr<SimEngine> bench_engine_;
     std::unique_ptr<MsgSink> bench_sink_;
     double bench_build_s_ = 0, bench_render_s_ = 0;

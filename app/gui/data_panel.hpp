@@ -38,6 +38,7 @@ public:
     bool busy() const { return job_.running() || pending_fit_; }
     bool has_data() const { return static_cast<bool>(data_); }
     bool has_report() const { return static_cast<bool>(report_); }
+    const std::string& error() const { return error_; }   // the last failure of a load or fit ("" if none)
 
 private:
     void start_fit(const DataPanelContext& ctx);

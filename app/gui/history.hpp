@@ -33,6 +33,12 @@ public:
         start_ = size_ = 0;
         ++generation_;
     }
+    // Forgets the `count` oldest elements (all if count >= size()); sequence numbers stay as they were.
+    void drop_oldest(std::size_t count) {
+        if (count > size_) count = size_;
+        start_ = (start_ + count) & mask_;
+        size_ -= count;
+    }
     std::size_t size() const { return size_; }
     std::size_t capacity() const { return buf_.size(); }
     bool empty() const { return size_ == 0; }

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     Options opt;
     try {
         opt = parse_options(std::vector<std::string>(argv + 1, argv + argc));
+        if (!opt.help) check_files(opt);
     } catch (const OptionsError& e) {
         std::fprintf(stderr, "impactlab-gui: error: %s\n", e.what());
         return 2;

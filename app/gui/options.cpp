@@ -4,8 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 
 #include "impactlab/params.hpp"
+#include "presets.hpp"
 
 namespace impactlab::gui {
 
@@ -25,6 +28,8 @@ const char* usage_text() {
            "  --theme dark|light colour theme (default dark)\n"
            "  --scale S          UI scale, 0.5..3 (default: the monitor's content scale)\n"
            "  --size WxH         window size in pixels (default 1280x800)\n"
+           "  --preset N         start on preset N of the model (1-4, as keys 1-4: period 1, period 2, chaos,\n"
+           "                     a periodic window); sets omega, x0 and xI = 0 (over --omega, --x0, --xI)\n"
            "  --show-help        open the keyboard shortcuts window at start\n"
            "  --bifurcation P    compute a bifurcation diagram at start: cf-up, cf-down or ef\n"
            "  --bif-steps N      omega steps of a CF sweep, 10..2000 (default 300)\n"
@@ -37,6 +42,10 @@ const char* usage_text() {
            "                     the simulated time reached and exit (with --bifurcation or --warmup:\n"
            "                     counted once the diagram is done and the warm-up is over)\n"
            "  --screenshot FILE  PNG written after --frames\n"
+           "  --state-json FILE  JSON written after --frames: model, omega, xI, sim_time, fps, and the Poincare\n"
+           "                     map as shown: poincare_period (k, 0 for chaos, null while settling) and\n"
+           "                     poincare_points [[x, v], ...] [m, m/s]. With --preset, --state-json or --data\n"
+           "                     no model switch happens unless --switch-model is given\n"
            "  --switch-model M   the version switched to half-way (default: H <-> G, same stiffness)\n"
            "  --bench-plot       frames per second with --points points on every plot (needs a display)\n"
            "  --points N         points per plot for --bench-plot (default 100000)\n"
@@ -127,6 +136,8 @@ Options parse_options(const std::vector<std::string>& args) {
             o.height = integer(a, s.substr(x + 1), 240, 8192);
         } else if (a == "--frames") o.frames = integer(a, value(), 1, 10000000);
         else if (a == "--screenshot") o.screenshot = value();
+        else if (a == "--state-json") o.state_json = value();
+        else if (a == "--preset") o.preset = integer(a, value(), 1, 100);
         else if (a == "--switch-model") o.switch_model = version(a, value());
         else if (a == "--bifurcation") {
             const std::string& p = value();
@@ -148,7 +159,40 @@ Options parse_options(const std::vector<std::string>& args) {
         else throw OptionsError("unknown option '" + a + "' (see impactlab-gui --help)");
     }
     if (!o.screenshot.empty() && o.frames == 0 && !o.bench_plot) throw OptionsError("--screenshot needs --frames N or --bench-plot");
+    if (!o.state_json.empty() && o.frames == 0) throw OptionsError("--state-json needs --frames N");
+    if (o.preset > 0) {   // checked once the model is known (--model may come after --preset)
+        const std::size_t n = presets_for(o.model).size();
+        if (static_cast<std::size_t>(o.preset) > n)
+            throw OptionsError("--preset: " + std::to_string(o.preset) + " is out of range [1, " + std::to_string(n) +
+                               "] for " + o.model);
+    }
     return o;
+}
+
+namespace {
+void check_writable(const std::string& flag, const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw OptionsError(flag + ": '" + path + "' is a directory");
+    // A probe beside the file: the output is written whole later (temporary + rename) into that folder.
+    const std::string probe = path + ".probe";
+    {
+        std::ofstream f(probe);
+        if (!f) throw OptionsError(flag + ": cannot write '" + path + "'");
+    }
+    fs::remove(probe, ec);
+}
+}  // namespace
+
+void check_files(const Options& o) {
+    if (!o.data.empty()) {
+        std::error_code ec;
+        if (std::filesystem::is_directory(o.data, ec)) throw OptionsError("--data: '" + o.data + "' is a directory");
+        std::ifstream f(o.data, std::ios::binary);
+        if (!f) throw OptionsError("--data: cannot read '" + o.data + "' (no such file, or no permission)");
+    }
+    if (!o.screenshot.empty()) check_writable("--screenshot", o.screenshot);
+    if (!o.state_json.empty()) check_writable("--state-json", o.state_json);
 }
 
 }  // namespace impactlab::gui

@@ -23,6 +23,8 @@ struct Options {
 
     int frames = 0;              // > 0: render this many frames, save the screenshot, print the sim time, exit
     std::string screenshot;      // with --frames: the PNG to write
+    std::string state_json;      // with --frames: what the panels show, as JSON (model, omega, Poincare map, ...)
+    int preset = 0;              // > 0: start on preset N (1-based, as keys 1-4) of the model
     std::string switch_model;    // with --frames: the version switched to half-way ("" = swap G and H)
     std::string bifurcation;     // "", "cf-up", "cf-down", "ef": start computing at launch
     int bif_steps = 300;
@@ -38,6 +40,9 @@ struct Options {
 
 // argv without the program name. Throws OptionsError naming the flag and the problem.
 Options parse_options(const std::vector<std::string>& args);
+// The files the options name, checked before any window opens: --data must be readable, --screenshot and
+// --state-json writable (a probe file beside each, removed again). Throws OptionsError naming the flag.
+void check_files(const Options& o);
 const char* usage_text();
 
 }  // namespace impactlab::gui

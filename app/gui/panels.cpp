@@ -175,7 +175,7 @@ void App::draw_menu() {
         if (ImGui::MenuItem("Slower /2", "[")) set_speed(speed_ / 2);
         if (ImGui::MenuItem("Real time (1x)")) set_speed(1.0);
         ImGui::Separator();
-        if (ImGui::MenuItem("Clear Poincare map", "C")) sections_.clear();
+        if (ImGui::MenuItem("Clear Poincare map", "C")) clear_poincare();
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("View")) {
@@ -328,7 +328,7 @@ void App::draw_controls() {
     }
     tooltip("Ctrl + / Ctrl -: size of text and controls, for projectors.");
     const float tw = (full - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
-    if (ImGui::Button("Clear map", ImVec2(tw, 0))) sections_.clear();
+    if (ImGui::Button("Clear map", ImVec2(tw, 0))) clear_poincare();
     tooltip("C: clear the Poincare map");
     ImGui::SameLine();
     if (ImGui::Button("Screenshot", ImVec2(tw, 0))) screenshot(screenshot_name());
@@ -525,46 +525,148 @@ void App::draw_phase() {
     plot.end();
 }
 
+namespace {
+// Poincare points by impacts in the forcing period before them: 0, 1, 2, 3 or more.
+ImU32 impacts_color(int impacts, float alpha) {
+    const bool dark = palette().dark;
+    static constexpr ImU32 kDark[4] = {IM_COL32(255, 196, 70, 255), IM_COL32(255, 96, 96, 255),
+                                       IM_COL32(196, 126, 255, 255), IM_COL32(90, 200, 255, 255)};
+    static constexpr ImU32 kLight[4] = {IM_COL32(205, 120, 0, 255), IM_COL32(200, 30, 40, 255),
+                                        IM_COL32(120, 50, 200, 255), IM_COL32(20, 110, 200, 255)};
+    const int k = impacts < 0 ? 0 : impacts > 3 ? 3 : impacts;
+    ImVec4 c = ImGui::ColorConvertU32ToFloat4((dark ? kDark : kLight)[k]);
+    c.w = alpha;
+    return ImGui::ColorConvertFloat4ToU32(c);
+}
+}  // namespace
+
 void App::draw_poincare() {
     const Palette& pal = palette();
-    const std::size_t n = sections_.size();
-    const auto xe = pc_x_extent_.update(sections_, 0, [](const SimMsg& m) { return m.x; });
-    const auto ve = pc_v_extent_.update(sections_, 0, [](const SimMsg& m) { return m.v; });
-    const double xl = xe.lo, xh = xe.hi, vl = ve.lo, vh = ve.hi;
+    const History<MapPoint>& pts = pc_map_.points();
+    const std::size_t n = pts.size();
+    const PoincareMap::Status status = pc_map_.status();
+    const bool periodic = status == PoincareMap::Status::Periodic;
+    // A periodic orbit is a few points: large. A chaotic one is thousands: small enough to show structure.
+    const float dot = periodic ? std::max(7.0f, 8.0f * ui_scale_) : std::max(3.0f, 3.5f * ui_scale_);
+    const float ring = std::max(dot * 0.5f + 3.0f, 6.0f * ui_scale_);
+
+    // Four age bands (oldest first, fading) times four impact counts (0, 1, 2, 3+): one scatter call each.
+    for (auto& b : pc_buckets_) b.clear();
+    bool impacts_seen[4] = {};
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t age_band = periodic ? 3 : std::min<std::size_t>(3, 4 * i / n);
+        const int cat = std::min(pts[i].impacts, 3);
+        impacts_seen[cat] = true;
+        pc_buckets_[age_band * 4 + static_cast<std::size_t>(cat)].push_back(static_cast<std::uint32_t>(i));
+    }
+    const bool legend = impacts_seen[1] || impacts_seen[2] || impacts_seen[3];
+
+    // The label: what the map knows. The period is the settle detector's, never a guess from the transient.
+    char label[128];
+    const unsigned long long seen = pc_map_.seen();
+    if (seen == 0) std::snprintf(label, sizeof label, "no section yet (one per forcing period)");
+    else if (status == PoincareMap::Status::Settling)
+        std::snprintf(label, sizeof label, "settling...  %llu period%s, the transient is not drawn", seen, seen == 1 ? "" : "s");
+    else if (periodic) std::snprintf(label, sizeof label, "period %d", pc_map_.period());
+    else std::snprintf(label, sizeof label, "chaos: no period <= 16   %zu points", n);
+    static const char* kNames[4] = {"0", "1", "2", "3+"};
+    const char* legend_title = "impacts/period";
+    const float fs = ImGui::GetFontSize();
+    const float r_legend = 0.3f * fs;
+    float legend_w = ImGui::CalcTextSize(legend_title).x;
+    for (int cat = 0; cat < 4; ++cat)
+        if (impacts_seen[cat]) legend_w += 0.6f * fs + 2 * r_legend + 3 + ImGui::CalcTextSize(kNames[cat]).x;
+
+    // The fit, in the data area Plot::begin will lay out (its margins): the newest point's ring stays off
+    // the frame, and a band at the top for the label and the legend (a second line when they do not fit
+    // side by side) stays free of points.
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const double area_w = avail.x - fs * 4.4f, area_h = avail.y - fs * 2.8f;
+    const bool two_lines = legend && ImGui::CalcTextSize(label).x + legend_w + 24 > area_w;
+    const double edge = ring + 3.0 + 0.06 * std::min(area_w, area_h);
+    const double label_band = (two_lines ? 2.1 : 1.0) * fs + 10.0;
     if (n == 0) {
+        // Settling: an empty map in the phase portrait's view.
         pc_x_ = phase_x_;
         pc_v_ = phase_v_;
+        pc_fit_generation_ = ~std::uint64_t{0};
     } else {
-        pc_x_.track({xl, xh}, 0.10, 0.002, frame_dt_);
-        pc_v_.track({vl, vh}, 0.10, 0.02, frame_dt_);
+        const auto xe = pc_x_extent_.update(pts, 0, [](const MapPoint& m) { return m.x; });
+        const auto ve = pc_v_extent_.update(pts, 0, [](const MapPoint& m) { return m.v; });
+        const AxisFit fx = fit_axis(xe.lo, xe.hi, 0.002, area_w, edge, edge);
+        const AxisFit fv = fit_axis(ve.lo, ve.hi, 0.02, area_h, edge, edge + label_band);
+        if (pts.generation() != pc_fit_generation_) {
+            // A new decision (period found, chaos said): the view jumps to it rather than gliding there.
+            pc_x_.snap({fx.lo, fx.hi}, 0.0, 1e-12);
+            pc_v_.snap({fv.lo, fv.hi}, 0.0, 1e-12);
+            pc_fit_generation_ = pts.generation();
+        } else {
+            pc_x_.track({fx.lo, fx.hi}, 0.0, 1e-12, frame_dt_);
+            pc_v_.track({fv.lo, fv.hi}, 0.0, 1e-12, frame_dt_);
+        }
     }
     Plot plot;
     Axes ax;
     ax.x_label = "x [mm]";
     ax.y_label = "v [m/s]";
     ax.x_scale = 1e3;
-    if (!plot.begin("##poincare", ImGui::GetContentRegionAvail(), pc_x_.cur, pc_v_.cur, ax)) return;
+    if (!plot.begin("##poincare", avail, pc_x_.cur, pc_v_.cur, ax)) return;
     plot.shade_right_of(xI_, pal.bumper);
     plot.vline(xI_, pal.bumper, 1.5f, true);
-    const float dot = std::max(2.5f, 3.0f * ui_scale_);
-    plot.scatter(n, [&](std::size_t i) { return XY{sections_[i].x, sections_[i].v}; }, pal.section, dot);
+
+    static constexpr float kAlpha[4] = {0.22f, 0.42f, 0.68f, 1.0f};
+    for (std::size_t age_band = 0; age_band < 4; ++age_band) {
+        for (int cat = 0; cat < 4; ++cat) {
+            const auto& idx = pc_buckets_[age_band * 4 + static_cast<std::size_t>(cat)];
+            plot.scatter(idx.size(), [&](std::size_t j) { const MapPoint& m = pts[idx[j]]; return XY{m.x, m.v}; },
+                         impacts_color(cat, kAlpha[age_band]), dot);
+        }
+    }
     if (n) {
-        const ImVec2 c = plot.to_px(sections_.back().x, sections_.back().v);
-        plot.draw()->AddCircle(c, 6.0f * ui_scale_, pal.section_new, 0, 2.0f);
+        const ImVec2 c = plot.to_px(pts.back().x, pts.back().v);
+        plot.draw()->AddCircle(c, ring, pal.section_new, 0, 2.0f);
     }
-    // Period of the latest points (the core's cluster count).
-    char buf[96];
-    if (n >= 24) {
-        std::vector<double> xs;
-        const std::size_t k0 = n > 64 ? n - 64 : 0;
-        for (std::size_t i = k0; i < n; ++i) xs.push_back(sections_[i].x);
-        const int per = count_period(xs, 2e-5, 16);
-        if (per <= 16) std::snprintf(buf, sizeof buf, "%zu points   period %d", n, per);
-        else std::snprintf(buf, sizeof buf, "%zu points   no period <= 16", n);
-    } else {
-        std::snprintf(buf, sizeof buf, "%zu points%s", n, n ? "   (transient...)" : "   (one per forcing period)");
+    if (periodic && n >= static_cast<std::size_t>(pc_map_.period())) {
+        // The order of the visits, 1..k along the last cycle: points closer than a dot share one label
+        // ("1,4"), so a doubled orbit's close pairs read as pairs, not as single points.
+        const std::size_t k = static_cast<std::size_t>(pc_map_.period());
+        std::vector<ImVec2> at(k);
+        std::vector<bool> done(k, false);
+        for (std::size_t j = 0; j < k; ++j) at[j] = plot.to_px(pts[n - k + j].x, pts[n - k + j].v);
+        for (std::size_t j = 0; j < k; ++j) {
+            if (done[j]) continue;
+            char text[64];
+            int len = std::snprintf(text, sizeof text, "%zu", j + 1);
+            for (std::size_t q = j + 1; q < k; ++q) {
+                const float dx = at[q].x - at[j].x, dy = at[q].y - at[j].y;
+                if (!done[q] && dx * dx + dy * dy < 1.44f * dot * dot) {
+                    done[q] = true;
+                    if (len > 0 && len < 56) len += std::snprintf(text + len, sizeof text - static_cast<std::size_t>(len), ",%zu", q + 1);
+                }
+            }
+            const float tw = ImGui::CalcTextSize(text).x;
+            const bool left = at[j].x + ring + 4 + tw > plot.area_max().x;
+            plot.draw()->AddText(ImVec2(left ? at[j].x - ring - 4 - tw : at[j].x + ring + 2, at[j].y - fs - 1),
+                                 pal.axis_text, text);
+        }
     }
-    plot.draw()->AddText(ImVec2(plot.area_min().x + 6, plot.area_min().y + 4), pal.title_text, buf);
+
+    const ImVec2 lp(plot.area_min().x + 6, plot.area_min().y + 4);
+    plate_text(plot.draw(), lp, label, pal.title_text);
+    if (legend) {   // right-aligned, beside the label or on the line below it
+        float x = plot.area_max().x - 6;
+        const float y = two_lines ? lp.y + fs + 4 : lp.y;
+        for (int cat = 3; cat >= 0; --cat) {
+            if (!impacts_seen[cat]) continue;
+            x -= ImGui::CalcTextSize(kNames[cat]).x;
+            plot.draw()->AddText(ImVec2(x, y), pal.axis_text, kNames[cat]);
+            x -= r_legend + 3;
+            plot.draw()->AddCircleFilled(ImVec2(x, y + 0.5f * fs), r_legend, impacts_color(cat, 1.0f), 12);
+            x -= r_legend + 0.6f * fs;
+        }
+        x -= ImGui::CalcTextSize(legend_title).x;
+        plot.draw()->AddText(ImVec2(x, y), pal.axis_text, legend_title);
+    }
     plot.end();
 }
 

@@ -1,0 +1,185 @@
+#include "poincare_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace impactlab::gui {
+
+namespace {
+// Recurrences a period k needs before it is believed: every one of the k points has come back twice, and
+// never fewer than six in a row (a chaotic orbit lingering near an unstable fixed point rarely does that).
+std::size_t confirmations(std::size_t k) { return std::max<std::size_t>(2 * k + 2, 6); }
+}  // namespace
+
+PoincareMap::PoincareMap(const PoincareConfig& cfg)
+    : cfg_(cfg),
+      window_(std::max<std::size_t>(3 * static_cast<std::size_t>(cfg.max_period) + 2,
+                                    static_cast<std::size_t>(cfg.chaos_after)) + 8),
+      points_(cfg.capacity) {
+    recent_.reserve(window_ + 1);
+    update_tolerance();
+}
+
+void PoincareMap::reset() {
+    recent_.clear();
+    points_.clear();
+    from_chaos_ = false;
+    status_ = Status::Settling;
+    period_ = 0;
+    seen_ = 0;
+    unsettled_ = 0;
+    update_tolerance();
+}
+
+void PoincareMap::update_tolerance() {
+    // The attractor's size: the largest extent of a period over the recent points.
+    double sx = cfg_.min_size_x, sv = cfg_.min_size_v;
+    for (const MapInput& p : recent_) {
+        sx = std::max(sx, p.size_x);
+        sv = std::max(sv, p.size_v);
+    }
+    tol_x_ = cfg_.rel_tol * sx;
+    tol_v_ = cfg_.rel_tol * sv;
+}
+
+bool PoincareMap::recurs(std::size_t i, std::size_t k, double factor) const {
+    const MapInput& a = recent_[i];
+    const MapInput& b = recent_[i - k];
+    return std::abs(a.x - b.x) <= factor * tol_x_ && std::abs(a.v - b.v) <= factor * tol_v_;
+}
+
+int PoincareMap::find_period(std::size_t at_least) const {
+    const std::size_t n = recent_.size();
+    // The smallest k wins: a period-2 orbit also recurs after 4 periods.
+    for (std::size_t k = 1; k <= static_cast<std::size_t>(cfg_.max_period); ++k) {
+        const std::size_t r = std::max(confirmations(k), at_least);
+        if (n < r + k) break;   // larger k need even more points
+        bool all = true;
+        for (std::size_t i = n - r; i < n && all; ++i) all = recurs(i, k, 1.0);
+        if (all) return static_cast<int>(k);
+    }
+    return 0;
+}
+
+void PoincareMap::settle_on(int k) {
+    // Only the last k points: one per point of the orbit, each within the tolerance of where it recurs.
+    status_ = Status::Periodic;
+    period_ = k;
+    unsettled_ = 0;
+    points_.clear();
+    for (std::size_t i = recent_.size() - static_cast<std::size_t>(k); i < recent_.size(); ++i)
+        points_.push({recent_[i].x, recent_[i].v, recent_[i].impacts});
+}
+
+void PoincareMap::declare_chaos() {
+    // No recurrence can tell where a chaotic transient ends: the older half of the undecided points is
+    // dropped as transient, the newer half starts the map.
+    status_ = Status::Chaotic;
+    period_ = 0;
+    from_chaos_ = false;
+    points_.clear();
+    const std::size_t keep = std::min(recent_.size(), static_cast<std::size_t>(cfg_.chaos_after) / 2);
+    for (std::size_t i = recent_.size() - keep; i < recent_.size(); ++i)
+        points_.push({recent_[i].x, recent_[i].v, recent_[i].impacts});
+}
+
+void PoincareMap::push(const MapInput& in) {
+    ++seen_;
+    ++unsettled_;
+    recent_.push_back(in);
+    if (recent_.size() > window_) recent_.erase(recent_.begin());   // ~60 elements, once a forcing period
+    update_tolerance();
+    const std::size_t n = recent_.size();
+
+    if (status_ == Status::Periodic) {
+        const auto k = static_cast<std::size_t>(period_);
+        if (n > k && recurs(n - 1, k, cfg_.break_factor)) {
+            unsettled_ = 0;
+            points_.push({in.x, in.v, in.impacts});
+            const std::size_t keep = k * static_cast<std::size_t>(std::max(cfg_.periodic_cycles, 1));
+            if (points_.size() > keep) points_.drop_oldest(points_.size() - keep);
+            return;
+        }
+        if (from_chaos_) {
+            // A laminar phase of an intermittent chaotic orbit (it lingered near an unstable cycle): chaos
+            // again at once rather than another wait of chaos_after periods.
+            declare_chaos();
+            return;
+        }
+        // The orbit left the cycle it seemed to have settled on: it was a slow transient after all.
+        status_ = Status::Settling;
+        period_ = 0;
+        points_.clear();
+        unsettled_ = 1;
+    }
+    // Out of chaos, a cycle must hold for half of chaos_after periods: chaotic orbits linger near their
+    // unstable cycles for a few periods (intermittency), a settled orbit recurs for ever.
+    const bool chaotic = status_ == Status::Chaotic;
+    if (const int k = find_period(chaotic ? static_cast<std::size_t>(cfg_.chaos_after) / 2 : 0); k > 0) {
+        settle_on(k);
+        from_chaos_ = chaotic;
+        return;
+    }
+    if (status_ == Status::Chaotic) points_.push({in.x, in.v, in.impacts});
+    else if (unsettled_ >= static_cast<std::uint64_t>(cfg_.chaos_after)) declare_chaos();
+}
+
+AxisFit fit_axis(double lo, double hi, double min_span, double px, double margin_lo, double margin_hi) {
+    if (!(hi - lo >= min_span)) {
+        const double c = 0.5 * (lo + hi);
+        lo = c - 0.5 * min_span;
+        hi = c + 0.5 * min_span;
+    }
+    // A plot too small for its margins still gives the data a third of its length.
+    const double usable = std::max(px - margin_lo - margin_hi, px / 3.0);
+    const double per_px = (hi - lo) / std::max(usable, 1.0);
+    return {lo - margin_lo * per_px, hi + margin_hi * per_px};
+}
+
+void SectionFeeder::reset() {
+    have_ = false;
+    in_contact_ = false;
+    impacts_ = onsets_ = 0;
+}
+
+void SectionFeeder::on_msg(const SimMsg& m, PoincareMap& map) {
+    switch (m.kind) {
+        case MsgKind::Sample: {
+            if (!have_) {
+                x_lo_ = x_hi_ = m.x;
+                v_lo_ = v_hi_ = m.v;
+                have_ = true;
+            }
+            x_lo_ = std::min(x_lo_, m.x);
+            x_hi_ = std::max(x_hi_, m.x);
+            v_lo_ = std::min(v_lo_, m.v);
+            v_hi_ = std::max(v_hi_, m.v);
+            const bool contact = m.force > 0;
+            if (contact && !in_contact_) ++onsets_;
+            in_contact_ = contact;
+            break;
+        }
+        case MsgKind::Impact:
+            ++impacts_;
+            break;
+        case MsgKind::Section: {
+            MapInput in;
+            in.x = m.x;
+            in.v = m.v;
+            in.impacts = std::max(impacts_, onsets_);
+            if (have_) {
+                in.size_x = x_hi_ - x_lo_;
+                in.size_v = v_hi_ - v_lo_;
+            }
+            map.push(in);
+            // The next period's extent starts at this point.
+            x_lo_ = x_hi_ = m.x;
+            v_lo_ = v_hi_ = m.v;
+            have_ = true;
+            impacts_ = onsets_ = 0;
+            break;
+        }
+    }
+}
+
+}  // namespace impactlab::gui

@@ -1,0 +1,110 @@
+// The Poincare map as the visualiser shows it: a settle detector over the incoming section points. After
+// every change of the dynamics (reset()) all points are transient; the map decides the period k (1..N)
+// once the newest points recur after k periods within a tolerance relative to the attractor's size, or
+// "chaos" once enough points show no recurrence, and keeps only the points from then on (the transient
+// never reaches the display). A periodic orbit that breaks (a drift, a slow transient that had looked
+// settled) sends it back to settling; one found after chaos had been said must hold longer, and sends it
+// back to chaos when it breaks. GL-free; UI thread only (the app feeds it from its drain of the
+// sample ring).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "history.hpp"
+#include "sim_messages.hpp"
+
+namespace impactlab::gui {
+
+struct PoincareConfig {
+    int max_period = 16;          // the largest period recognised; beyond it an orbit reads as chaos
+    double rel_tol = 1e-3;        // recurrence: |dx| / size_x and |dv| / size_v both below this
+    double break_factor = 10;     // a settled orbit breaks when a point misses by break_factor * rel_tol
+    int chaos_after = 64;         // section points without any recurrence before "chaos" is said
+    int periodic_cycles = 4;      // a periodic orbit shows its last few cycles: where it is, not where it
+                                  // was while it converged (a slow approach would smear each point)
+    double min_size_x = 1e-3;     // [m]   floors of the attractor's size (a cart at rest has size 0)
+    double min_size_v = 1e-2;     // [m/s]
+    std::size_t capacity = std::size_t{1} << 17;   // points kept on the map (power of two)
+};
+
+// One section point and what happened in the forcing period that ended at it.
+struct MapInput {
+    double x = 0, v = 0;          // [m], [m/s] at phi = 2 pi n
+    int impacts = 0;              // impacts on the bumper during the period
+    double size_x = 0, size_v = 0;   // the trajectory's extent over that period (the attractor's size)
+};
+
+struct MapPoint {
+    double x = 0, v = 0;
+    int impacts = 0;
+};
+
+class PoincareMap {
+public:
+    enum class Status { Settling, Periodic, Chaotic };
+
+    explicit PoincareMap(const PoincareConfig& cfg = {});
+
+    // A change of the dynamics (preset, omega, xI, model, reset) or the user's "clear": all is transient.
+    void reset();
+    void push(const MapInput& in);
+
+    Status status() const { return status_; }
+    // The period k while Periodic; 0 while Chaotic; -1 while settling.
+    int period() const { return status_ == Status::Periodic ? period_ : status_ == Status::Chaotic ? 0 : -1; }
+    // Section points received since the last reset() (transient included).
+    std::uint64_t seen() const { return seen_; }
+    // The settled points, oldest first: a periodic orbit's last periodic_cycles * k, a chaotic orbit's all
+    // since the decision (up to the capacity); empty while settling. Its generation() changes whenever the map
+    // starts over (a reset, a new period or chaos decided), which is when an auto-fit should snap.
+    const History<MapPoint>& points() const { return points_; }
+    // The recurrence tolerance now in force [m], [m/s] (rel_tol times the attractor's size).
+    double tol_x() const { return tol_x_; }
+    double tol_v() const { return tol_v_; }
+
+private:
+    void update_tolerance();
+    bool recurs(std::size_t i, std::size_t k, double factor) const;   // recent_[i] vs recent_[i - k]
+    int find_period(std::size_t at_least) const;   // recurrences needed at least (beyond 2k + 2)
+    void settle_on(int k);
+    void declare_chaos();
+
+    PoincareConfig cfg_;
+    std::vector<MapInput> recent_;   // the newest points since the last reset, at most window_ of them
+    std::size_t window_;
+    History<MapPoint> points_;
+    Status status_ = Status::Settling;
+    int period_ = 0;
+    std::uint64_t seen_ = 0;
+    std::uint64_t unsettled_ = 0;    // points since the last reset or break without a decision
+    double tol_x_ = 0, tol_v_ = 0;
+    bool from_chaos_ = false;        // the current period was found after chaos had been said
+};
+
+// The range of one plot axis that puts the data [lo, hi] (widened to min_span about its centre) inside a
+// data area `px` pixels long with margin_lo and margin_hi pixels left free at its two ends: the markers'
+// radius off the frame, a label's band off the points.
+struct AxisFit {
+    double lo, hi;
+};
+AxisFit fit_axis(double lo, double hi, double min_span, double px, double margin_lo, double margin_hi);
+
+// Turns the simulation's records, in the order they were published, into MapInputs: the extent of the
+// samples and the impacts between two section points go with the second. Impacts are the rigid impacts
+// the engine reports (G, H) or, for the compliant laws, the samples where the bumper force switches on,
+// whichever is more. UI thread (the app's drain), or the test's thread.
+class SectionFeeder {
+public:
+    void reset();   // with PoincareMap::reset(): the period in progress belongs to the old dynamics
+    void on_msg(const SimMsg& m, PoincareMap& map);
+
+private:
+    double x_lo_ = 0, x_hi_ = 0, v_lo_ = 0, v_hi_ = 0;
+    bool have_ = false;
+    bool in_contact_ = false;
+    int impacts_ = 0, onsets_ = 0;
+};
+
+}  // namespace impactlab::gui

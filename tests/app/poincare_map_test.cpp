@@ -1,0 +1,200 @@
+// The visualiser's Poincare map settle detector (app/gui/poincare_map): the period it reports for synthetic
+// sequences with a transient in front, chaos, a reset, a broken cycle; then on the real engine at the
+// presets, fed the way the app feeds it.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "../../app/gui/poincare_map.hpp"
+#include "../../app/gui/presets.hpp"
+#include "../../app/gui/sim_engine.hpp"
+
+using namespace impactlab;
+using namespace impactlab::gui;
+
+namespace {
+
+struct Centre {
+    double x, v;
+};
+
+// Point n of an orbit through `centres` (period k = centres.size()) with a transient of amplitude a
+// [m] (and 10 a [m/s]) that contracts by `lambda` every forcing period.
+MapInput orbit_point(const std::vector<Centre>& centres, int n, double a, double lambda) {
+    const Centre& c = centres[static_cast<std::size_t>(n) % centres.size()];
+    const double d = a * std::pow(lambda, n);
+    MapInput in;
+    in.x = c.x + d * std::cos(1.3 * n);
+    in.v = c.v + 10 * d * std::sin(0.7 * n);
+    in.size_x = 0.012;   // the attractor's extent in x and v over a period
+    in.size_v = 0.15;
+    return in;
+}
+
+// The largest distance of a map point from its nearest centre, in units of the map's tolerance.
+double worst_miss(const PoincareMap& map, const std::vector<Centre>& centres) {
+    double worst = 0;
+    for (std::size_t i = 0; i < map.points().size(); ++i) {
+        const MapPoint& p = map.points()[i];
+        double best = 1e300;
+        for (const Centre& c : centres)
+            best = std::min(best, std::max(std::abs(p.x - c.x) / map.tol_x(), std::abs(p.v - c.v) / map.tol_v()));
+        worst = std::max(worst, best);
+    }
+    return worst;
+}
+
+const std::vector<Centre> kP1{{-0.0105, 0.021}};
+const std::vector<Centre> kP2{{-0.0121, 0.034}, {-0.0062, -0.047}};
+const std::vector<Centre> kP3{{-0.0140, 0.010}, {-0.0031, 0.081}, {-0.0088, -0.060}};
+
+}  // namespace
+
+TEST_CASE("poincare map: periods 1, 2, 3 behind a transient are found, and no transient point is kept") {
+    for (const auto* centres : {&kP1, &kP2, &kP3}) {
+        const int k = static_cast<int>(centres->size());
+        CAPTURE(k);
+        PoincareMap map;
+        int settled_at = -1;
+        for (int n = 0; n < 200; ++n) {
+            map.push(orbit_point(*centres, n, 0.004, 0.7));
+            if (settled_at < 0 && map.period() > 0) settled_at = n;
+            if (settled_at < 0) {
+                CHECK(map.period() == -1);   // "settling..." until the period is known
+                CHECK(map.points().empty());
+            }
+        }
+        CHECK(map.status() == PoincareMap::Status::Periodic);
+        CHECK(map.period() == k);
+        // Settled only once the transient (4 mm, contracting by 0.7 a period) had shrunk to the tolerance:
+        // 4 mm x 0.7^n below ~10 um takes about 17 periods.
+        CHECK(settled_at > 12);
+        CHECK(settled_at < 60);
+        CHECK(map.seen() == 200);
+        // Every point on the map is one of the k points of the orbit.
+        // The map shows the orbit's last cycles only (one point per cluster at the decision, then one a
+        // period, the oldest dropped).
+        CHECK(map.points().size() == static_cast<std::size_t>(PoincareConfig{}.periodic_cycles * k));
+        CHECK(worst_miss(map, *centres) < 3.0);
+    }
+}
+
+TEST_CASE("poincare map: chaos is said after enough points without recurrence, and a period still wins later") {
+    PoincareMap map;
+    // A Henon map scaled into the left well: no recurrence.
+    double a = 0.1, b = 0.2;
+    auto henon = [&] {
+        const double na = 1.0 - 1.4 * a * a + b;
+        b = 0.3 * a;
+        a = na;
+        MapInput in;
+        in.x = -0.010 + 0.005 * a;
+        in.v = 0.3 * b;
+        in.size_x = 0.02;
+        in.size_v = 0.2;
+        return in;
+    };
+    const PoincareConfig cfg;
+    for (int n = 0; n < cfg.chaos_after - 1; ++n) {
+        map.push(henon());
+        CHECK(map.period() == -1);
+    }
+    map.push(henon());
+    CHECK(map.status() == PoincareMap::Status::Chaotic);
+    CHECK(map.period() == 0);
+    // The older half of the undecided points was transient; the map goes on from the newer half.
+    CHECK(map.points().size() == static_cast<std::size_t>(cfg.chaos_after / 2));
+    for (int n = 0; n < 100; ++n) map.push(henon());
+    CHECK(map.period() == 0);
+    CHECK(map.points().size() == static_cast<std::size_t>(cfg.chaos_after / 2 + 100));
+    // Intermittency: a laminar phase of 12 periods at a fixed point (an unstable cycle the orbit lingers
+    // near) is not taken for a period, and nothing of the chaotic map is lost.
+    for (int n = 0; n < 12; ++n) map.push(orbit_point(kP1, 0, 0.0, 0.5));
+    CHECK(map.period() == 0);
+    for (int n = 0; n < 20; ++n) map.push(henon());
+    CHECK(map.period() == 0);
+    CHECK(map.points().size() == static_cast<std::size_t>(cfg.chaos_after / 2 + 132));
+    // A long chaotic transient that ends on a period-2 orbit: the chaotic points leave the map.
+    for (int n = 0; n < 60; ++n) map.push(orbit_point(kP2, n, 0.002, 0.5));
+    CHECK(map.period() == 2);
+    CHECK(worst_miss(map, kP2) < 3.0);
+}
+
+TEST_CASE("poincare map: a reset starts over; a cycle that breaks goes back to settling") {
+    PoincareMap map;
+    for (int n = 0; n < 80; ++n) map.push(orbit_point(kP2, n, 0.003, 0.6));
+    REQUIRE(map.period() == 2);
+    const auto gen = map.points().generation();
+
+    map.reset();   // e.g. a new omega
+    CHECK(map.period() == -1);
+    CHECK(map.points().empty());
+    CHECK(map.seen() == 0);
+    CHECK(map.points().generation() != gen);
+    for (int n = 0; n < 5; ++n) map.push(orbit_point(kP3, n, 0.004, 0.7));
+    CHECK(map.period() == -1);   // the old period does not carry over
+    for (int n = 5; n < 120; ++n) map.push(orbit_point(kP3, n, 0.004, 0.7));
+    CHECK(map.period() == 3);
+    CHECK(worst_miss(map, kP3) < 3.0);   // none of the period-2 points, none of the transient
+
+    // A settled period 1 whose point starts to drift (a slow transient that looked settled).
+    PoincareMap drift;
+    for (int n = 0; n < 60; ++n) drift.push(orbit_point(kP1, n, 0.002, 0.5));
+    REQUIRE(drift.period() == 1);
+    MapInput in = orbit_point(kP1, 60, 0.0, 0.5);
+    in.x += 0.001;   // 1 mm away: far beyond the tolerance
+    drift.push(in);
+    CHECK(drift.period() == -1);
+    CHECK(drift.points().empty());
+}
+
+TEST_CASE("poincare map: on the engine, the presets' periods are read from what the app receives") {
+    // The engine at 100x, as the live app at full speed, fed through SectionFeeder as App::drain_samples
+    // does. Each periodic preset is told within 300 forcing periods, with every point of the map in one of
+    // k clusters; the chaos preset is never called periodic.
+    struct FeedSink final : MsgSink {
+        PoincareMap* map;
+        SectionFeeder feeder;
+        void put(const SimMsg& m) override { feeder.on_msg(m, *map); }
+    };
+    for (const char* model : {"A1H", "A3H"}) {
+        for (const Preset& pr : presets_for(model)) {
+            const std::string what = std::string(model) + " " + pr.label;
+            CAPTURE(what);
+            PoincareMap map;
+            FeedSink sink;
+            sink.map = &map;
+            EngineConfig cfg;
+            cfg.model = model;
+            cfg.omega = pr.omega;
+            cfg.x0 = pr.x0;
+            cfg.speed = 100;
+            SimEngine engine(cfg, &sink);
+            const double period_s = 2 * std::numbers::pi / pr.omega;
+            int decided_at = -1;
+            for (int n = 1; n <= 1500 && decided_at < 0; ++n) {
+                engine.advance_to(n * period_s + 1e-9);
+                if (pr.period > 0 && map.period() == pr.period) decided_at = n;
+            }
+            if (pr.period == 0) {
+                CHECK(map.period() == 0);
+                CHECK(map.points().size() > 200);
+                continue;
+            }
+            CHECK(decided_at > 0);
+            MESSAGE(what << ": period " << map.period() << " told after " << decided_at
+                          << " forcing periods");
+            // 40 more periods: every point stays within the tolerance of one of the first k.
+            for (int n = 1; n <= 40; ++n) engine.advance_to(engine.state().t + period_s);
+            REQUIRE(map.points().size() >= static_cast<std::size_t>(pr.period));
+            CHECK(map.period() == pr.period);
+            std::vector<Centre> centres;
+            for (int i = 0; i < pr.period; ++i) centres.push_back({map.points()[static_cast<std::size_t>(i)].x,
+                                                                   map.points()[static_cast<std::size_t>(i)].v});
+            CHECK(worst_miss(map, centres) < 2.0);
+        }
+    }
+}
