@@ -150,3 +150,19 @@ TEST_CASE("basins: an empty grid or an inverted range is refused") {
     s.v_max = s.v_min;
     CHECK_THROWS_AS(compute_basins(p, s), std::invalid_argument);
 }
+
+TEST_CASE("basins: a cancelled job stops, says so and leaves the unrun cells unlabelled") {
+    const Params p = make_version("A1G");
+    Progress progress;
+    progress.cancel = true;
+    const BasinResult r = compute_basins(p, small_grid(6, 2), &progress);
+    CHECK(r.cancelled);
+    CHECK(r.attractors.empty());
+    CHECK(std::all_of(r.label.begin(), r.label.end(), [](int l) { return l == -1; }));
+    // Uncancelled, progress reaches 1 with every cell labelled.
+    Progress full;
+    const BasinResult f = compute_basins(p, small_grid(6, 2), &full);
+    CHECK_FALSE(f.cancelled);
+    CHECK(full.fraction.load() == doctest::Approx(1.0));
+    CHECK(std::none_of(f.label.begin(), f.label.end(), [](int l) { return l < 0; }));
+}
