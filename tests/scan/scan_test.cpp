@@ -124,3 +124,20 @@ TEST_CASE("scan: axes and measures are checked, naming the problem") {
     CHECK(parse_scan_measures("lyapunov").lyapunov);
     CHECK_FALSE(parse_scan_measures("lyapunov").period);
 }
+
+TEST_CASE("scan: a period-1 orbit hitting the bumper once a period counts exactly one impact per period") {
+    // A1C at omega = 24 rad/s with the bumper at -8 mm: the period-1 orbit of the left well touches it once a
+    // forcing period (a window of 69 periods counted over 70 gave 0.9857 before).
+    ScanSpec spec;
+    spec.x = parse_scan_axis("omega:24:24.1:2");
+    spec.y = parse_scan_axis("xI:-0.008:-0.008:1");
+    spec.measures = parse_scan_measures("period,impacts,xrange");
+    for (const char* version : {"A1C", "A1G"}) {
+        const std::vector<ScanPoint> pts = scan_row(make_version(version), spec, 0, {});
+        REQUIRE(pts.size() == 2u);
+        CAPTURE(version);
+        CHECK(pts[0].period == 1);
+        CHECK(pts[0].impacts == 1.0);
+        CHECK(pts[0].xmax >= -0.008 - 1e-4);
+    }
+}

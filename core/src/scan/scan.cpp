@@ -60,7 +60,7 @@ public:
     }
     void on_section(const SectionPoint& sp) override {
         ++sections_;
-        if (recording()) xs_.push_back(sp.x);
+        if (sections_ > spec_.transient) xs_.push_back(sp.x);   // sections transient+1 .. transient+record
     }
     void on_impact(const ImpactEvent&) override {
         if (recording()) ++impacts_;
@@ -95,7 +95,8 @@ public:
     void set_compliant(bool c) { compliant_ = c; }
 
 private:
-    bool recording() const { return sections_ > spec_.transient; }
+    // The record window's dynamics: from the transient's last section to the end (record whole periods).
+    bool recording() const { return sections_ >= spec_.transient; }
     const ScanSpec& spec_;
     const Tolerances& tol_;
     std::vector<ScanPoint>& out_;
