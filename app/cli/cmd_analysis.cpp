@@ -387,6 +387,7 @@ int cmd_basins(const std::vector<std::string>& argv) {
                          "                   are its attractor (default 40)\n"
                          "  --max-period K   the longest period recognised (default 16)\n"
                          "  --threads N      worker threads (default: all cores); the labels do not depend on it\n"
+                         "  (--rtol: the integrator's tolerance, default 1e-6 here: the attractor, not its digits)\n"
                          "  --out FILE       CSV output x0,v0,label (required)\n"
                          "  --png FILE       the coloured basin map with the attractors' section points and a legend\n"))
         return 0;

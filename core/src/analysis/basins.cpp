@@ -152,6 +152,18 @@ CellOutcome run_cell(const Params& p, const BasinSpec& spec, const Vec2& y0, std
         if (k > 0 && !cycle_stable(p, spec, y, n, k, cache)) k = 0;
     }
     if (k > 0) {
+        // A period-1 orbit approached with a negative multiplier recurs at k = 2 before k = 1: the cycle is
+        // reduced to the smallest divisor of k over which its own points repeat (to match_tol).
+        for (int sub = 1; sub < k; ++sub) {
+            if (k % sub != 0) continue;
+            bool repeats = true;
+            for (std::size_t j = n - 1; j + static_cast<std::size_t>(k - sub) >= n && repeats; --j)
+                repeats = scaled_norm(y[j] - y[j - static_cast<std::size_t>(sub)]) < spec.match_tol;
+            if (repeats) {
+                k = sub;
+                break;
+            }
+        }
         out.kind = AttractorKind::Periodic;
         out.period = k;
         out.points.assign(y.begin() + static_cast<std::ptrdiff_t>(n) - k, y.begin() + static_cast<std::ptrdiff_t>(n));
