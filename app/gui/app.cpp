@@ -590,6 +590,10 @@ int App::run() {
         // With --data the fit is for the start model, and --preset or --state-json look at one model: no
         // switch unless one is asked for.
         const bool keep_model = !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty();
+        if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_preset > 0) {
+            switched_ = true;   // --then-preset: what pressing key N does
+            apply_preset(presets_for(model_name())[static_cast<std::size_t>(opt_.then_preset - 1)]);
+        }
         if (!switched_ && counted_frames_ >= opt_.frames / 2 && (!keep_model || !opt_.switch_model.empty())) {
             switched_ = true;
             // Switch the model once, live: to --switch-model, or H <-> G with the same stiffness.

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include "impactlab/params.hpp"
 #include "presets.hpp"
@@ -47,6 +48,7 @@ const char* usage_text() {
            "                     poincare_points [[x, v], ...] [m, m/s]. With --preset, --state-json or --data\n"
            "                     no model switch happens unless --switch-model is given\n"
            "  --switch-model M   the version switched to half-way (default: H <-> G, same stiffness)\n"
+           "  --then-preset N    apply preset N half-way instead (as pressing key N)\n"
            "  --bench-plot       frames per second with --points points on every plot (needs a display)\n"
            "  --points N         points per plot for --bench-plot (default 100000)\n"
            "  --plot-backend B   how dense curves are drawn: raster (CPU, default), gpu (instanced\n"
@@ -138,6 +140,7 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--screenshot") o.screenshot = value();
         else if (a == "--state-json") o.state_json = value();
         else if (a == "--preset") o.preset = integer(a, value(), 1, 100);
+        else if (a == "--then-preset") o.then_preset = integer(a, value(), 1, 100);
         else if (a == "--switch-model") o.switch_model = version(a, value());
         else if (a == "--bifurcation") {
             const std::string& p = value();
@@ -160,12 +163,16 @@ Options parse_options(const std::vector<std::string>& args) {
     }
     if (!o.screenshot.empty() && o.frames == 0 && !o.bench_plot) throw OptionsError("--screenshot needs --frames N or --bench-plot");
     if (!o.state_json.empty() && o.frames == 0) throw OptionsError("--state-json needs --frames N");
-    if (o.preset > 0) {   // checked once the model is known (--model may come after --preset)
-        const std::size_t n = presets_for(o.model).size();
-        if (static_cast<std::size_t>(o.preset) > n)
-            throw OptionsError("--preset: " + std::to_string(o.preset) + " is out of range [1, " + std::to_string(n) +
-                               "] for " + o.model);
+    // Checked once the model is known (--model may come after --preset).
+    for (const auto& [flag, n] : {std::pair{"--preset", o.preset}, std::pair{"--then-preset", o.then_preset}}) {
+        const std::size_t count = presets_for(o.model).size();
+        if (static_cast<std::size_t>(n) > count)
+            throw OptionsError(std::string(flag) + ": " + std::to_string(n) + " is out of range [1, " +
+                               std::to_string(count) + "] for " + o.model);
     }
+    if (o.then_preset > 0 && o.frames == 0) throw OptionsError("--then-preset needs --frames N");
+    if (o.then_preset > 0 && !o.switch_model.empty())
+        throw OptionsError("--then-preset: half-way there is either a preset or a --switch-model, not both");
     return o;
 }
 

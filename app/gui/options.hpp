@@ -25,6 +25,7 @@ struct Options {
     std::string screenshot;      // with --frames: the PNG to write
     std::string state_json;      // with --frames: what the panels show, as JSON (model, omega, Poincare map, ...)
     int preset = 0;              // > 0: start on preset N (1-based, as keys 1-4) of the model
+    int then_preset = 0;         // with --frames: apply preset N half-way (as key N), instead of the model switch
     std::string switch_model;    // with --frames: the version switched to half-way ("" = swap G and H)
     std::string bifurcation;     // "", "cf-up", "cf-down", "ef": start computing at launch
     int bif_steps = 300;

@@ -14,12 +14,31 @@ add_test(NAME gui_smoke
                  $<TARGET_FILE:impactlab_png_check> ${CMAKE_CURRENT_BINARY_DIR}/gui_smoke)
 set_tests_properties(gui_smoke PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
 
+# The Poincare map through --state-json: period and clusters after a preset change, settling, chaos
+# (gui_poincare.sh says what it checks). Skipped (exit 77) without xvfb-run or python3.
+add_test(NAME gui_poincare
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_poincare.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_poincare)
+set_tests_properties(gui_poincare PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
+
 # Bad flags: a clear message and exit code 2 (no display needed).
 add_test(NAME gui_bad_flag
          COMMAND sh -c "\"$0\" --no-such-flag; test $? -eq 2" $<TARGET_FILE:impactlab-gui>)
 add_test(NAME gui_bad_value
          COMMAND sh -c "\"$0\" --omega fast; test $? -eq 2" $<TARGET_FILE:impactlab-gui>)
-set_tests_properties(gui_bad_flag gui_bad_value PROPERTIES LABELS "gui")
+# --preset beyond the model's list, --state-json without --frames, and (defect 9 of issue 11) a missing
+# --data file in a headless run: each names the flag and exits 2 before any window opens.
+add_test(NAME gui_bad_preset
+         COMMAND sh -c "\"$0\" --model A3H --preset 9 --frames 2 2>&1 | grep -q -- '--preset'; test $? -eq 0 && \"$0\" --model A3H --preset 9 --frames 2; test $? -eq 2"
+                 $<TARGET_FILE:impactlab-gui>)
+add_test(NAME gui_state_json_needs_frames
+         COMMAND sh -c "\"$0\" --state-json /tmp/impactlab-never.json 2>&1 | grep -q -- '--state-json needs --frames'; test $? -eq 0 && \"$0\" --state-json /tmp/impactlab-never.json; test $? -eq 2"
+                 $<TARGET_FILE:impactlab-gui>)
+add_test(NAME gui_missing_data
+         COMMAND sh -c "\"$0\" --data /nonexistent/run.csv --frames 10 2>&1 | grep -q -- '--data: cannot read'; test $? -eq 0 && \"$0\" --data /nonexistent/run.csv --frames 10; test $? -eq 2"
+                 $<TARGET_FILE:impactlab-gui>)
+set_tests_properties(gui_bad_flag gui_bad_value gui_bad_preset gui_state_json_needs_frames gui_missing_data
+                     PROPERTIES LABELS "gui")
 
 # A short soak (the README reports the long one): 20 s at 100x switching through every version every 3 s;
 # fails if the resident memory grows by more than 16 MB after the first quarter.
