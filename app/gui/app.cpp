@@ -297,6 +297,7 @@ void App::export_csv() {
 void App::drain_samples() {
     frame_max_force_ = 0;
     const double phi_before = have_last_ ? last_.phi : 0.0;
+    const double wall = now_s();
     sim_->samples().drain([&](const SimMsg& m) {
         if (m.epoch != epoch_) {
             // The dynamics changed: the Poincare map of the old attractor no longer applies, and the new
@@ -305,7 +306,10 @@ void App::drain_samples() {
             pc_map_.reset();
             pc_feed_.reset();
             impacts_seen_ = 0;
-            if (have_last_ && m.t < last_.t) traj_.clear();   // a reset: time starts over
+            if (have_last_ && m.t < last_.t) {   // a reset: time starts over
+                traj_.clear();
+                impact_label_.reset();
+            }
             epoch_ = m.epoch;
         }
         pc_feed_.on_msg(m, pc_map_);
@@ -316,13 +320,14 @@ void App::drain_samples() {
                 have_last_ = true;
                 ++samples_seen_;
                 frame_max_force_ = std::max(frame_max_force_, m.force);
+                impact_label_.sample(m.t, wall, m.force);
                 break;
             case MsgKind::Section:
                 sections_.push(m);
                 break;
             case MsgKind::Impact:
                 ++impacts_seen_;
-                last_impact_v_ = m.force;
+                impact_label_.impact(m.t, wall, m.force);
                 flash_ = std::max(flash_, std::clamp(m.force / 0.25, 0.25, 1.0));
                 break;
         }

@@ -20,6 +20,7 @@
 #include "presets.hpp"
 #include "rig_view.hpp"
 #include "sim_thread.hpp"
+#include "view_fit.hpp"
 
 struct GLFWwindow;
 
@@ -79,6 +80,7 @@ private:
     void draw_toast();
     DataPanelContext data_context() const;
     void update_density_texture(int w, int h);
+    std::size_t trail_first() const;   // the first sample of the phase portrait's trail
     template <class F>
     void timed(int slot, F&& draw);
     static constexpr const char* kPanelNames[7] = {"controls", "rig", "bifurcation", "phase", "poincare", "potential", "x(t)"};
@@ -111,7 +113,7 @@ private:
     std::uint64_t samples_seen_ = 0, impacts_seen_ = 0;
     double frame_max_force_ = 0;
     double flash_ = 0;
-    double last_impact_v_ = 0;
+    ImpactLabel impact_label_;         // the rig's "F = ..." label: during a contact and shortly after
     double phi_prev_ = 0;
 
     // Bifurcation diagram.
@@ -130,7 +132,9 @@ private:
     bool show_help_ = false;
     float trail_periods_ = 8.0f;
     float strip_window_ = 6.0f;
-    AutoRange phase_x_, phase_v_, pc_x_, pc_v_, strip_y_;
+    AutoRange phase_x_, phase_v_, pc_x_, pc_v_, strip_y_, potential_y_;
+    WindowExtent energy_extent_;       // the energy over the phase portrait's trail (the potential's y range)
+    double trail_e_max_ = 0;           // [J] its largest value at the last frame (--state-json)
     std::vector<double> potential_x_, potential_v_;   // V(x) of the current stiffness
     std::string potential_for_;
     double last_frame_time_ = 0, fps_ = 0, frame_dt_ = 1.0 / 60;

@@ -17,6 +17,7 @@
 #include "impactlab/forces.hpp"
 #include "impactlab/sweep.hpp"
 #include "theme.hpp"
+#include "view_fit.hpp"
 
 namespace impactlab::gui {
 
@@ -444,11 +445,18 @@ void App::draw_rig() {
     const double face = xI_ + rig::kCartHalfW;
     std::snprintf(buf, sizeof buf, "bumper  x_I = %+.1f mm", xI_ * 1e3);
     plate_text(dl, at(face + 0.004, rig::kBumperY - rig::kBumperHalfH - 0.003), buf, dim, ImVec2(0, 0));
-    if (st.bumper_force > 0.01 || flash_ > 0.05) {
-        if (st.bumper_force > 0.01) std::snprintf(buf, sizeof buf, "F = %.1f N", st.bumper_force);
-        else std::snprintf(buf, sizeof buf, "impact  v- = %.3f m/s", last_impact_v_);
+    // The impact label speaks of the displayed instant: the force now while in contact, then the last
+    // contact's v- or peak force, fading, for at most half a forcing period of simulated time.
+    const bool touching = last_.force > 0 || last_.regime != Regime::Free;
+    const double label_alpha =
+        impact_label_.alpha(touching, last_.t, now_s(), kTwoPi / std::max(omega_, 0.5), speed_);
+    if (label_alpha > 0.02) {
+        if (touching) std::snprintf(buf, sizeof buf, "F = %.1f N", std::max(0.0, last_.force));
+        else if (impact_label_.was_impact()) std::snprintf(buf, sizeof buf, "impact  v- = %.3f m/s", impact_label_.v_minus());
+        else std::snprintf(buf, sizeof buf, "contact  peak F = %.1f N", impact_label_.peak_force());
+        const double heat = touching ? std::min(1.0, last_.force / 100) : 0.0;
         plate_text(dl, at(face + 0.004, rig::kBumperY + rig::kBumperHalfH + 0.0025), buf,
-                   heat_color(static_cast<float>(0.5 + 0.5 * std::max(flash_, std::min(1.0, st.bumper_force / 100)))),
+                   heat_color(static_cast<float>(0.5 + 0.5 * std::max(flash_, heat)), static_cast<float>(label_alpha)),
                    ImVec2(0, 1));
     }
     // Legend: scale bar and the forcing.
@@ -479,17 +487,18 @@ void App::draw_rig() {
     }
 }
 
+std::size_t App::trail_first() const {
+    const std::size_t n = traj_.size();
+    if (bench_window_) return n > bench_window_ ? n - bench_window_ : 0;
+    if (n == 0) return 0;
+    const double t_from = traj_.back().t - trail_periods_ * kTwoPi / std::max(omega_, 0.5);
+    return traj_.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
+}
+
 void App::draw_phase() {
     const Palette& pal = palette();
     const std::size_t n = traj_.size();
-    const double period = kTwoPi / std::max(omega_, 0.5);
-    std::size_t first = 0;
-    if (bench_window_) {
-        first = n > bench_window_ ? n - bench_window_ : 0;
-    } else if (n) {
-        const double t_from = traj_.back().t - trail_periods_ * period;
-        first = traj_.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
-    }
+    const std::size_t first = trail_first();
     // Auto-fit to the trail (and keep the bumper in view when it is near).
     const auto xe = phase_x_extent_.update(traj_, first, [](const SimMsg& m) { return m.x; });
     const auto ve = phase_v_extent_.update(traj_, first, [](const SimMsg& m) { return m.v; });
@@ -685,14 +694,23 @@ void App::draw_potential() {
     }
     const double vmin = *std::min_element(potential_v_.begin(), potential_v_.end());
     const Range xr{-0.026, 0.026};
-    const Range yr{vmin * 1.18, -vmin * 2.3};   // room for the energy level of a chaotic orbit
+    // The y range follows the largest energy of the phase portrait's trail (grows at once, shrinks
+    // slowly), with room for the "E = ..." label above the line.
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const auto ee = energy_extent_.update(traj_, trail_first(), [](const SimMsg& m) { return m.energy; });
+    const double e_max = ee.empty ? last_.energy : std::max(ee.hi, last_.energy);
+    trail_e_max_ = e_max;
+    const float fs = ImGui::GetFontSize();
+    const AxisFit fy = potential_y_range(vmin, e_max, avail.y - fs * 2.8f, fs * 1.6f);
+    potential_y_.track({fy.lo, fy.hi}, 0.0, 1e-12, frame_dt_);
+    const Range yr = potential_y_.cur;
     Plot plot;
     Axes ax;
     ax.x_label = "x [mm]";
     ax.y_label = "V(x), E [mJ]";
     ax.x_scale = 1e3;
     ax.y_scale = 1e3;
-    if (!plot.begin("##potential", ImGui::GetContentRegionAvail(), xr, yr, ax)) return;
+    if (!plot.begin("##potential", avail, xr, yr, ax)) return;
     plot.shade_right_of(xI_, pal.bumper);
     plot.vline(xI_, pal.bumper, 1.5f, true);
     plot.path(potential_x_.size(), [&](std::size_t i) { return XY{potential_x_[i], potential_v_[i]}; }, pal.trace2, 2.0f);

@@ -124,18 +124,6 @@ void PoincareMap::push(const MapInput& in) {
     else if (unsettled_ >= static_cast<std::uint64_t>(cfg_.chaos_after)) declare_chaos();
 }
 
-AxisFit fit_axis(double lo, double hi, double min_span, double px, double margin_lo, double margin_hi) {
-    if (!(hi - lo >= min_span)) {
-        const double c = 0.5 * (lo + hi);
-        lo = c - 0.5 * min_span;
-        hi = c + 0.5 * min_span;
-    }
-    // A plot too small for its margins still gives the data a third of its length.
-    const double usable = std::max(px - margin_lo - margin_hi, px / 3.0);
-    const double per_px = (hi - lo) / std::max(usable, 1.0);
-    return {lo - margin_lo * per_px, hi + margin_hi * per_px};
-}
-
 void SectionFeeder::reset() {
     have_ = false;
     in_contact_ = false;

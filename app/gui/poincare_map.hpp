@@ -83,14 +83,6 @@ private:
     bool from_chaos_ = false;        // the current period was found after chaos had been said
 };
 
-// The range of one plot axis that puts the data [lo, hi] (widened to min_span about its centre) inside a
-// data area `px` pixels long with margin_lo and margin_hi pixels left free at its two ends: the markers'
-// radius off the frame, a label's band off the points.
-struct AxisFit {
-    double lo, hi;
-};
-AxisFit fit_axis(double lo, double hi, double min_span, double px, double margin_lo, double margin_hi);
-
 // Turns the simulation's records, in the order they were published, into MapInputs: the extent of the
 // samples and the impacts between two section points go with the second. Impacts are the rigid impacts
 // the engine reports (G, H) or, for the compliant laws, the samples where the bumper force switches on,

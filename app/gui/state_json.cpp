@@ -29,6 +29,9 @@ bool App::write_state_json(const std::string& path) {
     j["fps"] = number(fps_);
     j["frames"] = frame_count_;
     j["epoch"] = epoch_;
+    j["energy"] = number(last_.energy);                 // [J] now
+    j["energy_max_trail"] = number(trail_e_max_);       // [J] over the phase portrait's trail
+    j["potential_view"] = {potential_y_.cur.lo, potential_y_.cur.hi};   // [J] the potential plot's y range
     const PoincareMap::Status st = pc_map_.status();
     j["poincare_status"] = st == PoincareMap::Status::Periodic ? "periodic"
                            : st == PoincareMap::Status::Chaotic ? "chaos" : "settling";

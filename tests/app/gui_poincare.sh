@@ -5,7 +5,8 @@
 #     nothing of the period-1 orbit or of the transient survived the change.
 #  2. Preset 2 three frames after start at 1x: no section has recurred yet, so the map says "settling"
 #     (poincare_period null) and shows no point.
-#  3. Preset 3 (chaos) at 100x: poincare_period 0 and a map of many points.
+#  3. Preset 3 (chaos) at 100x: poincare_period 0 and a map of many points; the potential plot's y range
+#     holds the trail's largest energy.
 # Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
 # usage: gui_poincare.sh IMPACTLAB_GUI OUT_DIR
 gui="$1"; dir="$2"
@@ -65,6 +66,12 @@ if j["poincare_period"] is not None or j["poincare_status"] != "settling" or j["
 j = load("chaos")
 if j["poincare_period"] != 0 or len(j["poincare_points"]) < 100:
     fail.append(f"chaos: period {j['poincare_period']} with {len(j['poincare_points'])} points, expected 0 and > 100")
+# Issue 11, defect 3: the potential plot's y range holds the largest energy of the trail (the old fixed
+# limit, 2.3 times the wells' depth, was about 35 mJ; this orbit reaches past it).
+lo, hi = j["potential_view"]
+if not (lo < j["energy"] < hi and j["energy_max_trail"] < hi):
+    fail.append(f"chaos: the potential plot shows {lo * 1e3:.1f}..{hi * 1e3:.1f} mJ, the energy is "
+                f"{j['energy'] * 1e3:.1f} mJ now and up to {j['energy_max_trail'] * 1e3:.1f} mJ on the trail")
 
 for f in fail:
     print("gui_poincare: FAIL:", f)

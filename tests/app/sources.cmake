@@ -1,7 +1,7 @@
 # Headless tests of the visualiser's GL-free parts (paths relative to tests/): the SPSC ring buffer, the
 # simulation engine's command handling, the history and its CSV export, the options, the presets, the
-# measured-data panel's worker and effect-subset mapping, the plots' CPU rasterizer, and the Poincare map's
-# settle detector. They build into impactlab_tests, which links only
+# measured-data panel's worker and effect-subset mapping, the plots' CPU rasterizer, the Poincare map's
+# settle detector, and the plots' fits (view_fit). They build into impactlab_tests, which links only
 # impactlab::core and doctest, so the app sources they exercise are compiled in here too (nothing in them
 # touches GL).
 # The test files include those headers by relative path ("../../app/gui/..."), so this list needs no
@@ -13,6 +13,7 @@ set(IMPACTLAB_APP_TEST_SOURCES
   app/data_job_test.cpp
   app/plot_raster_test.cpp
   app/poincare_map_test.cpp
+  app/view_fit_test.cpp
   ../app/gui/sim_engine.cpp
   ../app/gui/sim_thread.cpp
   ../app/gui/history.cpp
@@ -21,4 +22,5 @@ set(IMPACTLAB_APP_TEST_SOURCES
   ../app/gui/data_job.cpp
   ../app/gui/plot_raster.cpp
   ../app/gui/poincare_map.cpp
+  ../app/gui/view_fit.cpp
 )
