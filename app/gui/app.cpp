@@ -69,6 +69,7 @@ App::App(const Options& opt) : opt_(opt) {
         show_data_ = true;
         data_panel_.load(opt.data, true);
     }
+    analysis_.configure(opt);   // --plane loads now; --continuation, --basins, --small-plane start at the first frame
     set_plot_backend(opt.plot_backend == "gpu" ? PlotBackend::Gpu
                      : opt.plot_backend == "imgui" ? PlotBackend::DrawList : PlotBackend::Raster);
 }
@@ -169,6 +170,7 @@ void App::shutdown() {
             bif_tex_ = 0;
         }
         rig_.shutdown();
+        analysis_.release_gl();
         plot_gpu::shutdown();
         release_plot_canvases();
         ImGui_ImplOpenGL3_Shutdown();
@@ -585,7 +587,7 @@ int App::run() {
         if (opt_.frames <= 0) continue;
         // Headless run: with a diagram requested, the frames are counted once it is done.
         const bool waiting = (!opt_.bifurcation.empty() && (bif_.running() || !diagram_)) || warming_ ||
-                             (!opt_.data.empty() && data_panel_.busy());
+                             (!opt_.data.empty() && data_panel_.busy()) || analysis_.busy();
         if (waiting) {
             if (frame_count_ % 600 == 0 && frame_count_ > 0)
                 std::fprintf(stderr, "impactlab-gui: waiting for the bifurcation diagram (%.0f%%)\n", 100 * bif_.progress());
@@ -629,6 +631,10 @@ int App::run() {
             std::fprintf(stderr, "impactlab-gui: error: --data %s: %s\n", opt_.data.c_str(), err.c_str());
             exit_code_ = 1;
         }
+    }
+    if (opt_.frames > 0 && !analysis_.startup_error().empty()) {   // a bad --plane file, a failed job
+        std::fprintf(stderr, "impactlab-gui: error: %s\n", analysis_.startup_error().c_str());
+        exit_code_ = 1;
     }
     if (!opt_.state_json.empty() && !write_state_json(opt_.state_json)) exit_code_ = 1;
     return exit_code_;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis_panels.hpp"
 #include "bifurcation_job.hpp"
 #include "data_panel.hpp"
 #include "history.hpp"
@@ -79,6 +80,8 @@ private:
     void draw_help();
     void draw_toast();
     DataPanelContext data_context() const;
+    AnalysisContext analysis_context() const;           // analysis_hooks.cpp
+    void apply_analysis(const AnalysisAction& a);       // analysis_hooks.cpp: a click's commands
     void update_density_texture(int w, int h);
     std::size_t trail_first() const;   // the first sample of the phase portrait's trail
     template <class F>
@@ -92,6 +95,7 @@ private:
     BifurcationJob bif_;
     DataPanel data_panel_;             // "Measured data": load, fit, effects on and off
     bool show_data_ = false;
+    AnalysisPanels analysis_;          // continued branches, parameter plane, basins (issues 9, 10)
     RigView rig_;
     bool imgui_ready_ = false;
     bool glfw_ready_ = false;
@@ -123,7 +127,9 @@ private:
     int bif_tex_w_ = 0, bif_tex_h_ = 0;
     bool bif_dirty_ = true;
     Range bif_x_{0, 25}, bif_y_{-0.02, 0.005};
+    Range bif_view_x_, bif_view_y_;   // what the diagram shows (the user's zoom or bif_x_, bif_y_): the image's ranges
     double bif_started_ = 0;
+    bool bif_zoom_applied_ = false;    // --bif-zoom, once the first diagram is there
 
     // View.
     bool dark_ = true;

@@ -34,9 +34,16 @@ const char* usage_text() {
            "  --show-help        open the keyboard shortcuts window at start\n"
            "  --bifurcation P    compute a bifurcation diagram at start: cf-up, cf-down or ef\n"
            "  --bif-steps N      omega steps of a CF sweep, 10..2000 (default 300)\n"
+           "  --bif-zoom W0:W1   show the diagram zoomed to omega in [W0, W1] (wheel, drag and double-click\n"
+           "                     zoom, pan and reset every plot)\n"
            "  --data FILE        load a measured run (CSV, plain or gzip) into the Measured data window\n"
            "                     and fit the model to it (with --frames: counted once the fit is done,\n"
            "                     and no model switch unless --switch-model is given)\n"
+           "  --plane FILE       show a parameter plane (impactlab scan --out FILE) in the Parameter plane\n"
+           "                     window; a bad file is reported there naming its line (exit 1 with --frames)\n"
+           "  --continuation     continue the period-1 branch over the diagram's omega range at start (key O)\n"
+           "  --small-plane      compute a 60 x 30 (omega, xI) plane at start (Parameter plane window, F2)\n"
+           "  --basins           compute the basins of attraction at --omega at start (Basins window, F3)\n"
            "\n"
            "Headless checks and benchmarks:\n"
            "  --frames N         render N frames, switch the model once half-way, save --screenshot, print\n"
@@ -61,7 +68,8 @@ const char* usage_text() {
            "  --help             this text\n"
            "\n"
            "Keys: space pause, N step one period, R reset, left/right omega, up/down xI, [ ] speed,\n"
-           "      M impact model, K stiffness, B bifurcation, C clear Poincare map, F1 help (all in the app).\n";
+           "      M impact model, K stiffness, B bifurcation, C clear Poincare map, O continued branches,\n"
+           "      F2 parameter plane, F3 basins, F1 help (all in the app).\n";
 }
 
 namespace {
@@ -148,6 +156,18 @@ Options parse_options(const std::vector<std::string>& args) {
                 throw OptionsError("--bifurcation: '" + p + "' is not one of cf-up, cf-down, ef");
             o.bifurcation = p;
         } else if (a == "--bif-steps") o.bif_steps = integer(a, value(), 10, 2000);
+        else if (a == "--bif-zoom") {
+            const std::string& z = value();
+            const auto c = z.find(':');
+            if (c == std::string::npos) throw OptionsError("--bif-zoom: '" + z + "' is not W0:W1");
+            o.bif_zoom_lo = number(a, z.substr(0, c), 0.0, 30.0);
+            o.bif_zoom_hi = number(a, z.substr(c + 1), 0.0, 30.0);
+            if (!(o.bif_zoom_hi > o.bif_zoom_lo)) throw OptionsError("--bif-zoom: " + z + " is empty (W0 < W1 wanted)");
+        }
+        else if (a == "--plane") o.plane = value();
+        else if (a == "--continuation") o.continuation = true;
+        else if (a == "--small-plane") o.small_plane = true;
+        else if (a == "--basins") o.basins = true;
         else if (a == "--soak") o.soak = number(a, value(), 1.0, 86400.0);
         else if (a == "--bench-plot") o.bench_plot = true;
         else if (a == "--bench-ring") o.bench_ring = true;

@@ -29,6 +29,7 @@ struct Options {
     std::string switch_model;    // with --frames: the version switched to half-way ("" = swap G and H)
     std::string bifurcation;     // "", "cf-up", "cf-down", "ef": start computing at launch
     int bif_steps = 300;
+    double bif_zoom_lo = 0, bif_zoom_hi = 0;   // --bif-zoom W0:W1: the diagram's view starts zoomed to it
 
     double soak = 0;             // > 0: run this many wall seconds at 100x, switching the model every 3 s; RSS report
     bool bench_plot = false, bench_ring = false, bench_sim = false;
@@ -37,6 +38,11 @@ struct Options {
     bool help = false;
     bool show_help = false;      // open the shortcuts window at start
     std::string data;            // a measured run to load into the "Measured data" window at start (and fit)
+    // Analysis (issues 9, 10): a scan CSV for the plane window; jobs begun at start (--frames waits for them).
+    std::string plane;           // --plane FILE
+    bool continuation = false;   // --continuation: the continued branches over the diagram
+    bool small_plane = false;    // --small-plane: a 60 x 30 (omega, xI) plane on a worker
+    bool basins = false;         // --basins: the basins at --omega
 };
 
 // argv without the program name. Throws OptionsError naming the flag and the problem.

@@ -144,6 +144,7 @@ void App::layout_and_draw() {
 
     data_panel_.poll(data_context());
     if (show_data_) data_panel_.draw(&show_data_, data_context());
+    apply_analysis(analysis_.draw(analysis_context()));
     if (show_help_) draw_help();
     draw_toast();
 }
@@ -198,6 +199,7 @@ void App::draw_menu() {
         }
         ImGui::EndMenu();
     }
+    analysis_.menu(analysis_context());
     if (ImGui::BeginMenu("Help")) {
         if (ImGui::MenuItem("Keyboard shortcuts", "F1")) show_help_ = true;
         ImGui::EndMenu();
@@ -767,9 +769,11 @@ void App::update_density_texture(int w, int h) {
     for (std::size_t i = 1; i < diagram_->points.size(); ++i)
         if (diagram_->points[i].omega != diagram_->points[i - 1].omega) ++distinct;
     const bool cf = diagram_->protocol != "ef";
-    const int splat = cf ? std::clamp(static_cast<int>(w / std::max<double>(1, distinct) * (bif_x_.span() / 25.0)), 1, 6) : 1;
+    // (A column's share: the diagram's omega extent bif_x_ over its columns, in the pixels of the view shown.)
+    const double col_px = w / std::max<double>(1, distinct) * (bif_x_.span() / bif_view_x_.span());
+    const int splat = cf ? std::clamp(static_cast<int>(col_px), 1, 12) : 1;
     for (const auto& p : diagram_->points) {
-        const double fx = (p.omega - bif_x_.lo) / bif_x_.span(), fy = (bif_y_.hi - p.x) / bif_y_.span();
+        const double fx = (p.omega - bif_view_x_.lo) / bif_view_x_.span(), fy = (bif_view_y_.hi - p.x) / bif_view_y_.span();
         const int ix = static_cast<int>(fx * w), iy = static_cast<int>(fy * h);
         if (iy < 0 || iy >= h) continue;
         for (int k = 0; k < splat; ++k) {
@@ -821,8 +825,20 @@ void App::draw_bifurcation() {
     ax.x_label = "omega [rad/s]";
     ax.y_label = "x at sections [mm]";
     ax.y_scale = 1e3;
+    if (opt_.bif_zoom_hi > opt_.bif_zoom_lo && diagram_ && !bif_zoom_applied_) {
+        // --bif-zoom: the omega range asked for, the auto-fit's x at sections.
+        bif_zoom_applied_ = true;
+        Plot::set_user_view("##bif", {opt_.bif_zoom_lo, opt_.bif_zoom_hi}, bif_y_);
+    }
     if (!plot.begin("##bif", ImGui::GetContentRegionAvail(), bif_x_, bif_y_, ax)) return;
     const ImVec2 a = plot.area_min(), b = plot.area_max();
+    // The density image is drawn for the view shown (zoomed and panned by the mouse, or the auto-fit).
+    if (const Range vx = plot.x_range(), vy = plot.y_range();
+        vx.lo != bif_view_x_.lo || vx.hi != bif_view_x_.hi || vy.lo != bif_view_y_.lo || vy.hi != bif_view_y_.hi) {
+        bif_view_x_ = vx;
+        bif_view_y_ = vy;
+        bif_dirty_ = true;
+    }
     if (diagram_) {
         update_density_texture(static_cast<int>(b.x - a.x), static_cast<int>(b.y - a.y));
         if (bif_tex_) plot.draw()->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(bif_tex_)), a, b);
@@ -847,6 +863,7 @@ void App::draw_bifurcation() {
         ImGui::SetTooltip("omega = %.2f rad/s  (click to set)", w);
         if (plot.clicked()) set_omega(w);
     }
+    analysis_.overlay_diagram(plot);   // continued branches and bifurcation points (named on hover)
     plot.end();
 }
 

@@ -7,13 +7,22 @@
 #include <memory>
 #include <unordered_map>
 
+#include <imgui_internal.h>   // SetItemUsingMouseWheel: the wheel zooms the plot, not the window
+
 #include "gl_util.hpp"
 #include "theme.hpp"
+#include "view_fit.hpp"
 
 namespace impactlab::gui {
 
 namespace {
 std::size_t g_vertices = 0;
+
+// The user's view of each plot that has been zoomed or panned (by ImGui id); absent: the caller's ranges.
+struct UserView {
+    Range x, y;
+};
+std::unordered_map<ImGuiID, UserView> g_user_views;
 
 // Digits after the point for tick labels at this step.
 int decimals_for(double step) {
@@ -203,6 +212,7 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
     max_ = ImVec2(std::floor(p1.x - right), std::floor(p1.y - bottom));
     x_ = x.valid() ? x : Range{x.lo - 0.5, x.lo + 0.5};
     y_ = y.valid() ? y : Range{y.lo - 0.5, y.lo + 0.5};
+    zoom_and_pan();
     bx_ = (max_.x - min_.x) / x_.span();
     ax_ = min_.x - bx_ * x_.lo;
     by_ = -(max_.y - min_.y) / y_.span();
@@ -248,6 +258,56 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
     return true;
 }
 
+void Plot::set_user_view(const char* id, Range x, Range y) {
+    if (x.valid() && y.valid()) g_user_views[ImGui::GetID(id)] = UserView{x, y};
+}
+
+void Plot::zoom_and_pan() {
+    // The mouse over this plot: wheel zooms about the pointer, a drag pans, a double-click gives the view
+    // back to the caller's auto-fit. The user's view then replaces the caller's ranges until that reset.
+    const ImGuiIO& io = ImGui::GetIO();
+    auto it = g_user_views.find(id_);
+    if (hovered_ && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && it != g_user_views.end()) {
+        g_user_views.erase(it);
+        it = g_user_views.end();
+    }
+    UserView v = it != g_user_views.end() ? it->second : UserView{x_, y_};
+    bool changed = false;
+    const double w = std::max(1.0f, max_.x - min_.x), h = std::max(1.0f, max_.y - min_.y);
+    if (hovered_) ImGui::SetItemUsingMouseWheel();
+    if (hovered_ && io.MouseWheel != 0.0f) {
+        const double f = std::pow(0.85, static_cast<double>(io.MouseWheel));
+        const double mx = v.x.lo + (io.MousePos.x - min_.x) / w * v.x.span();
+        const double my = v.y.hi - (io.MousePos.y - min_.y) / h * v.y.span();
+        if (!io.KeyCtrl) {
+            const AxisFit r = zoom_axis({v.x.lo, v.x.hi}, mx, f);
+            v.x = {r.lo, r.hi};
+        }
+        if (!io.KeyShift) {
+            const AxisFit r = zoom_axis({v.y.lo, v.y.hi}, my, f);
+            v.y = {r.lo, r.hi};
+        }
+        changed = true;
+    }
+    if (dragging_ && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 4.0f) &&
+        (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
+        const AxisFit rx = pan_axis({v.x.lo, v.x.hi}, io.MouseDelta.x, w);
+        const AxisFit ry = pan_axis({v.y.lo, v.y.hi}, -io.MouseDelta.y, h);   // screen y grows downwards
+        v.x = {rx.lo, rx.hi};
+        v.y = {ry.lo, ry.hi};
+        changed = true;
+    }
+    if (changed && v.x.valid() && v.y.valid() && std::isfinite(v.x.span()) && std::isfinite(v.y.span()) &&
+        v.x.span() > 1e-12 && v.y.span() > 1e-12)
+        g_user_views[id_] = v;
+    it = g_user_views.find(id_);
+    zoomed_ = it != g_user_views.end();
+    if (zoomed_) {
+        x_ = it->second.x;
+        y_ = it->second.y;
+    }
+}
+
 void Plot::end() {
     if (canvas_ && canvas_->canvas.active()) {
         const RasterCanvas& cv = canvas_->canvas;
@@ -269,6 +329,14 @@ void Plot::end() {
     }
     canvas_ = nullptr;
     canvas_vtx_ = -1;
+    if (zoomed_) {   // over the data: the user should know this view is theirs, and how to leave it
+        const char* note = "zoomed: double-click resets";
+        const ImVec2 ts = ImGui::CalcTextSize(note);
+        const ImVec2 q(max_.x - ts.x - 6, max_.y - 2 * ts.y - 10);   // a line above the plots' own notes
+        dl_->AddRectFilled(ImVec2(q.x - 3, q.y - 1), ImVec2(q.x + ts.x + 3, q.y + ts.y + 1),
+                           palette().dark ? IM_COL32(10, 12, 16, 170) : IM_COL32(255, 255, 255, 190), 3.0f);
+        dl_->AddText(q, palette().axis_text, note);
+    }
     dl_->PopClipRect();
 }
 

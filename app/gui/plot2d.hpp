@@ -6,6 +6,8 @@
 //             with an optional fade from old (transparent) to new (opaque);
 //   trail   - a fading path over a sliding window of a History, kept between frames (draws only the new);
 //   scatter - dots: one per covered pixel (a bitmap of the area, cleared per call).
+// Every plot zooms and pans with the mouse (wheel: zoom about the pointer, Shift + wheel: x only, Ctrl +
+// wheel: y only; drag: pan; double-click: back to the caller's auto-fit); the view is kept per plot id.
 // By default the decimated curves and dots are rasterized on the CPU into one texture per plot
 // (plot_raster); the other backends send them to the GPU (plot_gpu: one instanced draw per call) or to
 // ImDrawList polylines and rectangles.
@@ -72,6 +74,9 @@ struct Axes {
 
 class Plot {
 public:
+    // Sets the user's view of plot `id` in the current window, as a zoom with the mouse would (scripted
+    // views: --bif-zoom). UI thread, inside the plot's window, before its begin().
+    static void set_user_view(const char* id, Range x, Range y);
     // Lays the plot out at the cursor (an InvisibleButton of `size` takes the mouse). Returns false if the
     // plot is too small to draw (nothing to end() then).
     bool begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes);
@@ -88,6 +93,7 @@ public:
     bool hovered() const { return hovered_; }
     bool clicked() const { return clicked_; }   // left click released on the data area
     bool dragging() const { return dragging_; }
+    bool zoomed() const { return zoomed_; }       // the user's zoom or pan replaces the caller's ranges
     Range x_range() const { return x_; }
     Range y_range() const { return y_; }
 
@@ -119,6 +125,7 @@ public:
     static void reset_stats();
 
 private:
+    void zoom_and_pan();   // the mouse's zoom and pan; replaces x_, y_ with the user's view
     void flush(std::vector<ImVec2>& pts, ImU32 color, float thickness);
     void flush_gpu(ImU32 color, float thickness);
     void flush_raster(ImU32 color, float thickness);
@@ -145,7 +152,7 @@ private:
     ImVec2 min_, max_;
     Range x_, y_;
     double ax_ = 0, bx_ = 1, ay_ = 0, by_ = 1;
-    bool hovered_ = false, clicked_ = false, dragging_ = false;
+    bool hovered_ = false, clicked_ = false, dragging_ = false, zoomed_ = false;
     std::vector<ImVec2> buf_;
     struct ColumnSpan {
         float x, lo, hi, last;   // the column's centre, the screen y of its top (lo), bottom (hi) and last point

@@ -19,6 +19,15 @@ AxisFit fit_axis(double lo, double hi, double min_span, double px, double margin
     return {lo - margin_lo * per_px, hi + margin_hi * per_px};
 }
 
+AxisFit zoom_axis(AxisFit r, double anchor, double factor) {
+    return {anchor + (r.lo - anchor) * factor, anchor + (r.hi - anchor) * factor};
+}
+
+AxisFit pan_axis(AxisFit r, double pixels, double px) {
+    const double d = pixels * (r.hi - r.lo) / std::max(px, 1.0);
+    return {r.lo - d, r.hi - d};
+}
+
 AxisFit potential_y_range(double v_min, double e_max, double px, double label_px) {
     const double lo = 1.18 * v_min;
     const double top = std::max(-2.3 * v_min, e_max);

@@ -13,6 +13,12 @@ struct AxisFit {
 };
 AxisFit fit_axis(double lo, double hi, double min_span, double px, double margin_lo, double margin_hi);
 
+// Zoom and pan of a plot axis by the mouse: zoom_axis scales [lo, hi] by `factor` (< 1 zooms in) about
+// `anchor` (the data value under the mouse, which stays under it); pan_axis shifts it by `pixels` of a
+// data area `px` long (a drag to the right moves the data right: the range moves left).
+AxisFit zoom_axis(AxisFit r, double anchor, double factor);
+AxisFit pan_axis(AxisFit r, double pixels, double px);
+
 // The potential plot's y range [J]: from a little below the wells' floor v_min (< 0) up to the higher of
 // a fixed headroom (2.3 |v_min|, the energy of a typical chaotic orbit) and the largest energy of the
 // recent trajectory, with label_px pixels above the energy line for its "E = ..." label.

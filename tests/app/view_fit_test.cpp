@@ -22,6 +22,21 @@ TEST_CASE("view fit: data lands inside the area with the margins free") {
     CHECK((tiny.hi - tiny.lo) == doctest::Approx(3.0));
 }
 
+TEST_CASE("view fit: zoom keeps the point under the mouse, pan follows the drag") {
+    const AxisFit r{0.0, 25.0};   // omega [rad/s]
+    const AxisFit z = zoom_axis(r, 16.45, 0.5);
+    CHECK(z.hi - z.lo == doctest::Approx(12.5));
+    // 16.45 sits at the same fraction of the axis before and after.
+    CHECK((16.45 - z.lo) / (z.hi - z.lo) == doctest::Approx((16.45 - r.lo) / (r.hi - r.lo)));
+    const AxisFit back = zoom_axis(z, 16.45, 2.0);
+    CHECK(back.lo == doctest::Approx(0.0).epsilon(1e-12));
+    CHECK(back.hi == doctest::Approx(25.0));
+    // A 100 px drag to the right on a 500 px axis of 25 rad/s: the view moves 5 rad/s to the left.
+    const AxisFit p = pan_axis(r, 100, 500);
+    CHECK(p.lo == doctest::Approx(-5.0));
+    CHECK(p.hi == doctest::Approx(20.0));
+}
+
 TEST_CASE("view fit: the potential plot's top follows the energy, with room for its label") {
     const double vmin = -0.0152;   // [J] the A1 wells' floor
     const AxisFit quiet = potential_y_range(vmin, -0.010, 200, 20);
