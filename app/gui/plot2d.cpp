@@ -258,6 +258,15 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
     return true;
 }
 
+void Plot::share_dots(bool on) {
+    shared_dots_ = on;
+    if (!on) return;
+    const int w = static_cast<int>(max_.x - min_.x) + 1, h = static_cast<int>(max_.y - min_.y) + 1;
+    if (w <= 0 || h <= 0) return;
+    const std::size_t bits = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+    bitmap_.assign((bits + 63) / 64, 0);
+}
+
 void Plot::set_user_view(const char* id, Range x, Range y) {
     if (x.valid() && y.valid()) g_user_views[ImGui::GetID(id)] = UserView{x, y};
 }

@@ -104,6 +104,10 @@ public:
     void path(std::size_t n, Get&& get, ImU32 color, float thickness = 1.5f, bool fade = false);
     template <class Get>
     void scatter(std::size_t n, Get&& get, ImU32 color, float size = 2.0f);
+    // While on, scatter() calls share one covered-pixel bitmap: a pixel drawn by an earlier call is not
+    // drawn again by a later one (draw the newest layer first). Layers of one point set then cost what
+    // one call costs, not one each.
+    void share_dots(bool on);
     // A fading trail of the history samples [0, n) whose sequence numbers start at seq0 (History::seq_of)
     // in history `generation`: like path(..., fade = true), but kept between frames (TrailCanvas), so a
     // frame only draws what is new. Raster backend only; the others fall back to path().
@@ -160,6 +164,7 @@ private:
     std::vector<ColumnSpan> spans_;
     std::vector<plot_gpu::Vtx> gbuf_;
     std::vector<std::uint64_t> bitmap_;
+    bool shared_dots_ = false;
 };
 
 // Points handed to the renderer this frame (benchmark statistics).
@@ -325,7 +330,7 @@ void Plot::scatter(std::size_t n, Get&& get, ImU32 color, float size) {
     const int w = static_cast<int>(max_.x - min_.x) + 1, h = static_cast<int>(max_.y - min_.y) + 1;
     if (w <= 0 || h <= 0) return;
     const std::size_t bits = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-    bitmap_.assign((bits + 63) / 64, 0);
+    if (!shared_dots_ || bitmap_.size() != (bits + 63) / 64) bitmap_.assign((bits + 63) / 64, 0);
     const float r = 0.5f * size;
     const bool gpu = plot_backend() == PlotBackend::Gpu && plot_gpu::ready();
     RasterCanvas* cv = plot_backend() == PlotBackend::Raster ? canvas() : nullptr;
