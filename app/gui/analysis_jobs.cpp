@@ -1,0 +1,97 @@
+#include "analysis_jobs.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace impactlab::gui {
+
+ContinuationOverlay compute_continuation(const Params& p, double omega_lo, double omega_hi, Progress& progress) {
+    const auto t0 = std::chrono::steady_clock::now();
+    analysis::ContinuationSpec spec;
+    spec.param = analysis::ContParam::Omega;
+    // Near omega = 0 the forcing vanishes and the arclength steps crawl: the branch starts at 0.5 rad/s,
+    // where the diagram's first columns already show the resting period 1.
+    spec.lo = std::max(omega_lo, 0.5);
+    spec.hi = std::max(omega_hi, spec.lo + 0.5);
+    spec.start = spec.lo;
+    spec.period = 1;
+    spec.max_period = 8;
+    const analysis::ContinuationResult r = analysis::continue_orbits(p, spec, &progress);
+
+    ContinuationOverlay out;
+    out.model = p.name;
+    out.omega_lo = spec.lo;
+    out.omega_hi = spec.hi;
+    out.points = r.points;
+    out.cancelled = r.cancelled;
+    // A branch stores one section point per orbit; the other k - 1 of a period-k orbit are one map away
+    // (at the sweep's tolerance: a curve needs pixels, not digits).
+    const Tolerances tol = analysis::analysis_tolerances(1e-8);
+    for (const analysis::Branch& b : r.branches) {
+        const int k = std::max(b.period, 1);
+        std::vector<BranchCurve> curves(static_cast<std::size_t>(k));
+        for (BranchCurve& c : curves) {
+            c.branch = b.id;
+            c.period = k;
+        }
+        for (const analysis::BranchPoint& q : b.points) {
+            if (progress.cancel.load(std::memory_order_relaxed)) {
+                out.cancelled = true;
+                break;
+            }
+            std::vector<double> xs{q.y[0]};
+            if (k > 1) {
+                try {
+                    const analysis::MapResult m = analysis::poincare_map(p, q.param, q.y, k, false, tol);
+                    for (int i = 0; i + 1 < k && i < static_cast<int>(m.sections.size()); ++i) xs.push_back(m.sections[static_cast<std::size_t>(i)][0]);
+                } catch (const std::exception&) {
+                    // A stalled map (an orbit deep in chatter): that point draws only the section it has.
+                }
+            }
+            for (std::size_t i = 0; i < curves.size(); ++i) {
+                if (i >= xs.size()) continue;
+                curves[i].omega.push_back(q.param);
+                curves[i].x.push_back(xs[i]);
+                curves[i].stable.push_back(q.stable ? 1 : 0);
+            }
+        }
+        for (BranchCurve& c : curves)
+            if (!c.omega.empty()) out.curves.push_back(std::move(c));
+    }
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+}
+
+PlaneData compute_plane(const Params& p, const std::string& model, const PlaneRequest& req, Progress& progress) {
+    ScanSpec spec;
+    spec.x = {ScanParam::Omega, req.omega_lo, req.omega_hi, req.nx};
+    spec.y = {ScanParam::XI, req.xI_lo, req.xI_hi, req.ny};
+    spec.measures.period = true;
+    spec.measures.impacts = true;
+    spec.start = ScanStart::Continue;
+    std::vector<int> todo(static_cast<std::size_t>(req.ny));
+    for (int j = 0; j < req.ny; ++j) todo[static_cast<std::size_t>(j)] = j;
+    std::vector<std::vector<ScanPoint>> rows(static_cast<std::size_t>(req.ny));
+    // on_row is serialised by scan_rows, so the rows need no lock of their own.
+    scan_rows(p, spec, todo, req.threads, &progress, Tolerances{},
+              [&rows](int row, const std::vector<ScanPoint>& pts) { rows[static_cast<std::size_t>(row)] = pts; });
+    std::string source = "computed: " + model;
+    if (progress.cancel.load(std::memory_order_relaxed)) source += " (cancelled, partial)";
+    return plane_from_scan(spec, rows, source);
+}
+
+analysis::BasinSpec basin_request(const Params& p, double omega, int grid, int threads) {
+    analysis::BasinSpec spec;
+    spec.omega = omega;
+    spec.nx = spec.nv = grid;
+    const double x_hi = p.has_bumper() ? std::min(p.xI, 0.03) : 0.03;
+    spec.x_min = std::min(-0.03, x_hi - 0.03);
+    spec.x_max = x_hi;
+    spec.v_min = -0.3;
+    spec.v_max = 0.3;
+    spec.threads = threads;
+    return spec;
+}
+
+}  // namespace impactlab::gui
