@@ -46,3 +46,10 @@ add_test(NAME gui_soak_short
          COMMAND sh -c "command -v xvfb-run >/dev/null || exit 77; xvfb-run -a -s '-screen 0 1280x800x24' \"$0\" --soak 20"
                  $<TARGET_FILE:impactlab-gui>)
 set_tests_properties(gui_soak_short PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "gui")
+
+# The analysis views (issues 9, 10): --plane, --continuation and --basins under Xvfb, and a bad plane file
+# named with its line (gui_analysis.sh says what it checks). Skipped (exit 77) without xvfb-run.
+add_test(NAME gui_analysis
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_analysis.sh $<TARGET_FILE:impactlab-gui>
+                 $<TARGET_FILE:impactlab_png_check> ${CMAKE_CURRENT_BINARY_DIR}/gui_analysis)
+set_tests_properties(gui_analysis PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "gui")

@@ -14,6 +14,7 @@ set(IMPACTLAB_APP_TEST_SOURCES
   app/plot_raster_test.cpp
   app/poincare_map_test.cpp
   app/view_fit_test.cpp
+  app/analysis_gui_test.cpp
   ../app/gui/sim_engine.cpp
   ../app/gui/sim_thread.cpp
   ../app/gui/history.cpp
@@ -23,4 +24,6 @@ set(IMPACTLAB_APP_TEST_SOURCES
   ../app/gui/plot_raster.cpp
   ../app/gui/poincare_map.cpp
   ../app/gui/view_fit.cpp
+  ../app/gui/plane_data.cpp
+  ../app/gui/analysis_jobs.cpp
 )
