@@ -21,6 +21,7 @@ ContinuationOverlay compute_continuation(const Params& p, double omega_lo, doubl
 
     ContinuationOverlay out;
     out.model = p.name;
+    out.xI = p.xI;
     out.omega_lo = spec.lo;
     out.omega_hi = spec.hi;
     out.points = r.points;

@@ -108,6 +108,7 @@ struct BranchCurve {
 };
 struct ContinuationOverlay {
     std::string model;
+    double xI = 0;                        // [m] the bumper they were computed at
     double omega_lo = 0, omega_hi = 0;
     std::vector<BranchCurve> curves;
     std::vector<analysis::BifPoint> points;

@@ -295,6 +295,8 @@ AnalysisAction AnalysisPanels::draw(const AnalysisContext& c) {
     if (std::exchange(want_plane_, false)) start_plane(c);
     if (std::exchange(want_basins_, false)) start_basins(c);
     poll(act);
+    live_model_ = c.model;
+    live_xI_ = c.xI;
     if (!ImGui::GetIO().WantTextInput) {
         if (key(GLFW_KEY_O)) {
             if (cont_job_.running()) cont_job_.cancel();
@@ -318,6 +320,12 @@ void AnalysisPanels::overlay_diagram(Plot& plot) const {
         plate(dl, ImVec2(a.x + 6, a.y + 6), buf, palette().axis_text);
     }
     if (!overlay_) return;
+    if (overlay_->model != live_model_ || std::abs(overlay_->xI - live_xI_) > 1e-12) {
+        // Computed for another model or bumper: still shown (to compare), and said so.
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "branches of %s at xI = %.1f mm (O recomputes)", overlay_->model.c_str(), 1e3 * overlay_->xI);
+        plate(dl, ImVec2(a.x + 6, a.y + 6 + (cont_job_.running() ? ImGui::GetTextLineHeight() + 4 : 0.0f)), buf, palette().warn);
+    }
     std::vector<ImVec2> pts;
     std::vector<char> dashed;
     for (const BranchCurve& cv : overlay_->curves) {
@@ -346,28 +354,36 @@ void AnalysisPanels::overlay_diagram(Plot& plot) const {
     if (near)
         ImGui::SetTooltip("%s at omega = %.4f rad/s\nperiod %d, x = %.3f mm, v = %.1f mm/s\n(located to %.0e rad/s)",
                           bif_label(near->kind), near->param, near->period, 1e3 * near->y[0], 1e3 * near->y[1], near->precision);
-    // Legend (top right): line styles and symbols.
+    // Legend (top right): the line styles, and the symbols of the kinds found.
     const char* items[] = {"stable", "unstable", "fold", "period doubling", "Neimark-Sacker", "grazing"};
+    bool found[6] = {true, true, false, false, false, false};
+    for (const analysis::BifPoint& q : overlay_->points) found[2 + static_cast<int>(q.kind)] = true;
     const float lh = ImGui::GetTextLineHeight();
     float w = 0;
-    for (const char* t : items) w = std::max(w, ImGui::CalcTextSize(t).x);
+    int rows = 0;
+    for (int i = 0; i < 6; ++i)
+        if (found[i]) w = std::max(w, ImGui::CalcTextSize(items[i]).x), ++rows;
     const float x0 = b.x - w - 34 * s - 6, y0 = a.y + 6;
     const ImU32 bg = palette().dark ? IM_COL32(10, 12, 16, 190) : IM_COL32(255, 255, 255, 200);
-    dl->AddRectFilled(ImVec2(x0 - 4, y0 - 2), ImVec2(b.x - 4, y0 + 6 * lh + 2), bg, 3.0f);
+    dl->AddRectFilled(ImVec2(x0 - 4, y0 - 2), ImVec2(b.x - 4, y0 + static_cast<float>(rows) * lh + 2), bg, 3.0f);
+    float y = y0 + 0.5f * lh;
     for (int i = 0; i < 6; ++i) {
-        const float y = y0 + i * lh + 0.5f * lh;
+        if (!found[i]) continue;
         const ImVec2 l0(x0 + 2, y), l1(x0 + 24 * s, y);
         if (i == 0) dl->AddLine(l0, l1, branch_color(1), 2.0f * s);
         else if (i == 1) draw_branch(dl, {l0, l1}, {1}, branch_color(1), 2.0f * s);
         else bif_marker(dl, ImVec2(x0 + 13 * s, y), static_cast<analysis::BifKind>(i - 2), 4.5f * s);
         dl->AddText(ImVec2(x0 + 30 * s, y - 0.5f * lh), palette().axis_text, items[i]);
+        y += lh;
     }
 }
 
 void AnalysisPanels::draw_plane_window(const AnalysisContext& c, AnalysisAction& act) {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.30f, vp->Pos.y + vp->Size.y * 0.40f), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(560 * c.ui_scale, 440 * c.ui_scale), ImGuiCond_FirstUseEver);
+    // First placed in the lower left, clear of the window's centre (where a headless pointer rests).
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.02f, vp->Pos.y + vp->Size.y * 0.53f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(std::min(560 * c.ui_scale, vp->Size.x * 0.45f), std::min(440 * c.ui_scale, vp->Size.y * 0.45f)),
+                             ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Parameter plane", &show_plane_)) {
         ImGui::End();
         return;
@@ -499,14 +515,15 @@ void AnalysisPanels::draw_plane_window(const AnalysisContext& c, AnalysisAction&
 
 void AnalysisPanels::draw_basins_window(const AnalysisContext& c, AnalysisAction& act) {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.55f, vp->Pos.y + vp->Size.y * 0.35f), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(560 * c.ui_scale, 470 * c.ui_scale), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.53f, vp->Pos.y + vp->Size.y * 0.53f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(std::min(600 * c.ui_scale, vp->Size.x * 0.45f), std::min(440 * c.ui_scale, vp->Size.y * 0.45f)),
+                             ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Basins of attraction", &show_basins_)) {
         ImGui::End();
         return;
     }
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 7);
-    ImGui::SliderInt("##grid", &basin_grid_, 20, 200, "%d x %d");
+    ImGui::SliderInt("##grid", &basin_grid_, 20, 200, "grid %d");
     ImGui::SameLine();
     if (basin_job_.running()) {
         if (ImGui::Button("Cancel")) basin_job_.cancel();

@@ -71,6 +71,8 @@ private:
     std::optional<PlaneData> plane_;
     std::optional<analysis::BasinResult> basins_;
     std::string basins_model_;
+    std::string live_model_;   // the model and xI at the last draw(): the overlay says when it is stale
+    double live_xI_ = 0;
     bool show_plane_ = false, show_basins_ = false;
     bool want_cont_ = false, want_plane_ = false, want_basins_ = false;   // asked for at start
     std::string startup_error_;
