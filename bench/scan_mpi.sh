@@ -7,8 +7,8 @@ exe=$(realpath "${1:-build/bin/impactlab}")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
-args=(scan --model A1C --x omega:8:14:24 --y xI:-0.004:0.004:16 --measure period,impacts,xrange)
-points=$((24 * 16))
+args=(scan --model A1C --x omega:8:14:12 --y xI:-0.004:0.004:64 --measure period,impacts,xrange)
+points=$((12 * 64))
 run() {   # label, then the command; prints wall seconds and points per second
   local label=$1; shift
   local t0 t1
