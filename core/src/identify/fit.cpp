@@ -59,9 +59,9 @@ void check_plausible(const MeasuredData& data, const Model& m, const FitOptions&
     }
     const bool xI_fitted = o.fit_baseline && std::find(o.fit_params.begin(), o.fit_params.end(), "xI") != o.fit_params.end();
     if (!m.p.has_bumper() || xI_fitted) return;
-    // The bumper stops the cart at xI: a few mm of sensor offset or bumper shift are effects the fit looks
+    // The bumper stops the cart at xI: mm of sensor offset or bumper shift are effects the fit looks
     // for; a record that lives beyond it is another geometry, sign or unit.
-    constexpr double kMargin = 5e-3;   // [m]
+    constexpr double kMargin = 10e-3;   // [m]: twenty times the recovery matrix's bumper offset
     std::size_t beyond = 0, i_far = 0;
     for (std::size_t i = 0; i < data.x.size(); ++i)
         if (data.x[i] > m.p.xI + kMargin) {
