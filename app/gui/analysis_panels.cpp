@@ -352,7 +352,7 @@ void AnalysisPanels::overlay_diagram(Plot& plot) const {
         }
     }
     if (near)
-        ImGui::SetTooltip("%s at omega = %.4f rad/s\nperiod %d, x = %.3f mm, v = %.1f mm/s\n(located to %.0e rad/s)",
+        ImGui::SetTooltip("%s at ω = %.4f rad/s\nperiod %d, x = %.3f mm, v = %.1f mm/s\n(located to %.0e rad/s)",
                           bif_label(near->kind), near->param, near->period, 1e3 * near->y[0], 1e3 * near->y[1], near->precision);
     // Legend (top right): the line styles, and the symbols of the kinds found.
     const char* items[] = {"stable", "unstable", "fold", "period doubling", "Neimark-Sacker", "grazing"};
@@ -406,8 +406,8 @@ void AnalysisPanels::draw_plane_window(const AnalysisContext& c, AnalysisAction&
         std::snprintf(label, sizeof label, "Compute %dx%d", plane_req_.nx, plane_req_.ny);
         if (ImGui::Button(label)) start_plane(c);
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("(omega over the diagram's range) x (xI from -10 to 10 mm) for %s on a worker:\n"
-                              "each row a CF sweep along omega, as impactlab scan", c.model.c_str());
+            ImGui::SetTooltip("(ω over the diagram's range) x (x_I from -10 to 10 mm) for %s on a worker:\n"
+                              "each row a CF sweep along ω, as impactlab scan", c.model.c_str());
     }
     if (!plane_error_.empty()) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", plane_error_.c_str());
     if (!plane_) {
@@ -534,10 +534,10 @@ void AnalysisPanels::draw_basins_window(const AnalysisContext& c, AnalysisAction
         std::snprintf(label, sizeof label, "Compute at omega = %.2f", c.omega);
         if (ImGui::Button(label)) start_basins(c);
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("Every (x0, v0) of the grid at phi = 0 run to its attractor on a worker (2 threads).");
+            ImGui::SetTooltip("Every (x0, v0) of the grid at φ = 0 run to its attractor on a worker (2 threads).");
     }
     if (!basins_) {
-        ImGui::TextDisabled("No basins yet: compute them at the current omega.");
+        ImGui::TextDisabled("No basins yet: compute them at the current ω.");
         ImGui::End();
         return;
     }
@@ -579,7 +579,7 @@ void AnalysisPanels::draw_basins_window(const AnalysisContext& c, AnalysisAction
             const int i = std::clamp(static_cast<int>((m.x - a.x) / (b.x - a.x) * sp.nx), 0, sp.nx - 1);
             const int j = std::clamp(static_cast<int>((b.y - m.y) / (b.y - a.y) * sp.nv), 0, sp.nv - 1);
             const int l = r.label[static_cast<std::size_t>(j) * sp.nx + i];
-            ImGui::SetTooltip("x0 = %.2f mm, v0 = %.1f mm/s: attractor %d\n(click: start the simulation here at omega = %.3f)",
+            ImGui::SetTooltip("x0 = %.2f mm, v0 = %.1f mm/s: attractor %d\n(click: start the simulation here at ω = %.3f)",
                               1e3 * r.x0(i), 1e3 * r.v0(j), l, sp.omega);
             if (plot.clicked()) {
                 act.reset = std::make_pair(r.x0(i), r.v0(j));

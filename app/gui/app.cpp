@@ -196,6 +196,10 @@ void App::rebuild_fonts() {
     ImFontConfig cfg;
     cfg.OversampleH = 2;
     cfg.OversampleV = 1;
+    // Latin-1, Greek (ω, φ, π, κ, λ) and a few signs (², –, ·, −, ≤, ≥, ■): the panels speak the paper's symbols.
+    static const ImWchar kRanges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2010, 0x2027, 0x2212, 0x2212,
+                                      0x2264, 0x2265, 0x25A0, 0x25CF, 0};
+    cfg.GlyphRanges = kRanges;
     const float size = std::round(14.5f * ui_scale_);
     if (!io.Fonts->AddFontFromFileTTF(IMPACTLAB_FONT_PATH, size, &cfg)) {
         std::fprintf(stderr, "impactlab-gui: font %s not found, using ImGui's default\n", IMPACTLAB_FONT_PATH);
@@ -263,7 +267,7 @@ void App::apply_preset(const Preset& p) {
     sim_->send(SimCommand::omega(omega_));
     sim_->send(SimCommand::reset(x0_, 0.0));
     if (paused_) set_paused(false);
-    toast(model_name() + ": " + p.label + " (omega = " + std::to_string(p.omega).substr(0, 5) + " rad/s)");
+    toast(model_name() + ": " + p.label + " (ω = " + std::to_string(p.omega).substr(0, 5) + " rad/s)");
 }
 
 void App::clear_poincare() {

@@ -396,8 +396,8 @@ void DataPanel::draw_sections(ImVec2 size) {
     }
     Plot plot;
     Axes ax;
-    ax.x_label = "omega [rad/s]";
-    ax.y_label = "x at phi = 2 pi i [mm]";
+    ax.x_label = "ω [rad/s]";
+    ax.y_label = "x at φ = 2πi [mm]";
     ax.y_scale = 1e3;
     if (!plot.begin("##sections", size, sec_w_, sec_x_, ax)) return;
     auto draw = [&](const std::vector<std::pair<double, double>>& pts, ImU32 col, float sz) {

@@ -121,14 +121,14 @@ void App::layout_and_draw() {
     if (begin_tile("Phase portrait (x, v)", ImVec2(x0, y1), ImVec2(third, row2), ImGuiWindowFlags_NoScrollbar))
         timed(3, [&] { draw_phase(); });
     ImGui::End();
-    if (begin_tile("Poincare map (phi = 2 pi n)", ImVec2(x0 + third, y1), ImVec2(third, row2), ImGuiWindowFlags_NoScrollbar))
+    if (begin_tile("Poincaré map (φ = 2πn)###poincare", ImVec2(x0 + third, y1), ImVec2(third, row2), ImGuiWindowFlags_NoScrollbar))
         timed(4, [&] { draw_poincare(); });
     ImGui::End();
     if (begin_tile("Potential well V(x)", ImVec2(x0 + 2 * third, y1), ImVec2(W - 2 * third, row2),
                    ImGuiWindowFlags_NoScrollbar))
         timed(5, [&] { draw_potential(); });
     ImGui::End();
-    if (begin_tile("Displacement x(t)        dots: Poincare sections (phi = 2 pi n)    dashed: bumper x_I###strip",
+    if (begin_tile("Displacement x(t)        dots: Poincaré sections (φ = 2πn)    dashed: bumper x_I###strip",
                    ImVec2(x0, y1 + row2), ImVec2(W, row3), ImGuiWindowFlags_NoScrollbar))
         timed(6, [&] { draw_strip(); });
     ImGui::End();
@@ -206,7 +206,7 @@ void App::draw_menu() {
     }
     // Right side: model, omega, fps.
     char right[96];
-    std::snprintf(right, sizeof right, "%s   omega %.2f rad/s   %.0f fps", model_name().c_str(), omega_, fps_);
+    std::snprintf(right, sizeof right, "%s   ω %.2f rad/s   %.0f fps", model_name().c_str(), omega_, fps_);
     const float w = ImGui::CalcTextSize(right).x;
     ImGui::SameLine(ImGui::GetWindowWidth() - w - 14.0f * ui_scale_);
     ImGui::TextDisabled("%s", right);
@@ -223,7 +223,7 @@ void App::draw_controls() {
     ImGui::SameLine();
     ImGui::TextColored(ImGui::GetStyle().Colors[ImGuiCol_SliderGrab], "%s", model_name().c_str());
     ImGui::SameLine();
-    ImGui::TextDisabled("(live: keeps x, v, phi)");
+    ImGui::TextDisabled("(live: keeps x, v, φ)");
     ImGui::SetNextItemWidth(full * 0.40f);
     if (ImGui::BeginCombo("##stiffness", stiff[static_cast<std::size_t>(stiffness_)].id)) {
         for (std::size_t i = 0; i < stiff.size(); ++i) {
@@ -252,7 +252,7 @@ void App::draw_controls() {
     section("Forcing and bumper");
     float w = static_cast<float>(omega_);
     ImGui::SetNextItemWidth(-1);
-    if (ImGui::SliderFloat("##omega", &w, 0.0f, 30.0f, "omega = %.2f rad/s")) set_omega(w);
+    if (ImGui::SliderFloat("##omega", &w, 0.0f, 30.0f, "ω = %.2f rad/s")) set_omega(w);
     tooltip("Speed of the unbalance (Left/Right: -/+0.1, with Shift: 1). Drag it from 9 to 13 to watch the "
             "period-doubling cascade.");
     if (ImGui::Button("-1")) set_omega(omega_ - 1);
@@ -279,7 +279,7 @@ void App::draw_controls() {
     tooltip("N: run to the next Poincare section, then pause");
     ImGui::SameLine();
     if (ImGui::Button("Reset", ImVec2(bw, 0))) reset();
-    tooltip("R: t = 0, phi = 0, the cart at rest at x0 (the left well)");
+    tooltip("R: t = 0, φ = 0, the cart at rest at x0 (the left well)");
     float sp = static_cast<float>(speed_);
     ImGui::SetNextItemWidth(-1);
     if (ImGui::SliderFloat("##speed", &sp, 0.01f, 100.0f, "speed %.2fx real time", ImGuiSliderFlags_Logarithmic))
@@ -297,7 +297,7 @@ void App::draw_controls() {
         char per[32];
         if (list[i].period > 0) std::snprintf(per, sizeof per, "period %d", list[i].period);
         else std::snprintf(per, sizeof per, "chaotic");
-        std::snprintf(tip, sizeof tip, "%s\nomega = %.2f rad/s, from rest at x = %.1f mm, x_I = 0: %s after ~400 periods",
+        std::snprintf(tip, sizeof tip, "%s\nω = %.2f rad/s, from rest at x = %.1f mm, x_I = 0: %s after ~400 periods",
                       list[i].note, list[i].omega, list[i].x0 * 1e3, per);
         tooltip(tip);
         if (i % 2 == 0 && i + 1 < list.size()) ImGui::SameLine();
@@ -356,7 +356,7 @@ void App::draw_controls() {
         cell("x", b1);
         ImGui::TableNextRow();
         std::snprintf(b1, sizeof b1, "%.3f rad", std::fmod(last_.phi, kTwoPi));
-        cell("phi", b1);
+        cell("φ", b1);
         std::snprintf(b1, sizeof b1, "%+.4f m/s", last_.v);
         cell("v", b1);
         ImGui::TableNextRow();
@@ -470,7 +470,7 @@ void App::draw_rig() {
     dl->AddLine(ImVec2(lg.x + ten_mm, lg.y - 4), ImVec2(lg.x + ten_mm, lg.y + 4), text, 1.5f);
     dl->AddText(ImVec2(lg.x + ten_mm + 6, lg.y - fs * 0.55f), dim, "10 mm");
     const double om = last_.omega;
-    std::snprintf(buf, sizeof buf, "unbalance  m0e omega^2 = %.2f N", params_.m0e * om * om);
+    std::snprintf(buf, sizeof buf, "unbalance  m0e ω² = %.2f N", params_.m0e * om * om);
     const ImVec2 us = ImGui::CalcTextSize(buf);
     plate_text(dl, ImVec2(p0.x + w - us.x - fs * 0.6f, lg.y - fs * 0.55f), buf, dim);
     // Regime badge (a compliant bumper has no regimes II/III: contact is free flight with F_I > 0).
@@ -803,8 +803,8 @@ void App::draw_bifurcation() {
     const char* protos[] = {"CF up", "CF down", "EF ramp"};
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.2f);
     ImGui::Combo("##proto", &bif_protocol_, protos, 3);
-    tooltip("CF: constant omega steps, 20 transient + 70 recorded periods each, every step starting where the last "
-            "ended. EF: the experiment's slow ramp of omega over 2800 s.");
+    tooltip("CF: constant ω steps, 20 transient + 70 recorded periods each, every step starting where the last "
+            "ended. EF: the experiment's slow ramp of ω over 2800 s.");
     ImGui::SameLine();
     ImGui::BeginDisabled(bif_protocol_ == 2);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.0f);
@@ -826,7 +826,7 @@ void App::draw_bifurcation() {
 
     Plot plot;
     Axes ax;
-    ax.x_label = "omega [rad/s]";
+    ax.x_label = "ω [rad/s]";
     ax.y_label = "x at sections [mm]";
     ax.y_scale = 1e3;
     if (opt_.bif_zoom_hi > opt_.bif_zoom_lo && diagram_ && !bif_zoom_applied_) {
@@ -864,7 +864,7 @@ void App::draw_bifurcation() {
     if (plot.hovered()) {
         const double w = std::clamp(plot.x_at(ImGui::GetIO().MousePos.x), 0.0, kMaxOmega);
         plot.vline(w, pal.trace, 1.0f, true);
-        ImGui::SetTooltip("omega = %.2f rad/s  (click to set)", w);
+        ImGui::SetTooltip("ω = %.2f rad/s  (click to set)", w);
         if (plot.clicked()) set_omega(w);
     }
     analysis_.overlay_diagram(plot);   // continued branches and bifurcation points (named on hover)
@@ -912,14 +912,14 @@ void App::draw_help() {
             {"Space", "play / pause"},
             {"N  or  .", "step one forcing period (to the next Poincare section)"},
             {"R", "reset: t = 0, cart at rest in the left well"},
-            {"Left / Right", "omega -/+ 0.1 rad/s (Shift: 1 rad/s)"},
+            {"Left / Right", "ω -/+ 0.1 rad/s (Shift: 1 rad/s)"},
             {"Up / Down", "bumper x_I +/- 0.5 mm (Shift: 2 mm)"},
             {"[  /  ]", "speed / 2, x 2 (0.01x .. 100x)"},
             {"M", "next impact model (C, C1, G, H), live"},
             {"K", "next stiffness (A1, A3), live"},
             {"1 .. 4", "presets: period 1, period 2, chaos, periodic window"},
             {"B", "compute (or cancel) the bifurcation diagram"},
-            {"click diagram", "set omega there"},
+            {"click diagram", "set ω there"},
             {"C", "clear the Poincare map"},
             {"T", "dark / light theme"},
             {"Ctrl + / Ctrl -", "UI scale"},
