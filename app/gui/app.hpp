@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis_panels.hpp"
+#include "lyapunov_live.hpp"
 #include "bifurcation_job.hpp"
 #include "data_panel.hpp"
 #include "history.hpp"
@@ -95,6 +96,7 @@ private:
     BifurcationJob bif_;
     DataPanel data_panel_;             // "Measured data": load, fit, effects on and off
     bool show_data_ = false;
+    LiveLyapunov lyapunov_live_;       // lambda_max at the running omega (issue 9)
     AnalysisPanels analysis_;          // continued branches, parameter plane, basins (issues 9, 10)
     RigView rig_;
     bool imgui_ready_ = false;

@@ -369,6 +369,12 @@ void App::draw_controls() {
     ImGui::TextDisabled("regime");
     ImGui::SameLine();
     ImGui::TextUnformatted(regime_long(last_.regime));
+    lyapunov_live_.update(params_, omega_, last_.x, last_.v, now_s());
+    ImGui::TextDisabled("λ_max");
+    ImGui::SameLine();
+    ImGui::TextUnformatted(lyapunov_live_.text().c_str());
+    tooltip("The largest Lyapunov exponent at this ω, recomputed on a worker every 3 s from the current state\n"
+            "(20 periods to settle, 60 averaged): positive on a chaotic attractor, negative on a periodic one.");
 
     section("Forces on the cart [N]");
     // The terms of Eq. (1) at this instant (core's force_terms), signed as they push the cart.

@@ -15,6 +15,7 @@ set(IMPACTLAB_APP_TEST_SOURCES
   app/poincare_map_test.cpp
   app/view_fit_test.cpp
   app/analysis_gui_test.cpp
+  app/lyapunov_live_test.cpp
   ../app/gui/sim_engine.cpp
   ../app/gui/sim_thread.cpp
   ../app/gui/history.cpp
@@ -26,4 +27,5 @@ set(IMPACTLAB_APP_TEST_SOURCES
   ../app/gui/view_fit.cpp
   ../app/gui/plane_data.cpp
   ../app/gui/analysis_jobs.cpp
+  ../app/gui/lyapunov_live.cpp
 )
