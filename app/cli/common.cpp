@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <unistd.h>
 
+#include "impactlab/atomic_file.hpp"
 #include "impactlab/params_json.hpp"
 
 namespace impactlab::cli {
@@ -75,35 +76,17 @@ void check_not_input(const std::string& path, const std::string& flag) {
                              "'); writing it would destroy it: choose another output name");
 }
 
-std::string temp_beside(const std::string& path) {
-    namespace fs = std::filesystem;
-    const fs::path p(path);
-    std::string name = p.filename().string();
-    name.insert(0, 1, '.');   // (not "." + name: GCC 12's -Wrestrict false positive)
-    name.append(".partial-").append(std::to_string(::getpid()));
-    return (p.parent_path() / name).string();
-}
-
-void commit_file(const std::string& tmp, const std::string& path) {
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw std::runtime_error(path + ": cannot write it (" + ec.message() + ")");
-    }
-}
-
 void check_writable(const std::string& path, const std::string& flag) {
     namespace fs = std::filesystem;
     check_not_input(path, flag);
     std::error_code ec;
     if (fs::is_directory(path, ec)) throw UsageError(flag + ": '" + path + "' is a directory, not a file name");
-    const std::string probe = temp_beside(path);
+    const std::string probe = partial_path(path);
     {
         std::ofstream out(probe);
         if (!out) throw UsageError(flag + ": cannot write '" + path + "' (its directory is missing or not writable)");
     }
-    fs::remove(probe, ec);
+    discard_partial(probe);
 }
 
 void check_report_dir(const std::string& dir) {
@@ -126,7 +109,7 @@ void check_report_dir(const std::string& dir) {
 }
 
 OutputFile::OutputFile(const std::string& path, const std::string& flag, std::ios::openmode mode)
-    : path_(path), tmp_(temp_beside(path)), uncaught_(std::uncaught_exceptions()) {
+    : path_(path), tmp_(partial_path(path)), uncaught_(std::uncaught_exceptions()) {
     check_not_input(path, flag);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw UsageError(flag + ": '" + path + "' is a directory, not a file name");
@@ -145,12 +128,11 @@ void OutputFile::commit() {
     flush();
     const bool ok = static_cast<bool>(*this);
     close();
-    std::error_code ec;
     if (!ok) {
-        std::filesystem::remove(tmp_, ec);
+        discard_partial(tmp_);
         throw std::runtime_error(path_ + ": write failed (disk full?)");
     }
-    commit_file(tmp_, path_);
+    commit_partial(tmp_, path_);
 }
 
 OutputFile::~OutputFile() {
@@ -158,8 +140,7 @@ OutputFile::~OutputFile() {
     if (std::uncaught_exceptions() > uncaught_) {   // the command failed: leave the old file as it was
         done_ = true;
         close();
-        std::error_code ec;
-        std::filesystem::remove(tmp_, ec);
+        discard_partial(tmp_);
         return;
     }
     try {

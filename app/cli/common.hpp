@@ -61,9 +61,6 @@ private:
 };
 // Opens an OutputFile for CSV (10 significant digits) or throws UsageError naming it.
 OutputFile open_out(const std::string& path, const std::string& flag = "--out");
-// A hidden temporary name beside `path`, and the rename that puts it in place (throws naming `path`).
-std::string temp_beside(const std::string& path);
-void commit_file(const std::string& tmp, const std::string& path);
 // "a,b,,c" -> {a, b, c}.
 std::vector<std::string> split_list(const std::string& s);
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "identify/internal.hpp"
+#include "impactlab/atomic_file.hpp"
 #include "impactlab/params_json.hpp"
 #include "impactlab/plot.hpp"
 
@@ -414,18 +415,17 @@ void write_report(const FitReport& r, const std::string& dir, bool with_plots) {
     if (ec || !fs::is_directory(dir)) throw std::runtime_error(dir + ": cannot create the report directory");
     // Each file written beside its name and renamed over it: a failed write leaves an old report whole.
     auto write = [&](const std::string& name, const std::string& text) {
-        const fs::path target = fs::path(dir) / name, tmp = fs::path(dir) / (name + ".partial");
+        const std::string target = (fs::path(dir) / name).string(), tmp = partial_path(target);
         {
             std::ofstream out(tmp);
             out << text;
             if (!out) {
                 out.close();
-                fs::remove(tmp, ec);
-                throw std::runtime_error(target.string() + ": write failed");
+                discard_partial(tmp);
+                throw std::runtime_error(target + ": write failed");
             }
         }
-        fs::rename(tmp, target, ec);
-        if (ec) throw std::runtime_error(target.string() + ": cannot write it (" + ec.message() + ")");
+        commit_partial(tmp, target);
     };
     write("report.json", report_json_text(r));
     write("model_after.json", params_to_json_text(r.after.p));

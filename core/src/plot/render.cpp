@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
 #include <stb_image_write.h>   // libstb exports the implementation: no STB_IMAGE_WRITE_IMPLEMENTATION here
 
+#include "impactlab/atomic_file.hpp"
 #include "impactlab/plot.hpp"
 #include "plot/canvas.hpp"
 #include "plot/font.hpp"
@@ -510,7 +510,7 @@ void save_png(const Image& image, const std::string& path) {
     for (std::size_t i = 0; i < n && opaque; ++i) opaque = image.rgba[i * 4 + 3] == 255;
     int ok = 0;
     // Written beside the target and renamed over it: a failed write never leaves half a PNG or clobbers an old one.
-    const std::string tmp = path + ".partial";
+    const std::string tmp = partial_path(path);
     if (opaque) {   // what render() makes: store RGB, a quarter smaller
         std::vector<std::uint8_t> rgb(n * 3);
         for (std::size_t i = 0; i < n; ++i)
@@ -519,12 +519,11 @@ void save_png(const Image& image, const std::string& path) {
     } else {
         ok = stbi_write_png(tmp.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4);
     }
-    std::error_code ec;
-    if (ok != 0) std::filesystem::rename(tmp, path, ec);
-    if (ok == 0 || ec) {
-        std::filesystem::remove(tmp, ec);
+    if (ok == 0) {
+        discard_partial(tmp);
         throw std::runtime_error(path + ": cannot write PNG");
     }
+    commit_partial(tmp, path);
 }
 
 void save_png(const Figure& fig, const std::string& path) { save_png(render(fig), path); }
