@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <sstream>
+#include <utility>
 
 namespace impactlab {
 
@@ -152,13 +153,9 @@ void bounded_force(const std::string& src, const std::string& key, ForceAt force
 }  // namespace
 
 void validate(const Params& p, const std::string& src) {
-    for (const char* key : {"m", "m0e", "c", "T", "eps", "k", "xI", "input_gain"}) {
-        const double v = std::strcmp(key, "m") == 0 ? p.m : std::strcmp(key, "m0e") == 0 ? p.m0e
-                       : std::strcmp(key, "c") == 0 ? p.c : std::strcmp(key, "T") == 0 ? p.T
-                       : std::strcmp(key, "eps") == 0 ? p.eps : std::strcmp(key, "k") == 0 ? p.k
-                       : std::strcmp(key, "xI") == 0 ? p.xI : p.input_gain;
-        in_range(src, key, v);
-    }
+    const std::pair<const char*, double> base[] = {{"m", p.m}, {"m0e", p.m0e}, {"c", p.c},   {"T", p.T},
+                                                   {"eps", p.eps}, {"k", p.k},   {"xI", p.xI}, {"input_gain", p.input_gain}};
+    for (const auto& [key, v] : base) in_range(src, key, v);
     for (int i = 0; i < 4; ++i) finite(src, "a[" + std::to_string(i) + "]", p.a[i]);
     for (int i = 0; i < 4; ++i) finite(src, "b[" + std::to_string(i) + "]", p.b[i]);
     // The denominator of Eq. (3) must not vanish on the rail (|x| <= 0.1 m): sample it.

@@ -137,9 +137,13 @@ ScanAxis parse_scan_axis(const std::string& spec) {
     if (n != std::floor(n) || n < 1 || n > 100000) throw ScanError("'" + spec + "': N must be an integer in [1, 100000]");
     a.n = static_cast<int>(n);
     if (a.n > 1 && !(a.hi > a.lo)) throw ScanError("'" + spec + "': HI must exceed LO");
-    // The same physical ranges the parameter files and the CLI flags accept.
-    const double lo_ok = a.param == ScanParam::Omega ? 1e-3 : a.param == ScanParam::XI ? -0.1 : 0.0;
-    const double hi_ok = a.param == ScanParam::Omega ? 1000.0 : a.param == ScanParam::XI ? 0.1 : 10.0;
+    // xI and m0e within the parameter files' ranges (param_ranges); omega within the CLI's [1e-3, 1000] rad/s.
+    double lo_ok = 1e-3, hi_ok = 1000.0;
+    for (const ParamRange& r : param_ranges())
+        if (a.param != ScanParam::Omega && parts[0] == r.key) {
+            lo_ok = r.lo;
+            hi_ok = r.hi;
+        }
     if (a.lo < lo_ok || a.hi > hi_ok) {
         std::ostringstream m;
         m << "'" << spec << "': " << parts[0] << " must lie in [" << lo_ok << ", " << hi_ok << "]";
