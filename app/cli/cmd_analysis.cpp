@@ -18,14 +18,8 @@ namespace impactlab::cli {
 
 namespace {
 
-bool wants_help(const std::vector<std::string>& args, const char* text) {
-    for (const auto& a : args)
-        if (a == "--help" || a == "-h") {
-            std::printf("%s%s", text, kModelHelp);
-            return true;
-        }
-    return false;
-}
+// Every analysis command takes the model flags: its help ends with them.
+bool wants_help(const std::vector<std::string>& args, const char* text) { return show_help_if_asked(args, text, kModelHelp); }
 
 // The analysis needs a tighter integrator than a sweep: --rtol given wins, else 1e-10.
 Tolerances analysis_tol(const Args& a) {
@@ -120,9 +114,9 @@ int cmd_orbit(const std::vector<std::string>& argv) {
         px.push_back(smp.x);
         pv.push_back(smp.v);
     });
-    sim.advance(p, d, s, d.time_of_phase(2 * std::numbers::pi * k), &sampler);
+    sim.advance(p, d, s, d.time_of_phase(kTwoPi * k), &sampler);
     if (!out) throw std::runtime_error(out_path + ": write failed");
-    std::printf("%s omega = %.10g rad/s, period %d (%.10g s)\n", p.name.c_str(), omega, k, 2 * std::numbers::pi * k / omega);
+    std::printf("%s omega = %.10g rad/s, period %d (%.10g s)\n", p.name.c_str(), omega, k, kTwoPi * k / omega);
     std::printf("section point: x = %.12g m, v = %.12g m/s (residual %.2g, %d Newton iterations)\n", o.y[0], o.y[1],
                 o.residual, o.iterations);
     std::printf("Floquet multipliers: %s, %s\n", fmt_mu(o.floquet.mu[0]).c_str(), fmt_mu(o.floquet.mu[1]).c_str());

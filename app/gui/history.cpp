@@ -46,7 +46,7 @@ bool write_sections_csv(const std::string& path, const History<SimMsg>& s, const
     std::fprintf(out.f, "n,t,x,v,omega,regime\n");
     for (std::size_t i = 0; i < s.size(); ++i) {
         const SimMsg& m = s[i];
-        const long long n = std::llround(m.phi / (2.0 * std::numbers::pi));
+        const long long n = std::llround(m.phi / kTwoPi);
         std::fprintf(out.f, "%lld,%.9f,%.9e,%.9e,%.6f,%d\n", n, m.t, m.x, m.v, m.omega, static_cast<int>(m.regime));
     }
     return out.close();

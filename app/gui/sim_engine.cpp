@@ -8,10 +8,6 @@
 
 namespace impactlab::gui {
 
-namespace {
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-}
-
 // Turns the core's pieces and events into published records, in time order. Lives on the engine's stack
 // for one advance_to() call.
 class SimEngine::Tap final : public Observer {

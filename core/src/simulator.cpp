@@ -28,7 +28,6 @@ const char* regime_name(Regime r) {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kRestartStep = 1e-4;   // [s] first step after a discontinuity; the controller grows it
 // h * (largest rate) below which the explicit method is stable (Dormand-Prince's region reaches -3.3 on
 // the real axis); kept below that bound so that a step never hovers at the edge of stability.

@@ -9,7 +9,6 @@
 namespace impactlab {
 
 namespace {
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 // Collects section points with n in [first, last] and watches for cancellation.
 class SectionCollector : public Observer {

@@ -6,9 +6,13 @@
 #pragma once
 
 #include <memory>
+#include <numbers>
 #include <vector>
 
 namespace impactlab {
+
+// One revolution of the unbalance [rad]: the Poincare sections sit at phi = 2 pi i.
+inline constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 class Drive {
 public:

@@ -17,8 +17,6 @@ namespace impactlab::analysis {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
 // Notes whether the cart flew at all during a period: held through whole periods is "resting", not a
 // periodic orbit that happens to be at the bumper at each section.
 class FreeWatch : public Observer {

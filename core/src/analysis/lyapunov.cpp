@@ -11,7 +11,6 @@
 namespace impactlab::analysis {
 
 namespace {
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 bool cancelled(const Progress* p) { return p && p->cancel.load(std::memory_order_relaxed); }
 

@@ -10,10 +10,6 @@
 
 namespace impactlab::analysis {
 
-namespace {
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-}
-
 double scaled_norm(const Vec2& dy) { return std::max(std::abs(dy[0]) / kXScale, std::abs(dy[1]) / kVScale); }
 
 Tolerances analysis_tolerances(double rtol) {

@@ -16,7 +16,6 @@
 namespace impactlab::identify::detail {
 
 constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 2.0 * kPi;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // ---- signal.cpp ---------------------------------------------------------------------------------------

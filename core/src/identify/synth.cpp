@@ -54,7 +54,7 @@ MeasuredData synthesize(const Model& m, const SynthOptions& o) {
     const double g = m.sensor_gain(), off = m.sensor_offset();
     std::mt19937_64 rng(o.seed);
     std::normal_distribution<double> noise(0.0, 1.0);
-    const double phi_q = o.phi_counts > 0 ? detail::kTwoPi / o.phi_counts : 0.0;
+    const double phi_q = o.phi_counts > 0 ? kTwoPi / o.phi_counts : 0.0;
     MeasuredData d;
     d.source = "synth";
     d.t.resize(n);
