@@ -1,5 +1,6 @@
 #include "impactlab/params.hpp"
 
+#include "impactlab/drive.hpp"
 #include "impactlab/forces.hpp"
 
 #include <cmath>
@@ -97,7 +98,7 @@ const std::vector<ParamRange>& param_ranges() {
         {"c", 0.0, 1e6, "N s/m", "viscous resistance"},
         {"T", 0.0, 1e5, "N", "dry rolling resistance"},
         {"eps", 1e-9, 1e-2, "m/s", "friction smoothing speed; below 1e-9 m/s friction is a step no integrator resolves"},
-        {"xI", -0.1, 0.1, "m", "bumper within the rail's travel"},
+        {"xI", -kRailHalfTravel, kRailHalfTravel, "m", "bumper within the rail's travel"},
         {"input_gain", -1e9, 1e9, "N per unit of u", "input gain"},
         {"impact.kI", 1e-3, 1e14, "N/m^n1", "contact stiffness"},
         {"impact.b", 0.0, 1e4, "(s/m)^n3", "Hunt-Crossley damping factor"},
@@ -133,10 +134,10 @@ template <class ForceAt>
 void bounded_force(const std::string& src, const std::string& key, ForceAt force_at) {
     static constexpr double speeds[] = {-10.0, -1.0, -0.1, -1e-3, 0.0, 1e-3, 0.1, 1.0, 10.0};
     for (int i = 0; i <= 40; ++i) {
-        const double x = -0.1 + 5e-3 * i;
+        const double x = -kRailHalfTravel + 5e-3 * i;
         for (const double v : speeds)
             for (int j = 0; j < 8; ++j) {
-                const double phi = 0.785398163397448 * j;
+                const double phi = kTwoPi * j / 8;
                 for (const double omega : {0.0, 10.0, 100.0, 1000.0}) {
                     const double F = force_at(x, v, phi, omega);
                     if (!(std::abs(F) <= kMaxLawForce)) {
@@ -160,7 +161,7 @@ void validate(const Params& p, const std::string& src) {
     for (int i = 0; i < 4; ++i) finite(src, "b[" + std::to_string(i) + "]", p.b[i]);
     // The denominator of Eq. (3) must not vanish on the rail (|x| <= 0.1 m): sample it.
     for (int i = 0; i <= 1000; ++i) {
-        const double x = -0.1 + 2e-4 * i, x2 = x * x;
+        const double x = -kRailHalfTravel + 2e-4 * i, x2 = x * x;
         const double den = 1.0 + x2 * (p.b[0] + x2 * (p.b[1] + x2 * (p.b[2] + x2 * p.b[3])));
         if (!(den > 0)) fail(src, "b", "makes the denominator of F_SA vanish on |x| <= 0.1 m at x = " +
                                           std::to_string(x), den);
@@ -172,7 +173,7 @@ void validate(const Params& p, const std::string& src) {
     if (p.impact->kind == ImpactKind::Compliant) {
         // Penetrations up to 0.1 mm at the rig's speeds: the bumper's force stays a force a rail can take.
         bounded_force(src, "impact", [&](double x, double v, double, double) {
-            return p.impact->contact(p.ip.data(), 1e-4 * (x + 0.1) / 0.2, v).F;
+            return p.impact->contact(p.ip.data(), 1e-4 * (x + kRailHalfTravel) / (2 * kRailHalfTravel), v).F;
         });
     }
     for (const auto& e : p.effects) {

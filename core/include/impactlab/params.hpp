@@ -12,6 +12,9 @@
 namespace impactlab {
 
 inline constexpr std::size_t kMaxLawParams = 8;
+// The rail's travel either side of the springs' zero [m]: where F_SA must hold, where xI may stand, and
+// beyond which a measured position is not the rig's.
+inline constexpr double kRailHalfTravel = 0.1;
 
 // Stiffness law of Eq. (3): F_SA(x) = k x + (a1 x + a3 x^3 + a5 x^5 + a7 x^7) / (1 + b2 x^2 + ... + b8 x^8).
 // Together with the bearing resistance and the unbalance it makes the "A" part of a version.

@@ -38,7 +38,6 @@ void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_ite
 // position beyond the rail's travel (a unit slip, mm as m) or a record that runs through the bumper.
 void check_plausible(const MeasuredData& data, const Model& m, const FitOptions& o) {
     if (m.p.stiffness_id == "duffing") return;   // data units: no rail, no bumper
-    constexpr double kRail = 0.1;                // [m] the rail's travel either side of the springs' zero
     double x_max = 0;
     std::size_t i_max = 0;
     for (std::size_t i = 0; i < data.x.size(); ++i)
@@ -49,11 +48,11 @@ void check_plausible(const MeasuredData& data, const Model& m, const FitOptions&
     auto where = [&](std::size_t i) {
         return data.source + (i < data.line.size() ? ": line " + std::to_string(data.line[i]) : std::string()) + ": ";
     };
-    if (x_max > kRail) {
+    if (x_max > kRailHalfTravel) {
         std::ostringstream msg;
-        msg << where(i_max) << "x = " << data.x[i_max] << " m lies beyond the rail's travel (|x| <= " << kRail << " m)";
-        if (x_max < 1e3 * kRail) msg << "; positions in mm? --x-scale 1e-3";
-        else if (x_max < 1e6 * kRail) msg << "; positions in um? --x-scale 1e-6";
+        msg << where(i_max) << "x = " << data.x[i_max] << " m lies beyond the rail's travel (|x| <= " << kRailHalfTravel << " m)";
+        if (x_max < 1e3 * kRailHalfTravel) msg << "; positions in mm? --x-scale 1e-3";
+        else if (x_max < 1e6 * kRailHalfTravel) msg << "; positions in um? --x-scale 1e-6";
         else msg << "; check the position column and its unit (--x-col, --x-scale)";
         throw DataError(msg.str());
     }
