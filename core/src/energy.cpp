@@ -1,0 +1,72 @@
+#include "impactlab/energy.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "impactlab/forces.hpp"
+
+namespace impactlab {
+
+namespace {
+// 5-point Gauss-Legendre on [-1, 1]: the powers are smooth within a piece (the simulator ends pieces at every
+// contact, sticking and release), and a piece spans a small part of a forcing period.
+constexpr double kNodes[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                              0.9061798459386640};
+constexpr double kWeights[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                                0.2369268850561891};
+}  // namespace
+
+double EnergyBalance::turnover() const {
+    return std::abs(E0) + std::abs(E) + std::abs(work_unbalance) + std::abs(work_effects) +
+           std::abs(dissipated_resistance) + std::abs(dissipated_bumper);
+}
+
+double EnergyLedger::elastic_bumper_energy(double x) const {
+    return mechanical_energy(*p_, x, 0.0) - spring_magnet_potential(*p_, x);
+}
+
+void EnergyLedger::reset(const State& s) {
+    b_ = EnergyBalance{};
+    b_.t0 = b_.t = s.t;
+    b_.E0 = b_.E = mechanical_energy(*p_, s.x, s.v);
+    x_end_ = s.x;
+    v_end_ = s.v;
+    bumper_work_ = jump_loss_ = 0;
+    elastic0_ = p_->compliant() ? elastic_bumper_energy(s.x) : 0.0;
+    started_ = true;
+}
+
+void EnergyLedger::on_piece(const Piece& piece) {
+    const Params& p = *p_;
+    const Drive& d = *d_;
+    const Vec2 y0 = piece.at(piece.t0);
+    if (!started_) reset(State{piece.t0, y0[0], y0[1]});
+    // A jump between pieces is a rigid impact (v- to 0 or to v+) or a release (0 to v+): the energy it takes
+    // or gives back is the bumper's.
+    jump_loss_ += mechanical_energy(p, x_end_, v_end_) - mechanical_energy(p, y0[0], y0[1]);
+    if (piece.step && piece.t1 > piece.t0) {   // held at the bumper (v = 0) no force does work
+        const double half = 0.5 * (piece.t1 - piece.t0), mid = 0.5 * (piece.t1 + piece.t0);
+        for (int i = 0; i < 5; ++i) {
+            const double t = mid + half * kNodes[i];
+            const Vec2 y = piece.at(t);
+            const double w = d.omega(t), phi = d.phi(t);
+            const ForceTerms f = force_terms(p, t, y[0], y[1], phi, w, d.alpha(t));
+            double drive = p.m0e != 0.0 ? f.unbalance : 0.0;
+            if (p.input_gain != 0.0) drive += p.input_gain * d.input(t);
+            const double wv = kWeights[i] * half * y[1];
+            b_.work_unbalance += drive * wv;
+            b_.work_effects += f.effects * wv;
+            b_.dissipated_resistance += f.resistance * wv;
+            bumper_work_ += f.impact * wv;
+        }
+    }
+    const Vec2 y1 = piece.at(piece.t1);
+    x_end_ = y1[0];
+    v_end_ = y1[1];
+    b_.t = piece.t1;
+    b_.E = mechanical_energy(p, y1[0], y1[1]);
+    b_.dissipated_bumper = jump_loss_;
+    if (p.compliant()) b_.dissipated_bumper += bumper_work_ - (elastic_bumper_energy(y1[0]) - elastic0_);
+}
+
+}  // namespace impactlab
