@@ -1,10 +1,12 @@
 #include "data_job.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <exception>
+#include <string>
 #include <utility>
 
 namespace impactlab::gui {
@@ -14,6 +16,47 @@ double clock_s() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 }  // namespace
+
+std::string panel_wording(const std::string& msg) {
+    // Longest flags first, so "--x-scale" is not read as "--x" ... ; each maps to the field that does its job.
+    static const std::pair<const char*, const char*> kFields[] = {
+        {"--baseline fit --fit-params xI", "the x_I slider (the panel fits with x_I fixed)"},
+        {"--phi-col or --u-col", "the forcing column and \"forcing is an input u\" (Column mapping)"},
+        {"--x-scale", "\"x scale\" (Column mapping)"},
+        {"--x-col", "the x column (Column mapping)"},
+        {"--t-col", "the time column (Column mapping)"},
+        {"--phi-col", "the forcing column (Column mapping)"},
+        {"--u-col", "\"forcing is an input u\" (Column mapping)"},
+        {"--rate HZ", "a sample rate (Column mapping)"},
+        {"--rate", "the sample rate (Column mapping)"},
+        {"--xI", "the x_I slider"},
+    };
+    std::string out;
+    std::size_t i = 0;
+    while (i < msg.size()) {
+        if (msg.compare(i, 2, "--") == 0) {
+            bool mapped = false;
+            for (const auto& [flag, field] : kFields) {
+                const std::size_t n = std::char_traits<char>::length(flag);
+                if (msg.compare(i, n, flag) == 0) {
+                    out += field;
+                    i += n;
+                    mapped = true;
+                    break;
+                }
+            }
+            if (mapped) continue;
+            // A flag the panel has no field for: say where it lives.
+            std::size_t j = i + 2;
+            while (j < msg.size() && (std::isalnum(static_cast<unsigned char>(msg[j])) || msg[j] == '-')) ++j;
+            out += (j > i + 2 ? "the command line's " : "") + msg.substr(i, j - i);   // a bare "--" stays
+            i = j;
+            continue;
+        }
+        out += msg[i++];
+    }
+    return out;
+}
 
 identify::LoadOptions load_options_from(const DataColumns& c) {
     identify::LoadOptions o;

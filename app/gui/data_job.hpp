@@ -31,6 +31,10 @@ struct DataColumns {
 };
 identify::LoadOptions load_options_from(const DataColumns& c);
 
+// The core's messages name the CLI's flags ("--x-scale 1e-3"); the panel has fields for some of them. This
+// names the panel's field instead, and marks the rest as the command line's ("--rows" is not in the panel).
+std::string panel_wording(const std::string& core_message);
+
 // Effects are toggled by bit k of `mask` for report.effects_found[k] (at most 32 are toggleable).
 constexpr std::size_t kMaxToggleEffects = 32;
 std::uint32_t all_effects_mask(const identify::FitReport& report);

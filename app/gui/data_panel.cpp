@@ -87,15 +87,15 @@ void DataPanel::start_fit(const DataPanelContext& ctx) {
         error_.clear();
         job_.start_fit(data_, m, fit_options_);
     } catch (const std::exception& e) {
-        error_ = e.what();
+        error_ = panel_wording(e.what());
     }
 }
 
 void DataPanel::take(DataJobResult r, const DataPanelContext& ctx) {
     if (!r.error.empty()) {
         const char* what = r.kind == DataJobResult::Kind::Load ? "load" : r.kind == DataJobResult::Kind::Fit ? "fit" : "evaluation";
-        error_ = std::string(what) + ": " + r.error;
-        if (r.kind == DataJobResult::Kind::Evaluate) eval_errors_[r.mask] = r.error;
+        error_ = std::string(what) + ": " + panel_wording(r.error);
+        if (r.kind == DataJobResult::Kind::Evaluate) eval_errors_[r.mask] = panel_wording(r.error);
         if (r.kind == DataJobResult::Kind::Load) pending_fit_ = false;
         return;
     }

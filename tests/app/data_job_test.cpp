@@ -182,3 +182,17 @@ TEST_CASE("data panel: --data FILE on the command line") {
     CHECK(parse_options({}).data.empty());
     CHECK_THROWS_AS(parse_options({"--data"}), OptionsError);
 }
+
+TEST_CASE("data panel: the core's CLI flags are worded as the panel's fields") {
+    using impactlab::gui::panel_wording;
+    CHECK(panel_wording("x beyond the rail; positions in mm? --x-scale 1e-3") ==
+          "x beyond the rail; positions in mm? \"x scale\" (Column mapping) 1e-3");
+    CHECK(panel_wording("no time column 't' and no sample rate (give --rate HZ or map --t-col)") ==
+          "no time column 't' and no sample rate (give a sample rate (Column mapping) or map the time column (Column mapping))");
+    CHECK(panel_wording("both: say which is the forcing (--phi-col or --u-col)") ==
+          "both: say which is the forcing (the forcing column and \"forcing is an input u\" (Column mapping))");
+    // No field in the panel: the flag is named as the command line's.
+    CHECK(panel_wording("a corrupt sample; remove the row or select rows with --rows") ==
+          "a corrupt sample; remove the row or select rows with the command line's --rows");
+    CHECK(panel_wording("plain message, x - y -- nothing") == "plain message, x - y -- nothing");
+}
