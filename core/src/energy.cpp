@@ -29,6 +29,8 @@ void EnergyLedger::reset(const State& s) {
     b_ = EnergyBalance{};
     b_.t0 = b_.t = s.t;
     b_.E0 = b_.E = mechanical_energy(*p_, s.x, s.v);
+    b_.x = s.x;
+    b_.v = s.v;
     x_end_ = s.x;
     v_end_ = s.v;
     bumper_work_ = jump_loss_ = 0;
@@ -64,6 +66,8 @@ void EnergyLedger::on_piece(const Piece& piece) {
     x_end_ = y1[0];
     v_end_ = y1[1];
     b_.t = piece.t1;
+    b_.x = y1[0];
+    b_.v = y1[1];
     b_.E = mechanical_energy(p, y1[0], y1[1]);
     b_.dissipated_bumper = jump_loss_;
     if (p.compliant()) b_.dissipated_bumper += bumper_work_ - (elastic_bumper_energy(y1[0]) - elastic0_);

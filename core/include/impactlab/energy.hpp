@@ -15,6 +15,7 @@ namespace impactlab {
 struct EnergyBalance {
     double t0 = 0, t = 0;              // [s] the stretch the balance covers
     double E0 = 0, E = 0;              // mechanical energy at t0 and at t [J]
+    double x = 0, v = 0;               // the state at t [m], [m/s] (E's kinetic share is m v^2 / 2)
     double work_unbalance = 0;         // work of the unbalance's force (and of a measured input) [J]
     double work_effects = 0;           // work of the added effects; negative where they dissipate [J]
     double dissipated_resistance = 0;  // by the bearing resistance F_R(v) = c v + T v / sqrt(v^2 + eps^2) [J]
