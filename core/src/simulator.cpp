@@ -173,10 +173,14 @@ void Simulator::make_consistent(const Params& p, const Drive& d, State& s) {
 
 void Simulator::move_bumper(Params& p, const Drive& d, State& s, double xI) {
     const bool held = s.regime != Regime::Free;
+    // A compliant bumper the cart already presses h deep carries it along at that depth: moving it by
+    // nothing (the GUI resends its slider's value) or away must not pull the cart out of contact.
+    const double h_old = p.has_bumper() && !p.rigid() ? std::max(s.x - p.xI, 0.0) : 0.0;
+    const double x_max = xI + h_old;
     p.xI = xI;
     if (s.regime == Regime::Sticking) s.regime = Regime::Free;
-    if (held || s.x > xI) {
-        s.x = std::min(s.x, xI);
+    if (held || s.x > x_max) {
+        s.x = std::min(s.x, x_max);
         s.v = 0.0;
     }
     make_consistent(p, d, s);

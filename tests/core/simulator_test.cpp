@@ -480,6 +480,29 @@ TEST_CASE("move_bumper: a bumper moved onto the cart pushes it back to the conta
     CHECK(s.v == 0.0);
 }
 
+TEST_CASE("move_bumper: a compliant bumper the cart presses keeps its depth; a move by nothing changes nothing") {
+    // GUI defect 8 of issue 11: resending the slider's value pulled a pressed cart out of the bumper, a jump
+    // of the penetration every frame.
+    Params p = make_version("A1C");
+    p.xI = -0.015;   // the magnets press the cart (left well at -10.9 mm) onto it
+    const Drive d(9.0);
+    State s;
+    s.x = -0.0149;
+    Simulator::make_consistent(p, d, s);
+    Simulator().advance(p, d, s, 2.0);
+    const double h = s.x - p.xI;
+    REQUIRE(h > 1e-7);   // pressed some micrometres deep
+    const State before = s;
+    Simulator::move_bumper(p, d, s, p.xI);
+    CHECK(s.x == before.x);
+    CHECK(s.v == before.v);
+    Simulator::move_bumper(p, d, s, p.xI - 0.001);   // 1 mm towards the cart: it goes along, as deep as it was
+    CHECK(s.x == doctest::Approx(before.x - 0.001).epsilon(1e-12));
+    CHECK(s.x - p.xI == doctest::Approx(h).epsilon(1e-9));
+    Simulator::move_bumper(p, d, s, p.xI + 0.002);   // away: the cart is left where it is
+    CHECK(s.x == doctest::Approx(before.x - 0.001).epsilon(1e-12));
+}
+
 TEST_CASE("budgets: a stalled run ends in SimulationStalled naming the regime, t and the step size") {
     // Parameters no validation would pass (eps = 1e-300; m = 1e-20 on a compliant bumper): before the budget the
     // step loop spun forever at h_min.

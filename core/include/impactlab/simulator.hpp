@@ -73,7 +73,8 @@ public:
     static void make_consistent(const Params& p, const Drive& d, State& s);
     // Moves the bumper to xI quasi-statically: if it lands on the cart it pushes the cart back to the
     // contact point and stops it there (so a compliant bumper never starts deep inside the cart); a
-    // sticking in progress ends, since the bumper no longer holds the cart where the impact left it.
+    // sticking in progress ends, since the bumper no longer holds the cart where the impact left it. A
+    // compliant bumper already pressed h deep keeps that depth (a move by zero changes nothing).
     // Then make_consistent settles the regime.
     static void move_bumper(Params& p, const Drive& d, State& s, double xI);
     // After a change of drive only: the next section becomes the first phi = 2 pi n after s.t; a regime II
