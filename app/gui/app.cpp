@@ -63,6 +63,7 @@ App::App(const Options& opt) : opt_(opt) {
     bif_steps_ = opt.bif_steps;
     if (opt.bifurcation == "cf-down") bif_protocol_ = 1;
     else if (opt.bifurcation == "ef") bif_protocol_ = 2;
+    bif_panel_.configure(opt);
     bench_mode_ = opt.bench_plot;
     show_help_ = opt.show_help;
     if (!opt.data.empty()) {
@@ -125,6 +126,7 @@ bool App::init(std::string& error) {
         glfwGetWindowContentScale(win_, &sx, &sy);
         ui_scale_ = std::clamp(sx, 1.0f, 3.0f);
     }
+    configure_layout();   // --presentation, --hide, --maximise, --magnify (tiles.cpp), before the fonts
     fonts_dirty_ = true;
     rebuild_fonts();
 
@@ -155,20 +157,24 @@ bool App::init(std::string& error) {
     cfg.paused = (paused_ && !warming_) || bench_mode_;
     sim_ = std::make_unique<SimThread>(cfg);
     sim_->start();
+    xI_shown_ = xI_;
+    if (!opt_.ghost.empty()) ghost_impact_ = index_of_impact(make_version(opt_.ghost).impact);
+    if (opt_.twin) set_companion(CompanionMode::Twin);
+    else if (!opt_.ghost.empty()) set_companion(CompanionMode::Ghost);
+    if (!opt_.session.empty() && !load_session_file(opt_.session)) {   // checked before the window opened
+        error = session_error_;
+        return false;
+    }
     if (!opt_.bifurcation.empty()) start_bifurcation();
+    if (opt_.ramp_to >= 0) start_ramp(opt_.ramp_to, opt_.ramp_rate);
     last_frame_time_ = now_s();
     return true;
 }
 
 void App::shutdown() {
-    bif_.cancel();
     if (sim_) sim_->stop();
     if (imgui_ready_) {
-        if (bif_tex_) {
-            const GLuint t = bif_tex_;
-            glDeleteTextures(1, &t);
-            bif_tex_ = 0;
-        }
+        bif_panel_.release_gl();
         rig_.shutdown();
         analysis_.release_gl();
         plot_gpu::shutdown();
@@ -223,6 +229,7 @@ void App::toast(const std::string& msg) {
 // ---- actions: each one updates the UI's intent and sends a command -------------------------------------
 
 void App::set_omega(double w) {
+    ramp_.stop();   // the engine ends a ramp on any set omega
     omega_ = std::clamp(w, 0.0, kMaxOmega);
     sim_->send(SimCommand::omega(omega_));
 }
@@ -252,6 +259,7 @@ void App::step_period() {
 }
 
 void App::reset() {
+    ramp_.stop();   // Reset restarts the drive at the omega reached
     sim_->send(SimCommand::reset(x0_, 0.0));
 }
 
@@ -264,6 +272,7 @@ void App::apply_preset(const Preset& p) {
     if (xI_ != 0.0) set_xi(0.0);
     omega_ = p.omega;
     x0_ = p.x0;
+    ramp_.stop();
     sim_->send(SimCommand::omega(omega_));
     sim_->send(SimCommand::reset(x0_, 0.0));
     if (paused_) set_paused(false);
@@ -274,15 +283,6 @@ void App::clear_poincare() {
     sections_.clear();
     pc_map_.reset();
     pc_feed_.reset();
-}
-
-void App::start_bifurcation() {
-    BifRequest req;
-    req.params = params_;
-    req.protocol = static_cast<BifProtocol>(bif_protocol_);
-    req.steps = bif_steps_;
-    bif_.start(req);
-    bif_started_ = now_s();
 }
 
 void App::screenshot(const std::string& path) { pending_shot_ = path; }
@@ -305,6 +305,11 @@ void App::drain_samples() {
     const double phi_before = have_last_ ? last_.phi : 0.0;
     const double wall = now_s();
     sim_->samples().drain([&](const SimMsg& m) {
+        if (m.source != 0) {   // the companion cart: its own track, compared with the cart's samples
+            if (companion_mode_ != CompanionMode::Off) companion_.on_msg(m, traj_);
+            return;
+        }
+        if (skip_until_restart(m)) return;   // a replay's "continue" or a session: the old run's leftovers
         if (m.epoch != epoch_) {
             // The dynamics changed: the Poincare map of the old attractor no longer applies, and the new
             // one is transient until the map has settled again.
@@ -312,6 +317,7 @@ void App::drain_samples() {
             pc_map_.reset();
             pc_feed_.reset();
             impacts_seen_ = 0;
+            have_grazing_ = false;
             if (have_last_ && m.t < last_.t) {   // a reset: time starts over
                 traj_.clear();
                 impact_label_.reset();
@@ -319,6 +325,12 @@ void App::drain_samples() {
             epoch_ = m.epoch;
         }
         pc_feed_.on_msg(m, pc_map_);
+        if (ramp_.active()) {
+            if (m.kind == MsgKind::Sample && m.source == 0) omega_ = m.omega;   // the slider follows the ramp
+            if (ramp_.on_msg(m))
+                toast("ramp done: ω = " + std::to_string(ramp_.target()).substr(0, 5) + " rad/s, " +
+                      std::to_string(ramp_.points().size()) + " section points on the diagram");
+        }
         switch (m.kind) {
             case MsgKind::Sample:
                 traj_.push(m);
@@ -336,33 +348,13 @@ void App::drain_samples() {
                 impact_label_.impact(m.t, wall, m.force);
                 flash_ = std::max(flash_, std::clamp(m.force / 0.25, 0.25, 1.0));
                 break;
+            case MsgKind::Grazing:
+                grazing_ = m;
+                have_grazing_ = true;
+                break;
         }
     });
     phi_prev_ = phi_before;
-}
-
-void App::poll_bifurcation() {
-    if (const std::string err = bif_.take_error(); !err.empty()) toast("bifurcation diagram failed: " + err);
-    if (auto d = bif_.take_result()) {
-        if (!d->points.empty()) {
-            diagram_ = std::move(*d);
-            bif_dirty_ = true;
-            double lo = 1e9, hi = -1e9, wmax = 0;
-            for (const auto& p : diagram_->points) {
-                lo = std::min(lo, p.x);
-                hi = std::max(hi, p.x);
-                wmax = std::max(wmax, p.omega);
-            }
-            const double pad = 0.06 * std::max(hi - lo, 1e-3);
-            bif_y_ = {lo - pad, hi + pad};
-            bif_x_ = {0.0, std::max(wmax, 1.0)};
-            toast(std::string("bifurcation diagram ") + (diagram_->cancelled ? "(cancelled, partial): " : "done: ") +
-                  std::to_string(diagram_->points.size()) + " points in " +
-                  std::to_string(static_cast<int>(now_s() - bif_started_)) + " s");
-        } else if (d->cancelled) {
-            toast("bifurcation diagram cancelled");
-        }
-    }
 }
 
 void App::handle_keys() {
@@ -370,11 +362,17 @@ void App::handle_keys() {
     if (io.WantTextInput) return;
     auto pressed = [](int key, bool repeat = false) { return ImGui::IsKeyPressed(key, repeat); };
     const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
-    if (pressed(GLFW_KEY_SPACE)) set_paused(!paused_);
-    if (pressed(GLFW_KEY_N, true) || pressed(GLFW_KEY_PERIOD, true)) step_period();
-    if (pressed(GLFW_KEY_R) && !ctrl) reset();
-    if (pressed(GLFW_KEY_RIGHT, true)) set_omega(omega_ + (shift ? 1.0 : 0.1));
-    if (pressed(GLFW_KEY_LEFT, true)) set_omega(omega_ - (shift ? 1.0 : 0.1));
+    // Replay (Shift+R) has its own Space, Left/Right, , . Enter and Esc (app_replay.cpp).
+    const bool replaying = replay_.active();
+    handle_replay_keys();
+    if (!replaying) handle_layout_keys();   // P presentation, V its plot, Z maximise, Esc restore (tiles.cpp)
+    if (!replaying) {
+        if (pressed(GLFW_KEY_SPACE)) set_paused(!paused_);
+        if (pressed(GLFW_KEY_N, true) || pressed(GLFW_KEY_PERIOD, true)) step_period();
+        if (pressed(GLFW_KEY_R) && !ctrl && !shift) reset();
+        if (pressed(GLFW_KEY_RIGHT, true)) set_omega(omega_ + (shift ? 1.0 : 0.1));
+        if (pressed(GLFW_KEY_LEFT, true)) set_omega(omega_ - (shift ? 1.0 : 0.1));
+    }
     if (pressed(GLFW_KEY_UP, true)) set_xi(xI_ + (shift ? 2e-3 : 5e-4));
     if (pressed(GLFW_KEY_DOWN, true)) set_xi(xI_ - (shift ? 2e-3 : 5e-4));
     if (pressed(GLFW_KEY_RIGHT_BRACKET, true) || (!ctrl && pressed(GLFW_KEY_KP_ADD, true))) set_speed(speed_ * 2.0);
@@ -383,8 +381,7 @@ void App::handle_keys() {
     if (pressed(GLFW_KEY_K)) set_model((stiffness_ + 1) % static_cast<int>(stiffness_sets().size()), impact_);
     if (pressed(GLFW_KEY_C) && !ctrl) clear_poincare();
     if (pressed(GLFW_KEY_B)) {
-        if (bif_.running()) bif_.cancel();
-        else start_bifurcation();
+        if (const std::string msg = bif_panel_.toggle(bifurcation_context()); !msg.empty()) toast(msg);
     }
     if (pressed(GLFW_KEY_T)) {
         dark_ = !dark_;
@@ -393,7 +390,9 @@ void App::handle_keys() {
     }
     if (pressed(GLFW_KEY_F1) || (pressed(GLFW_KEY_SLASH) && shift)) show_help_ = !show_help_;
     if (pressed(GLFW_KEY_H)) show_help_ = !show_help_;
-    if (pressed(GLFW_KEY_F12) || (ctrl && pressed(GLFW_KEY_S))) screenshot(screenshot_name());
+    if (pressed(GLFW_KEY_F12)) screenshot(screenshot_name());
+    if (ctrl && pressed(GLFW_KEY_S)) open_session_window(true);
+    if (ctrl && pressed(GLFW_KEY_O)) open_session_window(false);
     if (ctrl && pressed(GLFW_KEY_E)) export_csv();
     if (ctrl && (pressed(GLFW_KEY_EQUAL) || pressed(GLFW_KEY_KP_ADD))) {
         ui_scale_ = std::min(3.0f, ui_scale_ + 0.25f);
@@ -426,6 +425,8 @@ void App::frame() {
     ImGui::NewFrame();
     plot_gpu::begin_frame();
     if (!bench_mode_) drain_samples();
+    xI_shown_ = sim_->status().xI;
+    if (opt_.set_state && frame_count_ == 1) set_state(opt_.set_x, opt_.set_v);   // --set-state, as a click
     if (warming_ && have_last_ && last_.t >= opt_.warmup) {
         warming_ = false;
         set_speed(opt_.speed);
@@ -433,7 +434,12 @@ void App::frame() {
     }
     poll_bifurcation();
     handle_keys();
+    begin_replay_frame();   // replaying: the panels draw the cursor's instant
     layout_and_draw();
+    draw_clip_window();
+    draw_session_window();
+    end_replay_frame();
+    handle_session_request();
     ImGui::Render();
     plot_gpu::upload();
     const double t_built = now_s();
@@ -467,6 +473,7 @@ void App::frame() {
         }
         pending_shot_.clear();
     }
+    capture_clip_frame(fw, fh);   // exporting a clip: this frame
     if (bench_mode_) {
         glFinish();
         const double t_done = now_s();
@@ -529,10 +536,7 @@ void App::fill_bench_data(int points) {
         for (int k = 0; k < 60 + i % 70; ++k) x = r * x * (1 - x);
         d.points.push_back({w, -0.018 + 0.014 * x, 0.0});
     }
-    diagram_ = std::move(d);
-    bif_x_ = {0, 25};
-    bif_y_ = {-0.019, -0.003};
-    bif_dirty_ = true;
+    bif_panel_.show_bench(std::move(d), {0, 25}, {-0.019, -0.003});
     bench_window_ = static_cast<std::size_t>(points);
 }
 
@@ -590,17 +594,18 @@ int App::run() {
         frame();
         if (opt_.frames <= 0) continue;
         // Headless run: with a diagram requested, the frames are counted once it is done.
-        const bool waiting = (!opt_.bifurcation.empty() && (bif_.running() || !diagram_)) || warming_ ||
+        const bool waiting = bif_panel_.busy() || warming_ ||
                              (!opt_.data.empty() && data_panel_.busy()) || analysis_.busy();
         if (waiting) {
             if (frame_count_ % 600 == 0 && frame_count_ > 0)
-                std::fprintf(stderr, "impactlab-gui: waiting for the bifurcation diagram (%.0f%%)\n", 100 * bif_.progress());
+                std::fprintf(stderr, "impactlab-gui: waiting for the bifurcation diagram (%.0f%%)\n", 100 * bif_panel_.progress());
             continue;
         }
         ++counted_frames_;
         // With --data the fit is for the start model, and --preset or --state-json look at one model: no
         // switch unless one is asked for.
-        const bool keep_model = !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty();
+        const bool keep_model =
+            !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty() || !opt_.session.empty();
         if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_preset > 0) {
             switched_ = true;   // --then-preset: what pressing key N does
             apply_preset(presets_for(model_name())[static_cast<std::size_t>(opt_.then_preset - 1)]);
@@ -617,6 +622,20 @@ int App::run() {
             set_model(index_of_stiffness(p.stiffness_id), index_of_impact(p.impact));
         }
         if (counted_frames_ >= opt_.frames) {
+            if (!opt_.clip_out.empty() && !clip_started_) {   // --clip-out: the last seconds, a frame each
+                clip_started_ = true;
+                if (std::string err; !start_clip(opt_.clip_out, opt_.clip_seconds, err)) {
+                    std::fprintf(stderr, "impactlab-gui: error: --clip-out: %s\n", err.c_str());
+                    exit_code_ = 1;
+                }
+                continue;
+            }
+            if (clip_frame_ >= 0) continue;
+            if (opt_.replay_back > 0 && !replay_back_done_) {   // --replay-back: the last frame shows the past
+                replay_back_done_ = true;
+                if (enter_replay()) replay_.seek(replay_.cursor() - opt_.replay_back);
+                continue;
+            }
             if (!opt_.screenshot.empty()) {
                 screenshot(opt_.screenshot);
                 frame();   // renders once more and reads that frame back
@@ -641,6 +660,11 @@ int App::run() {
         exit_code_ = 1;
     }
     if (!opt_.state_json.empty() && !write_state_json(opt_.state_json)) exit_code_ = 1;
+    if (!clip_error_.empty()) exit_code_ = 1;
+    if (!opt_.save_session.empty() && !save_session_file(opt_.save_session)) {
+        std::fprintf(stderr, "impactlab-gui: error: --save-session: %s\n", session_error_.c_str());
+        exit_code_ = 1;
+    }
     return exit_code_;
 }
 

@@ -4,6 +4,8 @@
 // the model's registry, the potential V(x) and the force laws for display.
 #pragma once
 
+#include <array>
+#include <nlohmann/json_fwd.hpp>
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,17 +13,24 @@
 
 #include "analysis_panels.hpp"
 #include "lyapunov_live.hpp"
-#include "bifurcation_job.hpp"
+#include "omega_ramp.hpp"
+#include "bifurcation_panel.hpp"
+#include "clip_writer.hpp"
+#include "companion_track.hpp"
 #include "data_panel.hpp"
 #include "history.hpp"
+#include "layout.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/sweep.hpp"
 #include "options.hpp"
 #include "plot2d.hpp"
 #include "poincare_map.hpp"
 #include "presets.hpp"
+#include "replay.hpp"
 #include "rig_view.hpp"
+#include "session.hpp"
 #include "sim_thread.hpp"
+#include "state_pick.hpp"
 #include "view_fit.hpp"
 
 struct GLFWwindow;
@@ -47,6 +56,9 @@ private:
     void poll_bifurcation();
     void handle_keys();
     void set_omega(double w);
+    void start_ramp(double target, double rate);   // ramp_hooks.cpp: the live omega ramp
+    void draw_ramp_controls();                      // ramp_hooks.cpp: its row under the omega slider
+    void draw_ramp_points(Plot& plot) const;        // ramp_hooks.cpp: its section points on the diagram
     void set_xi(double xI);
     void set_model(int stiffness, int impact);
     void set_paused(bool p);
@@ -70,7 +82,10 @@ private:
     // panels.cpp: one function per window
     void layout_and_draw();
     void draw_menu();
-    void draw_controls();
+    void draw_controls();         // tiles.cpp: the three groups below, stacked or as tabs
+    void draw_controls_run();     // model, forcing and bumper, run, presets
+    void draw_controls_view();    // display settings
+    void draw_controls_state();   // state, forces, energy
     void draw_rig();
     void draw_phase();
     void draw_poincare();
@@ -80,23 +95,82 @@ private:
     void draw_status();
     void draw_help();
     void draw_toast();
+    // companion_hooks.cpp: the mouse sets the state, the companion cart, the grazing monitor (issues 9, 11)
+    void set_state(double x, double v);                 // checked (rail, bumper; a toast says why it moved)
+    void set_companion(CompanionMode mode);
+    void draw_companion_controls();                     // Controls: the companion's mode and ghost law
+    void draw_grazing();                                // State: distance to the bumper, impact velocity
+    void draw_separation(ImVec2 size);                  // beside x(t): log10 |dx| of cart and companion
+    void rig_mouse(ImVec2 image_min, float fbs);        // drag the cart (left button): hold, then let go at v = 0
+    void plot_click(ClickDelay& delay, bool hovered, bool clicked, double x, double v);
+    static ImU32 companion_color(float alpha);          // the companion's colour in every plot
+    // app_replay.cpp: replay of the recent past and clip export (issue 11)
+    bool enter_replay();                                // pauses the simulation; false if nothing is recorded
+    void leave_replay();                                // back to live (the simulation as it was before)
+    void continue_from_replay();                        // the run restarts from the replayed instant
+    // Restarts the simulation at (x, v, t, phi) with omega; clear_history: a new run (a session), else the
+    // history keeps what came before t.
+    void restart_sim(double x, double v, double t, double phi, double omega, bool clear_history);
+    bool skip_until_restart(const SimMsg& m);           // drain_samples: drops the old run's stale records
+    void begin_replay_frame();                          // frame(), before the panels: rewinds to the cursor
+    void end_replay_frame();                            // after them: the live histories back, then requests
+    void handle_replay_keys();
+    double sim_sample_dt() const;
+    void draw_replay_bar();                             // the status bar while replaying
+    void draw_clip_window();
+    bool start_clip(const std::string& dir, double seconds, std::string& error);
+    void capture_clip_frame(int fw, int fh);            // frame(), after rendering: one frame of the clip
+    // app_session.cpp: session files (issue 11)
+    Session current_session() const;
+    void apply_session(const Session& s);
+    bool save_session_file(const std::string& path);
+    bool load_session_file(const std::string& path);    // a bad file changes nothing (a toast says why)
+    void open_session_window(bool save);
+    void draw_session_window();
+    void handle_session_request();
     DataPanelContext data_context() const;
     AnalysisContext analysis_context() const;           // analysis_hooks.cpp
     void apply_analysis(const AnalysisAction& a);       // analysis_hooks.cpp: a click's commands
-    void update_density_texture(int w, int h);
+    BifurcationContext bifurcation_context();           // bifurcation_hooks.cpp
     std::size_t trail_first() const;   // the first sample of the phase portrait's trail
-    template <class F>
-    void timed(int slot, F&& draw);
+    // tiles.cpp: the layout (layout.hpp) drawn: tiles, tabs, hide and maximise, presentation mode (issue 11)
+    void draw_tile(const Tile& tile);
+    void draw_panel(PanelId p);
+    void draw_presentation_bar();
+    void draw_view_menu_panels();
+    void handle_layout_keys();
+    void configure_layout();   // from the options, at init
+    nlohmann::json layout_json() const;   // for --state-json
+    void set_presentation(bool on);
+    void set_panel_visible(PanelId p, bool on);
+    void toggle_maximised(PanelId p);
+    double magnification() const;   // the rig's displacement magnification in the current mode
+    void set_magnification(double g);
+    LayoutRequest layout_request(const Rect& area) const;
     static constexpr const char* kPanelNames[7] = {"controls", "rig", "bifurcation", "phase", "poincare", "potential", "x(t)"};
     double panel_s_[7] = {};
 
     Options opt_;
     GLFWwindow* win_ = nullptr;
     std::unique_ptr<SimThread> sim_;
-    BifurcationJob bif_;
+    BifurcationPanel bif_panel_;       // the diagram, its range, live points and the Lyapunov strip
     DataPanel data_panel_;             // "Measured data": load, fit, effects on and off
     bool show_data_ = false;
+    OmegaRamp ramp_;                   // the live omega ramp and the section points it passed
+    float ramp_target_ = 25.0f, ramp_rate_ = 0.05f;   // its inputs [rad/s], [rad/s per s]
+    double energy_floor_ = 0;          // [J] the well's floor V_min of params_ (the energy bar's zero)
+    std::string energy_floor_for_;     // the version it was computed for
     LiveLyapunov lyapunov_live_;       // lambda_max at the running omega (issue 9)
+    CompanionTrack companion_;         // the twin or the ghost (source 1 records)
+    CompanionMode companion_mode_ = CompanionMode::Off;
+    int ghost_impact_ = 2;             // the ghost's impact law, an index into impact_models()
+    ClickDelay phase_click_, potential_click_;
+    bool dragging_cart_ = false;
+    double drag_grab_ = 0;             // [m] where on the cart the mouse took it (cart centre - mouse)
+    double drag_x_ = 0;                // [m] where the mouse holds the cart
+    SimMsg grazing_{};                 // the cart's grazing monitor, last whole period (MsgKind::Grazing)
+    bool have_grazing_ = false;
+    double xI_shown_ = 0;              // [m] the bumper where the simulation has it (travelling to xI_)
     AnalysisPanels analysis_;          // continued branches, parameter plane, basins (issues 9, 10)
     RigView rig_;
     bool imgui_ready_ = false;
@@ -122,20 +196,28 @@ private:
     ImpactLabel impact_label_;         // the rig's "F = ..." label: during a contact and shortly after
     double phi_prev_ = 0;
 
-    // Bifurcation diagram.
-    std::optional<Diagram> diagram_;
+    // Bifurcation diagram: the settings sessions save (the panel edits them), and "the look changed".
     int bif_protocol_ = 0, bif_steps_ = 300;
-    unsigned bif_tex_ = 0;
-    int bif_tex_w_ = 0, bif_tex_h_ = 0;
     bool bif_dirty_ = true;
-    Range bif_x_{0, 25}, bif_y_{-0.02, 0.005};
-    Range bif_view_x_, bif_view_y_;   // what the diagram shows (the user's zoom or bif_x_, bif_y_): the image's ranges
-    double bif_started_ = 0;
-    bool bif_zoom_applied_ = false;    // --bif-zoom, once the first diagram is there
 
     // View.
     bool dark_ = true;
     float ui_scale_ = 1.0f;
+    // The layout (tiles.cpp). Presentation mode raises ui_scale_ to 1.5 at least; normal_scale_ is the
+    // user's scale to go back to.
+    LayoutMode mode_ = LayoutMode::Normal;
+    float normal_scale_ = 1.0f;
+    std::array<bool, kPanelCount> panel_visible_{true, true, true, true, true, true};
+    bool controls_visible_ = true;
+    std::optional<PanelId> maximised_;
+    std::optional<PanelId> hovered_panel_;         // the panel under the mouse at the last frame (key Z)
+    PanelId featured_ = PanelId::Phase;             // presentation mode's plot
+    std::array<PanelId, kPanelCount> tile_tab_{};   // the active tab of the tile whose first panel is the index
+    double magnify_[2] = {1.0, 3.0};                // the rig's displacement magnification: normal, presentation
+    float controls_group_h_[3] = {};                // [px] the controls' groups as last drawn
+    float controls_need_h_ = 0;                     // [px] all of them stacked (0: not all measured yet)
+    float controls_measured_scale_ = 0;             // the UI scale they were measured at
+    Layout layout_;                                 // this frame's
     bool fonts_dirty_ = true;
     bool show_help_ = false;
     float trail_periods_ = 8.0f;
@@ -167,6 +249,34 @@ private:
     std::unique_ptr<MsgSink> bench_sink_;
     double bench_build_s_ = 0, bench_render_s_ = 0;
     int exit_code_ = 0;
+
+    // Replay and clip export (app_replay.cpp).
+    enum class ReplayRequest { None, Leave, Continue, Clip };   // asked while the histories are rewound
+    static constexpr double kClipFps = 30.0;
+    Replay replay_;
+    ReplayRequest replay_request_ = ReplayRequest::None;
+    struct {
+        SimMsg last{};
+        double phi_prev = 0, max_force = 0;
+        bool rewound = false;   // traj_, sections_ and last_ show the cursor's instant
+    } replay_live_;
+    struct {
+        bool pending = false, clear = false;
+        double t = 0, since = 0;
+        std::uint32_t epoch = 0;
+    } restart_;                 // a Restart sent, its sample not yet drained
+    ClipWriter clip_;
+    ClipPlan clip_plan_;
+    int clip_frame_ = -1;       // the clip frame being rendered (-1: no export)
+    bool clip_from_live_ = false, clip_window_ = false, clip_started_ = false, replay_back_done_ = false;
+    char clip_dir_[512] = ".";
+    float clip_seconds_ = 5.0f;
+    std::string clip_summary_, clip_error_;
+    // Session files (app_session.cpp).
+    bool session_window_ = false, session_saving_ = true;
+    int session_request_ = 0;   // 1 save, 2 load (after the panels drew)
+    char session_path_[512] = "impactlab-session.json";
+    std::string session_error_;
 };
 
 }  // namespace impactlab::gui

@@ -9,7 +9,9 @@
 #include <utility>
 
 #include "impactlab/params.hpp"
+#include "layout.hpp"
 #include "presets.hpp"
+#include "session.hpp"
 
 namespace impactlab::gui {
 
@@ -27,7 +29,13 @@ const char* usage_text() {
            "  --paused           start paused\n"
            "  --warmup S         first run S simulated seconds at 100x (the Poincare map fills), then --speed\n"
            "  --theme dark|light colour theme (default dark)\n"
-           "  --scale S          UI scale, 0.5..3 (default: the monitor's content scale)\n"
+           "  --scale S, --ui-scale S  UI scale, 0.5..3 (default: the monitor's content scale)\n"
+           "  --presentation [P] presentation mode (key P): the rig and plot P large under a slim bar;\n"
+           "                     P one of phase (default), poincare, potential, strip, bifurcation\n"
+           "  --hide PANEL       hide a panel (repeatable, or comma-separated): controls, rig, bifurcation,\n"
+           "                     phase, poincare, potential, strip (View > Panels shows it again)\n"
+           "  --maximise PANEL   start with PANEL filling the plot area (key Z over a panel, Esc restores)\n"
+           "  --magnify G        the rig's displacement magnification, 1..10 (default 1; 3 in presentation)\n"
            "  --size WxH         window size in pixels (default 1280x800)\n"
            "  --preset N         start on preset N of the model (1-4, as keys 1-4: period 1, period 2, chaos,\n"
            "                     a periodic window); sets omega, x0 and xI = 0 (over --omega, --x0, --xI)\n"
@@ -36,6 +44,14 @@ const char* usage_text() {
            "  --bif-steps N      omega steps of a CF sweep, 10..2000 (default 300)\n"
            "  --bif-zoom W0:W1   show the diagram zoomed to omega in [W0, W1] (wheel, drag and double-click\n"
            "                     zoom, pan and reset every plot)\n"
+           "  --ramp W1:RATE     ramp omega live from --omega to W1 rad/s at RATE rad/s per s (1e-3 .. 2), drawing\n"
+           "                     the section points over the bifurcation diagram as it goes\n"
+           "  --bif-range W0:W1  compute the diagram over omega in [W0, W1], 0 <= W0 < W1 <= 30 (default 0:25;\n"
+           "                     EF: the ramp ends at W1)\n"
+           "  --bif-lyapunov     the lambda_max(omega) strip under the diagram, computed with it (slow)\n"
+           "  --lyap-steps N     omegas of that strip, 5..300 (default 60)\n"
+           "  --bif-nowait       with --frames: count the frames while the diagram computes (a screenshot\n"
+           "                     of it half-filled)\n"
            "  --data FILE        load a measured run (CSV, plain or gzip) into the Measured data window\n"
            "                     and fit the model to it (with --frames: counted once the fit is done,\n"
            "                     and no model switch unless --switch-model is given)\n"
@@ -44,6 +60,11 @@ const char* usage_text() {
            "  --continuation     continue the period-1 branch over the diagram's omega range at start (key O)\n"
            "  --small-plane      compute a 60 x 30 (omega, xI) plane at start (Parameter plane window, F2)\n"
            "  --basins           compute the basins of attraction at --omega at start (Basins window, F3)\n"
+           "  --session FILE     load a session (File > Load session, Ctrl+O) at start; a bad file is refused\n"
+           "                     naming the file, the key (or line) and the problem (exit 2)\n"
+           "  --twin             a second cart 1 um to the right of the first, same model (sensitivity)\n"
+           "  --ghost M          a second cart from the same state under the impact law of version M (A1G)\n"
+           "  --set-state X,V    at the first frame set x [m], v [m/s] as a click in the phase portrait does\n"
            "\n"
            "Headless checks and benchmarks:\n"
            "  --frames N         render N frames, switch the model once half-way, save --screenshot, print\n"
@@ -55,6 +76,11 @@ const char* usage_text() {
            "                     poincare_points [[x, v], ...] [m, m/s]. With --preset, --state-json or --data\n"
            "                     no model switch happens unless --switch-model is given\n"
            "  --switch-model M   the version switched to half-way (default: H <-> G, same stiffness)\n"
+           "  --save-session F   with --frames: save the session (as Ctrl+S does) at the end\n"
+           "  --clip-out DIR     with --frames: at the end, export the last --clip-seconds as a clip into a new\n"
+           "                     folder in DIR: PNG frames at 30 fps, and clip.mp4 where ffmpeg is on PATH\n"
+           "  --clip-seconds S   [s] of simulated time for --clip-out, 0.1..60 (default 2)\n"
+           "  --replay-back S    with --frames: end in replay S seconds before the newest sample (Shift+R)\n"
            "  --then-preset N    apply preset N half-way instead (as pressing key N)\n"
            "  --bench-plot       frames per second with --points points on every plot (needs a display)\n"
            "  --points N         points per plot for --bench-plot (default 100000)\n"
@@ -137,7 +163,33 @@ Options parse_options(const std::vector<std::string>& args) {
             const std::string& t = value();
             if (t != "dark" && t != "light") throw OptionsError("--theme: '" + t + "' is neither dark nor light");
             o.light = t == "light";
-        } else if (a == "--scale") o.ui_scale = number(a, value(), 0.5, 3.0);
+        } else if (a == "--scale" || a == "--ui-scale") o.ui_scale = number(a, value(), 0.5, 3.0);
+        else if (a == "--presentation") {
+            o.presentation = true;
+            // An optional plot name: the next argument unless it is a flag.
+            if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0) {
+                const std::string& p = args[++i];
+                if (p != "phase" && p != "poincare" && p != "potential" && p != "strip" && p != "bifurcation")
+                    throw OptionsError("--presentation: '" + p + "' is not one of phase, poincare, potential, strip, bifurcation");
+                o.presentation_plot = p;
+            }
+        } else if (a == "--hide") {
+            const std::string& list = value();
+            std::size_t from = 0;
+            for (;;) {
+                const std::size_t c = list.find(',', from);
+                const std::string p = list.substr(from, c == std::string::npos ? std::string::npos : c - from);
+                if (p != "controls" && !panel_from_key(p))
+                    throw OptionsError("--hide: '" + p + "' is not a panel (controls, " + panel_keys() + ")");
+                o.hide.push_back(p);
+                if (c == std::string::npos) break;
+                from = c + 1;
+            }
+        } else if (a == "--maximise" || a == "--maximize") {
+            const std::string& p = value();
+            if (!panel_from_key(p)) throw OptionsError(a + ": '" + p + "' is not a panel (" + panel_keys() + ")");
+            o.maximise = p;
+        } else if (a == "--magnify") o.magnify = number(a, value(), 1.0, 10.0);
         else if (a == "--size") {
             const std::string& s = value();
             const auto x = s.find('x');
@@ -163,11 +215,41 @@ Options parse_options(const std::vector<std::string>& args) {
             o.bif_zoom_lo = number(a, z.substr(0, c), 0.0, 30.0);
             o.bif_zoom_hi = number(a, z.substr(c + 1), 0.0, 30.0);
             if (!(o.bif_zoom_hi > o.bif_zoom_lo)) throw OptionsError("--bif-zoom: " + z + " is empty (W0 < W1 wanted)");
-        }
+        } else if (a == "--bif-range") {
+            const std::string& z = value();
+            const auto c = z.find(':');
+            if (c == std::string::npos) throw OptionsError("--bif-range: '" + z + "' is not W0:W1");
+            o.bif_range_lo = number(a, z.substr(0, c), 0.0, 30.0);
+            o.bif_range_hi = number(a, z.substr(c + 1), 0.0, 30.0);
+            if (!(o.bif_range_hi > o.bif_range_lo)) throw OptionsError("--bif-range: " + z + " is empty (W0 < W1 wanted)");
+        } else if (a == "--ramp") {
+            const std::string& z = value();
+            const auto c = z.find(':');
+            if (c == std::string::npos) throw OptionsError("--ramp: '" + z + "' is not W1:RATE (target rad/s : rad/s per s)");
+            o.ramp_to = number(a, z.substr(0, c), 0.0, 30.0);
+            o.ramp_rate = number(a, z.substr(c + 1), 1e-3, 2.0);
+        } else if (a == "--bif-lyapunov") o.bif_lyapunov = true;
+        else if (a == "--lyap-steps") o.lyap_steps = integer(a, value(), 5, 300);
+        else if (a == "--bif-nowait") o.bif_nowait = true;
         else if (a == "--plane") o.plane = value();
         else if (a == "--continuation") o.continuation = true;
         else if (a == "--small-plane") o.small_plane = true;
         else if (a == "--basins") o.basins = true;
+        else if (a == "--session") o.session = value();
+        else if (a == "--save-session") o.save_session = value();
+        else if (a == "--clip-out") o.clip_out = value();
+        else if (a == "--clip-seconds") o.clip_seconds = number(a, value(), 0.1, 60.0);
+        else if (a == "--replay-back") o.replay_back = number(a, value(), 0.001, 3600.0);
+        else if (a == "--twin") o.twin = true;
+        else if (a == "--ghost") o.ghost = version(a, value());
+        else if (a == "--set-state") {
+            const std::string& sv = value();
+            const auto c = sv.find(',');
+            if (c == std::string::npos) throw OptionsError("--set-state: '" + sv + "' is not X,V (metres, m/s)");
+            o.set_x = number(a, sv.substr(0, c), -0.05, 0.05);
+            o.set_v = number(a, sv.substr(c + 1), -2.0, 2.0);
+            o.set_state = true;
+        }
         else if (a == "--soak") o.soak = number(a, value(), 1.0, 86400.0);
         else if (a == "--bench-plot") o.bench_plot = true;
         else if (a == "--bench-ring") o.bench_ring = true;
@@ -191,6 +273,12 @@ Options parse_options(const std::vector<std::string>& args) {
                                std::to_string(count) + "] for " + o.model);
     }
     if (o.then_preset > 0 && o.frames == 0) throw OptionsError("--then-preset needs --frames N");
+    for (const std::string& h : o.hide)
+        if (h == o.maximise) throw OptionsError("--maximise " + h + ": that panel is hidden by --hide");
+    if (!o.save_session.empty() && o.frames == 0) throw OptionsError("--save-session needs --frames N");
+    if (!o.clip_out.empty() && o.frames == 0) throw OptionsError("--clip-out needs --frames N");
+    if (o.replay_back > 0 && o.frames == 0) throw OptionsError("--replay-back needs --frames N");
+    if (o.twin && !o.ghost.empty()) throw OptionsError("--twin and --ghost: one companion cart at a time");
     if (o.then_preset > 0 && !o.switch_model.empty())
         throw OptionsError("--then-preset: half-way there is either a preset or a --switch-model, not both");
     return o;
@@ -220,6 +308,22 @@ void check_files(const Options& o) {
     }
     if (!o.screenshot.empty()) check_writable("--screenshot", o.screenshot);
     if (!o.state_json.empty()) check_writable("--state-json", o.state_json);
+    if (!o.save_session.empty()) check_writable("--save-session", o.save_session);
+    if (!o.session.empty()) {
+        try {
+            load_session(o.session, Session{});
+        } catch (const SessionError& e) {
+            throw OptionsError(std::string("--session: ") + e.what());
+        }
+    }
+    if (!o.clip_out.empty()) {
+        std::error_code ec;
+        if (!std::filesystem::is_directory(o.clip_out, ec))
+            throw OptionsError("--clip-out: '" + o.clip_out + "' is not a folder");
+        const std::string probe = (std::filesystem::path(o.clip_out) / ".impactlab-clip.probe").string();
+        if (!std::ofstream(probe)) throw OptionsError("--clip-out: cannot write in '" + o.clip_out + "'");
+        std::filesystem::remove(probe, ec);
+    }
 }
 
 }  // namespace impactlab::gui

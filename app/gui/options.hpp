@@ -19,6 +19,13 @@ struct Options {
     double warmup = 0;           // [s] of simulated time run at 100x first (a populated Poincare map at once)
     bool light = false;          // theme
     double ui_scale = 0;         // 0: from the monitor's content scale
+    // The layout (issue 11): presentation mode and its plot, panels hidden or maximised, the rig's
+    // displacement magnification (0: the mode's default, x1 normal, x3 presenting).
+    bool presentation = false;
+    std::string presentation_plot = "phase";
+    std::vector<std::string> hide;   // panel keys (layout.hpp) and "controls"
+    std::string maximise;            // a panel key
+    double magnify = 0;
     int width = 1280, height = 800;
 
     int frames = 0;              // > 0: render this many frames, save the screenshot, print the sim time, exit
@@ -30,6 +37,11 @@ struct Options {
     std::string bifurcation;     // "", "cf-up", "cf-down", "ef": start computing at launch
     int bif_steps = 300;
     double bif_zoom_lo = 0, bif_zoom_hi = 0;   // --bif-zoom W0:W1: the diagram's view starts zoomed to it
+    double ramp_to = -1, ramp_rate = 0;         // --ramp W1:RATE: a live omega ramp at start (-1: none)
+    double bif_range_lo = 0, bif_range_hi = 0; // --bif-range W0:W1 [rad/s]: the omega range computed (0, 0: 0-25)
+    bool bif_lyapunov = false;   // --bif-lyapunov: the lambda_max strip under the diagram
+    int lyap_steps = 0;          // --lyap-steps N: its omegas (0: the panel's default)
+    bool bif_nowait = false;     // --bif-nowait: --frames does not wait for the diagram
 
     double soak = 0;             // > 0: run this many wall seconds at 100x, switching the model every 3 s; RSS report
     bool bench_plot = false, bench_ring = false, bench_sim = false;
@@ -43,6 +55,17 @@ struct Options {
     bool continuation = false;   // --continuation: the continued branches over the diagram
     bool small_plane = false;    // --small-plane: a 60 x 30 (omega, xI) plane on a worker
     bool basins = false;         // --basins: the basins at --omega
+    // Sessions and clips (issue 11).
+    std::string session;         // --session FILE: load at start (validated before the window opens)
+    std::string save_session;    // --save-session FILE: with --frames, written at the end
+    std::string clip_out;        // --clip-out DIR: with --frames, export the last --clip-seconds as a clip
+    double clip_seconds = 2.0;   // [s] of simulated time
+    double replay_back = 0;      // [s] with --frames: end in replay this far before the newest sample
+    // The companion cart (issues 9, 11) and the mouse's state, as scripts set them.
+    bool twin = false;           // --twin: a second cart 1 um to the right, the same model
+    std::string ghost;           // --ghost M: a second cart from the same state under M's impact law
+    bool set_state = false;      // --set-state X,V: at the first frame, as a click in the phase portrait
+    double set_x = 0, set_v = 0; // [m], [m/s]
 };
 
 // argv without the program name. Throws OptionsError naming the flag and the problem.

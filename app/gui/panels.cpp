@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "app.hpp"
+#include "contact_label.hpp"
+#include "energy_bar.hpp"
 #include "gl_util.hpp"
 #include "impactlab/forces.hpp"
 #include "impactlab/sweep.hpp"
@@ -23,23 +25,9 @@ namespace impactlab::gui {
 
 namespace {
 
-constexpr ImGuiWindowFlags kTile = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus;
-
 struct XY {
     double x, y;
 };
-
-bool begin_tile(const char* name, ImVec2 pos, ImVec2 size, ImGuiWindowFlags extra = 0) {
-    ImGui::SetNextWindowPos(pos);
-    ImGui::SetNextWindowSize(size);
-    // No background fill: the tiles cover the window and App::frame clears it to WindowBg, which costs
-    // nothing, while a million blended background pixels cost ~6 ms a frame under Mesa's llvmpipe.
-    ImGui::PushStyleColor(ImGuiCol_WindowBg, IM_COL32(0, 0, 0, 0));
-    const bool open = ImGui::Begin(name, nullptr, kTile | extra);
-    ImGui::PopStyleColor();
-    return open;
-}
 
 void section(const char* label) {
     ImGui::Spacing();
@@ -59,15 +47,6 @@ void tooltip(const char* text) {
     }
 }
 
-const char* regime_long(Regime r) {
-    switch (r) {
-        case Regime::Free: return "I  free flight";
-        case Regime::Sticking: return "II  sticking (impact)";
-        case Regime::Contact: return "III  permanent contact";
-    }
-    return "?";
-}
-
 // A small text with a dark/light plate behind it, for labels over the rig.
 void plate_text(ImDrawList* dl, ImVec2 p, const char* text, ImU32 col, ImVec2 align = ImVec2(0, 0)) {
     const ImVec2 ts = ImGui::CalcTextSize(text);
@@ -78,75 +57,6 @@ void plate_text(ImDrawList* dl, ImVec2 p, const char* text, ImU32 col, ImVec2 al
 }
 
 }  // namespace
-
-// Runs one panel, timing it in benchmark mode (App::panel_s_).
-template <class F>
-void App::timed(int slot, F&& draw) {
-    if (!bench_mode_) {
-        draw();
-        return;
-    }
-    const auto t0 = std::chrono::steady_clock::now();
-    draw();
-    panel_s_[static_cast<std::size_t>(slot)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-void App::layout_and_draw() {
-    const ImGuiViewport* vp = ImGui::GetMainViewport();
-    draw_menu();
-    const float menu_h = ImGui::GetFrameHeight();
-    const float status_h = std::round(ImGui::GetFrameHeight() + 6.0f * ui_scale_);
-    const float left_w = std::round(std::clamp(292.0f * ui_scale_, 240.0f, vp->Size.x * 0.42f));
-    const float x0 = vp->Pos.x + left_w, y0 = vp->Pos.y + menu_h;
-    const float W = vp->Size.x - left_w, H = vp->Size.y - menu_h - status_h;
-    const float row1 = std::round(H * 0.41f), row2 = std::round(H * 0.34f), row3 = H - row1 - row2;
-    const float rig_w = std::round(W * 0.58f);
-    const float third = std::round(W / 3.0f);
-
-    set_plot_backdrops_by_clear(true);   // the tiles draw no background: frame() clears under their plots
-    if (begin_tile("Controls", ImVec2(vp->Pos.x, y0), ImVec2(left_w, H))) timed(0, [&] { draw_controls(); });
-    ImGui::End();
-
-    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(4.0f * ui_scale_, 4.0f * ui_scale_));
-    if (begin_tile("Rig (top view, to scale)", ImVec2(x0, y0), ImVec2(rig_w, row1),
-                   ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse))
-        timed(1, [&] { draw_rig(); });
-    ImGui::End();
-    if (begin_tile("Bifurcation diagram", ImVec2(x0 + rig_w, y0), ImVec2(W - rig_w, row1),
-                   ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse))
-        timed(2, [&] { draw_bifurcation(); });
-    ImGui::End();
-    const float y1 = y0 + row1;
-    if (begin_tile("Phase portrait (x, v)", ImVec2(x0, y1), ImVec2(third, row2), ImGuiWindowFlags_NoScrollbar))
-        timed(3, [&] { draw_phase(); });
-    ImGui::End();
-    if (begin_tile("Poincaré map (φ = 2πn)###poincare", ImVec2(x0 + third, y1), ImVec2(third, row2), ImGuiWindowFlags_NoScrollbar))
-        timed(4, [&] { draw_poincare(); });
-    ImGui::End();
-    if (begin_tile("Potential well V(x)", ImVec2(x0 + 2 * third, y1), ImVec2(W - 2 * third, row2),
-                   ImGuiWindowFlags_NoScrollbar))
-        timed(5, [&] { draw_potential(); });
-    ImGui::End();
-    if (begin_tile("Displacement x(t)        dots: Poincaré sections (φ = 2πn)    dashed: bumper x_I###strip",
-                   ImVec2(x0, y1 + row2), ImVec2(W, row3), ImGuiWindowFlags_NoScrollbar))
-        timed(6, [&] { draw_strip(); });
-    ImGui::End();
-    ImGui::PopStyleVar();
-    set_plot_backdrops_by_clear(false);   // floating windows (data panel) draw their own
-
-    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8.0f * ui_scale_, 3.0f * ui_scale_));
-    if (begin_tile("##status", ImVec2(vp->Pos.x, vp->Pos.y + vp->Size.y - status_h), ImVec2(vp->Size.x, status_h),
-                   ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar))
-        draw_status();
-    ImGui::End();
-    ImGui::PopStyleVar();
-
-    data_panel_.poll(data_context());
-    if (show_data_) data_panel_.draw(&show_data_, data_context());
-    apply_analysis(analysis_.draw(analysis_context()));
-    if (show_help_) draw_help();
-    draw_toast();
-}
 
 DataPanelContext App::data_context() const {
     DataPanelContext c;
@@ -161,6 +71,10 @@ void App::draw_menu() {
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("Screenshot (PNG)", "F12")) screenshot(screenshot_name());
         if (ImGui::MenuItem("Export trajectory + sections (CSV)", "Ctrl+E")) export_csv();
+        if (ImGui::MenuItem("Export clip (PNG frames, video)...")) clip_window_ = true;
+        ImGui::Separator();
+        if (ImGui::MenuItem("Save session...", "Ctrl+S")) open_session_window(true);
+        if (ImGui::MenuItem("Load session...", "Ctrl+O")) open_session_window(false);
         ImGui::Separator();
         if (ImGui::MenuItem("Measured data (load, fit, effects)...", nullptr, show_data_)) show_data_ = !show_data_;
         ImGui::Separator();
@@ -177,9 +91,16 @@ void App::draw_menu() {
         if (ImGui::MenuItem("Real time (1x)")) set_speed(1.0);
         ImGui::Separator();
         if (ImGui::MenuItem("Clear Poincare map", "C")) clear_poincare();
+        ImGui::Separator();
+        if (ImGui::MenuItem("Replay the last minutes", "Shift+R", replay_.active())) {
+            if (replay_.active()) replay_request_ = ReplayRequest::Leave;
+            else enter_replay();
+        }
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("View")) {
+        draw_view_menu_panels();   // tiles.cpp: presentation, panels, maximise, magnification
+        ImGui::Separator();
         if (ImGui::MenuItem("Dark theme", "T", dark_)) {
             dark_ = !dark_;
             apply_theme(dark_, ui_scale_);
@@ -212,7 +133,7 @@ void App::draw_menu() {
     ImGui::EndMainMenuBar();
 }
 
-void App::draw_controls() {
+void App::draw_controls_run() {
     const auto& stiff = stiffness_sets();
     const auto& imps = impact_models();
     const float full = ImGui::GetContentRegionAvail().x;
@@ -221,8 +142,10 @@ void App::draw_controls() {
     ImGui::TextUnformatted("Model");
     ImGui::SameLine();
     ImGui::TextColored(ImGui::GetStyle().Colors[ImGuiCol_SliderGrab], "%s", model_name().c_str());
-    ImGui::SameLine();
-    ImGui::TextDisabled("(live: keeps x, v, φ)");
+    if (!layout_.controls_narrow) {   // a narrow column (large UI scale) keeps the words for the tooltip
+        ImGui::SameLine();
+        ImGui::TextDisabled("(live: keeps x, v, φ)");
+    }
     ImGui::SetNextItemWidth(full * 0.40f);
     if (ImGui::BeginCombo("##stiffness", stiff[static_cast<std::size_t>(stiffness_)].id)) {
         for (std::size_t i = 0; i < stiff.size(); ++i) {
@@ -262,7 +185,8 @@ void App::draw_controls() {
     ImGui::SameLine();
     if (ImGui::Button("+1")) set_omega(omega_ + 1);
     ImGui::SameLine();
-    if (omega_ > 0) ImGui::TextDisabled("T = %.3f s", kTwoPi / omega_);
+    if (omega_ > 0) ImGui::TextDisabled(layout_.controls_narrow ? "%.2f s" : "T = %.3f s", kTwoPi / omega_);
+    draw_ramp_controls();
     float xi_mm = static_cast<float>(xI_ * 1e3);
     ImGui::SetNextItemWidth(-1);
     if (ImGui::SliderFloat("##xI", &xi_mm, -20.0f, 20.0f, "bumper x_I = %.1f mm")) set_xi(xi_mm * 1e-3);
@@ -274,7 +198,7 @@ void App::draw_controls() {
     if (ImGui::Button(paused_ ? "Play" : "Pause", ImVec2(bw, 0))) set_paused(!paused_);
     tooltip("Space");
     ImGui::SameLine();
-    if (ImGui::Button("Step period", ImVec2(bw, 0))) step_period();
+    if (ImGui::Button(layout_.controls_narrow ? "Step" : "Step period", ImVec2(bw, 0))) step_period();
     tooltip("N: run to the next Poincare section, then pause");
     ImGui::SameLine();
     if (ImGui::Button("Reset", ImVec2(bw, 0))) reset();
@@ -302,6 +226,11 @@ void App::draw_controls() {
         if (i % 2 == 0 && i + 1 < list.size()) ImGui::SameLine();
     }
 
+    draw_companion_controls();
+}
+
+void App::draw_controls_view() {
+    const float full = ImGui::GetContentRegionAvail().x;
     section("Display");
     const float half = (full - ImGui::GetStyle().ItemSpacing.x) / 2.0f;
     ImGui::SetNextItemWidth(half);
@@ -329,16 +258,28 @@ void App::draw_controls() {
         fonts_dirty_ = true;
     }
     tooltip("Ctrl + / Ctrl -: size of text and controls, for projectors.");
+    // The rig's displacement magnification (the drawing only) and presentation mode (tiles.cpp).
+    float g = static_cast<float>(magnification());
+    ImGui::SetNextItemWidth(half);
+    if (ImGui::SliderFloat("##magnify", &g, 1.0f, 10.0f, "rig disp. ×%.1f")) set_magnification(g);
+    tooltip("Magnifies the cart's displacement from x = 0 in the rig's drawing only (cart and bumper alike,\n"
+            "so a contact still looks like one); the rig's title says so. Presentation mode has its own (×3).");
+    ImGui::SameLine();
+    if (ImGui::Button(layout_.controls_narrow ? "Present" : "Presentation", ImVec2(-1, 0))) set_presentation(true);
+    tooltip("P: the rig and one plot, large, with a slim bar of controls (P or Esc to come back).");
     const float tw = (full - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
-    if (ImGui::Button("Clear map", ImVec2(tw, 0))) clear_poincare();
+    const bool narrow = layout_.controls_narrow;
+    if (ImGui::Button(narrow ? "Clear" : "Clear map", ImVec2(tw, 0))) clear_poincare();
     tooltip("C: clear the Poincare map");
     ImGui::SameLine();
-    if (ImGui::Button("Screenshot", ImVec2(tw, 0))) screenshot(screenshot_name());
+    if (ImGui::Button(narrow ? "PNG" : "Screenshot", ImVec2(tw, 0))) screenshot(screenshot_name());
     tooltip("F12: the whole window as PNG, in the current folder");
     ImGui::SameLine();
-    if (ImGui::Button("Export CSV", ImVec2(tw, 0))) export_csv();
+    if (ImGui::Button(narrow ? "CSV" : "Export CSV", ImVec2(tw, 0))) export_csv();
     tooltip("Ctrl+E: the trajectory in memory and the Poincare points as CSV files");
+}
 
+void App::draw_controls_state() {
     section("State");
     if (ImGui::BeginTable("state", 4, ImGuiTableFlags_SizingStretchProp)) {
         auto cell = [](const char* k, const char* text) {
@@ -367,7 +308,8 @@ void App::draw_controls() {
     }
     ImGui::TextDisabled("regime");
     ImGui::SameLine();
-    ImGui::TextUnformatted(regime_long(last_.regime));
+    ImGui::TextUnformatted(contact_label(params_, last_.regime, last_.force));
+    draw_grazing();
     lyapunov_live_.update(params_, omega_, last_.x, last_.v, now_s());
     ImGui::TextDisabled("λ_max");
     ImGui::SameLine();
@@ -404,6 +346,18 @@ void App::draw_controls() {
         ImGui::SameLine();
         ImGui::Text("%+.1f", std::abs(b.value) < 0.05 ? 0.0 : b.value);   // no "-0.0"
     }
+
+    section("Energy balance");
+    tooltip("Since the last change of model, x_I or state: the energy at the start plus the work of the\n"
+            "unbalance (in) against kinetic, potential (above the well's floor) and what the resistance and\n"
+            "the bumper dissipated (out). Each term is integrated on its own, so the two bars agree only if\n"
+            "the simulation conserves energy as it should.");
+    if (energy_floor_for_ != params_.name) {
+        energy_floor_ = potential_floor(params_);
+        energy_floor_for_ = params_.name;
+    }
+    const EnergyBalance eb = sim_->status().energy;
+    draw_energy_bars(energy_bars(eb, params_.m, energy_floor_), eb.t0, eb.t);
 }
 
 void App::draw_rig() {
@@ -415,46 +369,74 @@ void App::draw_rig() {
     st.v = last_.v;
     st.phi = last_.phi;
     st.phi_span = have_last_ ? last_.phi - phi_prev_ : 0.0;
-    st.xI = xI_;
+    st.xI = xI_shown_;   // where the simulation has it: it travels to the slider's x_I, pushing the cart
     st.bumper_force = std::max(frame_max_force_, last_.force);
     st.flash = flash_;
     st.magnet_force = -(spring_magnet(params_, last_.x).F - params_.k * last_.x);
     st.spring_force = -params_.k * last_.x;
-    st.in_contact = last_.regime != Regime::Free || last_.force > 0;
+    st.in_contact = in_contact(params_, last_.regime, last_.force);
+    st.magnify = magnification();   // the drawing only (layout.hpp: RigMagnify)
     // Rendered at the framebuffer's resolution (sharp on high-DPI screens), shown at display size.
     const float fbs = std::max(1.0f, ImGui::GetIO().DisplayFramebufferScale.x);
     const GLuint tex = rig_.render(static_cast<int>(w * fbs), static_cast<int>(h * fbs), st, pal);
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(tex)), ImVec2(static_cast<float>(w), static_cast<float>(h)),
                  ImVec2(0, 1), ImVec2(1, 0));
+    rig_mouse(p0, fbs);   // drag the cart
 
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImU32 text = pal.title_text, dim = pal.axis_text;
+    const RigMagnify& mag = rig_.magnify();
+    // Screen position of a point of the drawing (x already magnified: mag.draw_x, mag.bumper_face).
     auto at = [&](double x, double y) {
         const ImVec2 q = rig_.to_image(x, y);
         return ImVec2(p0.x + q.x / fbs, p0.y + q.y / fbs);
     };
     char buf[128];
-    // Ruler numbers.
-    for (int mm = -20; mm <= 20; mm += 20) {
-        std::snprintf(buf, sizeof buf, "%d", mm);
-        const ImVec2 q = at(mm * 1e-3, rig::kRulerY + 0.0058);
-        const ImVec2 ts = ImGui::CalcTextSize(buf);
-        dl->AddText(ImVec2(q.x - ts.x * 0.5f, q.y - ts.y), dim, buf);
+    const float fs = ImGui::GetFontSize();
+    // The labels go in order of importance, each at the first of its spots that lies inside the image and
+    // clear of those placed before (LabelPlacer): none overprints another, none is cut at the edge, at any
+    // UI scale, tile size, x_I or magnification; what finds no room is left out.
+    LabelPlacer labels({p0.x, p0.y, static_cast<float>(w), static_cast<float>(h)});
+    const ImU32 plate_bg = pal.dark ? IM_COL32(10, 12, 16, 150) : IM_COL32(255, 255, 255, 170);
+    struct Spot {
+        ImVec2 p, align;   // the point, and where on the text's box it sits (0..1 in x and y)
+    };
+    auto put = [&](const char* s, ImU32 col, std::initializer_list<Spot> spots, bool plate = true) {
+        const ImVec2 ts = ImGui::CalcTextSize(s);
+        for (const Spot& sp : spots) {
+            const Rect r{std::round(sp.p.x - ts.x * sp.align.x) - 3, std::round(sp.p.y - ts.y * sp.align.y) - 1, ts.x + 6,
+                         ts.y + 2};
+            if (!labels.place(r)) continue;
+            if (plate) dl->AddRectFilled(ImVec2(r.x, r.y), ImVec2(r.right(), r.bottom()), plate_bg, 3.0f);
+            dl->AddText(ImVec2(r.x + 3, r.y + 1), col, s);
+            return true;
+        }
+        return false;
+    };
+    const float edge = fs * 0.6f;
+    // Regime badge (a compliant bumper has no regimes II/III: contact is free flight with F_I > 0).
+    // The same words as the status bar, from the same sample (contact_label.hpp).
+    const char* badge = contact_label(params_, last_.regime, last_.force);
+    const ImU32 badge_col = in_contact(params_, last_.regime, last_.force) ? pal.bumper : pal.energy;
+    const ImVec2 bp(p0.x + edge, p0.y + fs * 0.5f);
+    put(badge, badge_col, {{bp, {0, 0}}});
+    if (paused_) put(sim_->status().paused ? "PAUSED" : "STEPPING", pal.warn, {{ImVec2(p0.x + w - edge, bp.y), {1, 0}}}, false);
+    // The magnification, where every eye goes first: beside the badge or under it.
+    if (mag.gain > 1.001) {
+        std::snprintf(buf, sizeof buf, "displacement ×%.3g (drawing only)", mag.gain);
+        const float bw = ImGui::CalcTextSize(badge).x;
+        if (!put(buf, pal.warn, {{ImVec2(bp.x + bw + fs, bp.y), {0, 0}}, {ImVec2(bp.x, bp.y + 1.6f * fs), {0, 0}}})) {
+            std::snprintf(buf, sizeof buf, "displacement ×%.3g", mag.gain);
+            put(buf, pal.warn, {{ImVec2(bp.x + bw + fs, bp.y), {0, 0}}, {ImVec2(bp.x, bp.y + 1.6f * fs), {0, 0}},
+                                {ImVec2(p0.x + w - edge, p0.y + h - fs * 2.2f), {1, 1}}});
+        }
     }
-    std::snprintf(buf, sizeof buf, "x = %+.2f mm", last_.x * 1e3);
-    plate_text(dl, at(0.029, rig::kRulerY + 0.0025), buf, text, ImVec2(0, 0.5f));
-    // Parts.
-    std::snprintf(buf, sizeof buf, "springs  k = %.0f N/m", params_.k);
-    plate_text(dl, at(-rig::kWallX + 0.012, rig::kSpringY + 0.0115), buf, dim, ImVec2(0, 1));
-    std::snprintf(buf, sizeof buf, "magnets repel: %+.2f N", st.magnet_force);
-    plate_text(dl, at(-0.014, rig::kMagnetFixedY - 0.001), buf, dim, ImVec2(1, 0.5f));
-    const double face = xI_ + rig::kCartHalfW;
-    std::snprintf(buf, sizeof buf, "bumper  x_I = %+.1f mm", xI_ * 1e3);
-    plate_text(dl, at(face + 0.004, rig::kBumperY - rig::kBumperHalfH - 0.003), buf, dim, ImVec2(0, 0));
+    const double face = mag.bumper_face(xI_shown_);
+    const double bumper_top = rig::kBumperY + rig::kBumperHalfH + 0.0025, bumper_low = rig::kBumperY - rig::kBumperHalfH - 0.003;
     // The impact label speaks of the displayed instant: the force now while in contact, then the last
     // contact's v- or peak force, fading, for at most half a forcing period of simulated time.
-    const bool touching = last_.force > 0 || last_.regime != Regime::Free;
+    const bool touching = in_contact(params_, last_.regime, last_.force);
     const double label_alpha =
         impact_label_.alpha(touching, last_.t, now_s(), kTwoPi / std::max(omega_, 0.5), speed_);
     if (label_alpha > 0.02) {
@@ -462,35 +444,65 @@ void App::draw_rig() {
         else if (impact_label_.was_impact()) std::snprintf(buf, sizeof buf, "impact  v- = %.3f m/s", impact_label_.v_minus());
         else std::snprintf(buf, sizeof buf, "contact  peak F = %.1f N", impact_label_.peak_force());
         const double heat = touching ? std::min(1.0, last_.force / 100) : 0.0;
-        plate_text(dl, at(face + 0.004, rig::kBumperY + rig::kBumperHalfH + 0.0025), buf,
-                   heat_color(static_cast<float>(0.5 + 0.5 * std::max(flash_, heat)), static_cast<float>(label_alpha)),
-                   ImVec2(0, 1));
+        const ImU32 col = heat_color(static_cast<float>(0.5 + 0.5 * std::max(flash_, heat)), static_cast<float>(label_alpha));
+        const ImVec2 q = at(face + 0.004, bumper_top);
+        put(buf, col, {{q, {0, 1}}, {ImVec2(p0.x + w - 4, q.y), {1, 1}}, {at(face - 0.004, bumper_top), {1, 1}}});
     }
-    // Legend: scale bar and the forcing.
-    const float fs = ImGui::GetFontSize();
-    const ImVec2 lg(p0.x + fs * 0.6f, p0.y + h - fs * 0.8f);
+    // The cart's x beside the ruler (whose millimetres are magnified with the displacement).
+    std::snprintf(buf, sizeof buf, "x = %+.2f mm", last_.x * 1e3);
+    const double ruler_end = 0.025 * mag.gain;
+    put(buf, text, {{at(ruler_end + 0.004, rig::kRulerY + 0.0025), {0, 0.5f}},
+                    {at(-ruler_end - 0.004, rig::kRulerY + 0.0025), {1, 0.5f}},
+                    {at(0.0, rig::kRulerY - 0.004), {0.5f, 0}}});
+    // The bumper: under it, right of its face; at a large x_I against the image's right edge, or shorter.
+    {
+        std::snprintf(buf, sizeof buf, "bumper  x_I = %+.1f mm", xI_shown_ * 1e3);
+        const ImVec2 q = at(face + 0.004, bumper_low);
+        if (!put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}})) {
+            std::snprintf(buf, sizeof buf, "x_I = %+.1f mm", xI_shown_ * 1e3);
+            put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}});
+        }
+    }
+    // Legend: scale bar (the rig's size; the displacement is magnified on top of it) and the forcing.
+    const ImVec2 lg(p0.x + edge, p0.y + h - fs * 0.8f);
     const float ten_mm = 0.010f * rig_.px_per_m() / fbs;
-    dl->AddLine(ImVec2(lg.x, lg.y), ImVec2(lg.x + ten_mm, lg.y), text, 2.0f);
-    dl->AddLine(ImVec2(lg.x, lg.y - 4), ImVec2(lg.x, lg.y + 4), text, 1.5f);
-    dl->AddLine(ImVec2(lg.x + ten_mm, lg.y - 4), ImVec2(lg.x + ten_mm, lg.y + 4), text, 1.5f);
-    dl->AddText(ImVec2(lg.x + ten_mm + 6, lg.y - fs * 0.55f), dim, "10 mm");
+    const ImVec2 tl = ImGui::CalcTextSize("10 mm");
+    if (labels.place({lg.x - 2, lg.y - fs * 0.6f, ten_mm + 8 + tl.x, fs * 1.2f})) {
+        dl->AddLine(ImVec2(lg.x, lg.y), ImVec2(lg.x + ten_mm, lg.y), text, 2.0f);
+        dl->AddLine(ImVec2(lg.x, lg.y - 4), ImVec2(lg.x, lg.y + 4), text, 1.5f);
+        dl->AddLine(ImVec2(lg.x + ten_mm, lg.y - 4), ImVec2(lg.x + ten_mm, lg.y + 4), text, 1.5f);
+        dl->AddText(ImVec2(lg.x + ten_mm + 6, lg.y - fs * 0.55f), dim, "10 mm");
+    }
     const double om = last_.omega;
     std::snprintf(buf, sizeof buf, "unbalance  m0e ω² = %.2f N", params_.m0e * om * om);
-    const ImVec2 us = ImGui::CalcTextSize(buf);
-    plate_text(dl, ImVec2(p0.x + w - us.x - fs * 0.6f, lg.y - fs * 0.55f), buf, dim);
-    // Regime badge (a compliant bumper has no regimes II/III: contact is free flight with F_I > 0).
-    const bool pressed = !params_.rigid() && last_.force > 0;
-    const char* badge = pressed ? "I  on the compliant bumper" : regime_long(last_.regime);
-    const ImU32 badge_col = last_.regime == Regime::Free && !pressed ? pal.energy : pal.bumper;
-    const ImVec2 bs = ImGui::CalcTextSize(badge);
-    const ImVec2 bp(p0.x + fs * 0.6f, p0.y + fs * 0.5f);
-    dl->AddRectFilled(ImVec2(bp.x - 4, bp.y - 2), ImVec2(bp.x + bs.x + 4, bp.y + bs.y + 2),
-                      pal.dark ? IM_COL32(0, 0, 0, 140) : IM_COL32(255, 255, 255, 190), 4.0f);
-    dl->AddText(bp, badge_col, badge);
-    if (paused_) {
-        const char* p = sim_->status().paused ? "PAUSED" : "STEPPING";
-        const ImVec2 ps = ImGui::CalcTextSize(p);
-        dl->AddText(ImVec2(p0.x + w - ps.x - fs * 0.6f, bp.y), pal.warn, p);
+    const ImVec2 ub(p0.x + w - edge, lg.y - fs * 0.55f);
+    if (!put(buf, dim, {{ub, {1, 0}}})) {
+        std::snprintf(buf, sizeof buf, "m0e ω² = %.2f N", params_.m0e * om * om);
+        put(buf, dim, {{ub, {1, 0}}});
+    }
+    // Parts.
+    std::snprintf(buf, sizeof buf, "magnets repel: %+.2f N", st.magnet_force);
+    if (!put(buf, dim, {{at(-0.014, rig::kMagnetFixedY - 0.001), {1, 0.5f}}})) {
+        std::snprintf(buf, sizeof buf, "magnets %+.2f N", st.magnet_force);
+        put(buf, dim, {{at(-0.014, rig::kMagnetFixedY - 0.001), {1, 0.5f}}});
+    }
+    std::snprintf(buf, sizeof buf, "springs  k = %.0f N/m", params_.k);
+    put(buf, dim, {{at(-mag.wall_x() + 0.012, rig::kSpringY + 0.0115), {0, 1}}});
+    // Ruler numbers, at the magnified millimetres.
+    for (int mm = -20; mm <= 20; mm += 20) {
+        std::snprintf(buf, sizeof buf, "%d", mm);
+        put(buf, dim, {{at(mm * 1e-3 * mag.gain, rig::kRulerY + 0.0058), {0.5f, 1}}}, false);
+    }
+    // The companion cart: a translucent outline where the twin or the ghost is.
+    if (companion_mode_ != CompanionMode::Off && companion_.have()) {
+        const double xc = rig_.magnify().draw_x(companion_.last().x);   // drawn as the cart is
+        const ImVec2 a = at(xc - rig::kCartHalfW, rig::kCartHalfH), b = at(xc + rig::kCartHalfW, -rig::kCartHalfH);
+        dl->AddRectFilled(a, b, companion_color(0.22f), 6.0f);
+        dl->AddRect(a, b, companion_color(0.9f), 6.0f, 0, 2.0f);
+        const std::string who = companion_mode_ == CompanionMode::Twin
+                                    ? std::string("twin")
+                                    : "ghost " + std::string(impact_models()[static_cast<std::size_t>(ghost_impact_)].id);
+        dl->AddText(ImVec2(a.x + 4, b.y - ImGui::GetFontSize() - 2), companion_color(1.0f), who.c_str());
     }
 }
 
@@ -524,9 +536,15 @@ void App::draw_phase() {
     ax.y_label = "v [m/s]";
     ax.x_scale = 1e3;
     if (!plot.begin("##phase", ImGui::GetContentRegionAvail(), phase_x_.cur, phase_v_.cur, ax)) return;
-    plot.shade_right_of(xI_, pal.bumper);
-    plot.vline(xI_, pal.bumper, 1.5f, true);
+    plot.shade_right_of(xI_shown_, pal.bumper);
+    plot.vline(xI_shown_, pal.bumper, 1.5f, true);
     plot.hline(0.0, pal.grid, 1.0f);
+    const History<SimMsg>& ct = companion_.traj();   // the companion over the same stretch of time, under the cart
+    const bool comp = companion_mode_ != CompanionMode::Off && companion_.have();
+    const std::size_t cf = comp && first < n ? ct.lower_bound(traj_[first].t, [](const SimMsg& m) { return m.t; }) : ct.size();
+    if (comp)
+        plot.path(ct.size() - cf, [&](std::size_t i) { const SimMsg& m = ct[cf + i]; return XY{m.x, m.v}; },
+                  companion_color(0.6f), 1.3f);
     plot.trail(n - first, traj_.seq_of(first), traj_.generation(),
                [&](std::size_t i) { const SimMsg& m = traj_[first + i]; return XY{m.x, m.v}; }, pal.trace, 1.6f);
     // The latest section points on the orbit, and the cart now.
@@ -535,9 +553,16 @@ void App::draw_phase() {
     const ImVec2 c = plot.to_px(last_.x, last_.v);
     plot.draw()->AddCircleFilled(c, 4.5f * ui_scale_, pal.trail_head);
     plot.draw()->AddCircle(c, 7.0f * ui_scale_, pal.trace, 0, 1.5f);
+    if (comp) plot.draw()->AddCircle(plot.to_px(companion_.last().x, companion_.last().v), 6.0f * ui_scale_, companion_color(1.0f), 0, 2.0f);
     char buf[64];
     std::snprintf(buf, sizeof buf, "trail %.0f periods", static_cast<double>(trail_periods_));
     plot.draw()->AddText(ImVec2(plot.area_min().x + 6, plot.area_min().y + 4), pal.axis_text, buf);
+    // A plain click starts the cart from (x, v) there (drag, wheel and double-click keep zooming).
+    const ImVec2 mp = ImGui::GetIO().MousePos;
+    const double mx = plot.x_at(mp.x), mv = plot.y_at(mp.y);
+    if (plot.hovered() && !plot.dragging())
+        ImGui::SetTooltip("x = %+.2f mm, v = %+.3f m/s\nclick to start from here", mx * 1e3, mv);
+    plot_click(phase_click_, plot.hovered(), plot.clicked(), mx, mv);
     plot.end();
 }
 
@@ -598,6 +623,11 @@ void App::draw_poincare() {
     // side by side) stays free of points.
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const double area_w = avail.x - fs * 4.4f, area_h = avail.y - fs * 2.8f;
+    if (ImGui::CalcTextSize(label).x + 12 > area_w) {   // a small tile or a large UI scale: the short words
+        if (seen == 0) std::snprintf(label, sizeof label, "no section yet");
+        else if (status == PoincareMap::Status::Settling) std::snprintf(label, sizeof label, "settling... %llu", seen);
+        else if (!periodic) std::snprintf(label, sizeof label, "chaos  %zu points", n);
+    }
     const bool two_lines = legend && ImGui::CalcTextSize(label).x + legend_w + 24 > area_w;
     const double edge = ring + 3.0 + 0.06 * std::min(area_w, area_h);
     const double label_band = (two_lines ? 2.1 : 1.0) * fs + 10.0;
@@ -722,8 +752,8 @@ void App::draw_potential() {
     ax.x_scale = 1e3;
     ax.y_scale = 1e3;
     if (!plot.begin("##potential", avail, xr, yr, ax)) return;
-    plot.shade_right_of(xI_, pal.bumper);
-    plot.vline(xI_, pal.bumper, 1.5f, true);
+    plot.shade_right_of(xI_shown_, pal.bumper);
+    plot.vline(xI_shown_, pal.bumper, 1.5f, true);
     plot.path(potential_x_.size(), [&](std::size_t i) { return XY{potential_x_[i], potential_v_[i]}; }, pal.trace2, 2.0f);
     // Total mechanical energy as a level: where it cuts V(x) are the turning points.
     plot.hline(last_.energy, pal.energy, 1.2f, true);
@@ -734,7 +764,17 @@ void App::draw_potential() {
     const ImVec2 c = plot.to_px(last_.x, vx);
     plot.draw()->AddCircleFilled(c, 6.0f * ui_scale_, pal.trace);
     plot.draw()->AddCircle(c, 6.0f * ui_scale_, pal.trail_head, 0, 1.5f);
-    plot.text(xI_, yr.hi, " bumper", pal.bumper, ImVec2(0, -0.2f));
+    if (companion_mode_ != CompanionMode::Off && companion_.have()) {
+        const double xc = companion_.last().x;
+        plot.draw()->AddCircle(plot.to_px(xc, spring_magnet_potential(params_, xc)), 8.0f * ui_scale_, companion_color(1.0f), 0, 2.0f);
+    }
+    plot.text(xI_shown_, yr.hi, " bumper", pal.bumper, ImVec2(0, -0.2f));
+    // A plain click puts the cart at x there, at rest.
+    const double mx = plot.x_at(ImGui::GetIO().MousePos.x);
+    if (plot.hovered() && !plot.dragging())
+        ImGui::SetTooltip("x = %+.2f mm, V = %.2f mJ\nclick to start from here at rest", mx * 1e3,
+                          spring_magnet_potential(params_, mx) * 1e3);
+    plot_click(potential_click_, plot.hovered(), plot.clicked(), mx, 0.0);
     plot.end();
 }
 
@@ -756,127 +796,36 @@ void App::draw_strip() {
     ax.x_label = "t [s]";
     ax.y_label = "x [mm]";
     ax.y_scale = 1e3;
-    if (!plot.begin("##strip", ImGui::GetContentRegionAvail(), {t_from, t_now}, strip_y_.cur, ax)) return;
-    plot.hline(xI_, pal.bumper, 1.5f, true);
+    // With a companion cart, its separation |dx| on a log scale takes the right part of the tile.
+    const bool comp = companion_mode_ != CompanionMode::Off;
+    ImVec2 size = ImGui::GetContentRegionAvail();
+    const float sep_w = comp ? std::round(size.x * 0.3f) : 0.0f;
+    size.x -= comp ? sep_w + ImGui::GetStyle().ItemSpacing.x : 0.0f;
+    if (!plot.begin("##strip", size, {t_from, t_now}, strip_y_.cur, ax)) return;
+    plot.hline(xI_shown_, pal.bumper, 1.5f, true);
     plot.hline(0.0, pal.grid, 1.0f);
+    if (comp) {
+        const History<SimMsg>& ct = companion_.traj();
+        const std::size_t c0 = ct.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
+        plot.series(ct.size() - c0, [&](std::size_t i) { const SimMsg& m = ct[c0 + i]; return XY{m.t, m.x}; },
+                    companion_color(0.75f), 1.5f);
+    }
     plot.series(n - first, [&](std::size_t i) { const SimMsg& m = traj_[first + i]; return XY{m.t, m.x}; }, pal.trace, 1.5f);
     const std::size_t s0 = sections_.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
     plot.scatter(sections_.size() - s0, [&](std::size_t i) { const SimMsg& m = sections_[s0 + i]; return XY{m.t, m.x}; },
                  pal.section, 4.0f);
     plot.end();
-}
-
-void App::update_density_texture(int w, int h) {
-    if (!diagram_ || w <= 0 || h <= 0) return;
-    if (!bif_dirty_ && w == bif_tex_w_ && h == bif_tex_h_) return;
-    bif_dirty_ = false;
-    bif_tex_w_ = w;
-    bif_tex_h_ = h;
-    std::vector<float> count(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0.0f);
-    // Each omega column of a CF sweep is splatted over its share of the width, so the diagram has no gaps.
-    std::size_t distinct = 1;
-    for (std::size_t i = 1; i < diagram_->points.size(); ++i)
-        if (diagram_->points[i].omega != diagram_->points[i - 1].omega) ++distinct;
-    const bool cf = diagram_->protocol != "ef";
-    // (A column's share: the diagram's omega extent bif_x_ over its columns, in the pixels of the view shown.)
-    const double col_px = w / std::max<double>(1, distinct) * (bif_x_.span() / bif_view_x_.span());
-    const int splat = cf ? std::clamp(static_cast<int>(col_px), 1, 12) : 1;
-    for (const auto& p : diagram_->points) {
-        const double fx = (p.omega - bif_view_x_.lo) / bif_view_x_.span(), fy = (bif_view_y_.hi - p.x) / bif_view_y_.span();
-        const int ix = static_cast<int>(fx * w), iy = static_cast<int>(fy * h);
-        if (iy < 0 || iy >= h) continue;
-        for (int k = 0; k < splat; ++k) {
-            const int x = ix + k - splat / 2;
-            if (x < 0 || x >= w) continue;
-            count[static_cast<std::size_t>(iy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] += 1.0f;
-        }
-    }
-    float mx = 0;
-    for (float c : count) mx = std::max(mx, c);
-    const float norm = 1.0f / std::log1p(std::max(mx, 1.0f));
-    std::vector<unsigned char> rgba(count.size() * 4, 0);
-    for (std::size_t i = 0; i < count.size(); ++i) {
-        if (count[i] <= 0) continue;
-        density_color(palette().dark, std::log1p(count[i]) * norm, &rgba[i * 4]);
-    }
-    bif_tex_ = upload_rgba_texture(static_cast<GLuint>(bif_tex_), w, h, rgba.data());
-}
-
-void App::draw_bifurcation() {
-    const Palette& pal = palette();
-    // Header row: protocol, steps, compute/cancel, progress.
-    const char* protos[] = {"CF up", "CF down", "EF ramp"};
-    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.2f);
-    ImGui::Combo("##proto", &bif_protocol_, protos, 3);
-    tooltip("CF: constant ω steps, 20 transient + 70 recorded periods each, every step starting where the last "
-            "ended. EF: the experiment's slow ramp of ω over 2800 s.");
-    ImGui::SameLine();
-    ImGui::BeginDisabled(bif_protocol_ == 2);
-    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.0f);
-    ImGui::SliderInt("##steps", &bif_steps_, 25, 600, "%d steps");
-    ImGui::EndDisabled();
-    ImGui::SameLine();
-    if (bif_.running()) {
-        if (ImGui::Button("Cancel")) bif_.cancel();
+    if (comp) {
         ImGui::SameLine();
-        char over[32];
-        std::snprintf(over, sizeof over, "%.0f%%", 100.0 * bif_.progress());
-        ImGui::ProgressBar(static_cast<float>(bif_.progress()), ImVec2(-1, 0), over);
-    } else {
-        char label[48];
-        std::snprintf(label, sizeof label, "Compute for %s", model_name().c_str());
-        if (ImGui::Button(label)) start_bifurcation();
-        tooltip("B: runs on a worker thread; the animation goes on.");
+        draw_separation(ImVec2(sep_w, size.y));
     }
-
-    Plot plot;
-    Axes ax;
-    ax.x_label = "ω [rad/s]";
-    ax.y_label = "x at sections [mm]";
-    ax.y_scale = 1e3;
-    if (opt_.bif_zoom_hi > opt_.bif_zoom_lo && diagram_ && !bif_zoom_applied_) {
-        // --bif-zoom: the omega range asked for, the auto-fit's x at sections.
-        bif_zoom_applied_ = true;
-        Plot::set_user_view("##bif", {opt_.bif_zoom_lo, opt_.bif_zoom_hi}, bif_y_);
-    }
-    if (!plot.begin("##bif", ImGui::GetContentRegionAvail(), bif_x_, bif_y_, ax)) return;
-    const ImVec2 a = plot.area_min(), b = plot.area_max();
-    // The density image is drawn for the view shown (zoomed and panned by the mouse, or the auto-fit).
-    if (const Range vx = plot.x_range(), vy = plot.y_range();
-        vx.lo != bif_view_x_.lo || vx.hi != bif_view_x_.hi || vy.lo != bif_view_y_.lo || vy.hi != bif_view_y_.hi) {
-        bif_view_x_ = vx;
-        bif_view_y_ = vy;
-        bif_dirty_ = true;
-    }
-    if (diagram_) {
-        update_density_texture(static_cast<int>(b.x - a.x), static_cast<int>(b.y - a.y));
-        if (bif_tex_) plot.draw()->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(bif_tex_)), a, b);
-        char info[96];
-        std::snprintf(info, sizeof info, "%s  %s%s  %zu points", diagram_->model.c_str(), diagram_->protocol.c_str(),
-                      diagram_->cancelled ? " (cancelled)" : "", diagram_->points.size());
-        plate_text(plot.draw(), ImVec2(a.x + 6, b.y - ImGui::GetTextLineHeight() - 6), info, pal.axis_text);
-    } else {
-        const char* hint = bif_.running() ? "computing on a worker thread..." : "press B (or Compute) for a diagram";
-        const ImVec2 ts = ImGui::CalcTextSize(hint);
-        plot.draw()->AddText(ImVec2(0.5f * (a.x + b.x - ts.x), 0.5f * (a.y + b.y - ts.y)), pal.axis_text, hint);
-    }
-    plot.hline(xI_, pal.bumper, 1.0f, true);
-    // The current omega, and the one under the mouse (a click sets it).
-    plot.vline(omega_, pal.cursor, 2.0f);
-    char buf[48];
-    std::snprintf(buf, sizeof buf, " %.2f", omega_);
-    plot.text(omega_, bif_y_.hi, buf, pal.title_text, ImVec2(0, -0.1f));
-    if (plot.hovered()) {
-        const double w = std::clamp(plot.x_at(ImGui::GetIO().MousePos.x), 0.0, kMaxOmega);
-        plot.vline(w, pal.trace, 1.0f, true);
-        ImGui::SetTooltip("ω = %.2f rad/s  (click to set)", w);
-        if (plot.clicked()) set_omega(w);
-    }
-    analysis_.overlay_diagram(plot);   // continued branches and bifurcation points (named on hover)
-    plot.end();
 }
 
 void App::draw_status() {
+    if (replay_.active()) {   // the bar becomes the replay's timeline (app_replay.cpp)
+        draw_replay_bar();
+        return;
+    }
     const SimStatus st = sim_->status();
     const Palette& pal = palette();
     ImGui::Text("t = %.2f s", last_.t);
@@ -889,20 +838,38 @@ void App::draw_status() {
         ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "speed %.2fx asked, %.2fx achieved (model too slow)",
                            speed_, st.achieved_speed);
     else ImGui::Text("speed %.2fx (achieved %.2fx)", speed_, st.achieved_speed);
-    ImGui::SameLine(0, 18);
-    ImGui::TextDisabled("|");
-    ImGui::SameLine(0, 18);
-    ImGui::Text("epoch %u", epoch_);
-    ImGui::SameLine(0, 18);
-    ImGui::TextDisabled("|");
-    ImGui::SameLine(0, 18);
-    ImGui::Text("samples %.2fM, dropped %llu", static_cast<double>(samples_seen_) / 1e6,
-                static_cast<unsigned long long>(st.dropped));
-    ImGui::SameLine(0, 18);
-    ImGui::TextDisabled("|");
-    ImGui::SameLine(0, 18);
-    ImGui::Text("%s", regime_long(last_.regime));
     const char* help = "F1: shortcuts";
+    const char* replay = "Replay";
+    // The fields after the speed only where they fit before the buttons on the right (a large UI scale or a
+    // narrow window drops the least useful first: the regime stays, then the samples, then the epoch).
+    const float right_w = ImGui::CalcTextSize(help).x + ImGui::CalcTextSize(replay).x + 2 * ImGui::GetStyle().FramePadding.x +
+                          48.0f * ui_scale_;
+    char epoch[32], samples[64];
+    std::snprintf(epoch, sizeof epoch, "epoch %u", epoch_);
+    std::snprintf(samples, sizeof samples, "samples %.2fM, dropped %llu", static_cast<double>(samples_seen_) / 1e6,
+                  static_cast<unsigned long long>(st.dropped));
+    const char* regime = contact_label(params_, last_.regime, last_.force);
+    const float sep = ImGui::CalcTextSize("|").x + 36.0f;
+    float room = ImGui::GetWindowWidth() - right_w - (ImGui::GetItemRectMax().x - ImGui::GetWindowPos().x);
+    const char* fields[3] = {epoch, samples, regime};
+    for (const char* field : fields) room -= sep + ImGui::CalcTextSize(field).x;
+    bool drop[3] = {};
+    for (int i = 0; i < 3 && room < 0; ++i) {
+        drop[i] = true;
+        room += sep + ImGui::CalcTextSize(fields[i]).x;
+    }
+    for (int i = 0; i < 3; ++i) {
+        if (drop[i]) continue;
+        const char* field = fields[i];
+        ImGui::SameLine(0, 18);
+        ImGui::TextDisabled("|");
+        ImGui::SameLine(0, 18);
+        ImGui::TextUnformatted(field);
+    }
+    ImGui::SameLine(ImGui::GetWindowWidth() - ImGui::CalcTextSize(help).x - ImGui::CalcTextSize(replay).x -
+                    ImGui::GetStyle().FramePadding.x * 2 - 30.0f * ui_scale_);
+    if (ImGui::SmallButton(replay)) enter_replay();
+    tooltip("Shift+R: scrub back through the last minutes (the simulation pauses)");
     ImGui::SameLine(ImGui::GetWindowWidth() - ImGui::CalcTextSize(help).x - 12.0f * ui_scale_);
     ImGui::TextDisabled("%s", help);
 }
@@ -925,10 +892,14 @@ void App::draw_help() {
             {"1 .. 4", "presets: period 1, period 2, chaos, periodic window"},
             {"B", "compute (or cancel) the bifurcation diagram"},
             {"click diagram", "set ω there"},
+            {"right-drag diagram", "compute the ω range of the box (column by column)"},
             {"C", "clear the Poincare map"},
             {"T", "dark / light theme"},
             {"Ctrl + / Ctrl -", "UI scale"},
-            {"F12, Ctrl+S", "screenshot (PNG)"},
+            {"F12", "screenshot (PNG)"},
+            {"Ctrl+S, Ctrl+O", "save, load a session (JSON)"},
+            {"Shift+R", "replay: scrub back (Space play, Left/Right a period, , . a sample,"},
+            {"", "  Enter continue from there, Esc back to live)"},
             {"Ctrl+E", "export trajectory and sections (CSV)"},
             {"F1, H", "this window"},
             {"Ctrl+Q", "quit"},

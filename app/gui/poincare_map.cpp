@@ -167,6 +167,8 @@ void SectionFeeder::on_msg(const SimMsg& m, PoincareMap& map) {
             impacts_ = onsets_ = 0;
             break;
         }
+        case MsgKind::Grazing:   // the grazing monitor's summary: not the map's
+            break;
     }
 }
 

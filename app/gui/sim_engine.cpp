@@ -16,6 +16,8 @@ public:
 
     void on_piece(const Piece& piece) override {
         SimEngine& e = e_;
+        e.ledger_.on_piece(piece);
+        e.grazing_.on_piece(piece, e.p_.xI, e.p_.has_bumper() && !e.p_.rigid());
         for (;;) {
             const double t = e.grid_t0_ + e.dt_ * static_cast<double>(e.grid_k_);
             if (t > piece.t1) break;
@@ -27,6 +29,20 @@ public:
     }
     void on_section(const SectionPoint& sp) override {
         publish(MsgKind::Section, sp.t, sp.x, sp.v, sp.regime);
+        if (GrazingMonitor::Period g; e_.grazing_.on_section(sp.t, e_.p_.xI, g)) {
+            SimMsg m;
+            m.kind = MsgKind::Grazing;
+            m.t = sp.t;
+            m.x = g.x_max;
+            m.v = g.v_impact;
+            m.phi = e_.d_.phi(sp.t);
+            m.omega = e_.d_.omega(sp.t);
+            m.force = g.penetration;
+            m.energy = g.impacts;
+            m.epoch = e_.epoch_;
+            m.regime = sp.regime;
+            e_.put(m);
+        }
     }
     void on_impact(const ImpactEvent& ev) override {
         SimMsg m;
@@ -40,7 +56,8 @@ public:
         m.energy = ev.duration;
         m.epoch = e_.epoch_;
         m.regime = Regime::Sticking;
-        if (e_.sink_) e_.sink_->put(m);
+        e_.grazing_.on_impact(ev);
+        e_.put(m);
     }
     bool stop() const override {
         // Reading the clock costs ~20 ns; a piece costs a few microseconds: check every 8th.
@@ -68,7 +85,7 @@ private:
         m.epoch = e.epoch_;
         m.regime = regime;
         ++e.published_;
-        if (e.sink_) e.sink_->put(m);
+        e.put(m);
     }
 
     SimEngine& e_;
@@ -79,12 +96,14 @@ private:
 SimEngine::SimEngine(const EngineConfig& cfg, MsgSink* sink)
     : p_(make_version(cfg.model)), d_(std::clamp(cfg.omega, 0.0, kMaxOmega)), sink_(sink) {
     p_.xI = std::clamp(cfg.xI, -kMaxAbsXI, kMaxAbsXI);
+    xI_target_ = p_.xI;
     paused_ = cfg.paused;
     speed_ = std::clamp(cfg.speed, kMinSpeed, kMaxSpeed);
     dt_ = sample_dt_for(speed_);
     s_.x = cfg.x0;
     s_.v = cfg.v0;
     Simulator::make_consistent(p_, d_, s_);
+    ledger_.reset(s_);
     restart_grid();
 }
 
@@ -111,9 +130,14 @@ void SimEngine::emit_now() {
     m.epoch = epoch_;
     m.regime = s_.regime;
     ++published_;
-    if (sink_) sink_->put(m);
+    put(m);
     grid_t0_ = s_.t;
     grid_k_ = 1;
+}
+
+void SimEngine::put(SimMsg& m) {
+    m.source = source_;
+    if (sink_) sink_->put(m);
 }
 
 bool SimEngine::apply(const SimCommand& c) {
@@ -127,13 +151,30 @@ bool SimEngine::apply(const SimCommand& c) {
                 const double t_sec = d_.time_of_phase(kTwoPi * static_cast<double>(s_.next_section));
                 step_target_ = std::isfinite(t_sec) ? t_sec : s_.t + 1.0;
             }
-            bump();
+            ++epoch_;   // not bump(): the energy balance goes on through a change of omega
+            emit_now();
+            return true;
+        }
+        case CmdKind::Ramp: {
+            const double w0 = d_.omega(s_.t);
+            const double w1 = std::clamp(std::isfinite(c.a) ? c.a : w0, 0.0, kMaxOmega);
+            const double rate = std::clamp(std::isfinite(c.b) ? std::abs(c.b) : kMaxRampRate, kMinRampRate, kMaxRampRate);
+            if (std::abs(w1 - w0) < 1e-9) return true;   // nothing to ramp (and the knots must differ in t)
+            // Knots at now and at the end of the ramp: constant after it, phi continuous through both.
+            d_ = Drive::piecewise_linear({s_.t, s_.t + std::abs(w1 - w0) / rate}, {w0, w1}, d_.phi(s_.t));
+            Simulator::sync_sections(d_, s_);
+            if (stepping_) {
+                const double t_sec = d_.time_of_phase(kTwoPi * static_cast<double>(s_.next_section));
+                step_target_ = std::isfinite(t_sec) ? t_sec : s_.t + 1.0;
+            }
+            ++epoch_;   // not bump(): the energy balance goes on through the ramp
             emit_now();
             return true;
         }
         case CmdKind::SetXI: {
-            const double xI = std::clamp(std::isfinite(c.a) ? c.a : 0.0, -kMaxAbsXI, kMaxAbsXI);
-            Simulator::move_bumper(p_, d_, s_, xI);
+            xI_target_ = std::clamp(std::isfinite(c.a) ? c.a : 0.0, -kMaxAbsXI, kMaxAbsXI);
+            // Running, the bumper travels there over the next steps (advance_to); paused, at once.
+            if (paused_ && !stepping_) Simulator::move_bumper(p_, d_, s_, xI_target_);
             bump();
             emit_now();
             return true;
@@ -168,6 +209,8 @@ bool SimEngine::apply(const SimCommand& c) {
         }
         case CmdKind::Reset: {
             const double w = d_.omega(s_.t);
+            held_ = false;
+            if (p_.xI != xI_target_) Simulator::move_bumper(p_, d_, s_, xI_target_);   // no push from a ramp
             s_ = State{};
             s_.x = std::isfinite(c.a) ? std::clamp(c.a, -0.05, 0.05) : 0.0;
             s_.v = std::isfinite(c.b) ? std::clamp(c.b, -2.0, 2.0) : 0.0;
@@ -178,6 +221,39 @@ bool SimEngine::apply(const SimCommand& c) {
             emit_now();
             return true;
         }
+        case CmdKind::Restart: {
+            // A replayed instant or a saved session: the clock and the phase go back (or forward) to it, the
+            // rate stays. A sticking impact in progress there restarts as contact or free flight.
+            if (!std::isfinite(c.t0) || !std::isfinite(c.phi0) || c.t0 < 0) return false;
+            const double w = d_.omega(s_.t);
+            held_ = false;
+            if (p_.xI != xI_target_) Simulator::move_bumper(p_, d_, s_, xI_target_);
+            s_ = State{};
+            s_.t = c.t0;
+            s_.x = std::isfinite(c.a) ? std::clamp(c.a, -kMaxAbsStateX, kMaxAbsStateX) : 0.0;
+            s_.v = std::isfinite(c.b) ? std::clamp(c.b, -kMaxAbsStateV, kMaxAbsStateV) : 0.0;
+            d_ = Drive(w, c.t0, c.phi0);
+            Simulator::sync_sections(d_, s_);
+            Simulator::make_consistent(p_, d_, s_);
+            stepping_ = false;
+            bump();
+            emit_now();
+            return true;
+        }
+        case CmdKind::SetState:
+            held_ = false;
+            set_state(c.a, std::isfinite(c.b) ? c.b : 0.0);
+            bump();
+            emit_now();
+            return true;
+        case CmdKind::Hold:
+            set_state(c.a, 0.0);
+            held_ = true;
+            bump();
+            emit_now();
+            return true;
+        case CmdKind::SetCompanion:   // the sim thread's business (SimThread::apply): not the engine's
+            return false;
         case CmdKind::SetSpeed:
             speed_ = std::clamp(std::isfinite(c.a) ? c.a : 1.0, kMinSpeed, kMaxSpeed);
             if (const double dt = sample_dt_for(speed_); dt != dt_) {
@@ -190,18 +266,111 @@ bool SimEngine::apply(const SimCommand& c) {
     return false;
 }
 
+void SimEngine::set_state(double x, double v) {
+    // The bumper's ramp ends where it was going: the state is set against the bumper the user sees.
+    if (p_.xI != xI_target_) Simulator::move_bumper(p_, d_, s_, xI_target_);
+    s_.x = std::isfinite(x) ? std::clamp(x, -kMaxAbsStateX, kMaxAbsStateX) : s_.x;
+    s_.v = std::clamp(v, -kMaxAbsStateV, kMaxAbsStateV);
+    if (p_.has_bumper() && s_.x > p_.xI) s_.x = p_.xI;   // never inside the bumper (the UI says so)
+    s_.regime = Regime::Free;   // a sticking in progress belonged to the old state
+    Simulator::make_consistent(p_, d_, s_);
+}
+
+bool SimEngine::restart_from(const SimEngine& src, const std::string& model, double dx) {
+    Params np;
+    try {
+        np = make_version(model);
+    } catch (const ParamError&) {
+        return false;
+    }
+    np.xI = src.p_.xI;
+    p_ = std::move(np);
+    xI_target_ = src.xI_target_;
+    d_ = src.d_;
+    s_ = State{};
+    s_.t = src.s_.t;
+    s_.x = src.s_.x;
+    s_.v = src.s_.v;
+    // The same impact law carries a regime II or III over; another law starts free (make_consistent puts
+    // a cart resting on a rigid bumper back on it).
+    if (p_.impact == src.p_.impact) {
+        s_.regime = src.s_.regime;
+        s_.t_release = src.s_.t_release;
+        s_.v_release = src.s_.v_release;
+        s_.v_impact = src.s_.v_impact;
+    }
+    if (dx != 0.0) {
+        s_.regime = Regime::Free;
+        s_.x = std::min(s_.x + dx, p_.has_bumper() ? p_.xI : s_.x + dx);
+    }
+    Simulator::make_consistent(p_, d_, s_);
+    held_ = src.held_;
+    paused_ = src.paused_;
+    stepping_ = src.stepping_;
+    step_target_ = src.step_target_;
+    speed_ = src.speed_;
+    dt_ = src.dt_;
+    // A restart opens a new run: the epoch's high 16 bits count runs (CompanionTrack clears on a new one),
+    // the low bits the changes within a run, as for the cart.
+    epoch_ |= 0xFFFFu;   // bump() below carries into the high bits
+    bump();
+    emit_now();
+    grid_t0_ = src.grid_t0_;   // the same sample instants as src from here: the UI compares them one to one
+    grid_k_ = src.grid_k_;
+    return true;
+}
+
+double SimEngine::move_bumper_toward_target(double t_end) {
+    // One push of at most kBumperPush, then the time the bumper takes for it at its speed.
+    const double rate = kBumperWallSpeed / speed_;   // [m per sim second]
+    const double dx = std::clamp(xI_target_ - p_.xI, -kBumperPush, kBumperPush);
+    const double x_before = s_.x;
+    Simulator::move_bumper(p_, d_, s_, std::abs(xI_target_ - p_.xI) <= kBumperPush ? xI_target_ : p_.xI + dx);
+    if (s_.x != x_before) ledger_.reset(s_);   // the push is work the balance does not book
+    if (p_.xI == xI_target_) bump();             // there: the map settles afresh on the new bumper
+    return std::min(t_end, s_.t + std::abs(dx) / rate);
+}
+
+void SimEngine::advance_held(double t_end) {
+    // Nothing moves but the unbalance: samples on the grid at the held x, v = 0; no sections (the map
+    // starts afresh when the cart is let go).
+    for (;;) {
+        const double t = grid_t0_ + dt_ * static_cast<double>(grid_k_);
+        if (t > t_end) break;
+        ++grid_k_;
+        if (t < s_.t) continue;
+        SimMsg m;
+        m.kind = MsgKind::Sample;
+        m.t = t;
+        m.x = s_.x;
+        m.phi = d_.phi(t);
+        m.omega = d_.omega(t);
+        m.energy = mechanical_energy(p_, s_.x, 0.0);
+        m.epoch = epoch_;
+        ++published_;
+        put(m);
+    }
+    s_.t = t_end;
+    s_.v = 0;
+    Simulator::sync_sections(d_, s_);
+}
+
 double SimEngine::advance_to(double t_end, std::chrono::steady_clock::time_point deadline) {
     if (stepping_) t_end = std::min(t_end, step_target_);
-    if (t_end > s_.t) {
-        Tap tap(*this, deadline);
+    if (held_ && t_end > s_.t) advance_held(t_end);
+    Tap tap(*this, deadline);
+    while (t_end > s_.t) {
+        const double t_stop = p_.xI != xI_target_ ? move_bumper_toward_target(t_end) : t_end;
         try {
-            sim_.advance(p_, d_, s_, t_end, &tap);
+            sim_.advance(p_, d_, s_, t_stop, &tap);
         } catch (const SimulationStalled& e) {
             // Never with the built-in versions; a stall pauses the run (the state stays inspectable).
             std::fprintf(stderr, "impactlab-gui: %s; paused\n", e.what());
             paused_ = true;
             stepping_ = false;
+            break;
         }
+        if (s_.t < t_stop) break;   // the deadline: the sim thread comes back for the rest
     }
     if (stepping_ && s_.t >= step_target_) stepping_ = false;   // stays paused
     return s_.t;

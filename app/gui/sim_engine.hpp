@@ -8,7 +8,9 @@
 #include <string>
 
 #include "impactlab/drive.hpp"
+#include "impactlab/energy.hpp"
 #include "impactlab/params.hpp"
+#include "grazing_monitor.hpp"
 #include "impactlab/simulator.hpp"
 #include "sim_messages.hpp"
 
@@ -34,6 +36,15 @@ struct EngineConfig {
 inline constexpr double kMinSpeed = 0.01, kMaxSpeed = 100.0;
 inline constexpr double kMaxOmega = 30.0;      // [rad/s], the slider's range
 inline constexpr double kMaxAbsXI = 0.020;     // [m]
+inline constexpr double kMinRampRate = 1e-3, kMaxRampRate = 2.0;   // [rad/s per s] of the live omega ramp
+// The bumper moves to a new xI at this speed in wall-clock time (sim time: divided by the real-time factor),
+// pushing the cart ahead of it in steps of at most kBumperPush: x(t) stays continuous instead of stepping
+// by the slider's jump each frame (defect 8 of issue 11). Paused, it moves at once.
+inline constexpr double kBumperWallSpeed = 0.1;   // [m/s]
+inline constexpr double kBumperPush = 1e-4;       // [m]
+// How far the mouse may put the cart: the rail's travel, as a reset allows [m].
+inline constexpr double kMaxAbsStateX = 0.05;
+inline constexpr double kMaxAbsStateV = 2.0;     // [m/s]
 
 class SimEngine {
 public:
@@ -54,9 +65,18 @@ public:
     // Publishes the current state as a sample now (the sample grid restarts after it).
     void publish_state() { emit_now(); }
 
+    // The companion (issues 9, 11): this engine restarts from `src`'s state now (its t, phi, omega, xI and
+    // pace), x moved by dx, under its own model `model` (the twin: src's; the ghost: another). Bumps the
+    // epoch and publishes. False for an unknown model (nothing changes then).
+    bool restart_from(const SimEngine& src, const std::string& model, double dx);
+    // Records this engine publishes carry this source tag (SimMsg::source).
+    void set_source(std::uint8_t tag) { source_ = tag; }
+
     const Params& params() const { return p_; }
     const Drive& drive() const { return d_; }
     const State& state() const { return s_; }
+    double bumper_target() const { return xI_target_; }   // where the bumper is moving to (params().xI: now)
+    bool held() const { return held_; }                    // the mouse holds the cart
     double phi() const { return d_.phi(s_.t); }
     std::uint32_t epoch() const { return epoch_; }
     bool paused() const { return paused_; }
@@ -67,17 +87,30 @@ public:
     // The sample step for a given real-time factor: about four samples per 60 Hz frame, 20 us .. 1 ms.
     static double sample_dt_for(double speed);
     std::uint64_t samples_published() const { return published_; }
+    // The energy balance since the last change of model, xI or state (an omega change keeps it: the
+    // unbalance's work is integrated at the new rate).
+    const EnergyBalance& energy() const { return ledger_.balance(); }
 
 private:
     class Tap;   // the Observer that turns the simulator's pieces and events into records
     void emit_now();
     void restart_grid();
-    void bump() { ++epoch_; }
+    void put(SimMsg& m);   // tags and hands a record to the sink
+    double move_bumper_toward_target(double t_end);   // one push; returns the sim time it lasts to
+    void advance_held(double t_end);                   // time passes with the cart in the hand
+    // Sets x, v from now with t and phi going on (clamped to the rail and to the bumper's near side).
+    void set_state(double x, double v);
+    void bump() {
+        ++epoch_;
+        ledger_.reset(s_);
+        grazing_.reset();
+    }
 
     Params p_;
     Drive d_;
     State s_;
     Simulator sim_;
+    EnergyLedger ledger_{p_, d_};   // holds p_ and d_ by reference: declared after them
     MsgSink* sink_;
     std::uint32_t epoch_ = 0;
     bool paused_ = false;
@@ -88,6 +121,10 @@ private:
     double grid_t0_ = 0;       // samples at grid_t0_ + k dt_
     std::int64_t grid_k_ = 0;
     std::uint64_t published_ = 0;
+    double xI_target_ = 0;     // [m]
+    bool held_ = false;        // Hold: the cart sits at s_.x, v = 0, nothing is integrated
+    std::uint8_t source_ = 0;
+    GrazingMonitor grazing_;
 };
 
 }  // namespace impactlab::gui

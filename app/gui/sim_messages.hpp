@@ -14,6 +14,10 @@ enum class MsgKind : std::uint8_t {
     Sample,    // the trajectory at a fixed sim-time step
     Section,   // a Poincare section point (phi = 2 pi n), located by the core
     Impact,    // a rigid impact began (G, H): force = v-, energy = impact duration
+    Grazing,   // the grazing monitor, once per forcing period at its section (GrazingMonitor::Period):
+               // x = the largest x over the period [m], v = the last impact's v- (rigid) or entry velocity
+               // (compliant) in it [m/s], NaN if none; force = the deepest penetration (compliant) [m];
+               // energy = the impacts (contacts) in the period
 };
 
 // One record of the sample ring: 64 bytes, one cache line.
@@ -28,6 +32,7 @@ struct SimMsg {
     std::uint32_t epoch = 0;   // bumped by every change of model, omega, xI or a reset
     MsgKind kind = MsgKind::Sample;
     Regime regime = Regime::Free;
+    std::uint8_t source = 0;   // 0: the cart; 1: its companion (the twin or the ghost, CompanionMode)
 };
 static_assert(sizeof(SimMsg) == 64, "one sample, one cache line");
 
@@ -39,12 +44,31 @@ enum class CmdKind : std::uint8_t {
     StepPeriod,   // run to the next Poincare section (one forcing period), then pause
     Reset,        // t = 0, phi = 0, x = a, v = b
     SetSpeed,     // a = real-time factor, 0.01 .. 100
+    SetState,     // x = a [m], v = b [m/s] from now (the mouse); t and phi go on. Clamped to the rail, never
+                  // beyond the bumper
+    Hold,         // the cart is held at x = a (the mouse drags it): time and phi go on, nothing is integrated
+                  // until the next SetState or Reset lets it go
+    SetCompanion, // a = CompanionMode (0 off, 1 twin, 2 ghost), b = the twin's offset [m], model = the ghost's
+                  // version; the companion starts from the cart's state now
+    Ramp,         // omega moves linearly from its value now to a [rad/s] at b [rad/s per s of sim time], phi
+                  // continuous (the paper's EF protocol, live); any other omega command or Reset ends it
+    Restart,      // continue from a replayed instant or a saved session: x = a [m], v = b [m/s], t = t0 [s],
+                  // phi = phi0 [rad] (unwrapped), at the omega running now; what came after t0 is dropped
 };
+
+// The second cart that runs beside the first in lockstep (issues 9, 11).
+enum class CompanionMode : std::uint8_t {
+    Off = 0,
+    Twin = 1,    // the same model from x + 1 um: sensitivity to initial conditions
+    Ghost = 2,   // the same state under another model (another impact law)
+};
+inline constexpr double kTwinOffset = 1e-6;   // [m]
 
 struct SimCommand {
     CmdKind kind = CmdKind::SetPaused;
     double a = 0, b = 0;
     char model[24] = {};
+    double t0 = 0, phi0 = 0;   // Restart only
 
     static SimCommand omega(double w) { return {CmdKind::SetOmega, w, 0, {}}; }
     static SimCommand xi(double x) { return {CmdKind::SetXI, x, 0, {}}; }
@@ -52,6 +76,22 @@ struct SimCommand {
     static SimCommand step_period() { return {CmdKind::StepPeriod, 0, 0, {}}; }
     static SimCommand reset(double x0, double v0) { return {CmdKind::Reset, x0, v0, {}}; }
     static SimCommand speed(double s) { return {CmdKind::SetSpeed, s, 0, {}}; }
+    static SimCommand ramp(double omega_to, double rate) { return {CmdKind::Ramp, omega_to, rate, {}}; }
+    static SimCommand restart(double x, double v, double t, double phi) {
+        SimCommand r{CmdKind::Restart, x, v, {}};
+        r.t0 = t;
+        r.phi0 = phi;
+        return r;
+    }
+    static SimCommand set_state(double x, double v) { return {CmdKind::SetState, x, v, {}}; }
+    static SimCommand hold(double x) { return {CmdKind::Hold, x, 0, {}}; }
+    static SimCommand companion(CompanionMode mode, std::string_view ghost_model = {}, double offset = kTwinOffset) {
+        SimCommand c = set_model(ghost_model);
+        c.kind = CmdKind::SetCompanion;
+        c.a = static_cast<double>(mode);
+        c.b = offset;
+        return c;
+    }
     static SimCommand set_model(std::string_view name) {
         SimCommand c{CmdKind::SetModel, 0, 0, {}};
         const std::size_t n = name.size() < sizeof(c.model) - 1 ? name.size() : sizeof(c.model) - 1;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace impactlab::gui {
 
@@ -9,6 +10,8 @@ using Clock = std::chrono::steady_clock;
 
 SimThread::SimThread(const EngineConfig& cfg) : engine_(cfg, &sink_) {
     paused_.store(engine_.paused(), std::memory_order_relaxed);
+    bumper_.store(engine_.params().xI, std::memory_order_relaxed);
+    energy_ = engine_.energy();
 }
 
 SimThread::~SimThread() { stop(); }
@@ -26,14 +29,61 @@ void SimThread::stop() {
 
 bool SimThread::send(const SimCommand& c) { return commands_.try_push(c); }
 
+void SimThread::apply(const SimCommand& c) {
+    if (c.kind == CmdKind::SetCompanion) {
+        const auto mode = static_cast<CompanionMode>(std::clamp(static_cast<int>(c.a), 0, 2));
+        if (mode == CompanionMode::Ghost) {
+            const std::string name(c.model, std::find(c.model, c.model + sizeof(c.model), '\0'));
+            try {
+                ghost_impact_ = make_version(name).impact->id;
+            } catch (const ParamError&) {
+                return;   // the UI validated the name: nothing changes
+            }
+        }
+        companion_mode_ = mode;
+        twin_offset_ = std::isfinite(c.b) ? std::clamp(c.b, -1e-3, 1e-3) : kTwinOffset;
+        if (mode == CompanionMode::Off) companion_.reset();
+        else restart_companion();
+        return;
+    }
+    const bool ok = engine_.apply(c);
+    if (!companion_ || !ok) return;
+    switch (c.kind) {
+        case CmdKind::SetModel:
+        case CmdKind::Reset:
+        case CmdKind::SetState:
+        case CmdKind::Hold:
+            restart_companion();   // from the cart's new state: where the two part is what is shown
+            break;
+        default:
+            companion_->apply(c);   // omega, xI, pause, step, speed: the same for both
+            break;
+    }
+}
+
+void SimThread::restart_companion() {
+    const bool twin = companion_mode_ == CompanionMode::Twin;
+    const std::string model = twin ? engine_.params().name : engine_.params().stiffness_id + ghost_impact_;
+    if (!companion_) {
+        EngineConfig cfg;
+        cfg.model = model;
+        companion_ = std::make_unique<SimEngine>(cfg, &sink_);
+        companion_->set_source(1);
+    }
+    if (!companion_->restart_from(engine_, model, twin ? twin_offset_ : 0.0)) companion_.reset();
+}
+
 SimStatus SimThread::status() const {
     SimStatus s;
     s.sim_time = sim_time_.load(std::memory_order_relaxed);
     s.achieved_speed = achieved_.load(std::memory_order_relaxed);
     s.paused = paused_.load(std::memory_order_relaxed);
     s.lagging = lagging_.load(std::memory_order_relaxed);
+    s.xI = bumper_.load(std::memory_order_relaxed);
     s.dropped = samples_.dropped();
     s.commands_dropped = commands_.dropped();
+    const std::lock_guard<std::mutex> lock(energy_mutex_);
+    s.energy = energy_;
     return s;
 }
 
@@ -52,10 +102,11 @@ void SimThread::run() {
     while (!quit_.load(std::memory_order_relaxed)) {
         bool changed = false;
         commands_.drain([&](const SimCommand& c) {
-            engine_.apply(c);
+            apply(c);
             changed = true;
         });
         if (changed) sink_.publish();   // a command may publish the new state (reset, model switch)
+        bumper_.store(engine_.params().xI, std::memory_order_relaxed);
         const auto now = Clock::now();
         if (changed || engine_.speed() != speed) {
             speed = engine_.speed();
@@ -82,8 +133,13 @@ void SimThread::run() {
             target = anchor_sim + speed * std::chrono::duration<double>(now - anchor_wall).count();
         }
         const double reached = engine_.advance_to(target, deadline);
+        // Lockstep: the companion covers the same span (no deadline: it costs about what the cart did).
+        if (companion_) companion_->advance_to(reached);
         sink_.publish();   // the whole slice at once
         sim_time_.store(reached, std::memory_order_relaxed);
+        bumper_.store(engine_.params().xI, std::memory_order_relaxed);
+        if (std::unique_lock<std::mutex> lock(energy_mutex_, std::try_to_lock); lock.owns_lock())
+            energy_ = engine_.energy();   // a busy UI skips one update, never stalls the simulation
 
         const auto after = Clock::now();
         if (!engine_.stepping() && !engine_.paused()) {

@@ -5,12 +5,16 @@
 //   UI thread --SimCommand--> [SpscRing commands_] --> sim thread   (UI produces, sim consumes)
 //   sim thread --SimMsg-----> [SpscRing samples_]  --> UI thread    (sim produces, UI consumes)
 //
-// Besides the rings, a few relaxed atomics report status (sim time, achieved speed) for the status bar.
+// Besides the rings, a few relaxed atomics report status (sim time, achieved speed) for the status bar, and
+// the energy balance travels under a mutex the sim thread only try-locks (it never waits for the UI).
 // GL-free.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
+#include <string>
+#include <mutex>
 #include <thread>
 
 #include "sim_engine.hpp"
@@ -23,8 +27,10 @@ struct SimStatus {
     double achieved_speed = 0;    // measured real-time factor over the last ~0.5 s
     bool paused = false;
     bool lagging = false;         // the model cannot keep up with the requested speed
+    double xI = 0;                // [m] the bumper where the simulation has it now (it travels to the one asked)
     std::uint64_t dropped = 0;    // samples refused by a full ring
     std::uint64_t commands_dropped = 0;
+    EnergyBalance energy;         // since the last change of model, xI or state (the energy bar)
 };
 
 class SimThread {
@@ -68,17 +74,30 @@ private:
     };
 
     void run();   // sim thread
+    // Sim thread: a command for the cart, mirrored to the companion (SetCompanion configures it).
+    void apply(const SimCommand& c);
+    // Sim thread: the companion starts again from the cart's state (the twin kTwinOffset to the right).
+    void restart_companion();
 
     SpscRing<SimMsg> samples_{kSampleCapacity};
     SpscRing<SimCommand> commands_{kCommandCapacity};
     RingSink sink_{samples_};
     SimEngine engine_;   // touched by the UI thread only before start()
+    // The companion cart (issues 9, 11): a second engine advanced to the same sim time as engine_ after
+    // every slice, fed the same commands; its records carry SimMsg::source = 1. Sim thread only.
+    std::unique_ptr<SimEngine> companion_;
+    CompanionMode companion_mode_ = CompanionMode::Off;
+    std::string ghost_impact_;   // the ghost's impact law id ("G"); its stiffness follows the cart's
+    double twin_offset_ = kTwinOffset;
     std::thread thread_;
     std::atomic<bool> quit_{false};
     std::atomic<double> sim_time_{0.0};
     std::atomic<double> achieved_{0.0};
     std::atomic<bool> paused_{false};
     std::atomic<bool> lagging_{false};
+    std::atomic<double> bumper_{0.0};
+    mutable std::mutex energy_mutex_;   // guards energy_: the UI locks it, the sim thread only try-locks
+    EnergyBalance energy_;
 };
 
 }  // namespace impactlab::gui

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "app.hpp"
+#include "contact_label.hpp"
 
 namespace impactlab::gui {
 
@@ -31,6 +32,44 @@ bool App::write_state_json(const std::string& path) {
     j["epoch"] = epoch_;
     j["energy"] = number(last_.energy);                 // [J] now
     j["energy_max_trail"] = number(trail_e_max_);       // [J] over the phase portrait's trail
+    {
+        const EnergyBalance eb = sim_->status().energy;   // the energy bar's numbers [J]
+        j["energy_balance"] = {{"t0", number(eb.t0)}, {"t", number(eb.t)}, {"E0", number(eb.E0)}, {"E", number(eb.E)},
+                               {"work_unbalance", number(eb.work_unbalance)},
+                               {"dissipated_resistance", number(eb.dissipated_resistance)},
+                               {"dissipated_bumper", number(eb.dissipated_bumper)}, {"residual", number(eb.residual())}};
+    }
+    {
+        // The companion cart (issues 9, 11): mode, its state, its separation |dx| from the cart [m].
+        json c;
+        c["mode"] = companion_mode_ == CompanionMode::Twin ? "twin" : companion_mode_ == CompanionMode::Ghost ? "ghost" : "off";
+        if (companion_mode_ != CompanionMode::Off) {
+            if (companion_mode_ == CompanionMode::Ghost)
+                c["model"] = std::string(stiffness_sets()[static_cast<std::size_t>(stiffness_)].id) +
+                             impact_models()[static_cast<std::size_t>(ghost_impact_)].id;
+            c["x"] = companion_.have() ? number(companion_.last().x) : json(nullptr);
+            c["v"] = companion_.have() ? number(companion_.last().v) : json(nullptr);
+            c["t"] = companion_.have() ? number(companion_.last().t) : json(nullptr);
+            c["separation"] = number(companion_.separation_now());
+            c["separation_start"] = number(companion_.separation_start());
+            c["separation_max"] = number(companion_.separation_max());
+        }
+        j["companion"] = std::move(c);
+        // The grazing monitor over the last whole forcing period (null before one).
+        json g = nullptr;
+        if (have_grazing_) {
+            g = json::object();
+            g["x_max"] = number(grazing_.x);
+            g["distance"] = number(xI_shown_ - grazing_.x);   // [m] xI - max x
+            g["impacts"] = static_cast<int>(grazing_.energy);
+            g["impact_velocity"] = number(grazing_.v);         // [m/s] v- (rigid) or entry (compliant); null: none
+            g["penetration"] = number(grazing_.force);          // [m] compliant
+        }
+        j["grazing"] = std::move(g);
+        j["regime_label"] = contact_label(params_, last_.regime, last_.force);   // the rig's and the status bar's
+        j["x"] = number(last_.x);
+        j["v"] = number(last_.v);
+    }
     j["potential_view"] = {potential_y_.cur.lo, potential_y_.cur.hi};   // [J] the potential plot's y range
     const PoincareMap::Status st = pc_map_.status();
     j["poincare_status"] = st == PoincareMap::Status::Periodic ? "periodic"
@@ -45,7 +84,23 @@ bool App::write_state_json(const std::string& path) {
         imp.push_back(h[i].impacts);
     }
     j["poincare_points"] = std::move(pts);
+    {   // The bifurcation panel: the diagram shown (its omega range, columns done, stale after a switch) and
+        // the Lyapunov strip under it.
+        const BifurcationState b = bif_panel_.state(bifurcation_context());
+        json d = b.have ? json{{"model", b.model}, {"protocol", b.protocol}, {"omega_lo", number(b.omega_lo)},
+                               {"omega_hi", number(b.omega_hi)}, {"steps", b.steps}, {"levels_done", b.levels_done},
+                               {"points", b.points}, {"running", b.running}, {"cancelled", b.cancelled},
+                               {"stale", b.stale}, {"progress", number(b.progress)}}
+                        : json{{"model", nullptr}, {"running", b.running}};
+        d["view_omega"] = {number(b.view_omega.lo), number(b.view_omega.hi)};
+        d["range_error"] = b.range_error;
+        d["lyapunov"] = {{"on", b.lyap_on}, {"running", b.lyap_running}, {"steps", b.lyap_steps},
+                         {"done", b.lyap_done}, {"positive", b.lyap_positive}};
+        j["diagram"] = std::move(d);
+    }
     j["poincare_impacts"] = std::move(imp);   // impacts in the forcing period ending at each point
+
+    j["layout"] = layout_json();   // tiles.cpp: mode, scale, panels, tiles, magnification
 
     // Written whole: a temporary beside the target, then renamed over it.
     const std::string tmp = path + ".tmp";

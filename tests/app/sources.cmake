@@ -16,6 +16,12 @@ set(IMPACTLAB_APP_TEST_SOURCES
   app/view_fit_test.cpp
   app/analysis_gui_test.cpp
   app/lyapunov_live_test.cpp
+  app/companion_test.cpp
+  app/replay_test.cpp
+  app/session_test.cpp
+  app/energy_bar_test.cpp
+  app/omega_ramp_test.cpp
+  app/layout_test.cpp
   ../app/gui/sim_engine.cpp
   ../app/gui/sim_thread.cpp
   ../app/gui/history.cpp
@@ -25,7 +31,16 @@ set(IMPACTLAB_APP_TEST_SOURCES
   ../app/gui/plot_raster.cpp
   ../app/gui/poincare_map.cpp
   ../app/gui/view_fit.cpp
+  ../app/gui/layout.cpp
   ../app/gui/plane_data.cpp
   ../app/gui/analysis_jobs.cpp
   ../app/gui/lyapunov_live.cpp
+  ../app/gui/grazing_monitor.cpp
+  ../app/gui/companion_track.cpp
+  ../app/gui/state_pick.cpp
+  ../app/gui/replay.cpp
+  ../app/gui/clip_writer.cpp
+  ../app/gui/session.cpp
+  ../app/gui/energy_bar.cpp
+  ../app/gui/omega_ramp.cpp
 )
