@@ -39,6 +39,7 @@ public:
     bool has_data() const { return static_cast<bool>(data_); }
     bool has_report() const { return static_cast<bool>(report_); }
     const std::string& error() const { return error_; }   // the last failure of a load or fit ("" if none)
+    std::string loaded_path() const { return data_ ? data_->source : std::string(); }   // "" when none (sessions)
 
 private:
     void start_fit(const DataPanelContext& ctx);

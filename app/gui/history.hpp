@@ -39,6 +39,27 @@ public:
         start_ = (start_ + count) & mask_;
         size_ -= count;
     }
+    // Forgets the `count` newest elements (all if count >= size()): a run continued from a replayed instant
+    // drops its old future. A new generation, so that what draws incrementally starts over.
+    void drop_newest(std::size_t count) {
+        if (count > size_) count = size_;
+        size_ -= count;
+        pushed_ -= count;
+        ++generation_;
+    }
+    // Replay: the history reads as it was when element end - 1 was the newest (size() == end, the same
+    // indices and sequence numbers) until reveal(). Nothing may be pushed or cleared in between.
+    void rewind_to(std::size_t end) {
+        reveal();
+        hidden_ = end < size_ ? size_ - end : 0;
+        size_ -= hidden_;
+        pushed_ -= hidden_;
+    }
+    void reveal() {
+        size_ += hidden_;
+        pushed_ += hidden_;
+        hidden_ = 0;
+    }
     std::size_t size() const { return size_; }
     std::size_t capacity() const { return buf_.size(); }
     bool empty() const { return size_ == 0; }
@@ -68,6 +89,7 @@ private:
     std::vector<T> buf_;
     std::size_t mask_;
     std::size_t start_ = 0, size_ = 0;
+    std::size_t hidden_ = 0;   // rewind_to(): newest elements not shown until reveal()
     std::uint64_t pushed_ = 0, generation_ = 0;
 };
 

@@ -21,8 +21,10 @@ std::size_t g_vertices = 0;
 // The user's view of each plot that has been zoomed or panned (by ImGui id); absent: the caller's ranges.
 struct UserView {
     Range x, y;
+    std::string name{};   // the plot's id string (session files)
 };
 std::unordered_map<ImGuiID, UserView> g_user_views;
+std::unordered_map<std::string, UserView> g_restored_views;   // from a session, until each plot begins
 
 // Digits after the point for tick labels at this step.
 int decimals_for(double step) {
@@ -198,6 +200,7 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
         return false;
     }
     id_ = ImGui::GetID(id);
+    name_ = id;
     ImGui::InvisibleButton(id, size);
     canvas_ = nullptr;
     hovered_ = ImGui::IsItemHovered();
@@ -268,13 +271,34 @@ void Plot::share_dots(bool on) {
 }
 
 void Plot::set_user_view(const char* id, Range x, Range y) {
-    if (x.valid() && y.valid()) g_user_views[ImGui::GetID(id)] = UserView{x, y};
+    if (x.valid() && y.valid()) g_user_views[ImGui::GetID(id)] = UserView{x, y, id};
+}
+
+std::vector<Plot::NamedView> Plot::user_views() {
+    std::vector<NamedView> out;
+    for (const auto& [key, v] : g_user_views) out.push_back({v.name, v.x, v.y});
+    for (const auto& [name, v] : g_restored_views) out.push_back({name, v.x, v.y});   // not drawn since
+    std::sort(out.begin(), out.end(), [](const NamedView& a, const NamedView& b) { return a.id < b.id; });
+    return out;
+}
+
+void Plot::restore_user_views(const std::vector<NamedView>& views) {
+    g_user_views.clear();
+    g_restored_views.clear();
+    for (const NamedView& v : views)
+        if (v.x.valid() && v.y.valid()) g_restored_views[v.id] = UserView{v.x, v.y, v.id};
 }
 
 void Plot::zoom_and_pan() {
     // The mouse over this plot: wheel zooms about the pointer, a drag pans, a double-click gives the view
     // back to the caller's auto-fit. The user's view then replaces the caller's ranges until that reset.
     const ImGuiIO& io = ImGui::GetIO();
+    if (!g_restored_views.empty()) {
+        if (const auto r = g_restored_views.find(name_); r != g_restored_views.end()) {
+            g_user_views[id_] = r->second;
+            g_restored_views.erase(r);
+        }
+    }
     auto it = g_user_views.find(id_);
     if (hovered_ && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && it != g_user_views.end()) {
         g_user_views.erase(it);
@@ -308,7 +332,7 @@ void Plot::zoom_and_pan() {
     }
     if (changed && v.x.valid() && v.y.valid() && std::isfinite(v.x.span()) && std::isfinite(v.y.span()) &&
         v.x.span() > 1e-12 && v.y.span() > 1e-12)
-        g_user_views[id_] = v;
+        g_user_views[id_] = UserView{v.x, v.y, name_};
     it = g_user_views.find(id_);
     zoomed_ = it != g_user_views.end();
     if (zoomed_) {

@@ -77,6 +77,14 @@ public:
     // Sets the user's view of plot `id` in the current window, as a zoom with the mouse would (scripted
     // views: --bif-zoom). UI thread, inside the plot's window, before its begin().
     static void set_user_view(const char* id, Range x, Range y);
+    // Session files: the views the user zoomed or panned, by plot id ("##phase"); and views to put back,
+    // each applied when its plot next begins (all others go back to the caller's ranges). UI thread.
+    struct NamedView {
+        std::string id;
+        Range x, y;
+    };
+    static std::vector<NamedView> user_views();
+    static void restore_user_views(const std::vector<NamedView>& views);
     // Lays the plot out at the cursor (an InvisibleButton of `size` takes the mouse). Returns false if the
     // plot is too small to draw (nothing to end() then).
     bool begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes);
@@ -152,6 +160,7 @@ private:
     CanvasSlot* canvas_ = nullptr;
     int canvas_vtx_ = -1;     // where the canvas's image quad sits in the draw list (set by end())
     ImGuiID id_ = 0;
+    const char* name_ = "";   // the id as given to begin() (session files)
     ImDrawList* dl_ = nullptr;
     ImVec2 min_, max_;
     Range x_, y_;

@@ -1,0 +1,273 @@
+#include "session.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+
+#include "impactlab/atomic_file.hpp"
+#include "impactlab/params.hpp"
+
+namespace impactlab::gui {
+
+using nlohmann::json;
+
+json session_to_json(const Session& s) {
+    json j;
+    j["format"] = kSessionFormat;
+    j["version"] = kSessionVersion;
+    j["model"] = s.model;
+    j["omega"] = s.omega;
+    j["xI"] = s.xI;
+    j["speed"] = s.speed;
+    j["paused"] = s.paused;
+    j["state"] = {{"t", s.t}, {"x", s.x}, {"v", s.v}, {"phi", s.phi}};
+    json zoom = json::object();
+    for (const SessionView& v : s.views) zoom[v.id] = {{"x", {v.x_lo, v.x_hi}}, {"y", {v.y_lo, v.y_hi}}};
+    j["view"] = {{"theme", s.dark ? "dark" : "light"},
+                 {"ui_scale", s.ui_scale},
+                 {"trail_periods", s.trail_periods},
+                 {"strip_window", s.strip_window},
+                 {"zoom", std::move(zoom)}};
+    j["windows"] = {{"data", s.show_data}, {"help", s.show_help}};
+    j["bifurcation"] = {{"protocol", s.bif_protocol}, {"steps", s.bif_steps}};
+    j["data"] = s.data.empty() ? json(nullptr) : json(s.data);
+    return j;
+}
+
+namespace {
+
+std::string fmt(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
+// Reads one level of a session object, naming keys by their dotted path ("view.ui_scale") in errors.
+class Reader {
+public:
+    Reader(const std::string& file, const json& obj, std::string prefix, std::initializer_list<const char*> keys)
+        : file_(file), obj_(obj), prefix_(std::move(prefix)) {
+        if (!obj_.is_object()) fail_at(prefix_, std::string("expected an object, got ") + obj_.type_name());
+        for (const auto& item : obj_.items()) {
+            bool known = false;
+            for (const char* k : keys) known = known || item.key() == k;
+            if (!known) {
+                std::string all;
+                for (const char* k : keys) all += (all.empty() ? "" : ", ") + std::string(k);
+                fail(item.key(), "unknown key (known here: " + all + ")");
+            }
+        }
+    }
+    [[noreturn]] void fail(const std::string& key, const std::string& what) const { fail_at(path(key), what); }
+    [[noreturn]] void fail_at(const std::string& key, const std::string& what) const {
+        throw SessionError(file_ + ": key '" + key + "': " + what);
+    }
+    const json* find(const char* key) const {
+        const auto it = obj_.find(key);
+        return it == obj_.end() ? nullptr : &*it;
+    }
+    std::string path(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
+
+    void number(const char* key, double& out, double lo, double hi, const char* unit = "") const {
+        const json* v = find(key);
+        if (!v) return;
+        if (!v->is_number()) fail(key, std::string("expected a number, got ") + v->type_name());
+        const double d = v->get<double>();
+        if (!std::isfinite(d) || d < lo || d > hi)
+            fail(key, fmt(d) + " is out of range [" + fmt(lo) + ", " + fmt(hi) + "]" + unit);
+        out = d;
+    }
+    void integer(const char* key, int& out, int lo, int hi) const {
+        const json* v = find(key);
+        if (!v) return;
+        if (!v->is_number_integer()) fail(key, std::string("expected an integer, got ") + v->type_name());
+        const long long n = v->get<long long>();
+        if (n < lo || n > hi)
+            fail(key, std::to_string(n) + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        out = static_cast<int>(n);
+    }
+    void boolean(const char* key, bool& out) const {
+        const json* v = find(key);
+        if (!v) return;
+        if (!v->is_boolean()) fail(key, std::string("expected true or false, got ") + v->type_name());
+        out = v->get<bool>();
+    }
+    // One of `choices`.
+    void word(const char* key, std::string& out, std::initializer_list<const char*> choices) const {
+        const json* v = find(key);
+        if (!v) return;
+        if (!v->is_string()) fail(key, std::string("expected a string, got ") + v->type_name());
+        const std::string s = v->get<std::string>();
+        std::string all;
+        for (const char* c : choices) {
+            if (s == c) {
+                out = s;
+                return;
+            }
+            all += (all.empty() ? "" : ", ") + std::string(c);
+        }
+        fail(key, "'" + s + "' is not one of " + all);
+    }
+    // A [lo, hi] pair with lo < hi, both finite; `key` is the full path.
+    void range(const json& v, const std::string& key, double& lo, double& hi) const {
+        if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
+            fail_at(key, "expected [lo, hi], two numbers");
+        lo = v[0].get<double>();
+        hi = v[1].get<double>();
+        if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
+            std::string what = "[";   // (appended, not "[" + ...: GCC 12's -Wrestrict false positive)
+            what.append(fmt(lo)).append(", ").append(fmt(hi)).append("] is empty");
+            fail_at(key, what);
+        }
+    }
+
+private:
+    const std::string& file_;
+    const json& obj_;
+    std::string prefix_;
+};
+
+}  // namespace
+
+Session session_from_json(const json& j, const Session& base, const std::string& file) {
+    if (!j.is_object() || !j.contains("format"))
+        throw SessionError(file + ": not a session file (a JSON object with \"format\": \"" + kSessionFormat +
+                           "\" expected)");
+    const Reader top(file, j, "",
+                     {"format", "version", "model", "omega", "xI", "speed", "paused", "state", "view", "windows",
+                      "bifurcation", "data"});
+    if (!j["format"].is_string() || j["format"].get<std::string>() != kSessionFormat)
+        top.fail("format", std::string("expected \"") + kSessionFormat + "\"");
+    int version = kSessionVersion;
+    top.integer("version", version, 1, 1000000);
+    if (version != kSessionVersion)
+        top.fail("version", std::to_string(version) + " is not supported (this program reads version " +
+                                std::to_string(kSessionVersion) + ")");
+    Session s = base;
+    if (const json* m = top.find("model")) {
+        if (!m->is_string()) top.fail("model", std::string("expected a string, got ") + m->type_name());
+        const std::string name = m->get<std::string>();
+        try {
+            s.model = make_version(name).name;
+        } catch (const ParamError&) {
+            std::string all;
+            for (const auto& n : version_names()) all += (all.empty() ? "" : ", ") + n;
+            top.fail("model", "unknown model version '" + name + "' (one of " + all + ")");
+        }
+    }
+    top.number("omega", s.omega, 0.0, 30.0, " rad/s");
+    top.number("xI", s.xI, -0.02, 0.02, " m");
+    top.number("speed", s.speed, 0.01, 100.0);
+    top.boolean("paused", s.paused);
+    if (const json* st = top.find("state")) {
+        const Reader r(file, *st, "state", {"t", "x", "v", "phi"});
+        r.number("t", s.t, 0.0, 1e9, " s");
+        r.number("x", s.x, -0.05, 0.05, " m");
+        r.number("v", s.v, -2.0, 2.0, " m/s");
+        r.number("phi", s.phi, -1e12, 1e12, " rad");
+    }
+    if (const json* vw = top.find("view")) {
+        const Reader r(file, *vw, "view", {"theme", "ui_scale", "trail_periods", "strip_window", "zoom"});
+        std::string theme = s.dark ? "dark" : "light";
+        r.word("theme", theme, {"dark", "light"});
+        s.dark = theme == "dark";
+        r.number("ui_scale", s.ui_scale, 0.5, 3.0);
+        r.number("trail_periods", s.trail_periods, 1.0, 60.0);
+        r.number("strip_window", s.strip_window, 0.5, 60.0, " s");
+        if (const json* z = r.find("zoom")) {
+            if (!z->is_object()) r.fail("zoom", std::string("expected an object, got ") + z->type_name());
+            s.views.clear();
+            for (const auto& item : z->items()) {
+                const std::string key = "view.zoom." + item.key();
+                if (item.key().empty()) r.fail_at(key, "a plot id is empty");
+                const Reader p(file, item.value(), key, {"x", "y"});
+                SessionView v;
+                v.id = item.key();
+                if (!p.find("x") || !p.find("y")) p.fail_at(key, "expected both \"x\" and \"y\"");
+                p.range(*p.find("x"), p.path("x"), v.x_lo, v.x_hi);
+                p.range(*p.find("y"), p.path("y"), v.y_lo, v.y_hi);
+                s.views.push_back(std::move(v));
+            }
+        }
+    }
+    if (const json* w = top.find("windows")) {
+        const Reader r(file, *w, "windows", {"data", "help"});
+        r.boolean("data", s.show_data);
+        r.boolean("help", s.show_help);
+    }
+    if (const json* b = top.find("bifurcation")) {
+        const Reader r(file, *b, "bifurcation", {"protocol", "steps"});
+        r.word("protocol", s.bif_protocol, {"cf-up", "cf-down", "ef"});
+        r.integer("steps", s.bif_steps, 10, 2000);
+    }
+    if (const json* d = top.find("data")) {
+        if (d->is_null()) s.data.clear();
+        else if (!d->is_string()) top.fail("data", std::string("expected a file name or null, got ") + d->type_name());
+        else {
+            const std::string path = d->get<std::string>();
+            if (!path.empty() && !std::ifstream(path, std::ios::binary))
+                top.fail("data", "cannot read '" + path + "' (no such file, or no permission)");
+            s.data = path;
+        }
+    }
+    return s;
+}
+
+Session parse_session(const std::string& text, const Session& base, const std::string& file) {
+    json j;
+    try {
+        j = json::parse(text);
+    } catch (const json::parse_error& e) {
+        // The line and column of the byte where parsing stopped (e.byte is 1-based).
+        std::size_t line = 1, col = 1;
+        for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+            if (text[i] == '\n') {
+                ++line;
+                col = 1;
+            } else {
+                ++col;
+            }
+        }
+        std::string what = e.what();
+        if (const auto p = what.find(": syntax error"); p != std::string::npos) what = what.substr(p + 2);
+        else if (const auto q = what.find("] "); q != std::string::npos) what = what.substr(q + 2);
+        throw SessionError(file + ": line " + std::to_string(line) + ", column " + std::to_string(col) +
+                           ": not valid JSON (" + what + ")");
+    }
+    return session_from_json(j, base, file);
+}
+
+Session load_session(const std::string& path, const Session& base) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw SessionError(path + ": cannot read it (no such file, or no permission)");
+    std::ostringstream text;
+    text << f.rdbuf();
+    if (f.bad()) throw SessionError(path + ": cannot read it");
+    return parse_session(text.str(), base, path);
+}
+
+std::string session_text(const Session& s) { return session_to_json(s).dump(2) + "\n"; }
+
+void save_session(const Session& s, const std::string& path) {
+    if (path.empty()) throw SessionError("session: no file name given");
+    const std::string tmp = partial_path(path);
+    {
+        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+        f << session_text(s);
+        f.flush();
+        if (!f) {
+            f.close();
+            discard_partial(tmp);
+            throw SessionError(path + ": cannot write it (no such folder, or no permission)");
+        }
+    }
+    try {
+        commit_partial(tmp, path);
+    } catch (const std::exception& e) {
+        throw SessionError(e.what());
+    }
+}
+
+}  // namespace impactlab::gui

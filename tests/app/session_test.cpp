@@ -1,0 +1,114 @@
+// Session files (app/gui/session): the round trip save -> load -> save gives the same text; a partial file
+// changes only what it names; every bad file (missing, not JSON, unknown key, wrong type, omega or xI out
+// of range, unknown model) is refused with the file, the key (or line) and the problem named.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "../../app/gui/session.hpp"
+
+using namespace impactlab::gui;
+namespace fs = std::filesystem;
+
+namespace {
+Session sample() {
+    Session s;
+    s.model = "A3G";
+    s.omega = 12.345678901234567;
+    s.xI = -0.0015;
+    s.speed = 0.25;
+    s.paused = true;
+    s.t = 1234.5678;
+    s.x = -0.0107;
+    s.v = 0.0321;
+    s.phi = 15240.1;
+    s.dark = false;
+    s.ui_scale = 1.75;
+    s.trail_periods = 20;
+    s.strip_window = 2.5;
+    s.views = {{"##bif", 10.5, 13.0, -0.015, 0.001}, {"##phase", -0.02, 0.001, -0.3, 0.3}};   // by id, as saved
+    s.show_data = false;
+    s.show_help = true;
+    s.bif_protocol = "ef";
+    s.bif_steps = 120;
+    return s;
+}
+
+// The error message parse_session gives for `text` ("" if it parses).
+std::string error_of(const std::string& text) {
+    try {
+        parse_session(text, Session{}, "s.json");
+    } catch (const SessionError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+}  // namespace
+
+TEST_CASE("session: save, load, save again gives the same JSON, and the same state") {
+    const fs::path dir = fs::temp_directory_path() / ("impactlab-session-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::string a = (dir / "a.json").string(), b = (dir / "b.json").string();
+    const Session s = sample();
+    save_session(s, a);
+    const Session back = load_session(a, Session{});
+    CHECK(back == s);
+    save_session(back, b);
+    std::ifstream fa(a), fb(b);
+    const std::string ta((std::istreambuf_iterator<char>(fa)), {}), tb((std::istreambuf_iterator<char>(fb)), {});
+    CHECK(ta == tb);
+    CHECK(has(ta, "\"format\": \"impactlab-gui session\""));
+    // No partial file left beside them.
+    std::size_t files = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++files;
+    CHECK(files == 2);
+    // An unwritable place: a SessionError naming the file, nothing written.
+    CHECK_THROWS_WITH_AS(save_session(s, (dir / "no" / "x.json").string()),
+                         doctest::Contains("x.json: cannot write it"), SessionError);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("session: absent keys keep the base state; a partial file changes only what it names") {
+    Session base = sample();
+    const Session s = parse_session(R"({"format": "impactlab-gui session", "omega": 11.5,
+                                        "view": {"theme": "dark"}})", base, "p.json");
+    CHECK(s.omega == 11.5);
+    CHECK(s.dark);
+    base.omega = 11.5;
+    base.dark = true;
+    CHECK(s == base);
+    // The data file: null clears it.
+    base.data = "somewhere.csv";
+    CHECK(parse_session(R"({"format": "impactlab-gui session", "data": null})", base, "p.json").data.empty());
+}
+
+TEST_CASE("session: bad files are refused naming the file, the key or line, and the problem") {
+    CHECK(has(error_of("{\"format\": \"impactlab-gui session\",\n \"omega\": 45}"), "s.json: key 'omega': 45 is out of range [0, 30] rad/s"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "xI": 0.5})"), "key 'xI': 0.5 is out of range [-0.02, 0.02] m"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "omega": "fast"})"), "key 'omega': expected a number, got string"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "model": "A9Z"})"), "key 'model': unknown model version 'A9Z' (one of"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "colour": 3})"), "s.json: key 'colour': unknown key"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "view": {"zoom": {"##phase": {"x": [1, 0], "y": [0, 1]}}}})"),
+              "key 'view.zoom.##phase.x': [1, 0] is empty"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "view": {"scale": 2}})"), "key 'view.scale': unknown key"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "state": {"x": 0.2}})"), "key 'state.x': 0.2 is out of range"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "bifurcation": {"protocol": "sideways"}})"),
+              "key 'bifurcation.protocol': 'sideways' is not one of cf-up, cf-down, ef"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "version": 7})"), "key 'version': 7 is not supported"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "data": "/nonexistent/run.csv"})"),
+              "key 'data': cannot read '/nonexistent/run.csv'"));
+    CHECK(has(error_of(R"({"model": "A1H"})"), "s.json: not a session file"));
+    CHECK(has(error_of("[1, 2]"), "s.json: not a session file"));
+    // Not JSON: the line and column where the parser stopped.
+    CHECK(has(error_of("{\n  \"format\": \"impactlab-gui session\",\n  \"omega\": 9,,\n}"), "s.json: line 3, column 14: not valid JSON"));
+    CHECK(has(error_of(""), "s.json: line 1"));
+    CHECK_THROWS_WITH_AS(load_session("/nonexistent/session.json", Session{}),
+                         doctest::Contains("/nonexistent/session.json: cannot read it"), SessionError);
+    CHECK(error_of(session_text(sample())).empty());
+}
