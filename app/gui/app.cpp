@@ -610,6 +610,10 @@ int App::run() {
             switched_ = true;   // --then-preset: what pressing key N does
             apply_preset(presets_for(model_name())[static_cast<std::size_t>(opt_.then_preset - 1)]);
         }
+        if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_xi) {
+            switched_ = true;   // --then-xI: what dragging the x_I slider there does
+            set_xi(opt_.then_xI);
+        }
         if (!switched_ && counted_frames_ >= opt_.frames / 2 && (!keep_model || !opt_.switch_model.empty())) {
             switched_ = true;
             // Switch the model once, live: to --switch-model, or H <-> G with the same stiffness.

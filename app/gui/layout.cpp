@@ -71,7 +71,9 @@ void normal_tiles(const LayoutRequest& r, const Rect& area, Layout& out) {
             if (shown(p)) vis.push_back(p);
         if (vis.empty()) continue;
         // As many tiles side by side as the width holds at their minimum; the rest become tabs of the last.
-        const std::size_t fit = static_cast<std::size_t>(std::max(1.0f, std::floor(area.w / min_w)));
+        const float per_row = std::floor(area.w / std::max(min_w, 1.0f));
+        const std::size_t fit = per_row >= static_cast<float>(vis.size()) ? vis.size()
+                                                                          : static_cast<std::size_t>(std::max(1.0f, per_row));
         Row row;
         row.weight = weight;
         row.strip = vis.size() == 1 && vis[0] == PanelId::Strip;
@@ -170,8 +172,14 @@ float min_tile_h(float scale) { return 140.0f * scale; }
 float min_strip_h(float scale) { return 105.0f * scale; }
 float controls_natural_w(float scale) { return 292.0f * scale; }
 
-Layout compute_layout(const LayoutRequest& r) {
+Layout compute_layout(const LayoutRequest& req) {
     Layout out;
+    LayoutRequest r = req;
+    // A degenerate request (no window yet, a scale of 0) lays out nothing or at scale 1, never crashes.
+    if (!(r.scale > 0) || !std::isfinite(r.scale)) r.scale = 1.0f;
+    if (!std::isfinite(r.frame_h) || r.frame_h < 0) r.frame_h = 0;
+    for (float v : {r.area.x, r.area.y, r.area.w, r.area.h})
+        if (!std::isfinite(v)) return out;
     if (r.area.empty()) return out;
     if (r.mode == LayoutMode::Presentation) {
         presentation_tiles(r, out);
@@ -185,9 +193,8 @@ Layout compute_layout(const LayoutRequest& r) {
         const float w = std::min({natural, cap, std::max(r.area.w - min_tile_w(r.scale), 0.5f * r.area.w)});
         out.controls = {r.area.x, r.area.y, w, r.area.h};
         out.controls_narrow = w < natural - 0.5f;
-        // Every section stacked needs about 36 rows of controls before the first measurement.
-        const float need = r.controls_need_h > 0 ? r.controls_need_h : 36.0f * (r.frame_h + 5.0f * r.scale);
-        out.controls_tabbed = need > r.area.h;
+        // Unknown (0) until all sections have been drawn stacked once: the App measures them on that frame.
+        out.controls_tabbed = r.controls_need_h > r.area.h;
         plots = {r.area.x + w, r.area.y, r.area.w - w, r.area.h};
     }
     normal_tiles(r, plots, out);

@@ -39,7 +39,7 @@ struct LayoutRequest {
     float frame_h = 23.0f;            // [px] ImGui's frame height at this scale (a slider, a button)
     LayoutMode mode = LayoutMode::Normal;
     bool controls_visible = true;
-    float controls_need_h = 0;        // [px] the controls' content, all sections (measured a frame before)
+    float controls_need_h = 0;        // [px] the controls' content, all sections stacked (0: not measured yet)
     std::array<bool, kPanelCount> visible{true, true, true, true, true, true};
     std::optional<PanelId> maximised; // fills the plot area
     PanelId featured = PanelId::Phase;   // presentation mode: the plot beside the rig

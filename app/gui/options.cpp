@@ -82,6 +82,7 @@ const char* usage_text() {
            "  --clip-seconds S   [s] of simulated time for --clip-out, 0.1..60 (default 2)\n"
            "  --replay-back S    with --frames: end in replay S seconds before the newest sample (Shift+R)\n"
            "  --then-preset N    apply preset N half-way instead (as pressing key N)\n"
+           "  --then-xI X        move the bumper to X [m] half-way instead (as the x_I slider)\n"
            "  --bench-plot       frames per second with --points points on every plot (needs a display)\n"
            "  --points N         points per plot for --bench-plot (default 100000)\n"
            "  --plot-backend B   how dense curves are drawn: raster (CPU, default), gpu (instanced\n"
@@ -201,6 +202,10 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--state-json") o.state_json = value();
         else if (a == "--preset") o.preset = integer(a, value(), 1, 100);
         else if (a == "--then-preset") o.then_preset = integer(a, value(), 1, 100);
+        else if (a == "--then-xI" || a == "--then-xi") {
+            o.then_xI = number(a, value(), -0.02, 0.02);
+            o.then_xi = true;
+        }
         else if (a == "--switch-model") o.switch_model = version(a, value());
         else if (a == "--bifurcation") {
             const std::string& p = value();
@@ -273,6 +278,7 @@ Options parse_options(const std::vector<std::string>& args) {
                                std::to_string(count) + "] for " + o.model);
     }
     if (o.then_preset > 0 && o.frames == 0) throw OptionsError("--then-preset needs --frames N");
+    if (o.then_xi && o.frames == 0) throw OptionsError("--then-xI needs --frames N");
     for (const std::string& h : o.hide)
         if (h == o.maximise) throw OptionsError("--maximise " + h + ": that panel is hidden by --hide");
     if (!o.save_session.empty() && o.frames == 0) throw OptionsError("--save-session needs --frames N");

@@ -33,6 +33,8 @@ struct Options {
     std::string state_json;      // with --frames: what the panels show, as JSON (model, omega, Poincare map, ...)
     int preset = 0;              // > 0: start on preset N (1-based, as keys 1-4) of the model
     int then_preset = 0;         // with --frames: apply preset N half-way (as key N), instead of the model switch
+    bool then_xi = false;        // with --frames: move the bumper to then_xI half-way (as the slider), no model switch
+    double then_xI = 0;          // [m]
     std::string switch_model;    // with --frames: the version switched to half-way ("" = swap G and H)
     std::string bifurcation;     // "", "cf-up", "cf-down", "ef": start computing at launch
     int bif_steps = 300;

@@ -11,9 +11,12 @@ namespace impactlab::gui {
 
 using namespace rig;
 
+static_assert(RigMagnify::kWallX == kWallX && RigMagnify::kCartHalfW == kCartHalfW, "layout.hpp's copy of the rig");
+
 namespace {
-constexpr double kViewHalfW = 0.150, kViewTop = 0.061, kViewBottom = -0.081;
-constexpr double kPlateX0 = -0.146, kPlateX1 = 0.146, kPlateY0 = -0.078, kPlateY1 = 0.058;
+// The view and the base plate reach past the end walls (which move out with a large magnification).
+constexpr double kViewMargin = 0.014, kPlateMargin = 0.010, kViewTop = 0.061, kViewBottom = -0.081;
+constexpr double kPlateY0 = -0.078, kPlateY1 = 0.058;
 
 const float kWhite[3] = {1, 1, 1};
 const float kBlack[3] = {0, 0, 0};
@@ -139,31 +142,34 @@ void RigView::spring(double x0, double x1, double y, const Palette& pal) {
 
 void RigView::build(const RigState& st, const Palette& pal) {
     shapes_.clear();
-    const double x = st.x;
-    const double wall_in = kWallX - 0.004;
+    // Displacements are drawn magnified about x = 0 (cart and bumper alike: a contact stays a contact).
+    const double x = mag_.draw_x(st.x);
+    const double wall_x = mag_.wall_x(), wall_in = wall_x - 0.004, rail_half = wall_x - 0.003;
+    const double gain = mag_.gain;
 
     // Frame: the two end blocks (hatched: fixed to the ground) and the rails.
     float hatch[3];
     mix3(pal.wall, kBlack, 0.45f, hatch);
-    box(-kWallX - 0.005, -0.010, 0.008, 0.055, 0.002, pal.wall, 1, 4, 0, hatch);
-    box(kWallX + 0.005, -0.010, 0.008, 0.055, 0.002, pal.wall, 1, 4, 0, hatch);
+    box(-wall_x - 0.005, -0.010, 0.008, 0.055, 0.002, pal.wall, 1, 4, 0, hatch);
+    box(wall_x + 0.005, -0.010, 0.008, 0.055, 0.002, pal.wall, 1, 4, 0, hatch);
     for (double ry : {kRailY, -kRailY}) {
-        capsule(-kRailHalfLen, ry, kRailHalfLen, ry, 0.0034, pal.rail, 1, 1);
-        for (double bx : {-kRailHalfLen + 0.006, kRailHalfLen - 0.006}) disc(bx, ry, 0.0022, 0, kDark, 1, 0);
+        capsule(-rail_half, ry, rail_half, ry, 0.0034, pal.rail, 1, 1);
+        for (double bx : {-rail_half + 0.006, rail_half - 0.006}) disc(bx, ry, 0.0022, 0, kDark, 1, 0);
     }
 
     // Ruler fixed to the frame, with the cart's pointer (numbers are drawn over the image).
     float tick[3];
     mix3(pal.rig_grid, pal.text, 0.5f, tick);
-    capsule(-0.025, kRulerY, 0.025, kRulerY, 0.0004, tick, 0.9f, 0);
+    // Its millimetres are magnified with the displacement: the pointer reads the true x.
+    capsule(-0.025 * gain, kRulerY, 0.025 * gain, kRulerY, 0.0004, tick, 0.9f, 0);
     for (int mm = -25; mm <= 25; ++mm) {
         const double len = (mm % 10 == 0) ? 0.0050 : (mm % 5 == 0) ? 0.0034 : 0.0020;
-        const double xx = mm * 1e-3;
+        const double xx = mm * 1e-3 * gain;
         capsule(xx, kRulerY, xx, kRulerY + len, mm % 10 == 0 ? 0.00032 : 0.00020, tick, 0.9f, 0);
     }
 
     // Bumper: a block on a threaded rod from the right end, rubber face at the contact plane xI + half cart.
-    const double face = st.xI + kCartHalfW;
+    const double face = mag_.bumper_face(st.xI);
     const double F = std::max(0.0, st.bumper_force);
     const double heat = std::clamp(std::max(st.flash, std::log10(1.0 + F) / 2.2), 0.0, 1.0);   // 1 at ~160 N
     capsule(face + kBumperLen, kBumperY, wall_in, kBumperY, 0.0028, kBrass, 1, 1);
@@ -263,7 +269,9 @@ GLuint RigView::render(int w, int h, const RigState& s, const Palette& pal) {
         fb_h_ = h;
     }
     // Fit the rig (to scale: one zoom for both axes).
-    px_per_m_ = static_cast<float>(std::min(w / (2.0 * kViewHalfW), h / (kViewTop - kViewBottom)));
+    mag_.gain = std::clamp(s.magnify, RigMagnify::kMin, RigMagnify::kMax);
+    const double view_half_w = mag_.wall_x() + kViewMargin;
+    px_per_m_ = static_cast<float>(std::min(w / (2.0 * view_half_w), h / (kViewTop - kViewBottom)));
     cx_ = 0.0;
     cy_ = 0.5 * (kViewTop + kViewBottom);
 
@@ -294,9 +302,10 @@ GLuint RigView::render(int w, int h, const RigState& s, const Palette& pal) {
     glUniform3fv(glGetUniformLocation(bp, "u_bg_bottom"), 1, pal.bg_bottom);
     glUniform3fv(glGetUniformLocation(bp, "u_grid"), 1, pal.rig_grid);
     glUniform3fv(glGetUniformLocation(bp, "u_field"), 1, pal.field);
-    glUniform4f(glGetUniformLocation(bp, "u_plate"), static_cast<float>(kPlateX0), static_cast<float>(kPlateY0),
-                static_cast<float>(kPlateX1), static_cast<float>(kPlateY1));
-    glUniform2f(glGetUniformLocation(bp, "u_mag_cart"), static_cast<float>(s.x), static_cast<float>(kMagnetCartY));
+    const double plate_x = mag_.wall_x() + kPlateMargin;
+    glUniform4f(glGetUniformLocation(bp, "u_plate"), static_cast<float>(-plate_x), static_cast<float>(kPlateY0),
+                static_cast<float>(plate_x), static_cast<float>(kPlateY1));
+    glUniform2f(glGetUniformLocation(bp, "u_mag_cart"), static_cast<float>(mag_.draw_x(s.x)), static_cast<float>(kMagnetCartY));
     glUniform2f(glGetUniformLocation(bp, "u_mag_fixed"), 0.0f, static_cast<float>(kMagnetFixedY));
     glUniform1f(glGetUniformLocation(bp, "u_field_gain"),
                 static_cast<float>(std::clamp(std::abs(s.magnet_force) / 8.0, 0.0, 1.0)));

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "layout.hpp"
 #include "theme.hpp"
 
 namespace impactlab::gui {
@@ -26,6 +27,7 @@ struct RigState {
     double magnet_force = 0;      // force of the magnets on the cart, along x [N]
     double spring_force = 0;      // force of the springs on the cart [N]
     bool in_contact = false;      // regime II or III, or a compliant bumper pressed
+    double magnify = 1.0;         // displacement magnification of the drawing (x and xI about x = 0; layout.hpp)
 };
 
 // Geometry of the rig [m] (top view; x along the rail, y across it).
@@ -50,6 +52,8 @@ public:
     // Image pixel (top-left origin) of a world point, for the labels drawn over the image.
     ImVec2 to_image(double x, double y) const;
     float px_per_m() const { return px_per_m_; }
+    // The magnification of the last render: drawn x = magnify().draw_x(x) (the mouse divides by its gain).
+    const RigMagnify& magnify() const { return mag_; }
 
 private:
     struct Shape {
@@ -77,6 +81,7 @@ private:
     int fb_w_ = 0, fb_h_ = 0;
     float px_per_m_ = 1000;
     double cx_ = 0, cy_ = 0;
+    RigMagnify mag_;
     std::vector<Shape> shapes_;
 };
 

@@ -1,6 +1,7 @@
 // --state-json: what the panels show after a headless run, for tests and scripts (App::write_state_json).
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -28,6 +29,9 @@ bool App::write_state_json(const std::string& path) {
                                   : json(nullptr);
     j["sim_time"] = number(have_last_ ? last_.t : sim_->status().sim_time);
     j["fps"] = number(fps_);
+    j["ramp"] = {{"active", ramp_.active()}, {"omega_from", number(ramp_.omega_start())},
+                 {"omega_to", number(ramp_.target())}, {"rate", number(ramp_.rate())},
+                 {"points", ramp_.points().size()}};
     j["frames"] = frame_count_;
     j["epoch"] = epoch_;
     j["energy"] = number(last_.energy);                 // [J] now
@@ -69,6 +73,16 @@ bool App::write_state_json(const std::string& path) {
         j["regime_label"] = contact_label(params_, last_.regime, last_.force);   // the rig's and the status bar's
         j["x"] = number(last_.x);
         j["v"] = number(last_.v);
+        // The largest jump of x between two samples in the x(t) strip's window [m] (defect 8: a bumper moved
+        // into the cart made a staircase of x(t)).
+        double step = 0;
+        const std::size_t n = traj_.size();
+        if (n > 1) {
+            const double t_from = traj_.back().t - strip_window_;
+            for (std::size_t i = traj_.lower_bound(t_from, [](const SimMsg& m) { return m.t; }) + 1; i < n; ++i)
+                step = std::max(step, std::abs(traj_[i].x - traj_[i - 1].x));
+        }
+        j["x_max_step"] = step;
     }
     j["potential_view"] = {potential_y_.cur.lo, potential_y_.cur.hi};   // [J] the potential plot's y range
     const PoincareMap::Status st = pc_map_.status();

@@ -21,6 +21,12 @@ add_test(NAME gui_poincare
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_poincare)
 set_tests_properties(gui_poincare PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
 
+# The live omega ramp and the energy bar through --state-json (gui_ramp.sh says what it checks).
+add_test(NAME gui_ramp
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_ramp.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_ramp)
+set_tests_properties(gui_ramp PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
+
 # Bad flags: a clear message and exit code 2 (no display needed).
 add_test(NAME gui_bad_flag
          COMMAND sh -c "\"$0\" --no-such-flag; test $? -eq 2" $<TARGET_FILE:impactlab-gui>)

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "../../app/gui/layout.hpp"
 
@@ -83,7 +84,9 @@ TEST_CASE("layout: the wide layout at scale 1 keeps today's tiles; scale 2 stack
     const Layout one = compute_layout(request(1280, 800, 1.0f));
     CHECK(one.tiles.size() == 6);   // rig, diagram / phase, map, potential / strip: no tabs
     CHECK_FALSE(one.controls_narrow);
-    const Layout two = compute_layout(request(1280, 800, 2.0f));
+    LayoutRequest r2 = request(1280, 800, 2.0f);
+    r2.controls_need_h = 36.0f * (r2.frame_h + 10.0f);   // about what every section stacked measures at scale 2
+    const Layout two = compute_layout(r2);
     CHECK(two.tiles.size() < 6);
     bool tabbed = false;
     for (const Tile& t : two.tiles) tabbed = tabbed || t.panels.size() > 1;
@@ -100,6 +103,8 @@ TEST_CASE("layout: the controls are tabbed only when their sections do not fit t
     CHECK_FALSE(compute_layout(r).controls_tabbed);
     r.controls_need_h = r.area.h + 10;
     CHECK(compute_layout(r).controls_tabbed);
+    r.controls_need_h = 0;   // not measured yet: stacked, so that the next frame measures every section
+    CHECK_FALSE(compute_layout(r).controls_tabbed);
 }
 
 TEST_CASE("layout: hidden panels give their space to the others; maximise fills the plot area") {
@@ -164,6 +169,29 @@ TEST_CASE("layout: presentation mode is the rig and one plot under a slim bar") 
     const Layout m = compute_layout(r);
     REQUIRE(m.tiles.size() == 1);
     CHECK(m.tiles[0].rect.w == doctest::Approx(1280));
+}
+
+TEST_CASE("layout: degenerate requests lay out nothing or something sound, never crash") {
+    for (float scale : {0.0f, -1.0f, 0.5f, 3.0f, std::nanf("")}) {
+        for (float w : {0.0f, 1.0f, 50.0f, 300.0f, 1280.0f}) {
+            for (float h : {0.0f, 1.0f, 50.0f, 800.0f}) {
+                for (LayoutMode mode : {LayoutMode::Normal, LayoutMode::Presentation}) {
+                    LayoutRequest r;
+                    r.area = {0, 20, w, h};
+                    r.scale = scale;
+                    r.mode = mode;
+                    const Layout l = compute_layout(r);
+                    for (const Tile& t : l.tiles) {
+                        CHECK_FALSE(t.panels.empty());
+                        CHECK(contains(r.area, t.rect));
+                    }
+                }
+            }
+        }
+    }
+    LayoutRequest r;
+    r.area = {0, 0, std::numeric_limits<float>::infinity(), 800};
+    CHECK(compute_layout(r).tiles.empty());
 }
 
 TEST_CASE("layout: panel keys round-trip, unknown keys are refused") {

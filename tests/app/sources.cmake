@@ -16,6 +16,7 @@ set(IMPACTLAB_APP_TEST_SOURCES
   app/view_fit_test.cpp
   app/analysis_gui_test.cpp
   app/lyapunov_live_test.cpp
+  app/bifurcation_job_test.cpp
   app/companion_test.cpp
   app/replay_test.cpp
   app/session_test.cpp
@@ -35,6 +36,7 @@ set(IMPACTLAB_APP_TEST_SOURCES
   ../app/gui/plane_data.cpp
   ../app/gui/analysis_jobs.cpp
   ../app/gui/lyapunov_live.cpp
+  ../app/gui/bifurcation_job.cpp
   ../app/gui/grazing_monitor.cpp
   ../app/gui/companion_track.cpp
   ../app/gui/state_pick.cpp
