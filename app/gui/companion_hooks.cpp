@@ -129,7 +129,8 @@ void App::draw_separation(ImVec2 size) {
     const Palette& pal = palette();
     const History<Separation>& sep = companion_.separation();
     const double t_now = sep.empty() ? last_.t : sep.back().t;
-    const double t_from = sep.empty() ? t_now - strip_window_ : std::max(sep[0].t, t_now - strip_window_);
+    // From the restart (the growth from 1 um is the point), the last two minutes at most.
+    const double t_from = sep.empty() ? t_now - strip_window_ : std::max(sep[0].t, t_now - 120.0);
     Plot plot;
     Axes ax;
     ax.x_label = "t [s]";
@@ -182,7 +183,7 @@ void App::rig_mouse(ImVec2 image_min, float fbs) {
         ImGui::SetTooltip("x = %+.2f mm%s", drag_x_ * 1e3, s.note.empty() ? "" : "  (at the bumper)");
     } else {   // let go: from there at rest (a toast says so if the bumper or the rail stopped the hand)
         dragging_cart_ = false;
-        set_state(mx + drag_grab_, 0.0);
+        set_state(mx / mag.gain + drag_grab_, 0.0);
     }
 }
 

@@ -45,7 +45,7 @@ void CompanionTrack::on_msg(const SimMsg& m, const History<SimMsg>& cart) {
     const SimMsg& c = cart[i];
     if (std::abs(c.t - m.t) > 1e-9 * std::max(1.0, std::abs(m.t))) return;
     if (m.t < next_sep_t_) return;
-    next_sep_t_ = m.t + 1e-3;
+    next_sep_t_ = m.t + kSeparationEvery;
     const double dx = std::abs(m.x - c.x);
     if (sep_.empty()) sep0_ = dx;
     sep_max_ = std::max(sep_max_, dx);

@@ -892,6 +892,8 @@ void App::draw_help() {
             {"1 .. 4", "presets: period 1, period 2, chaos, periodic window"},
             {"B", "compute (or cancel) the bifurcation diagram"},
             {"click diagram", "set ω there"},
+            {"click phase / well", "start the cart from that (x, v) / that x at rest"},
+            {"drag the cart", "hold it at the mouse; let go: from there at rest"},
             {"right-drag diagram", "compute the ω range of the box (column by column)"},
             {"C", "clear the Poincare map"},
             {"T", "dark / light theme"},

@@ -8,7 +8,9 @@
 #  4. the grazing monitor on the period-1 orbit: clear of the bumper, xI - max x > 1 mm, no impact; in
 #     A1G's chaos: impacts with v- > 0 and max x = xI;
 #  5. --set-state beyond the rigid bumper is put on it (x = xI) with a message saying so;
-#  6. a cart pressed onto a compliant bumper reads "on the compliant bumper" (the rig's badge and the
+#  6. defect 8 of issue 11: the bumper moved 18 mm into the cart at once (--then-xI, as the slider) pushes
+#     it continuously (no jump of x between two samples over 0.3 mm; before: the whole way in one), and the
+#     cart pressed onto the compliant bumper reads "on the compliant bumper" (the rig's badge and the
 #     status bar share that label);
 #  7. bad --ghost and --set-state values exit 2 naming the flag.
 # Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
@@ -36,7 +38,7 @@ run twin_calm --model A1H --preset 1 --twin --speed 100 --frames 120
 run ghost --model A1C --preset 3 --ghost A1G --speed 100 --frames 120
 run graze_rigid --model A1G --preset 3 --speed 100 --frames 120
 run beyond --model A1H --preset 1 --set-state 0.005,0 --paused --frames 20
-run pressed --model A1C --xI -0.015 --speed 20 --frames 60
+run pressed --model A1C --preset 1 --then-xI -0.018 --speed 1 --frames 160
 
 fail=0
 for flag in "--ghost Z9" "--set-state 0.01" "--set-state 0.01,fast" "--twin --ghost A1G"; do
@@ -101,6 +103,11 @@ if not (abs(j["x"] - j["xI"]) < 1e-12 and j["v"] == 0):
 j = load("pressed")
 if j["regime_label"] != "I  on the compliant bumper":
     fail.append(f"pressed: the label says '{j['regime_label']}' for a cart pressed onto the compliant bumper")
+if not (abs(j["xI"] + 0.018) < 1e-12 and abs(j["x"] + 0.018) < 1e-4 and j["x_max_step"] < 3e-4):
+    fail.append(f"pressed: the bumper at x_I = {j['xI']} should have pushed the cart to it without a jump: "
+                f"x {j['x']}, largest step of x(t) {j['x_max_step']} m")
+else:
+    print(f"pressed: the bumper pushed the cart 18 mm, largest step of x(t) {j['x_max_step'] * 1e3:.2f} mm")
 
 for f in fail:
     print("gui_companion:", f)
