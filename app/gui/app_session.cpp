@@ -44,6 +44,8 @@ Session App::current_session() const {
     s.bif_protocol = kProtocols[std::clamp(bif_protocol_, 0, 2)];
     s.bif_steps = bif_steps_;
     s.data = data_panel_.loaded_path();
+    s.companion = companion_mode_ == CompanionMode::Twin ? "twin" : companion_mode_ == CompanionMode::Ghost ? "ghost" : "off";
+    s.ghost_impact = impact_models()[static_cast<std::size_t>(ghost_impact_)].id;
     return s;
 }
 
@@ -62,6 +64,12 @@ void App::apply_session(const Session& s) {
     // The run goes on from the saved instant; what the history held belongs to another run.
     restart_sim(s.x, s.v, s.t, s.phi, s.omega, true);
     set_paused(s.paused);
+    for (std::size_t i = 0; i < impact_models().size(); ++i)
+        if (s.ghost_impact == impact_models()[i].id) ghost_impact_ = static_cast<int>(i);
+    const CompanionMode mode = s.companion == "twin"    ? CompanionMode::Twin
+                               : s.companion == "ghost" ? CompanionMode::Ghost
+                                                        : CompanionMode::Off;
+    if (mode != companion_mode_ || mode == CompanionMode::Ghost) set_companion(mode);
     if (dark_ != s.dark) {
         dark_ = s.dark;
         apply_theme(dark_, ui_scale_);

@@ -33,6 +33,7 @@ json session_to_json(const Session& s) {
     j["windows"] = {{"data", s.show_data}, {"help", s.show_help}};
     j["bifurcation"] = {{"protocol", s.bif_protocol}, {"steps", s.bif_steps}};
     j["data"] = s.data.empty() ? json(nullptr) : json(s.data);
+    j["companion"] = {{"mode", s.companion}, {"ghost_impact", s.ghost_impact}};
     return j;
 }
 
@@ -137,7 +138,7 @@ Session session_from_json(const json& j, const Session& base, const std::string&
                            "\" expected)");
     const Reader top(file, j, "",
                      {"format", "version", "model", "omega", "xI", "speed", "paused", "state", "view", "windows",
-                      "bifurcation", "data"});
+                      "bifurcation", "data", "companion"});
     if (!j["format"].is_string() || j["format"].get<std::string>() != kSessionFormat)
         top.fail("format", std::string("expected \"") + kSessionFormat + "\"");
     int version = kSessionVersion;
@@ -201,6 +202,22 @@ Session session_from_json(const json& j, const Session& base, const std::string&
         const Reader r(file, *b, "bifurcation", {"protocol", "steps"});
         r.word("protocol", s.bif_protocol, {"cf-up", "cf-down", "ef"});
         r.integer("steps", s.bif_steps, 10, 2000);
+    }
+    if (const json* c = top.find("companion")) {
+        const Reader r(file, *c, "companion", {"mode", "ghost_impact"});
+        r.word("mode", s.companion, {"off", "twin", "ghost"});
+        if (const json* g = r.find("ghost_impact")) {
+            if (!g->is_string()) r.fail("ghost_impact", std::string("expected a string, got ") + g->type_name());
+            const std::string id = g->get<std::string>();
+            std::string all;
+            bool known = false;
+            for (const ImpactModel& m : impact_models()) {
+                known = known || id == m.id;
+                all += (all.empty() ? "" : ", ") + std::string(m.id);
+            }
+            if (!known) r.fail("ghost_impact", "'" + id + "' is not an impact law (one of " + all + ")");
+            s.ghost_impact = id;
+        }
     }
     if (const json* d = top.find("data")) {
         if (d->is_null()) s.data.clear();

@@ -42,6 +42,9 @@ struct Session {
     std::string bif_protocol = "cf-up";  // cf-up, cf-down, ef
     int bif_steps = 300;                 // 10 .. 2000
     std::string data;                    // the measured-data file loaded ("" none)
+    // The companion cart beside the first (off, twin, ghost) and the ghost's impact law (an impact id).
+    std::string companion = "off";
+    std::string ghost_impact = "G";
     bool operator==(const Session&) const = default;
 };
 

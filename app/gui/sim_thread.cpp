@@ -51,6 +51,7 @@ void SimThread::apply(const SimCommand& c) {
     switch (c.kind) {
         case CmdKind::SetModel:
         case CmdKind::Reset:
+        case CmdKind::Restart:
         case CmdKind::SetState:
         case CmdKind::Hold:
             restart_companion();   // from the cart's new state: where the two part is what is shown

@@ -2,7 +2,7 @@
 # GUI test of session files and clip export (issue 11), under Xvfb with Mesa's software OpenGL:
 #  1. A1G at omega 12.5, xI 2 mm, light theme, scale 1.25 saved with --save-session; loaded with --session:
 #     the state JSON shows that model, omega and xI, the run goes on from the saved time, and saving again
-#     gives the same model, forcing and view.
+#     gives the same model, forcing, view and companion cart (the twin).
 #  2. Bad session files are refused before a window opens (exit 2), naming the file, the key or line, and
 #     the problem: omega out of range, not JSON, a missing file, an unknown model, an unknown key.
 #  3. --clip-out: the last second as 31 PNG frames (30 fps) in a new folder, a real picture that changes
@@ -28,7 +28,7 @@ gui_run() {   # gui_run NAME ARGS...: the GUI headless, its output in $dir/NAME.
 }
 
 # 1. Round trip.
-gui_run save --model A1G --omega 12.5 --xI 0.002 --theme light --scale 1.25 --speed 4 --frames 60 \
+gui_run save --model A1G --omega 12.5 --xI 0.002 --theme light --scale 1.25 --speed 4 --twin --frames 60 \
     --save-session "$dir/s1.json" --state-json "$dir/a.json"
 [ $rc -eq 0 ] || { cat "$dir/save.log"; fail "saving exited with $rc"; }
 gui_run load --session "$dir/s1.json" --frames 20 --state-json "$dir/b.json" --save-session "$dir/s2.json"
@@ -45,11 +45,11 @@ if b["model"] != s1["model"] or abs(b["omega"] - s1["omega"]) > 1e-12 or abs(b["
                 f"{s1['model']} {s1['omega']} {s1['xI']}")
 if not (s1["state"]["t"] > 0 and b["sim_time"] >= s1["state"]["t"]):
     fail.append(f"the run did not go on from the saved t = {s1['state']['t']}: sim_time {b['sim_time']}")
-for k in ("model", "omega", "xI", "speed", "view", "windows", "bifurcation", "data"):
+for k in ("model", "omega", "xI", "speed", "view", "windows", "bifurcation", "data", "companion"):
     if s1[k] != s2[k]:
         fail.append(f"saved again, '{k}' differs: {s1[k]} then {s2[k]}")
-if s1["view"]["theme"] != "light" or s1["view"]["ui_scale"] != 1.25:
-    fail.append(f"the view was not saved: {s1['view']}")
+if s1["view"]["theme"] != "light" or s1["view"]["ui_scale"] != 1.25 or s1["companion"]["mode"] != "twin":
+    fail.append(f"the view or the companion was not saved: {s1['view']} {s1['companion']}")
 for f in fail:
     print("gui_session: FAIL:", f)
 sys.exit(1 if fail else 0)

@@ -35,6 +35,8 @@ Session sample() {
     s.show_help = true;
     s.bif_protocol = "ef";
     s.bif_steps = 120;
+    s.companion = "ghost";
+    s.ghost_impact = "C1";
     return s;
 }
 
@@ -100,6 +102,8 @@ TEST_CASE("session: bad files are refused naming the file, the key or line, and 
     CHECK(has(error_of(R"({"format": "impactlab-gui session", "state": {"x": 0.2}})"), "key 'state.x': 0.2 is out of range"));
     CHECK(has(error_of(R"({"format": "impactlab-gui session", "bifurcation": {"protocol": "sideways"}})"),
               "key 'bifurcation.protocol': 'sideways' is not one of cf-up, cf-down, ef"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "companion": {"ghost_impact": "Q"}})"),
+              "key 'companion.ghost_impact': 'Q' is not an impact law (one of"));
     CHECK(has(error_of(R"({"format": "impactlab-gui session", "version": 7})"), "key 'version': 7 is not supported"));
     CHECK(has(error_of(R"({"format": "impactlab-gui session", "data": "/nonexistent/run.csv"})"),
               "key 'data': cannot read '/nonexistent/run.csv'"));
