@@ -33,12 +33,12 @@ run() {   # run NAME ARGS...: the GUI headless, writing $dir/NAME.json
     if [ $rc -ne 0 ]; then cat "$dir/$name.log"; echo "gui_companion: $name: impactlab-gui exited with $rc"; exit 1; fi
 }
 
-run twin_chaos --model A1H --preset 3 --twin --speed 100 --frames 120
-run twin_calm --model A1H --preset 1 --twin --speed 100 --frames 120
-run ghost --model A1C --preset 3 --ghost A1G --speed 100 --frames 120
-run graze_rigid --model A1G --preset 3 --speed 100 --frames 120
-run beyond --model A1H --preset 1 --set-state 0.005,0 --paused --frames 20
-run pressed --model A1C --preset 1 --then-xI -0.018 --speed 1 --frames 160
+run twin_chaos --model A1H --preset 3 --twin --speed 100 --frames 40
+run twin_calm --model A1H --preset 1 --twin --speed 100 --frames 40
+run ghost --model A1C --preset 3 --ghost A1G --speed 100 --frames 40
+run graze_rigid --model A1G --preset 3 --speed 100 --frames 40
+run beyond --model A1H --preset 1 --set-state 0.005,0 --paused --frames 10
+run pressed --model A1C --preset 1 --then-xI -0.018 --speed 2 --frames 90
 
 fail=0
 for flag in "--ghost Z9" "--set-state 0.01" "--set-state 0.01,fast" "--twin --ghost A1G"; do
