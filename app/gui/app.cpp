@@ -638,6 +638,10 @@ int App::run() {
             if (opt_.replay_back > 0 && !replay_back_done_) {   // --replay-back: the last frame shows the past
                 replay_back_done_ = true;
                 if (enter_replay()) replay_.seek(replay_.cursor() - opt_.replay_back);
+                if (opt_.replay_continue) {   // then Enter, and 60 more frames of the continued run
+                    replay_request_ = ReplayRequest::Continue;
+                    counted_frames_ -= 60;
+                }
                 continue;
             }
             if (!opt_.screenshot.empty()) {

@@ -50,13 +50,14 @@ void App::leave_replay() {
 void App::continue_from_replay() {
     if (!replay_.active() || traj_.empty()) return;
     const SimMsg m = traj_[sample_at(traj_, replay_.cursor())];
-    replay_.leave();   // the simulation goes on from here, paused or not as it was before replay
+    const bool was_paused = replay_.leave();   // the run goes on from here, paused or not as before replay
     // The old future goes; the history keeps the past up to the instant continued from.
     traj_.drop_newest(traj_.size() - 1 - sample_at(traj_, m.t));
     sections_.drop_newest(sections_.size() - sections_.lower_bound(std::nextafter(m.t, INFINITY),
                                                                    [](const SimMsg& s) { return s.t; }));
     last_ = m;
     restart_sim(m.x, m.v, m.t, m.phi, m.omega, false);
+    if (!was_paused) set_paused(false);
     toast("continuing from t = " + std::to_string(m.t).substr(0, 8) + " s");
 }
 

@@ -81,6 +81,7 @@ const char* usage_text() {
            "                     folder in DIR: PNG frames at 30 fps, and clip.mp4 where ffmpeg is on PATH\n"
            "  --clip-seconds S   [s] of simulated time for --clip-out, 0.1..60 (default 2)\n"
            "  --replay-back S    with --frames: end in replay S seconds before the newest sample (Shift+R)\n"
+           "  --replay-continue  with --replay-back: continue the run from there (Enter), 60 frames more\n"
            "  --then-preset N    apply preset N half-way instead (as pressing key N)\n"
            "  --then-xI X        move the bumper to X [m] half-way instead (as the x_I slider)\n"
            "  --bench-plot       frames per second with --points points on every plot (needs a display)\n"
@@ -96,6 +97,7 @@ const char* usage_text() {
            "\n"
            "Keys: space pause, N step one period, R reset, left/right omega, up/down xI, [ ] speed,\n"
            "      M impact model, K stiffness, B bifurcation, C clear Poincare map, O continued branches,\n"
+           "      P presentation mode, V its plot, Z maximise the panel under the mouse, Esc restore,\n"
            "      F2 parameter plane, F3 basins, F1 help (all in the app).\n";
 }
 
@@ -245,6 +247,7 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--clip-out") o.clip_out = value();
         else if (a == "--clip-seconds") o.clip_seconds = number(a, value(), 0.1, 60.0);
         else if (a == "--replay-back") o.replay_back = number(a, value(), 0.001, 3600.0);
+        else if (a == "--replay-continue") o.replay_continue = true;
         else if (a == "--twin") o.twin = true;
         else if (a == "--ghost") o.ghost = version(a, value());
         else if (a == "--set-state") {
@@ -284,6 +287,7 @@ Options parse_options(const std::vector<std::string>& args) {
     if (!o.save_session.empty() && o.frames == 0) throw OptionsError("--save-session needs --frames N");
     if (!o.clip_out.empty() && o.frames == 0) throw OptionsError("--clip-out needs --frames N");
     if (o.replay_back > 0 && o.frames == 0) throw OptionsError("--replay-back needs --frames N");
+    if (o.replay_continue && o.replay_back <= 0) throw OptionsError("--replay-continue needs --replay-back S");
     if (o.twin && !o.ghost.empty()) throw OptionsError("--twin and --ghost: one companion cart at a time");
     if (o.then_preset > 0 && !o.switch_model.empty())
         throw OptionsError("--then-preset: half-way there is either a preset or a --switch-model, not both");

@@ -63,6 +63,7 @@ struct Options {
     std::string clip_out;        // --clip-out DIR: with --frames, export the last --clip-seconds as a clip
     double clip_seconds = 2.0;   // [s] of simulated time
     double replay_back = 0;      // [s] with --frames: end in replay this far before the newest sample
+    bool replay_continue = false;   // with --replay-back: continue from there (Enter), 60 more frames
     // The companion cart (issues 9, 11) and the mouse's state, as scripts set them.
     bool twin = false;           // --twin: a second cart 1 um to the right, the same model
     std::string ghost;           // --ghost M: a second cart from the same state under M's impact law

@@ -29,6 +29,11 @@ bool App::write_state_json(const std::string& path) {
                                   : json(nullptr);
     j["sim_time"] = number(have_last_ ? last_.t : sim_->status().sim_time);
     j["fps"] = number(fps_);
+    // The trajectory history (replay's range): a continued run keeps the past and drops the old future.
+    j["history"] = {{"samples", traj_.size()},
+                    {"t_first", traj_.empty() ? json(nullptr) : number(traj_[0].t)},
+                    {"t_last", traj_.empty() ? json(nullptr) : number(traj_.back().t)},
+                    {"replay_t", replay_.active() ? number(replay_.cursor()) : json(nullptr)}};
     j["ramp"] = {{"active", ramp_.active()}, {"omega_from", number(ramp_.omega_start())},
                  {"omega_to", number(ramp_.target())}, {"rate", number(ramp_.rate())},
                  {"points", ramp_.points().size()}};

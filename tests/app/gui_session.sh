@@ -8,6 +8,7 @@
 #  3. --clip-out: the last second as 31 PNG frames (30 fps) in a new folder, a real picture that changes
 #     from the first frame to the last, no staging folder left, and the toast's summary (ffmpeg or not);
 #     a --clip-out that is not a folder is refused naming the flag.
+#  4. Replay continued from 3 s back (see below).
 # Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
 # usage: gui_session.sh IMPACTLAB_GUI PNG_CHECK OUT_DIR
 gui="$1"; check="$2"; dir="$3"
@@ -89,4 +90,23 @@ else
 fi
 "$gui" --frames 5 --clip-out "$dir/s1.json" >"$dir/notdir.log" 2>&1
 [ $? -eq 2 ] && grep -qF -- "--clip-out: '$dir/s1.json' is not a folder" "$dir/notdir.log" || fail "--clip-out to a file: $(cat "$dir/notdir.log")"
-echo "gui_session: passed (round trip A1G 12.5 rad/s 2 mm, five bad files refused, a 31-frame clip)"
+# 4. Replay: 3 s back, continue from there (Enter): the history keeps the past up to that instant and
+#    drops the old future (one sample per ms from the first to the last, none twice), and the run goes on.
+gui_run cont --model A1H --preset 1 --speed 5 --frames 120 --replay-back 3 --replay-continue --state-json "$dir/cont.json"
+[ $rc -eq 0 ] || { cat "$dir/cont.log"; fail "the replay run exited with $rc"; }
+tc=$(sed -n 's/.*continuing from t = \([0-9.]*\) s.*/\1/p' "$dir/cont.log")
+[ -n "$tc" ] || fail "no 'continuing from t = ...' in the log: $(cat "$dir/cont.log")"
+python3 - "$dir/cont.json" "$tc" <<'PY' || exit 1
+import json, sys
+j = json.load(open(sys.argv[1]))
+h, tc = j["history"], float(sys.argv[2])
+expected = round((h["t_last"] - h["t_first"]) / 1e-3) + 1   # 1 ms samples at 5x
+if abs(h["samples"] - expected) > 2:
+    print(f"gui_session: FAIL: continued at t = {tc}: {h['samples']} samples over "
+          f"{h['t_first']}..{h['t_last']} s, expected {expected} (the old future kept?)")
+    sys.exit(1)
+if not (h["t_last"] > tc + 0.5 and j["sim_time"] > tc + 0.5 and h["replay_t"] is None):
+    print(f"gui_session: FAIL: the run did not go on from t = {tc}: {h}, sim_time {j['sim_time']}")
+    sys.exit(1)
+PY
+echo "gui_session: passed (round trip A1G 12.5 rad/s 2 mm, five bad files refused, a 31-frame clip, replay continued)"
