@@ -104,8 +104,9 @@ void App::draw_grazing() {
     } else {
         // xI - max x over the last forcing period: > 0 clear, 0 touching, < 0 pressed into a compliant bumper.
         const double gap = xI_shown_ - grazing_.x;
-        if (params_.has_bumper()) ImGui::Text("x_I − max x = %+.3f mm", gap * 1e3);
-        else ImGui::TextUnformatted("no bumper");
+        if (!params_.has_bumper()) ImGui::TextUnformatted("no bumper");
+        else if (std::abs(gap) < 1e-4) ImGui::Text("x_I − max x = %+.2f µm", gap * 1e6);   // near grazing
+        else ImGui::Text("x_I − max x = %+.3f mm", gap * 1e3);
     }
     hover_tip("The grazing monitor: how close the orbit came to the bumper over the last forcing period. "
               "A grazing bifurcation is coming when the gap shrinks to 0 (from a clear orbit) or the impact "
