@@ -13,6 +13,7 @@
 
 #include "app.hpp"
 #include "gl_util.hpp"
+#include "theme.hpp"
 
 namespace impactlab::gui {
 
@@ -129,7 +130,13 @@ void App::end_replay_frame() {
     else if (req == ReplayRequest::Continue) continue_from_replay();
     else if (req == ReplayRequest::Clip) {
         std::string err;
-        if (!start_clip(clip_dir_, clip_seconds_, err)) toast(err);
+        if (start_clip(clip_dir_, clip_seconds_, err)) {
+            clip_window_ = false;
+            clip_error_.clear();
+        } else {
+            clip_error_ = err;   // shown in the window, which stays open
+            toast(err);
+        }
     }
 }
 
@@ -215,12 +222,14 @@ void App::draw_clip_window() {
         const bool ffmpeg = !find_on_path("ffmpeg").empty();
         ImGui::TextDisabled("%.0f fps, PNG frames%s; played at %.2gx", kClipFps, ffmpeg ? " and clip.mp4 (ffmpeg)" : " (no ffmpeg: no video)",
                             replay_.active() ? replay_.rate() : 1.0);
-        if (ImGui::Button("Export")) {
-            replay_request_ = ReplayRequest::Clip;
-            clip_window_ = false;
-        }
+        if (ImGui::Button("Export")) replay_request_ = ReplayRequest::Clip;
         ImGui::SameLine();
         if (ImGui::Button("Close")) clip_window_ = false;
+        if (!clip_error_.empty()) {
+            ImGui::PushTextWrapPos(ImGui::GetFontSize() * 32);
+            ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", clip_error_.c_str());
+            ImGui::PopTextWrapPos();
+        }
     }
     ImGui::End();
 }

@@ -48,6 +48,8 @@ const char* usage_text() {
            "                     the section points over the bifurcation diagram as it goes\n"
            "  --bif-range W0:W1  compute the diagram over omega in [W0, W1], 0 <= W0 < W1 <= 30 (default 0:25;\n"
            "                     EF: the ramp ends at W1)\n"
+           "  --bif-box W0:W1    once the first diagram is done, compute [W0, W1] as a box dragged on it with\n"
+           "                     the right mouse button does (the same steps over the narrower range)\n"
            "  --bif-lyapunov     the lambda_max(omega) strip under the diagram, computed with it (slow)\n"
            "  --lyap-steps N     omegas of that strip, 5..300 (default 60)\n"
            "  --bif-nowait       with --frames: count the frames while the diagram computes (a screenshot\n"
@@ -98,6 +100,7 @@ const char* usage_text() {
            "Keys: space pause, N step one period, R reset, left/right omega, up/down xI, [ ] speed,\n"
            "      M impact model, K stiffness, B bifurcation, C clear Poincare map, O continued branches,\n"
            "      P presentation mode, V its plot, Z maximise the panel under the mouse, Esc restore,\n"
+           "      Shift+R replay, Ctrl+S / Ctrl+O save / load a session,\n"
            "      F2 parameter plane, F3 basins, F1 help (all in the app).\n";
 }
 
@@ -235,6 +238,14 @@ Options parse_options(const std::vector<std::string>& args) {
             if (c == std::string::npos) throw OptionsError("--ramp: '" + z + "' is not W1:RATE (target rad/s : rad/s per s)");
             o.ramp_to = number(a, z.substr(0, c), 0.0, 30.0);
             o.ramp_rate = number(a, z.substr(c + 1), 1e-3, 2.0);
+        } else if (a == "--bif-box") {
+            const std::string& z = value();
+            const auto c = z.find(':');
+            if (c == std::string::npos) throw OptionsError("--bif-box: '" + z + "' is not W0:W1");
+            o.bif_box_lo = number(a, z.substr(0, c), 0.0, 30.0);
+            o.bif_box_hi = number(a, z.substr(c + 1), 0.0, 30.0);
+            if (!(o.bif_box_hi - o.bif_box_lo >= 0.02))
+                throw OptionsError("--bif-box: " + z + " is narrower than 0.02 rad/s (W0 < W1 wanted)");
         } else if (a == "--bif-lyapunov") o.bif_lyapunov = true;
         else if (a == "--lyap-steps") o.lyap_steps = integer(a, value(), 5, 300);
         else if (a == "--bif-nowait") o.bif_nowait = true;
