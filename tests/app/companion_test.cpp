@@ -14,32 +14,15 @@
 #include "../../app/gui/contact_label.hpp"
 #include "../../app/gui/grazing_monitor.hpp"
 #include "../../app/gui/sim_engine.hpp"
+#include "engine_fixtures.hpp"
 #include "../../app/gui/sim_thread.hpp"
 #include "../../app/gui/state_pick.hpp"
 
 using namespace impactlab;
 using namespace impactlab::gui;
+using namespace impactlab::gui::testing;
 
 namespace {
-
-struct Sink final : MsgSink {
-    std::vector<SimMsg> msgs;
-    void put(const SimMsg& m) override { msgs.push_back(m); }
-    std::vector<SimMsg> of(MsgKind k) const {
-        std::vector<SimMsg> r;
-        for (const auto& m : msgs)
-            if (m.kind == k) r.push_back(m);
-        return r;
-    }
-};
-
-EngineConfig config(const std::string& model, double omega, double x0 = -0.011) {
-    EngineConfig c;
-    c.model = model;
-    c.omega = omega;
-    c.x0 = x0;
-    return c;
-}
 
 // The largest jump of x between two consecutive samples [m].
 double largest_step(const std::vector<SimMsg>& samples) {
@@ -55,7 +38,7 @@ TEST_CASE("defect 8: the bumper moved into the cart pushes it continuously, not 
         CAPTURE(model);
         for (const bool one_jump : {false, true}) {
             CAPTURE(one_jump);
-            Sink sink;
+            VectorSink sink;
             SimEngine e(config(model, 9.0), &sink);   // period 1 in the left well, x in about [-14, -7] mm
             const double frame = 1.0 / 60;          // 1x real time, 60 frames a second
             double t = 2.0;
@@ -84,7 +67,7 @@ TEST_CASE("defect 8: the bumper moved into the cart pushes it continuously, not 
 }
 
 TEST_CASE("defect 8: paused, the bumper moves at once; resending the same xI leaves a pressed cart alone") {
-    Sink sink;
+    VectorSink sink;
     EngineConfig c = config("A1C", 9.0);
     c.xI = -0.015;   // the magnets press the cart onto the compliant bumper
     SimEngine e(c, &sink);
@@ -108,7 +91,7 @@ TEST_CASE("defect 8: the rig's badge and the status bar read the contact from on
     CHECK(in_contact(c, Regime::Free, 3.0));
     CHECK(!in_contact(h, Regime::Free, 0.0));
     // A cart pressed onto the compliant bumper: its samples say so, and so does the label.
-    Sink sink;
+    VectorSink sink;
     EngineConfig cfg = config("A1C", 9.0);
     cfg.xI = -0.015;
     SimEngine e(cfg, &sink);
@@ -119,7 +102,7 @@ TEST_CASE("defect 8: the rig's badge and the status bar read the contact from on
 }
 
 TEST_CASE("the mouse: SetState keeps t and phi, bumps the epoch, and is refused beyond the bumper") {
-    Sink sink;
+    VectorSink sink;
     SimEngine e(config("A1H", 9.0), &sink);
     e.advance_to(1.3);
     const double t = e.state().t, phi = e.phi();
@@ -147,7 +130,7 @@ TEST_CASE("the mouse: SetState keeps t and phi, bumps the epoch, and is refused 
 }
 
 TEST_CASE("the mouse: a held cart stays where the hand is while time goes on; let go, it runs from there") {
-    Sink sink;
+    VectorSink sink;
     SimEngine e(config("A1H", 9.0), &sink);
     e.advance_to(1.0);
     REQUIRE(e.apply(SimCommand::hold(-0.004)));
@@ -187,7 +170,7 @@ namespace {
 // The cart and its companion advanced in lockstep as the sim thread does; returns |dx| at the end and at
 // the largest.
 struct Pair {
-    Sink a, b;
+    VectorSink a, b;
     SimEngine cart, companion;
     Pair(const std::string& model, double omega, const std::string& other, double dx)
         : cart(config(model, omega), &a), companion(config(model, omega), &b) {
@@ -326,7 +309,7 @@ TEST_CASE("grazing monitor: the gap to the bumper over a period, against a fine 
 TEST_CASE("grazing monitor: impact velocity (rigid) and depth and entry velocity (compliant) from the engine") {
     for (const std::string model : {"A1G", "A1C"}) {
         CAPTURE(model);
-        Sink sink;
+        VectorSink sink;
         SimEngine e(config(model, 18.0), &sink);   // chaos: the cart keeps hitting the bumper at x = 0
         e.advance_to(60.0);
         const auto g = sink.of(MsgKind::Grazing);

@@ -6,19 +6,14 @@
 #include <vector>
 
 #include "../../app/gui/sim_engine.hpp"
+#include "engine_fixtures.hpp"
 
 using namespace impactlab;
 using namespace impactlab::gui;
-
-namespace {
-struct Collect final : MsgSink {
-    std::vector<SimMsg> msgs;
-    void put(const SimMsg& m) override { msgs.push_back(m); }
-};
-}  // namespace
+using namespace impactlab::gui::testing;
 
 TEST_CASE("omega ramp: linear at the asked rate, phi continuous, constant after the target") {
-    Collect sink;
+    VectorSink sink;
     EngineConfig cfg;
     cfg.model = "A1H";
     cfg.omega = 8.0;

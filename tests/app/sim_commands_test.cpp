@@ -10,32 +10,12 @@
 #include <vector>
 
 #include "../../app/gui/sim_engine.hpp"
+#include "engine_fixtures.hpp"
 #include "../../app/gui/sim_thread.hpp"
 
 using namespace impactlab;
 using namespace impactlab::gui;
-
-namespace {
-
-struct VectorSink final : MsgSink {
-    std::vector<SimMsg> msgs;
-    void put(const SimMsg& m) override { msgs.push_back(m); }
-    std::size_t count(MsgKind k) const {
-        std::size_t n = 0;
-        for (const auto& m : msgs) n += m.kind == k;
-        return n;
-    }
-};
-
-EngineConfig config(const std::string& model, double omega, double x0 = -0.011) {
-    EngineConfig c;
-    c.model = model;
-    c.omega = omega;
-    c.x0 = x0;
-    return c;
-}
-
-}  // namespace
+using namespace impactlab::gui::testing;
 
 TEST_CASE("engine: samples on a fixed grid, sections from the core, everything in time order") {
     VectorSink sink;
