@@ -10,7 +10,7 @@ AnalysisContext App::analysis_context() const {
     c.model = model_name();
     c.omega = omega_;
     c.xI = xI_;
-    c.diagram_omega = bif_x_;
+    c.diagram_omega = bif_panel_.omega_axis();
     c.ui_scale = ui_scale_;
     return c;
 }

@@ -1,9 +1,53 @@
 #include "bifurcation_job.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 
+#include "impactlab/drive.hpp"
+#include "sim_engine.hpp"   // kMaxOmega
+
 namespace impactlab::gui {
+
+namespace {
+
+// The EF ramp's section points, published in chunks of this many (about 1.5 % of the ramp's 17,000).
+constexpr std::size_t kEfChunk = 256;
+
+// Watches the EF ramp's sections and publishes them (n >= 1, as run_ef_ramp keeps them, with omega(t)).
+class RampPublisher : public Observer {
+public:
+    RampPublisher(Feed<DiagramPoint>& feed, const Drive& drive) : feed_(feed), drive_(drive) {}
+    ~RampPublisher() override = default;
+    void on_section(const SectionPoint& sp) override {
+        if (sp.n < 1) return;
+        chunk_.push_back({drive_.omega(sp.t), sp.x, sp.v});
+        if (chunk_.size() >= kEfChunk) feed_.publish(chunk_, 0);
+    }
+    void flush() { feed_.publish(chunk_, 0); }
+
+private:
+    Feed<DiagramPoint>& feed_;
+    Drive drive_;
+    std::vector<DiagramPoint> chunk_;
+};
+
+// omega_j = lo + (hi - lo) j / steps, j = 1..steps, as the core's omega_min + (max - min) (j - 1)/(steps - 1).
+void set_levels(CfSpec& s, double lo, double hi, int steps) {
+    s.steps = steps;
+    s.omega_max = hi;
+    s.omega_min = lo + (hi - lo) / steps;
+}
+
+std::string fmt(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%g", v);
+    return b;
+}
+
+}  // namespace
 
 const char* bif_protocol_name(BifProtocol p) {
     switch (p) {
@@ -14,66 +58,78 @@ const char* bif_protocol_name(BifProtocol p) {
     return "?";
 }
 
-BifurcationJob::~BifurcationJob() {
-    cancel();
-    join();
+CfSpec cf_spec(const BifRequest& r) {
+    CfSpec spec;
+    set_levels(spec, r.omega_lo, r.omega_hi, r.steps);
+    spec.transient = r.transient;
+    spec.record = r.record;
+    spec.direction = r.protocol == BifProtocol::CfDown ? SweepDirection::Down : SweepDirection::Up;
+    return spec;
 }
 
-void BifurcationJob::join() {
-    if (thread_.joinable()) thread_.join();
+EfSpec ef_spec(const BifRequest& r) {
+    EfSpec spec;
+    spec.omega_max = r.omega_hi;
+    spec.t_ramp = r.omega_hi / r.ef_rate;   // the same rate whatever omega it ends at
+    return spec;
 }
 
-void BifurcationJob::cancel() {
-    if (progress_) progress_->cancel.store(true, std::memory_order_relaxed);
+CfSpec cf_spec(const LyapunovStripRequest& r) {
+    CfSpec spec;
+    set_levels(spec, r.omega_lo, r.omega_hi, r.steps);
+    spec.transient = r.transient;
+    spec.record = r.record;
+    spec.direction = r.direction;
+    return spec;
+}
+
+std::string check_omega_range(double lo, double hi) {
+    if (!std::isfinite(lo) || !std::isfinite(hi)) return "ω range: not a number";
+    if (lo < 0) return "ω min " + fmt(lo) + " rad/s is below 0";
+    if (hi > kMaxOmega) return "ω max " + fmt(hi) + " rad/s is above " + fmt(kMaxOmega) + " rad/s";
+    if (!(lo < hi)) return "ω min " + fmt(lo) + " must be below ω max " + fmt(hi) + " rad/s";
+    return "";
+}
+
+std::optional<BifRequest> box_request(const BifRequest& base, double w0, double w1) {
+    if (!std::isfinite(w0) || !std::isfinite(w1)) return std::nullopt;
+    const double lo = std::clamp(std::min(w0, w1), 0.0, kMaxOmega), hi = std::clamp(std::max(w0, w1), 0.0, kMaxOmega);
+    if (hi - lo < kMinBoxSpan) return std::nullopt;
+    BifRequest r = base;
+    r.omega_lo = lo;
+    r.omega_hi = hi;
+    return r;
 }
 
 void BifurcationJob::start(const BifRequest& req) {
-    cancel();
-    join();
-    progress_ = std::make_unique<Progress>();
-    running_.store(true, std::memory_order_release);
-    Progress* prog = progress_.get();
-    thread_ = std::thread([this, req, prog] {
-        Diagram d;
-        std::string error;
-        try {
+    job_.cancel();
+    job_.wait();   // the old worker is gone before its feed is: nothing publishes into a dropped feed
+    feed_ = std::make_shared<Feed<DiagramPoint>>();
+    job_.start([req, feed = feed_](Progress& prog) {
         if (req.protocol == BifProtocol::Ef) {
-            EfSpec spec;
-            spec.omega_max = req.omega_max;
-            spec.t_ramp = req.t_ramp;
-            d = run_ef_ramp(req.params, spec, prog);
-        } else {
-            CfSpec spec;
-            spec.omega_max = req.omega_max;
-            spec.omega_min = req.omega_max / req.steps;
-            spec.steps = req.steps;
-            spec.transient = req.transient;
-            spec.record = req.record;
-            spec.direction = req.protocol == BifProtocol::CfUp ? SweepDirection::Up : SweepDirection::Down;
-            d = run_cf_sweep(req.params, spec, prog);
+            const EfSpec spec = ef_spec(req);
+            RampPublisher pub(*feed, Drive::ef_ramp(spec.omega_max, spec.t_ramp));
+            Diagram d = run_ef_ramp(req.params, spec, &prog, {}, &pub);
+            pub.flush();
+            return d;
         }
-        } catch (const std::exception& e) {   // a stalled run (SimulationStalled): reported, not fatal
-            error = e.what();
-        }
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            if (error.empty()) result_ = std::move(d);
-            else error_ = std::move(error);
-        }
-        running_.store(false, std::memory_order_release);
+        LevelPublisher pub(*feed, req.transient);
+        return run_cf_sweep(req.params, cf_spec(req), &prog, {}, &pub);
     });
 }
 
-std::string BifurcationJob::take_error() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return std::exchange(error_, std::string());
-}
-
-std::optional<Diagram> BifurcationJob::take_result() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    std::optional<Diagram> out = std::move(result_);
-    result_.reset();
-    return out;
+void LyapunovStripJob::start(const LyapunovStripRequest& req) {
+    job_.cancel();
+    job_.wait();
+    feed_ = std::make_shared<Feed<analysis::LyapunovPoint>>();
+    job_.start([req, feed = feed_](Progress& prog) {
+        int done = 0;
+        std::vector<analysis::LyapunovPoint> one;
+        return analysis::lyapunov_sweep(req.params, cf_spec(req), &prog, {}, [&](const analysis::LyapunovPoint& q) {
+            one.assign(1, q);
+            feed->publish(one, ++done);
+        });
+    });
 }
 
 }  // namespace impactlab::gui

@@ -274,6 +274,8 @@ void Plot::set_user_view(const char* id, Range x, Range y) {
     if (x.valid() && y.valid()) g_user_views[ImGui::GetID(id)] = UserView{x, y, id};
 }
 
+void Plot::clear_user_view(const char* id) { g_user_views.erase(ImGui::GetID(id)); }
+
 std::vector<Plot::NamedView> Plot::user_views() {
     std::vector<NamedView> out;
     for (const auto& [key, v] : g_user_views) out.push_back({v.name, v.x, v.y});

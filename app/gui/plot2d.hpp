@@ -77,6 +77,9 @@ public:
     // Sets the user's view of plot `id` in the current window, as a zoom with the mouse would (scripted
     // views: --bif-zoom). UI thread, inside the plot's window, before its begin().
     static void set_user_view(const char* id, Range x, Range y);
+    // Gives plot `id` back to the caller's ranges, as a double-click does (a plot that follows another's
+    // zoom hands the user's change over and drops its own). Same thread and window as set_user_view.
+    static void clear_user_view(const char* id);
     // Session files: the views the user zoomed or panned, by plot id ("##phase"); and views to put back,
     // each applied when its plot next begins (all others go back to the caller's ranges). UI thread.
     struct NamedView {

@@ -56,7 +56,7 @@ std::vector<SectionPoint> poincare_section(const Params& p, double omega, int pe
     return std::move(col.points);
 }
 
-Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress, const Tolerances& tol) {
+Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress, const Tolerances& tol, LevelObserver* extra) {
     std::vector<CfLevel> levels(static_cast<std::size_t>(spec.steps));
     for (int j = 0; j < spec.steps; ++j) {
         const double w = spec.steps == 1 ? spec.omega_min
@@ -64,7 +64,7 @@ Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress, co
         levels[static_cast<std::size_t>(j)] = {w, p.xI, p.m0e};
     }
     if (spec.direction == SweepDirection::Down) std::reverse(levels.begin(), levels.end());
-    Diagram diag = run_cf_levels(p, levels, spec.transient, spec.record, progress, tol);
+    Diagram diag = run_cf_levels(p, levels, spec.transient, spec.record, progress, tol, extra);
     diag.protocol = spec.direction == SweepDirection::Up ? "cf-up" : "cf-down";
     return diag;
 }
@@ -122,7 +122,7 @@ Diagram run_cf_levels(const Params& p0, const std::vector<CfLevel>& levels, int 
     return diag;
 }
 
-Diagram run_ef_ramp(const Params& p, const EfSpec& spec, Progress* progress, const Tolerances& tol) {
+Diagram run_ef_ramp(const Params& p, const EfSpec& spec, Progress* progress, const Tolerances& tol, Observer* extra) {
     Diagram diag;
     diag.model = p.name;
     diag.protocol = "ef";
@@ -130,7 +130,7 @@ Diagram run_ef_ramp(const Params& p, const EfSpec& spec, Progress* progress, con
     Simulator sim(tol);
     State s;
     Simulator::make_consistent(p, drive, s);
-    SectionCollector col(1, progress);
+    SectionCollector col(1, progress, extra);
     col.on_section_progress = [&](const SectionPoint& sp) {
         progress->fraction.store(sp.t / spec.t_ramp, std::memory_order_relaxed);
     };

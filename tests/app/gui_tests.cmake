@@ -81,3 +81,10 @@ add_test(NAME gui_companion
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_companion.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_companion)
 set_tests_properties(gui_companion PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
+
+# The bifurcation panel (issue 11 defect 4): range, progressive fill, the box, the stale note, via
+# --state-json (gui_diagram.sh says what it checks). Skipped (exit 77) without xvfb-run or python3.
+add_test(NAME gui_diagram
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_diagram.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_diagram)
+set_tests_properties(gui_diagram PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")

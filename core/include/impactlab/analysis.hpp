@@ -13,6 +13,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -169,8 +170,11 @@ double lyapunov_two_trajectory(const Params& p, double omega, State s, int trans
 struct LyapunovPoint { double omega, lambda_max, lambda_min; int period; };
 // Along a CF sweep (each omega from the previous state, as run_cf_sweep): spec.transient periods dropped,
 // spec.record periods averaged; period = count_period of the recorded section points (as the sweep counts).
+// on_point (optional) receives each omega's point as soon as it is done, on the calling thread (a GUI's
+// progressive fill); a cancelled sweep returns the points done so far.
 std::vector<LyapunovPoint> lyapunov_sweep(const Params& p, const CfSpec& spec, Progress* progress = nullptr,
-                                          const Tolerances& tol = {});
+                                          const Tolerances& tol = {},
+                                          const std::function<void(const LyapunovPoint&)>& on_point = {});
 
 // ---- Basins of attraction ---------------------------------------------------------------------------------
 

@@ -65,9 +65,12 @@ public:
 // points, with each level's omega. run_cf_sweep is this with xI and m0e fixed.
 Diagram run_cf_levels(const Params& p, const std::vector<CfLevel>& levels, int transient, int record,
                       Progress* progress = nullptr, const Tolerances& tol = {}, LevelObserver* extra = nullptr);
-// Starts at rest at x = 0 (made consistent with the bumper), as MODEL.md prescribes.
-Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress = nullptr, const Tolerances& tol = {});
-Diagram run_ef_ramp(const Params& p, const EfSpec& spec, Progress* progress = nullptr, const Tolerances& tol = {});
+// Starts at rest at x = 0 (made consistent with the bumper), as MODEL.md prescribes. `extra` as run_cf_levels's.
+Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress = nullptr, const Tolerances& tol = {},
+                     LevelObserver* extra = nullptr);
+// `extra` (optional) sees every piece, impact and section of the ramp in time order (a GUI's progressive fill).
+Diagram run_ef_ramp(const Params& p, const EfSpec& spec, Progress* progress = nullptr, const Tolerances& tol = {},
+                    Observer* extra = nullptr);
 
 // Poincare section at constant omega: `transient` periods discarded, then `periods` points recorded.
 std::vector<SectionPoint> poincare_section(const Params& p, double omega, int periods, int transient, State& state,

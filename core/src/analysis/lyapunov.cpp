@@ -25,29 +25,39 @@ Mat2 scaled(const Mat2& Phi) {
 }
 }  // namespace
 
-LyapunovResult lyapunov(const Params& p, double omega, State& s, int transient, int periods, const Tolerances& tol,
-                        Progress* progress) {
+namespace {
+// lyapunov() with its cancel flag and its fraction apart: a sweep's levels watch the sweep's cancel flag
+// (a slow compliant model stops within a period) but leave the sweep's fraction alone. Either may be null.
+LyapunovResult lyapunov_watched(const Params& p, double omega, State& s, int transient, int periods,
+                                const Tolerances& tol, const std::atomic<bool>* cancel, std::atomic<double>* fraction) {
+    auto cancelled = [cancel] { return cancel && cancel->load(std::memory_order_relaxed); };
     LyapunovResult res;
     Simulator sim(tol);
     const Drive d(omega, s.t, 0.0);
     Simulator::make_consistent(p, d, s);
     detail::TangentTracker none(p, d, false);
-    for (int i = 1; i <= transient && !cancelled(progress); ++i) sim.advance(p, d, s, d.time_of_phase(kTwoPi * i), &none);
+    none.cancel = cancel;   // a slow period (a compliant bumper at low omega takes seconds) is cut short too
+    for (int i = 1; i <= transient && !cancelled(); ++i) sim.advance(p, d, s, d.time_of_phase(kTwoPi * i), &none);
     // Sections fall on the period boundaries: t0 + i T with phi(t0) = 0.
     const double t0 = s.t;
     detail::TangentTracker tr(p, d, true);
     tr.sections = &res.sections;
+    tr.cancel = cancel;
     res.sections.reserve(static_cast<std::size_t>(periods));
     double sum1 = 0, sum2 = 0;
     Mat2 Q = Mat2::Identity();   // orthonormal frame, scaled variables
     for (int i = 1; i <= periods; ++i) {
-        if (cancelled(progress)) {
+        if (cancelled()) {
             res.cancelled = true;
             break;
         }
         tr.Phi = Mat2::Identity();
         if (s.regime == Regime::Contact) tr.Phi.setZero();
         sim.advance(p, d, s, d.time_of_phase(d.phi(t0) + kTwoPi * static_cast<double>(i)), &tr);
+        if (cancelled()) {   // the period was cut short: its tangent is not a period's
+            res.cancelled = true;
+            break;
+        }
         Eigen::HouseholderQR<Mat2> qr(scaled(tr.Phi) * Q);
         const Mat2 R = qr.matrixQR().triangularView<Eigen::Upper>();
         Q = qr.householderQ();
@@ -59,7 +69,7 @@ LyapunovResult lyapunov(const Params& p, double omega, State& s, int transient, 
         for (int j = 0; j < 2; ++j)
             if (R(j, j) < 0) Q.col(j) = -Q.col(j);
         res.seconds = s.t - t0;
-        if (progress) progress->fraction.store(static_cast<double>(i) / periods, std::memory_order_relaxed);
+        if (fraction) fraction->store(static_cast<double>(i) / periods, std::memory_order_relaxed);
     }
     if (res.seconds > 0) {
         res.lambda_max = sum1 / res.seconds;
@@ -67,6 +77,13 @@ LyapunovResult lyapunov(const Params& p, double omega, State& s, int transient, 
         if (res.lambda_min > res.lambda_max) std::swap(res.lambda_min, res.lambda_max);
     }
     return res;
+}
+}  // namespace
+
+LyapunovResult lyapunov(const Params& p, double omega, State& s, int transient, int periods, const Tolerances& tol,
+                        Progress* progress) {
+    return lyapunov_watched(p, omega, s, transient, periods, tol, progress ? &progress->cancel : nullptr,
+                            progress ? &progress->fraction : nullptr);
 }
 
 double lyapunov_two_trajectory(const Params& p, double omega, State s, int transient, int periods,
@@ -108,7 +125,8 @@ double lyapunov_two_trajectory(const Params& p, double omega, State s, int trans
     return sum / (periods * T);
 }
 
-std::vector<LyapunovPoint> lyapunov_sweep(const Params& p, const CfSpec& spec, Progress* progress, const Tolerances& tol) {
+std::vector<LyapunovPoint> lyapunov_sweep(const Params& p, const CfSpec& spec, Progress* progress, const Tolerances& tol,
+                                          const std::function<void(const LyapunovPoint&)>& on_point) {
     std::vector<double> omegas(static_cast<std::size_t>(spec.steps));
     for (int j = 0; j < spec.steps; ++j)
         omegas[static_cast<std::size_t>(j)] =
@@ -118,11 +136,14 @@ std::vector<LyapunovPoint> lyapunov_sweep(const Params& p, const CfSpec& spec, P
     State s;   // at rest at x = 0, as the sweep starts
     for (std::size_t j = 0; j < omegas.size(); ++j) {
         if (cancelled(progress)) break;
-        const LyapunovResult r = lyapunov(p, omegas[j], s, spec.transient, spec.record, tol);
+        const LyapunovResult r = lyapunov_watched(p, omegas[j], s, spec.transient, spec.record, tol,
+                                                  progress ? &progress->cancel : nullptr, nullptr);
+        if (r.cancelled) break;   // a level cut short is no estimate
         std::vector<double> xs;
         xs.reserve(r.sections.size());
         for (const auto& y : r.sections) xs.push_back(y[0]);
         out.push_back({omegas[j], r.lambda_max, r.lambda_min, count_period(xs, 1e-5)});
+        if (on_point) on_point(out.back());
         if (progress) progress->fraction.store(static_cast<double>(j + 1) / omegas.size(), std::memory_order_relaxed);
     }
     return out;

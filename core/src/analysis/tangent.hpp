@@ -8,6 +8,8 @@
 // are exactly the Simulator's, and Phi is their derivative.
 #pragma once
 
+#include <atomic>
+
 #include <vector>
 
 #include "impactlab/drive.hpp"
@@ -32,6 +34,8 @@ public:
     double min_impact_speed = 1e300;      // [m/s]
     bool contact = false;                 // regime III met
     std::vector<Vec2>* sections = nullptr;   // optional: each section's (x, v) appended
+    const std::atomic<bool>* cancel = nullptr;   // optional: when set, advance() returns after the piece
+    bool stop() const override { return cancel && cancel->load(std::memory_order_relaxed); }
 
     void on_piece(const Piece& piece) override;
     void on_section(const SectionPoint& sp) override;

@@ -1,0 +1,629 @@
+#include "bifurcation_panel.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <utility>
+
+#include "gl_util.hpp"
+#include "sim_engine.hpp"   // kMaxOmega
+#include "theme.hpp"
+
+namespace impactlab::gui {
+
+namespace {
+
+double wall_s() {
+    using namespace std::chrono;
+    return duration<double>(steady_clock::now().time_since_epoch()).count();
+}
+
+void tooltip(const char* text) {
+    if (!ImGui::IsItemHovered()) return;
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 26.0f);
+    ImGui::TextUnformatted(text);
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+}
+
+// A text on a plate that keeps it readable over the image; align as ImGui's (0: left/top, 1: right/bottom).
+void plate(ImDrawList* dl, ImVec2 p, const char* text, ImU32 col, ImVec2 align = ImVec2(0, 0)) {
+    const ImVec2 ts = ImGui::CalcTextSize(text);
+    const ImVec2 a(std::round(p.x - ts.x * align.x), std::round(p.y - ts.y * align.y));
+    const ImU32 bg = palette().dark ? IM_COL32(10, 12, 16, 185) : IM_COL32(255, 255, 255, 200);
+    dl->AddRectFilled(ImVec2(a.x - 4, a.y - 2), ImVec2(a.x + ts.x + 4, a.y + ts.y + 2), bg, 3.0f);
+    dl->AddText(a, col, text);
+}
+
+ImU32 density_u32(float t) {
+    unsigned char c[4];
+    density_color(palette().dark, t, c);
+    return IM_COL32(c[0], c[1], c[2], c[3]);
+}
+
+// The live section points: a colour the density map does not use, with a dark rim.
+constexpr ImU32 kLiveColor = IM_COL32(90, 230, 255, 255);
+// The Lyapunov strip: chaos (lambda > 0), periodic orbits (lambda < 0), and a band around zero where the
+// estimate of 40 periods cannot tell (a cart creeping off the hilltop: about 1e-3 1/s).
+constexpr ImU32 kChaosColor = IM_COL32(240, 80, 70, 255), kOrderColor = IM_COL32(80, 150, 255, 255),
+                kZeroColor = IM_COL32(170, 170, 170, 255);
+constexpr double kLambdaZero = 0.02;   // [1/s]
+ImU32 lambda_color(double l) { return l > kLambdaZero ? kChaosColor : l < -kLambdaZero ? kOrderColor : kZeroColor; }
+const char* lambda_word(double l) {
+    return l > kLambdaZero ? "chaos" : l < -kLambdaZero ? "periodic" : "about zero: neither settles nor separates";
+}
+
+}  // namespace
+
+void BifurcationPanel::configure(const Options& opt) {
+    want_start_ = !opt.bifurcation.empty();
+    nowait_ = opt.bif_nowait;
+    if (opt.bif_range_hi > opt.bif_range_lo) {
+        lo_edit_ = opt.bif_range_lo;
+        hi_edit_ = opt.bif_range_hi;
+    }
+    if (opt.bif_box_hi > opt.bif_box_lo) {
+        script_box_ = true;
+        script_box_x_ = {opt.bif_box_lo, opt.bif_box_hi};
+    }
+    if (opt.bif_zoom_hi > opt.bif_zoom_lo) {
+        zoom_x_ = {opt.bif_zoom_lo, opt.bif_zoom_hi};
+        zoom_applied_ = false;
+    }
+    lyap_on_ = lyap_want_ = opt.bif_lyapunov;
+    if (opt.lyap_steps > 0) lyap_steps_ = opt.lyap_steps;
+}
+
+BifRequest BifurcationPanel::request(const BifurcationContext& c, double lo, double hi) const {
+    BifRequest req;
+    req.params = *c.params;
+    req.protocol = static_cast<BifProtocol>(std::clamp(c.protocol ? *c.protocol : 0, 0, 2));
+    req.steps = c.steps ? *c.steps : 300;
+    req.omega_lo = lo;
+    req.omega_hi = hi;
+    return req;
+}
+
+std::string BifurcationPanel::start(const BifurcationContext& c) {
+    range_error_ = check_omega_range(lo_edit_, hi_edit_);
+    if (!range_error_.empty()) return "bifurcation diagram not started: " + range_error_;
+    begin(c, request(c, lo_edit_, hi_edit_));
+    return "";
+}
+
+std::string BifurcationPanel::toggle(const BifurcationContext& c) {
+    if (job_.running()) {
+        job_.cancel();
+        return "";
+    }
+    return start(c);
+}
+
+void BifurcationPanel::begin(const BifurcationContext& c, const BifRequest& req) {
+    job_.start(req);
+    started_ = wall_s();
+    // The old diagram goes at once: the new one fills in column by column over its own omega range.
+    shown_ = Diagram{};
+    shown_.model = c.model;
+    shown_.protocol = req.protocol == BifProtocol::Ef ? "ef" : req.protocol == BifProtocol::CfDown ? "cf-down" : "cf-up";
+    shown_req_ = req;
+    have_ = true;
+    levels_done_ = 0;
+    fit_x_ = req.protocol == BifProtocol::Ef ? Range{0.0, req.omega_hi} : Range{req.omega_lo, req.omega_hi};
+    fit_y_empty_ = true;   // the y fit keeps its old range until the first points (no jump to nothing)
+    dirty_ = true;
+    lo_edit_ = req.omega_lo;
+    hi_edit_ = req.omega_hi;
+    range_error_.clear();
+    if (lyap_on_) start_strip(c);
+}
+
+void BifurcationPanel::start_strip(const BifurcationContext& c) {
+    LyapunovStripRequest r;
+    r.params = have_ ? shown_req_.params : *c.params;
+    // The diagram's sweep: the same direction and omega range (the EF ramp's range swept up).
+    r.direction = have_ && shown_req_.protocol == BifProtocol::CfDown ? SweepDirection::Down : SweepDirection::Up;
+    r.omega_lo = have_ ? shown_req_.omega_lo : lo_edit_;
+    r.omega_hi = have_ ? shown_req_.omega_hi : hi_edit_;
+    r.steps = lyap_steps_;
+    lyap_req_ = r;
+    lyap_.clear();
+    lyap_done_ = 0;
+    lyap_model_ = have_ ? shown_.model : c.model;
+    lyap_job_.start(r);
+}
+
+void BifurcationPanel::grow_fit(std::size_t from) {
+    double lo = fit_y_empty_ ? 1e300 : fit_y_.lo, hi = fit_y_empty_ ? -1e300 : fit_y_.hi;
+    bool grew = false;
+    for (std::size_t i = from; i < shown_.points.size(); ++i) {
+        const double x = shown_.points[i].x;
+        const double pad = 0.06 * std::max(hi - lo, 1e-3);
+        if (x < lo) lo = x - pad, grew = true;
+        if (x > hi) hi = x + pad, grew = true;
+    }
+    if (grew) {
+        fit_y_ = {lo, hi};
+        fit_y_empty_ = false;
+    }
+}
+
+void BifurcationPanel::snap_fit() {
+    if (shown_.points.empty()) return;
+    double lo = 1e300, hi = -1e300;
+    for (const auto& p : shown_.points) {
+        lo = std::min(lo, p.x);
+        hi = std::max(hi, p.x);
+    }
+    const double pad = 0.06 * std::max(hi - lo, 1e-3);
+    fit_y_ = {lo - pad, hi + pad};
+    fit_y_empty_ = false;
+}
+
+std::string BifurcationPanel::poll(const BifurcationContext& c) {
+    std::string toast;
+    // The diagram: what arrived since the last frame, then (once) the whole result.
+    const std::size_t before = shown_.points.size();
+    const int levels = job_.take_new(shown_.points);
+    if (shown_.points.size() != before) {
+        levels_done_ = levels;
+        grow_fit(before);
+        dirty_ = true;
+    }
+    if (std::string err = job_.take_error(); !err.empty()) toast = "bifurcation diagram failed: " + err;
+    if (auto d = job_.take_result()) {
+        // The chunks hold every point the result does, in the same order (the last may have come after the
+        // take above: its level count is read again); the result adds the totals.
+        std::vector<DiagramPoint> last;
+        if (const int lv = job_.take_new(last); lv > 0) levels_done_ = lv;
+        const std::string model = shown_.model;
+        shown_ = std::move(*d);
+        shown_.model = model;
+        snap_fit();
+        dirty_ = true;
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "bifurcation diagram %s%s: %zu points over ω %.3g-%.3g rad/s in %.0f s",
+                      shown_.model.c_str(), shown_.cancelled ? " (cancelled, partial)" : " done", shown_.points.size(),
+                      shown_req_.omega_lo, shown_req_.omega_hi, wall_s() - started_);
+        toast = buf;
+    }
+    // The strip.
+    const std::size_t lb = lyap_.size();
+    const int ld = lyap_job_.take_new(lyap_);
+    if (lyap_.size() != lb) lyap_done_ = ld;
+    if (std::string err = lyap_job_.take_error(); !err.empty()) toast = "Lyapunov strip failed: " + err;
+    if (auto r = lyap_job_.take_result()) {
+        lyap_ = std::move(*r);
+        lyap_done_ = static_cast<int>(lyap_.size());
+    }
+    if (lyap_want_ && (have_ || !want_start_)) {   // --bif-lyapunov: with the first diagram, if one is asked for
+        lyap_want_ = false;
+        if (!lyap_job_.running() && lyap_.empty()) start_strip(c);
+    }
+    if (dark_ != palette().dark) {
+        dark_ = palette().dark;
+        dirty_ = true;
+    }
+    return toast;
+}
+
+bool BifurcationPanel::busy() const {
+    const bool diagram = want_start_ && !nowait_ && (job_.running() || !have_ || script_box_);
+    const bool strip = lyap_on_ && !nowait_ && (lyap_job_.running() || lyap_want_);
+    return diagram || strip;
+}
+
+bool BifurcationPanel::stale(const BifurcationContext& c) const {
+    return have_ && (shown_.model != c.model || std::abs(shown_req_.params.xI - c.xI) > 1e-9);
+}
+
+BifurcationState BifurcationPanel::state(const BifurcationContext& c) const {
+    BifurcationState s;
+    s.have = have_;
+    s.model = shown_.model;
+    s.protocol = shown_.protocol;
+    s.omega_lo = have_ ? (shown_req_.protocol == BifProtocol::Ef ? 0.0 : shown_req_.omega_lo) : 0.0;
+    s.omega_hi = have_ ? shown_req_.omega_hi : 0.0;
+    s.steps = have_ && shown_req_.protocol != BifProtocol::Ef ? shown_req_.steps : 0;
+    s.levels_done = have_ && shown_req_.protocol != BifProtocol::Ef ? levels_done_ : 0;
+    s.points = shown_.points.size();
+    s.running = job_.running();
+    s.cancelled = shown_.cancelled;
+    s.stale = stale(c);
+    s.progress = job_.progress();
+    s.view_omega = view_x_;
+    s.range_error = range_error_;
+    s.lyap_on = lyap_on_;
+    s.lyap_running = lyap_job_.running();
+    s.lyap_steps = lyap_req_.steps;
+    s.lyap_done = lyap_done_;
+    for (const auto& q : lyap_) s.lyap_positive += q.lambda_max > 0;
+    return s;
+}
+
+void BifurcationPanel::show_bench(Diagram d, Range x, Range y) {
+    shown_ = std::move(d);
+    shown_req_ = BifRequest{};
+    shown_req_.omega_lo = x.lo;
+    shown_req_.omega_hi = x.hi;
+    shown_req_.steps = 300;
+    shown_req_.params.name = shown_.model;
+    have_ = true;
+    fit_x_ = x;
+    fit_y_ = y;
+    fit_y_empty_ = false;
+    dirty_ = true;
+}
+
+void BifurcationPanel::release_gl() {
+    if (tex_) {
+        const GLuint t = tex_;
+        glDeleteTextures(1, &t);
+        tex_ = 0;
+    }
+}
+
+void BifurcationPanel::update_texture(int w, int h) {
+    if (!have_ || w <= 0 || h <= 0) return;
+    if (!dirty_ && w == tex_w_ && h == tex_h_) return;
+    dirty_ = false;
+    tex_w_ = w;
+    tex_h_ = h;
+    std::vector<float> count(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0.0f);
+    // Each omega level of a CF sweep is splatted over its share of the width (the request's span over its
+    // steps, in the pixels of the view shown), so the diagram has no gaps between columns.
+    const bool cf = shown_.protocol != "ef";
+    const double col_px = w * (shown_req_.omega_hi - shown_req_.omega_lo) / std::max(1, shown_req_.steps) / view_x_.span();
+    const int splat = cf ? std::clamp(static_cast<int>(col_px), 1, 12) : 1;
+    for (const auto& p : shown_.points) {
+        const double fx = (p.omega - view_x_.lo) / view_x_.span(), fy = (view_y_.hi - p.x) / view_y_.span();
+        if (!(fx > -0.1 && fx < 1.1)) continue;
+        const int ix = static_cast<int>(std::floor(fx * w)), iy = static_cast<int>(std::floor(fy * h));
+        if (iy < 0 || iy >= h) continue;
+        // A CF level stands for the band of omega below it (omega_j - span/steps, omega_j] up to the
+        // next: the splat covers the pixels to its left, so the last column ends at omega_hi.
+        for (int k = 0; k < splat; ++k) {
+            const int x = cf ? ix - k : ix;
+            if (x < 0 || x >= w) continue;
+            count[static_cast<std::size_t>(iy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] += 1.0f;
+        }
+    }
+    float mx = 0;
+    for (float n : count) mx = std::max(mx, n);
+    max_count_ = mx;
+    const float norm = 1.0f / std::log1p(std::max(mx, 1.0f));
+    std::vector<unsigned char> rgba(count.size() * 4, 0);
+    for (std::size_t i = 0; i < count.size(); ++i) {
+        if (count[i] <= 0) continue;
+        density_color(palette().dark, std::log1p(count[i]) * norm, &rgba[i * 4]);
+    }
+    tex_ = upload_rgba_texture(static_cast<GLuint>(tex_), w, h, rgba.data());
+}
+
+void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toast) {
+    const float fs = ImGui::GetFontSize();
+    // Keeps a row's items together: the next one goes on a new line when it would not fit.
+    auto same_line_if = [&](float width) {
+        ImGui::SameLine();
+        if (ImGui::GetContentRegionAvail().x < width) ImGui::NewLine();
+    };
+    const char* protos[] = {"CF up", "CF down", "EF ramp"};
+    ImGui::SetNextItemWidth(fs * 6.2f);
+    if (c.protocol) ImGui::Combo("##proto", c.protocol, protos, 3);
+    tooltip("CF: constant ω steps, 20 transient + 70 recorded periods each, every step starting where the last "
+            "ended. EF: the experiment's slow ramp of ω (25 rad/s in 2800 s) from rest up to ω max.");
+    const bool ef = c.protocol && *c.protocol == 2;
+    same_line_if(fs * 6.0f);
+    ImGui::BeginDisabled(ef);
+    ImGui::SetNextItemWidth(fs * 6.0f);
+    if (c.steps) ImGui::SliderInt("##steps", c.steps, 25, 600, "%d steps");
+    tooltip("CF: the number of ω levels over the range (a box dragged on the diagram keeps it: finer columns).");
+    ImGui::EndDisabled();
+    // The omega range: typed, or dragged on the diagram with the right mouse button.
+    same_line_if(fs * 9.6f);
+    bool edited = false;
+    ImGui::SetNextItemWidth(fs * 4.6f);
+    edited |= ImGui::InputDouble("##wlo", &lo_edit_, 0, 0, "%.2f");
+    tooltip("ω min [rad/s] of the next diagram (0 ≤ min < max ≤ 30). Or drag a box on the diagram with the "
+            "right mouse button: that range is computed at once.");
+    ImGui::SameLine(0, fs * 0.2f);
+    ImGui::SetNextItemWidth(fs * 4.6f);
+    edited |= ImGui::InputDouble("##whi", &hi_edit_, 0, 0, "%.2f");
+    tooltip("ω max [rad/s] of the next diagram (EF: where the ramp ends).");
+    if (edited) range_error_ = check_omega_range(lo_edit_, hi_edit_);
+    ImGui::SameLine(0, fs * 0.2f);
+    if (ImGui::SmallButton("0-25")) {
+        lo_edit_ = 0;
+        hi_edit_ = 25;
+        range_error_.clear();
+    }
+    tooltip("The paper's range, ω from 0 to 25 rad/s.");
+    if (job_.running()) {
+        same_line_if(fs * 10.0f);
+        if (ImGui::Button("Cancel")) job_.cancel();
+        ImGui::SameLine();
+        char over[48];
+        if (shown_req_.protocol == BifProtocol::Ef) std::snprintf(over, sizeof over, "%.0f%%", 100.0 * job_.progress());
+        else std::snprintf(over, sizeof over, "%d / %d ω", levels_done_, shown_req_.steps);
+        ImGui::ProgressBar(static_cast<float>(job_.progress()), ImVec2(std::max(fs * 5.0f, ImGui::GetContentRegionAvail().x - fs * 5.5f), 0), over);
+    } else {
+        char label[48];
+        std::snprintf(label, sizeof label, "Compute %s", c.model.c_str());
+        same_line_if(ImGui::CalcTextSize(label).x + fs * 1.2f);
+        ImGui::BeginDisabled(!range_error_.empty());
+        if (ImGui::Button(label)) toast = start(c);
+        ImGui::EndDisabled();
+        tooltip("B: runs on a worker thread and fills in column by column; the animation goes on.");
+    }
+    same_line_if(fs * 5.5f);
+    if (ImGui::Checkbox("λ strip", &lyap_on_)) {
+        if (lyap_on_ && (lyap_.empty() || lyap_model_ != (have_ ? shown_.model : c.model))) start_strip(c);
+        if (!lyap_on_) lyap_job_.cancel();
+    }
+    char tip[320];
+    std::snprintf(tip, sizeof tip,
+                  "The largest Lyapunov exponent λmax(ω) along the same CF sweep, in a strip under the diagram "
+                  "(positive: chaos; negative: a periodic orbit, however long). Slow: %d ω of 20 + 40 periods take "
+                  "about 2 s with a rigid bumper (G, H) and several minutes with a compliant one (C, C1).",
+                  lyap_steps_);
+    tooltip(tip);
+    draw_legend();
+    if (!range_error_.empty()) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", range_error_.c_str());
+}
+
+void BifurcationPanel::draw_legend() const {
+    // The density colours in the header, from one point in a pixel to the densest pixel, on the image's log
+    // scale (the colour of n points is log(1 + n) / log(1 + max)), so it never covers the diagram.
+    if (!have_ || shown_.points.empty() || max_count_ <= 0) return;
+    const Palette& pal = palette();
+    const float fs = ImGui::GetFontSize();
+    char top[32];
+    std::snprintf(top, sizeof top, "%.0f", static_cast<double>(max_count_));
+    const float bar_w = fs * 5.0f, bar_h = fs * 0.75f;
+    const float need = ImGui::CalcTextSize("1").x + bar_w + ImGui::CalcTextSize(top).x + ImGui::CalcTextSize(" points/pixel").x + fs;
+    ImGui::SameLine(0, fs * 0.8f);
+    if (ImGui::GetContentRegionAvail().x < need) ImGui::NewLine();
+    ImGui::TextUnformatted("1");
+    ImGui::SameLine(0, fs * 0.25f);
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float y0 = p.y + 0.5f * (ImGui::GetTextLineHeight() - bar_h);
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    constexpr int kBands = 24;
+    for (int i = 0; i < kBands; ++i) {
+        const float t0 = static_cast<float>(i) / kBands, t1 = static_cast<float>(i + 1) / kBands;
+        const ImU32 c0 = density_u32(t0), c1 = density_u32(t1);
+        dl->AddRectFilledMultiColor(ImVec2(p.x + t0 * bar_w, y0), ImVec2(p.x + t1 * bar_w, y0 + bar_h), c0, c1, c1, c0);
+    }
+    dl->AddRect(ImVec2(p.x - 0.5f, y0 - 0.5f), ImVec2(p.x + bar_w + 0.5f, y0 + bar_h + 0.5f), pal.plot_frame);
+    ImGui::Dummy(ImVec2(bar_w, ImGui::GetTextLineHeight()));
+    if (ImGui::IsItemHovered()) {
+        const double mid = std::expm1(0.5 * std::log1p(static_cast<double>(max_count_)));
+        ImGui::SetTooltip("Colour: section points falling in one pixel of the image, on a log scale "
+                          "(1 point: darkest, %.0f: the middle, %.0f: the densest pixel of this view).",
+                          mid, static_cast<double>(max_count_));
+    }
+    ImGui::SameLine(0, fs * 0.25f);
+    ImGui::Text("%s points/pixel", top);
+}
+
+BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
+    BifurcationAction act;
+    const Palette& pal = palette();
+    draw_header(c, act.toast);
+
+    Plot plot;
+    Axes ax;
+    ax.x_label = "ω [rad/s]";
+    ax.y_label = "x at sections [mm]";
+    ax.y_scale = 1e3;
+    if (!zoom_applied_ && have_ && !job_.running() && !shown_.points.empty()) {
+        // --bif-zoom: the omega range asked for, the auto-fit's x at sections.
+        zoom_applied_ = true;
+        Plot::set_user_view("##bif", zoom_x_, fit_y_);
+    }
+    if (script_box_ && have_ && !job_.running() && !shown_.points.empty()) {
+        // --bif-box: once the first diagram is done, what a right-drag over that omega range does.
+        script_box_ = false;
+        apply_box(c, script_box_x_.lo, script_box_x_.hi, fit_y_);
+    }
+    ImVec2 avail = ImGui::GetContentRegionAvail();
+    const float strip_h = lyap_on_ ? std::max(ImGui::GetFontSize() * 6.0f, 0.3f * avail.y) : 0.0f;
+    avail.y -= strip_h;
+    if (!plot.begin("##bif", avail, fit_x_, fit_y_, ax)) return act;
+    const ImVec2 a = plot.area_min(), b = plot.area_max();
+    const Range vx = plot.x_range(), vy = plot.y_range();
+    if (vx.lo != view_x_.lo || vx.hi != view_x_.hi || vy.lo != view_y_.lo || vy.hi != view_y_.hi) {
+        view_x_ = vx;
+        view_y_ = vy;
+        dirty_ = true;
+    }
+    const bool is_stale = stale(c);
+    if (have_) {
+        update_texture(static_cast<int>(b.x - a.x), static_cast<int>(b.y - a.y));
+        // A diagram of another model (or bumper position) stays, dimmed, until B computes the new one.
+        const ImU32 tint = is_stale ? IM_COL32(255, 255, 255, 90) : IM_COL32(255, 255, 255, 255);
+        if (tex_) plot.draw()->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(tex_)), a, b,
+                                        ImVec2(0, 0), ImVec2(1, 1), tint);
+        char info[160];
+        const char* cut = shown_.cancelled ? " (cancelled)" : "";
+        if (shown_req_.protocol == BifProtocol::Ef)
+            std::snprintf(info, sizeof info, "%s  EF ramp to %.3g rad/s%s  %zu points", shown_.model.c_str(),
+                          shown_req_.omega_hi, cut, shown_.points.size());
+        else
+            std::snprintf(info, sizeof info, "%s  %s  ω %.3g-%.3g: %d/%d levels%s  %zu points", shown_.model.c_str(),
+                          shown_.protocol.c_str(), shown_req_.omega_lo, shown_req_.omega_hi, levels_done_, shown_req_.steps,
+                          cut, shown_.points.size());
+        if (ImGui::CalcTextSize(info).x + 20 > b.x - a.x)   // a narrow tile: the levels and the model only
+            std::snprintf(info, sizeof info, "%s  %d/%d%s", shown_.model.c_str(), levels_done_, shown_req_.steps, cut);
+        plate(plot.draw(), ImVec2(a.x + 6, b.y - ImGui::GetTextLineHeight() - 6), info, pal.axis_text);
+        if (shown_.points.empty() && job_.running())
+            plate(plot.draw(), ImVec2(0.5f * (a.x + b.x), 0.5f * (a.y + b.y)), "computing the first ω level...",
+                  pal.axis_text, ImVec2(0.5f, 0.5f));
+    } else {
+        const char* hint = "press B (or Compute) for a diagram";
+        if (ImGui::CalcTextSize(hint).x + 8 > b.x - a.x) hint = "press B";
+        const ImVec2 ts = ImGui::CalcTextSize(hint);
+        plot.draw()->AddText(ImVec2(0.5f * (a.x + b.x - ts.x), 0.5f * (a.y + b.y - ts.y)), pal.axis_text, hint);
+    }
+    plot.hline(c.xI, pal.bumper, 1.0f, true);
+    // The running omega: a line, its value (to 0.01 rad/s), and the Poincare map's settled points on it.
+    plot.vline(c.omega, pal.cursor, 2.0f);
+    if (c.live && !is_stale) {
+        const History<MapPoint>& h = *c.live;
+        const std::size_t n = std::min<std::size_t>(h.size(), 400), first = h.size() - n;
+        const float r = std::max(2.5f, 0.2f * ImGui::GetFontSize());
+        for (std::size_t i = first; i < h.size(); ++i) {
+            const ImVec2 p = plot.to_px(c.omega, h[i].x);
+            plot.draw()->AddCircleFilled(p, r + 1.2f, IM_COL32(0, 0, 0, 200), 12);
+            plot.draw()->AddCircleFilled(p, r, kLiveColor, 12);
+        }
+    }
+    {
+        char buf[48];
+        std::snprintf(buf, sizeof buf, "ω = %.2f", c.omega);
+        const ImVec2 p = plot.to_px(c.omega, vy.hi);
+        // The label sits right of the line, or left of it near the right edge, so it is never cut off.
+        const bool left = p.x + ImGui::CalcTextSize(buf).x + 12 > b.x;
+        plate(plot.draw(), ImVec2(left ? p.x - 5 : p.x + 5, p.y + 3), buf, pal.title_text, ImVec2(left ? 1.0f : 0.0f, 0));
+    }
+    if (is_stale) {
+        // Says whose diagram this is, in one line or, in a narrow tile, two.
+        char what[120], now[160];
+        if (shown_.model != c.model) {
+            std::snprintf(what, sizeof what, "%s diagram — model is now %s;", shown_.model.c_str(), c.model.c_str());
+        } else {
+            std::snprintf(what, sizeof what, "%s diagram at xI = %.1f mm — xI is now %.1f mm;", shown_.model.c_str(),
+                          1e3 * shown_req_.params.xI, 1e3 * c.xI);
+        }
+        std::snprintf(now, sizeof now, "%s press B to recompute", what);
+        const float room = b.x - a.x - 16;
+        const ImVec2 at(0.5f * (a.x + b.x), a.y + ImGui::GetFontSize() * 1.6f);
+        if (ImGui::CalcTextSize(now).x <= room) {
+            plate(plot.draw(), at, now, pal.warn, ImVec2(0.5f, 0));
+        } else {
+            plate(plot.draw(), at, what, pal.warn, ImVec2(0.5f, 0));
+            plate(plot.draw(), ImVec2(at.x, at.y + ImGui::GetTextLineHeightWithSpacing() + 2), "press B to recompute", pal.warn,
+                  ImVec2(0.5f, 0));
+        }
+    }
+    // The mouse: a click sets omega; a box dragged with the right button computes its omega range.
+    const ImGuiIO& io = ImGui::GetIO();
+    const double w_mouse = std::clamp(plot.x_at(std::clamp(io.MousePos.x, a.x, b.x)), 0.0, kMaxOmega);
+    if (plot.hovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right)) {
+        box_active_ = true;
+        box_w0_ = w_mouse;
+    }
+    if (box_active_) {
+        const float x0 = plot.to_px(box_w0_, 0).x, x1 = plot.to_px(w_mouse, 0).x;
+        const ImVec2 r0(std::min(x0, x1), a.y), r1(std::max(x0, x1), b.y);
+        plot.draw()->AddRectFilled(r0, r1, IM_COL32(90, 230, 255, 40));
+        plot.draw()->AddRect(r0, r1, kLiveColor, 0.0f, 0, 1.5f);
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "ω %.3f - %.3f: release to compute", std::min(box_w0_, w_mouse), std::max(box_w0_, w_mouse));
+        plate(plot.draw(), ImVec2(0.5f * (r0.x + r1.x), a.y + ImGui::GetFontSize() * 3.0f), buf, pal.title_text, ImVec2(0.5f, 0));
+        if (!ImGui::IsMouseDown(ImGuiMouseButton_Right)) {
+            box_active_ = false;
+            if (std::abs(x1 - x0) >= 5.0f) apply_box(c, box_w0_, w_mouse, vy);
+        }
+    } else if (plot.hovered()) {
+        plot.vline(w_mouse, pal.trace, 1.0f, true);
+        ImGui::SetTooltip("ω = %.3f rad/s: click to set it\nright-drag: compute the ω range of the box\n"
+                          "wheel: zoom, drag: pan, double-click: whole diagram",
+                          w_mouse);
+        if (plot.clicked()) act.omega = w_mouse;
+    }
+    if (c.overlay) c.overlay(plot);   // continued branches and bifurcation points (named on hover)
+    plot.end();
+    if (lyap_on_) draw_strip(c, vx, act);
+    return act;
+}
+
+void BifurcationPanel::apply_box(const BifurcationContext& c, double w0, double w1, Range view_y) {
+    auto req = box_request(request(c, lo_edit_, hi_edit_), w0, w1);
+    if (!req) return;
+    begin(c, *req);
+    // The view follows the new range (a double-click gives it back to the auto-fit: the same range).
+    Plot::set_user_view("##bif", {req->omega_lo, req->omega_hi}, view_y);
+}
+
+void BifurcationPanel::draw_strip(const BifurcationContext& c, Range view_x, BifurcationAction& act) {
+    const Palette& pal = palette();
+    // The auto-fit: zero and the exponents found; a resting cart's very negative values are cut at -4 1/s.
+    double lo = -0.5, hi = 0.5;
+    for (const auto& q : lyap_) {
+        if (!std::isfinite(q.lambda_max)) continue;
+        lo = std::min(lo, std::max(q.lambda_max, -4.0));
+        hi = std::max(hi, q.lambda_max);
+    }
+    const double pad = 0.08 * (hi - lo);
+    const Range fit_y{lo - pad, hi + pad};
+    // The strip shares the diagram's omega axis: it is drawn over the diagram's view, and a zoom or pan on
+    // the strip is handed to the diagram (both show it from the next frame) while lambda's axis keeps the
+    // user's zoom; a double-click on the strip gives both back to their auto-fits.
+    const Range y_in = lyap_y_user_ ? lyap_view_y_ : fit_y;
+    Plot plot;
+    Axes ax;
+    ax.x_label = "ω [rad/s]";
+    ax.y_label = "λmax [1/s]";
+    if (!plot.begin("##lyap", ImGui::GetContentRegionAvail(), view_x, y_in, ax)) return;
+    const Range vx = plot.x_range(), vy = plot.y_range();
+    if (plot.zoomed()) {
+        if (vx.lo != view_x.lo || vx.hi != view_x.hi) Plot::set_user_view("##bif", vx, view_y_);
+        if (vy.lo != y_in.lo || vy.hi != y_in.hi) {
+            lyap_y_user_ = true;
+            lyap_view_y_ = vy;
+        }
+        Plot::clear_user_view("##lyap");
+    }
+    if (plot.hovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
+        lyap_y_user_ = false;
+        Plot::clear_user_view("##bif");
+    }
+    const ImVec2 a = plot.area_min();
+    plot.hline(0.0, pal.axis_text, 1.0f, true);
+    plot.text(vx.lo, 0.0, " λ = 0", pal.axis_text, ImVec2(0, 1.0f));
+    const bool is_stale = lyap_model_ != c.model || std::abs(lyap_req_.params.xI - c.xI) > 1e-9;
+    if (!lyap_.empty()) {
+        plot.series(lyap_.size(), [&](std::size_t i) {
+            struct P { double x, y; };
+            return P{lyap_[i].omega, std::max(lyap_[i].lambda_max, vy.lo)};
+        }, is_stale ? pal.grid : pal.trace2, 1.2f);
+        for (const auto& q : lyap_) {
+            const ImVec2 p = plot.to_px(q.omega, std::max(q.lambda_max, vy.lo));
+            ImU32 col = lambda_color(q.lambda_max);
+            if (is_stale) col = (col & 0x00FFFFFFu) | (90u << 24);
+            plot.draw()->AddCircleFilled(p, 2.6f, col, 8);
+        }
+    }
+    char info[200];
+    if (lyap_job_.running())
+        std::snprintf(info, sizeof info, "%s λmax: %d / %d ω (%d + %d periods each) computing...", lyap_model_.c_str(),
+                      lyap_done_, lyap_req_.steps, lyap_req_.transient, lyap_req_.record);
+    else if (lyap_.empty())
+        std::snprintf(info, sizeof info, "λmax: none yet (tick λ again, or B, to compute)");
+    else
+        std::snprintf(info, sizeof info, "%s λmax at %zu ω%s  (red: > 0, chaos; blue: < 0, periodic; grey: about 0)", lyap_model_.c_str(),
+                      lyap_.size(), is_stale ? " — another model or xI: press B" : "");
+    plate(plot.draw(), ImVec2(a.x + 6, a.y + 4), info, is_stale ? pal.warn : pal.axis_text);
+    plot.vline(c.omega, pal.cursor, 1.5f);
+    if (plot.hovered()) {
+        const double w = std::clamp(plot.x_at(ImGui::GetIO().MousePos.x), 0.0, kMaxOmega);
+        // The nearest computed omega, named.
+        const analysis::LyapunovPoint* near = nullptr;
+        for (const auto& q : lyap_)
+            if (!near || std::abs(q.omega - w) < std::abs(near->omega - w)) near = &q;
+        if (near && std::abs(plot.to_px(near->omega, 0).x - ImGui::GetIO().MousePos.x) < 8)
+            ImGui::SetTooltip("ω = %.3f rad/s: λmax = %+.3f 1/s (%s, %d section values)", near->omega, near->lambda_max,
+                              lambda_word(near->lambda_max), near->period);
+        else ImGui::SetTooltip("ω = %.3f rad/s (click to set)", w);
+        if (plot.clicked()) act.omega = w;
+    }
+    plot.end();
+}
+
+}  // namespace impactlab::gui

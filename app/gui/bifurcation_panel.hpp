@@ -1,0 +1,143 @@
+// The bifurcation diagram's view (issue 11 defect 4, issue 9's Lyapunov curve): the density image of the
+// section points over omega, filling column by column while its worker runs (BifurcationJob); the omega
+// range typed in or dragged as a box (right mouse button) on the diagram; the live section points of the
+// running omega over it; a note when the model or xI has changed since; a legend of the density colours;
+// and an optional strip of lambda_max(omega) under it on the same omega axis (LyapunovStripJob).
+// The app hands it what it shows (BifurcationContext) and applies what a click asks for (BifurcationAction);
+// nothing here talks to the simulation thread. UI thread only.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bifurcation_job.hpp"
+#include "history.hpp"
+#include "impactlab/analysis.hpp"
+#include "impactlab/params.hpp"
+#include "impactlab/sweep.hpp"
+#include "options.hpp"
+#include "plot2d.hpp"
+#include "poincare_map.hpp"
+
+namespace impactlab::gui {
+
+struct BifurcationContext {
+    const Params* params = nullptr;          // the UI's copy of the model, with the current xI
+    std::string model;                       // its name ("A1H")
+    double omega = 0, xI = 0;                // what the simulation runs at [rad/s], [m]
+    const History<MapPoint>* live = nullptr; // the Poincare map's settled section points at omega (or null)
+    int* protocol = nullptr;                 // the app's settings, which sessions save: 0 CF up, 1 CF down, 2 EF
+    int* steps = nullptr;                    // CF omega levels
+    std::function<void(Plot&)> overlay;      // drawn last inside the diagram (the continued branches)
+};
+
+// What a click asked for: the app applies it.
+struct BifurcationAction {
+    std::optional<double> omega;
+    std::string toast;
+};
+
+// What the panel shows, for --state-json.
+struct BifurcationState {
+    bool have = false;                    // a diagram is shown (computing or done)
+    std::string model, protocol;          // of the diagram shown
+    double omega_lo = 0, omega_hi = 0;    // its omega range [rad/s]
+    int steps = 0, levels_done = 0;       // CF levels asked for and finished (EF: 0, 0)
+    std::size_t points = 0;
+    bool running = false, cancelled = false, stale = false;
+    double progress = 0;
+    Range view_omega;                     // the omega range on screen
+    std::string range_error;              // the range inputs' complaint ("" when valid)
+    bool lyap_on = false, lyap_running = false;
+    int lyap_steps = 0, lyap_done = 0, lyap_positive = 0;   // omegas asked, done, with lambda_max > 0
+};
+
+class BifurcationPanel {
+public:
+    BifurcationPanel() = default;
+    BifurcationPanel(const BifurcationPanel&) = delete;
+    BifurcationPanel& operator=(const BifurcationPanel&) = delete;
+
+    // --bif-range, --bif-box, --bif-zoom, --bif-lyapunov, --lyap-steps, --bif-nowait.
+    void configure(const Options& opt);
+    // A new diagram over the range in the inputs (key B, Compute); refused with a toast when the range is
+    // not valid. With the strip on, its Lyapunov curve restarts too.
+    std::string start(const BifurcationContext& c);
+    // B: start, or cancel what runs.
+    std::string toggle(const BifurcationContext& c);
+    // Every frame, drawn or not: takes what the workers published. Returns a message for a toast ("" none).
+    std::string poll(const BifurcationContext& c);
+    // Inside the diagram's tile.
+    BifurcationAction draw(const BifurcationContext& c);
+    // Headless runs (--frames) wait while this is true: a diagram asked for at start still computing (not
+    // with --bif-nowait), or the strip asked for at start still computing.
+    bool busy() const;
+    double progress() const { return job_.progress(); }
+    // The diagram's omega axis (the auto-fit, not the zoom): what the continuation follows.
+    Range omega_axis() const { return fit_x_; }
+    BifurcationState state(const BifurcationContext& c) const;
+    // The look changed (theme, fonts): the image is drawn again.
+    void mark_dirty() { dirty_ = true; }
+    // --bench-plot: a synthetic diagram shown as a computed one.
+    void show_bench(Diagram d, Range x, Range y);
+    void release_gl();   // before the GL context goes
+
+private:
+    BifRequest request(const BifurcationContext& c, double lo, double hi) const;
+    void begin(const BifurcationContext& c, const BifRequest& req);
+    void start_strip(const BifurcationContext& c);
+    void grow_fit(std::size_t from);
+    void snap_fit();
+    void update_texture(int w, int h);
+    void draw_header(const BifurcationContext& c, std::string& toast);
+    void draw_legend() const;   // the density colours, in the header
+    // A box dragged (or scripted) from omega w0 to w1: its range computed, and the view set to it.
+    void apply_box(const BifurcationContext& c, double w0, double w1, Range view_y);
+    void draw_strip(const BifurcationContext& c, Range view_x, BifurcationAction& act);
+    bool stale(const BifurcationContext& c) const;
+
+    BifurcationJob job_;
+    Diagram shown_;                  // the points so far (or all) of the diagram shown
+    BifRequest shown_req_;           // what it was asked for (range, steps, protocol, model, xI)
+    bool have_ = false;              // anything to show
+    int levels_done_ = 0;
+    double started_ = 0;             // [s] wall clock, for the toast
+    Range fit_x_{0, 25}, fit_y_{-0.02, 0.005};   // the auto-fit: the request's omega range, the points' x
+    bool fit_y_empty_ = true;
+
+    double lo_edit_ = 0, hi_edit_ = 25;           // the range inputs [rad/s]
+    std::string range_error_;
+
+    // The density image, for the view shown.
+    unsigned tex_ = 0;
+    int tex_w_ = 0, tex_h_ = 0;
+    bool dirty_ = true;
+    bool dark_ = true;               // the theme the image was drawn for
+    Range view_x_, view_y_;
+    float max_count_ = 0;            // points in the densest pixel (the legend's top)
+
+    // The box being dragged with the right mouse button [rad/s].
+    bool box_active_ = false;
+    double box_w0_ = 0;
+
+    // Start-up (options).
+    bool want_start_ = false, nowait_ = false, zoom_applied_ = true;
+    Range zoom_x_;
+    bool script_box_ = false;        // --bif-box: a box to apply once the first diagram is done
+    Range script_box_x_;
+
+    // The Lyapunov strip.
+    bool lyap_on_ = false, lyap_want_ = false;
+    int lyap_steps_ = 60;
+    LyapunovStripJob lyap_job_;
+    LyapunovStripRequest lyap_req_;
+    std::vector<analysis::LyapunovPoint> lyap_;
+    std::string lyap_model_;
+    int lyap_done_ = 0;
+    bool lyap_y_user_ = false;
+    Range lyap_view_y_{-1, 1};
+};
+
+}  // namespace impactlab::gui
