@@ -11,21 +11,15 @@
 # Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
 # usage: gui_layout.sh IMPACTLAB_GUI OUT_DIR
 gui="$1"; dir="$2"
-for tool in xvfb-run python3; do
-    if ! command -v "$tool" >/dev/null 2>&1; then
-        echo "gui_layout: $tool is not installed: skipped"
-        exit 77
-    fi
-done
+TEST=gui_layout
+. "$(dirname "$0")/gui_lib.sh"
+gui_need xvfb-run python3
 mkdir -p "$dir"
 
-run() {   # run NAME ARGS...: the GUI headless, writing $dir/NAME.json
-    name="$1"; shift
-    rm -f "$dir/$name.json"
-    LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1400x900x24" "$gui" --model A1H --preset 2 --speed 20 --frames 12 "$@" \
-        --state-json "$dir/$name.json" >"$dir/$name.log" 2>&1
-    rc=$?
-    if [ $rc -ne 0 ]; then cat "$dir/$name.log"; echo "gui_layout: $name: impactlab-gui exited with $rc"; exit 1; fi
+GUI_SCREEN=1400x900
+run() {   # run NAME ARGS...: writes $dir/NAME.json
+    run_name="$1"; shift
+    gui_json "$run_name" --model A1H --preset 2 --speed 20 --frames 12 "$@"
 }
 
 run scale2 --size 1280x800 --ui-scale 2

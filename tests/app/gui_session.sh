@@ -12,21 +12,14 @@
 # Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
 # usage: gui_session.sh IMPACTLAB_GUI PNG_CHECK OUT_DIR
 gui="$1"; check="$2"; dir="$3"
-for tool in xvfb-run python3; do
-    if ! command -v "$tool" >/dev/null 2>&1; then
-        echo "gui_session: $tool is not installed: skipped"
-        exit 77
-    fi
-done
+TEST=gui_session
+. "$(dirname "$0")/gui_lib.sh"
+gui_need xvfb-run python3
 rm -rf "$dir"
 mkdir -p "$dir"
 fail() { echo "gui_session: FAIL: $*"; exit 1; }
 
-gui_run() {   # gui_run NAME ARGS...: the GUI headless, its output in $dir/NAME.log; exit status in $rc
-    name="$1"; shift
-    LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1280x800x24" "$gui" "$@" >"$dir/$name.log" 2>&1
-    rc=$?
-}
+gui_run() { gui_exec "$@"; }   # gui_run NAME ARGS...: output in $dir/NAME.log, exit status in $rc
 
 # 1. Round trip.
 gui_run save --model A1G --omega 12.5 --xI 0.002 --theme light --scale 1.25 --speed 4 --twin --frames 60 \

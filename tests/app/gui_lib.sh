@@ -1,0 +1,28 @@
+# Shared by the GUI tests (gui_*.sh), sourced after they set TEST (their name in messages), gui (the
+# impactlab-gui binary) and dir (their output folder). POSIX sh.
+
+# gui_need TOOL...: skip the test (exit 77, CTest's skip code) when a tool is missing.
+gui_need() {
+    for tool; do
+        if ! command -v "$tool" >/dev/null 2>&1; then
+            echo "$TEST: $tool is not installed: skipped"
+            exit 77
+        fi
+    done
+}
+
+# gui_exec NAME ARGS...: the GUI headless under Xvfb with Mesa's software OpenGL on a GUI_SCREEN
+# (default 1280x800) screen; its output in $dir/NAME.log, its exit status in $rc.
+gui_exec() {
+    name="$1"; shift
+    LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 ${GUI_SCREEN:-1280x800}x24" "$gui" "$@" >"$dir/$name.log" 2>&1
+    rc=$?
+}
+
+# gui_json NAME ARGS...: as gui_exec, with --state-json $dir/NAME.json; fails the test on a non-zero exit.
+gui_json() {
+    json_name="$1"; shift
+    rm -f "$dir/$json_name.json"
+    gui_exec "$json_name" "$@" --state-json "$dir/$json_name.json"
+    if [ $rc -ne 0 ]; then cat "$dir/$json_name.log"; echo "$TEST: $json_name: impactlab-gui exited with $rc"; exit 1; fi
+}
