@@ -35,7 +35,15 @@ Session App::current_session() const {
         s.x = x0_;
     }
     s.dark = dark_;
-    s.ui_scale = ui_scale_;
+    s.ui_scale = mode_ == LayoutMode::Presentation ? normal_scale_ : ui_scale_;   // presenting raised it
+    s.presentation = mode_ == LayoutMode::Presentation;
+    if (!controls_visible_) s.hidden.push_back("controls");
+    for (int i = 0; i < kPanelCount; ++i)
+        if (!panel_visible_[static_cast<std::size_t>(i)]) s.hidden.push_back(panel_key(static_cast<PanelId>(i)));
+    s.maximised = maximised_ ? panel_key(*maximised_) : "";
+    s.presentation_plot = panel_key(featured_);
+    s.magnify = magnify_[0];
+    s.magnify_presentation = magnify_[1];
     s.trail_periods = trail_periods_;
     s.strip_window = strip_window_;
     for (const Plot::NamedView& v : Plot::user_views()) s.views.push_back({v.id, v.x.lo, v.x.hi, v.y.lo, v.y.hi});
@@ -75,10 +83,23 @@ void App::apply_session(const Session& s) {
         apply_theme(dark_, ui_scale_);
         bif_dirty_ = true;
     }
+    set_presentation(false);   // back to the user's scale before the session's
     if (ui_scale_ != static_cast<float>(s.ui_scale)) {
         ui_scale_ = static_cast<float>(s.ui_scale);
         fonts_dirty_ = true;
     }
+    controls_visible_ = true;
+    panel_visible_.fill(true);
+    for (const std::string& h : s.hidden) {
+        if (h == "controls") controls_visible_ = false;
+        else if (const auto panel = panel_from_key(h)) panel_visible_[static_cast<std::size_t>(*panel)] = false;
+    }
+    if (const auto plot = panel_from_key(s.presentation_plot)) featured_ = *plot;
+    magnify_[0] = s.magnify;
+    magnify_[1] = s.magnify_presentation;
+    set_presentation(s.presentation);   // raises the scale to 1.5 at least, and clears a maximised panel
+    maximised_.reset();
+    if (const auto panel = panel_from_key(s.maximised)) maximised_ = *panel;
     trail_periods_ = static_cast<float>(s.trail_periods);
     strip_window_ = static_cast<float>(s.strip_window);
     std::vector<Plot::NamedView> views;

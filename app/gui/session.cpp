@@ -8,6 +8,7 @@
 
 #include "impactlab/atomic_file.hpp"
 #include "impactlab/params.hpp"
+#include "layout.hpp"
 
 namespace impactlab::gui {
 
@@ -34,6 +35,11 @@ json session_to_json(const Session& s) {
     j["bifurcation"] = {{"protocol", s.bif_protocol}, {"steps", s.bif_steps}};
     j["data"] = s.data.empty() ? json(nullptr) : json(s.data);
     j["companion"] = {{"mode", s.companion}, {"ghost_impact", s.ghost_impact}};
+    j["layout"] = {{"mode", s.presentation ? "presentation" : "normal"},
+                   {"hidden", s.hidden},
+                   {"maximised", s.maximised.empty() ? json(nullptr) : json(s.maximised)},
+                   {"presentation_plot", s.presentation_plot},
+                   {"magnify", {s.magnify, s.magnify_presentation}}};
     return j;
 }
 
@@ -138,7 +144,7 @@ Session session_from_json(const json& j, const Session& base, const std::string&
                            "\" expected)");
     const Reader top(file, j, "",
                      {"format", "version", "model", "omega", "xI", "speed", "paused", "state", "view", "windows",
-                      "bifurcation", "data", "companion"});
+                      "bifurcation", "data", "companion", "layout"});
     if (!j["format"].is_string() || j["format"].get<std::string>() != kSessionFormat)
         top.fail("format", std::string("expected \"") + kSessionFormat + "\"");
     int version = kSessionVersion;
@@ -217,6 +223,39 @@ Session session_from_json(const json& j, const Session& base, const std::string&
             }
             if (!known) r.fail("ghost_impact", "'" + id + "' is not an impact law (one of " + all + ")");
             s.ghost_impact = id;
+        }
+    }
+    if (const json* l = top.find("layout")) {
+        const Reader r(file, *l, "layout", {"mode", "hidden", "maximised", "presentation_plot", "magnify"});
+        std::string mode = s.presentation ? "presentation" : "normal";
+        r.word("mode", mode, {"normal", "presentation"});
+        s.presentation = mode == "presentation";
+        const std::string panels = "controls, " + panel_keys();
+        if (const json* h = r.find("hidden")) {
+            if (!h->is_array()) r.fail("hidden", std::string("expected an array of panel names, got ") + h->type_name());
+            s.hidden.clear();
+            for (const json& e : *h) {
+                if (!e.is_string() || (e.get<std::string>() != "controls" && !panel_from_key(e.get<std::string>())))
+                    r.fail("hidden", e.dump() + " is not a panel (one of " + panels + ")");
+                s.hidden.push_back(e.get<std::string>());
+            }
+        }
+        if (const json* m = r.find("maximised")) {
+            if (m->is_null()) s.maximised.clear();
+            else if (!m->is_string() || !panel_from_key(m->get<std::string>()))
+                r.fail("maximised", m->dump() + " is not a panel (null, or one of " + panel_keys() + ")");
+            else s.maximised = m->get<std::string>();
+        }
+        r.word("presentation_plot", s.presentation_plot, {"phase", "poincare", "potential", "strip", "bifurcation"});
+        if (const json* g = r.find("magnify")) {
+            if (!g->is_array() || g->size() != 2 || !(*g)[0].is_number() || !(*g)[1].is_number())
+                r.fail("magnify", "expected [normal, presentation], two numbers in [1, 10]");
+            const double a = (*g)[0].get<double>(), b = (*g)[1].get<double>();
+            constexpr double lo = RigMagnify::kMin, hi = RigMagnify::kMax;
+            if (!(a >= lo && a <= hi && b >= lo && b <= hi))
+                r.fail("magnify", "[" + fmt(a) + ", " + fmt(b) + "] is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
+            s.magnify = a;
+            s.magnify_presentation = b;
         }
     }
     if (const json* d = top.find("data")) {

@@ -45,6 +45,14 @@ struct Session {
     // The companion cart beside the first (off, twin, ghost) and the ghost's impact law (an impact id).
     std::string companion = "off";
     std::string ghost_impact = "G";
+    // The layout: presentation mode or not, the panels hidden (layout.hpp's panel keys, and "controls" for
+    // the column), the one maximised ("" none), presentation's plot, and the rig's displacement
+    // magnification in each mode (1 .. 10). ui_scale above is the normal mode's (presenting raises it).
+    bool presentation = false;
+    std::vector<std::string> hidden;
+    std::string maximised;
+    std::string presentation_plot = "phase";
+    double magnify = 1.0, magnify_presentation = 3.0;
     bool operator==(const Session&) const = default;
 };
 

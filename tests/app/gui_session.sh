@@ -23,7 +23,7 @@ gui_run() { gui_exec "$@"; }   # gui_run NAME ARGS...: output in $dir/NAME.log, 
 
 # 1. Round trip.
 gui_run save --model A1G --omega 12.5 --xI 0.002 --theme light --scale 1.25 --speed 4 --twin --frames 60 \
-    --save-session "$dir/s1.json" --state-json "$dir/a.json"
+    --presentation potential --hide strip --magnify 4 --save-session "$dir/s1.json" --state-json "$dir/a.json"
 [ $rc -eq 0 ] || { cat "$dir/save.log"; fail "saving exited with $rc"; }
 gui_run load --session "$dir/s1.json" --frames 20 --state-json "$dir/b.json" --save-session "$dir/s2.json"
 [ $rc -eq 0 ] || { cat "$dir/load.log"; fail "loading exited with $rc"; }
@@ -39,11 +39,18 @@ if b["model"] != s1["model"] or abs(b["omega"] - s1["omega"]) > 1e-12 or abs(b["
                 f"{s1['model']} {s1['omega']} {s1['xI']}")
 if not (s1["state"]["t"] > 0 and b["sim_time"] >= s1["state"]["t"]):
     fail.append(f"the run did not go on from the saved t = {s1['state']['t']}: sim_time {b['sim_time']}")
-for k in ("model", "omega", "xI", "speed", "view", "windows", "bifurcation", "data", "companion"):
+for k in ("model", "omega", "xI", "speed", "view", "windows", "bifurcation", "data", "companion", "layout"):
     if s1[k] != s2[k]:
         fail.append(f"saved again, '{k}' differs: {s1[k]} then {s2[k]}")
 if s1["view"]["theme"] != "light" or s1["view"]["ui_scale"] != 1.25 or s1["companion"]["mode"] != "twin":
     fail.append(f"the view or the companion was not saved: {s1['view']} {s1['companion']}")
+want = {"mode": "presentation", "hidden": ["strip"], "maximised": None, "presentation_plot": "potential", "magnify": [1.0, 4.0]}
+if s1["layout"] != want:
+    fail.append(f"the layout saved is {s1['layout']}, expected {want}")
+lb = b["layout"]
+if lb["mode"] != "presentation" or lb["presentation_plot"] != "potential" or "strip" not in lb["hidden_panels"] \
+        or abs(lb["magnification"] - 4.0) > 1e-12:
+    fail.append(f"loaded: the layout shown is {lb}")
 for f in fail:
     print("gui_session: FAIL:", f)
 sys.exit(1 if fail else 0)

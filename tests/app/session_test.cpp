@@ -37,6 +37,12 @@ Session sample() {
     s.bif_steps = 120;
     s.companion = "ghost";
     s.ghost_impact = "C1";
+    s.presentation = true;
+    s.hidden = {"controls", "strip"};
+    s.maximised = "poincare";
+    s.presentation_plot = "bifurcation";
+    s.magnify = 2.5;
+    s.magnify_presentation = 6;
     return s;
 }
 
@@ -96,6 +102,15 @@ TEST_CASE("session: bad files are refused naming the file, the key or line, and 
     CHECK(has(error_of(R"({"format": "impactlab-gui session", "omega": "fast"})"), "key 'omega': expected a number, got string"));
     CHECK(has(error_of(R"({"format": "impactlab-gui session", "model": "A9Z"})"), "key 'model': unknown model version 'A9Z' (one of"));
     CHECK(has(error_of(R"({"format": "impactlab-gui session", "colour": 3})"), "s.json: key 'colour': unknown key"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "layout": {"hidden": ["rig", "legend"]}})"),
+              "key 'layout.hidden': \"legend\" is not a panel (one of controls, rig,"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "layout": {"maximised": "controls"}})"),
+              "key 'layout.maximised': \"controls\" is not a panel"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "layout": {"presentation_plot": "rig"}})"),
+              "key 'layout.presentation_plot'"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "layout": {"magnify": [1, 40]}})"),
+              "key 'layout.magnify': [1, 40] is outside [1, 10]"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "layout": {"mode": "cinema"}})"), "key 'layout.mode'"));
     CHECK(has(error_of(R"({"format": "impactlab-gui session", "view": {"zoom": {"##phase": {"x": [1, 0], "y": [0, 1]}}}})"),
               "key 'view.zoom.##phase.x': [1, 0] is empty"));
     CHECK(has(error_of(R"({"format": "impactlab-gui session", "view": {"scale": 2}})"), "key 'view.scale': unknown key"));
