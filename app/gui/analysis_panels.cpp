@@ -13,6 +13,7 @@
 
 #include "gl_util.hpp"
 #include "theme.hpp"
+#include "widgets.hpp"
 
 namespace impactlab::gui {
 
@@ -144,13 +145,6 @@ void draw_branch(ImDrawList* dl, const std::vector<ImVec2>& pts, const std::vect
         }
         phase = std::fmod(phase + len, period);
     }
-}
-
-void plate(ImDrawList* dl, ImVec2 a, const char* text, ImU32 c) {
-    const ImVec2 ts = ImGui::CalcTextSize(text);
-    const ImU32 bg = palette().dark ? IM_COL32(10, 12, 16, 170) : IM_COL32(255, 255, 255, 190);
-    dl->AddRectFilled(ImVec2(a.x - 3, a.y - 1), ImVec2(a.x + ts.x + 3, a.y + ts.y + 1), bg, 3.0f);
-    dl->AddText(a, c, text);
 }
 
 // A legend swatch and its text on one line.
@@ -317,14 +311,14 @@ void AnalysisPanels::overlay_diagram(Plot& plot) const {
     if (cont_job_.running()) {
         char buf[80];
         std::snprintf(buf, sizeof buf, "continuing the branches... %.0f%%  (O cancels)", 100.0 * cont_job_.progress());
-        plate(dl, ImVec2(a.x + 6, a.y + 6), buf, palette().axis_text);
+        plate_text(dl, ImVec2(a.x + 6, a.y + 6), buf, palette().axis_text);
     }
     if (!overlay_) return;
     if (overlay_->model != live_model_ || std::abs(overlay_->xI - live_xI_) > 1e-12) {
         // Computed for another model or bumper: still shown (to compare), and said so.
         char buf[96];
         std::snprintf(buf, sizeof buf, "branches of %s at xI = %.1f mm (O recomputes)", overlay_->model.c_str(), 1e3 * overlay_->xI);
-        plate(dl, ImVec2(a.x + 6, a.y + 6 + (cont_job_.running() ? ImGui::GetTextLineHeight() + 4 : 0.0f)), buf, palette().warn);
+        plate_text(dl, ImVec2(a.x + 6, a.y + 6 + (cont_job_.running() ? ImGui::GetTextLineHeight() + 4 : 0.0f)), buf, palette().warn);
     }
     std::vector<ImVec2> pts;
     std::vector<char> dashed;
@@ -462,7 +456,7 @@ void AnalysisPanels::draw_plane_window(const AnalysisContext& c, AnalysisAction&
             const ImVec2 cur = plot.to_px(wx, wy);
             dl->AddCircleFilled(cur, 5.0f, IM_COL32(0, 0, 0, 220));
             dl->AddCircleFilled(cur, 3.5f, pal.cursor);
-            plate(dl, ImVec2(std::min(p1.x, plot.area_max().x) - ImGui::CalcTextSize("bifurcation diagram").x - 6, p1.y + 4),
+            plate_text(dl, ImVec2(std::min(p1.x, plot.area_max().x) - ImGui::CalcTextSize("bifurcation diagram").x - 6, p1.y + 4),
                   "bifurcation diagram", pal.axis_text);
         }
         const ImVec2 a = plot.area_min(), b = plot.area_max();
@@ -482,7 +476,7 @@ void AnalysisPanels::draw_plane_window(const AnalysisContext& c, AnalysisAction&
                 }
             }
         }
-        plate(dl, ImVec2(a.x + 4, b.y - ImGui::GetTextLineHeight() - 4), pl.source.c_str(), pal.axis_text);
+        plate_text(dl, ImVec2(a.x + 4, b.y - ImGui::GetTextLineHeight() - 4), pl.source.c_str(), pal.axis_text);
         plot.end();
     }
     ImGui::EndGroup();
@@ -588,7 +582,7 @@ void AnalysisPanels::draw_basins_window(const AnalysisContext& c, AnalysisAction
         }
         char info[96];
         std::snprintf(info, sizeof info, "%s  omega = %.3f rad/s  %d x %d  %.1f s", basins_model_.c_str(), sp.omega, sp.nx, sp.nv, r.seconds);
-        plate(dl, ImVec2(a.x + 4, b.y - ImGui::GetTextLineHeight() - 4), info, palette().axis_text);
+        plate_text(dl, ImVec2(a.x + 4, b.y - ImGui::GetTextLineHeight() - 4), info, palette().axis_text);
         plot.end();
     }
     ImGui::SameLine();

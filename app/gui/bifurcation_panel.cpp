@@ -12,6 +12,7 @@
 #include "gl_util.hpp"
 #include "sim_engine.hpp"   // kMaxOmega
 #include "theme.hpp"
+#include "widgets.hpp"
 
 namespace impactlab::gui {
 
@@ -20,24 +21,6 @@ namespace {
 double wall_s() {
     using namespace std::chrono;
     return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
-
-void tooltip(const char* text) {
-    if (!ImGui::IsItemHovered()) return;
-    ImGui::BeginTooltip();
-    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 26.0f);
-    ImGui::TextUnformatted(text);
-    ImGui::PopTextWrapPos();
-    ImGui::EndTooltip();
-}
-
-// A text on a plate that keeps it readable over the image; align as ImGui's (0: left/top, 1: right/bottom).
-void plate(ImDrawList* dl, ImVec2 p, const char* text, ImU32 col, ImVec2 align = ImVec2(0, 0)) {
-    const ImVec2 ts = ImGui::CalcTextSize(text);
-    const ImVec2 a(std::round(p.x - ts.x * align.x), std::round(p.y - ts.y * align.y));
-    const ImU32 bg = palette().dark ? IM_COL32(10, 12, 16, 185) : IM_COL32(255, 255, 255, 200);
-    dl->AddRectFilled(ImVec2(a.x - 4, a.y - 2), ImVec2(a.x + ts.x + 4, a.y + ts.y + 2), bg, 3.0f);
-    dl->AddText(a, col, text);
 }
 
 ImU32 density_u32(float t) {
@@ -460,9 +443,9 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
                           cut, shown_.points.size());
         if (ImGui::CalcTextSize(info).x + 20 > b.x - a.x)   // a narrow tile: the levels and the model only
             std::snprintf(info, sizeof info, "%s  %d/%d%s", shown_.model.c_str(), levels_done_, shown_req_.steps, cut);
-        plate(plot.draw(), ImVec2(a.x + 6, b.y - ImGui::GetTextLineHeight() - 6), info, pal.axis_text);
+        plate_text(plot.draw(), ImVec2(a.x + 6, b.y - ImGui::GetTextLineHeight() - 6), info, pal.axis_text);
         if (shown_.points.empty() && job_.running())
-            plate(plot.draw(), ImVec2(0.5f * (a.x + b.x), 0.5f * (a.y + b.y)), "computing the first ω level...",
+            plate_text(plot.draw(), ImVec2(0.5f * (a.x + b.x), 0.5f * (a.y + b.y)), "computing the first ω level...",
                   pal.axis_text, ImVec2(0.5f, 0.5f));
     } else {
         const char* hint = "press B (or Compute) for a diagram";
@@ -489,7 +472,7 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         const ImVec2 p = plot.to_px(c.omega, vy.hi);
         // The label sits right of the line, or left of it near the right edge, so it is never cut off.
         const bool left = p.x + ImGui::CalcTextSize(buf).x + 12 > b.x;
-        plate(plot.draw(), ImVec2(left ? p.x - 5 : p.x + 5, p.y + 3), buf, pal.title_text, ImVec2(left ? 1.0f : 0.0f, 0));
+        plate_text(plot.draw(), ImVec2(left ? p.x - 5 : p.x + 5, p.y + 3), buf, pal.title_text, ImVec2(left ? 1.0f : 0.0f, 0));
     }
     if (is_stale) {
         // Says whose diagram this is, in one line or, in a narrow tile, two.
@@ -504,10 +487,10 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         const float room = b.x - a.x - 16;
         const ImVec2 at(0.5f * (a.x + b.x), a.y + ImGui::GetFontSize() * 1.6f);
         if (ImGui::CalcTextSize(now).x <= room) {
-            plate(plot.draw(), at, now, pal.warn, ImVec2(0.5f, 0));
+            plate_text(plot.draw(), at, now, pal.warn, ImVec2(0.5f, 0));
         } else {
-            plate(plot.draw(), at, what, pal.warn, ImVec2(0.5f, 0));
-            plate(plot.draw(), ImVec2(at.x, at.y + ImGui::GetTextLineHeightWithSpacing() + 2), "press B to recompute", pal.warn,
+            plate_text(plot.draw(), at, what, pal.warn, ImVec2(0.5f, 0));
+            plate_text(plot.draw(), ImVec2(at.x, at.y + ImGui::GetTextLineHeightWithSpacing() + 2), "press B to recompute", pal.warn,
                   ImVec2(0.5f, 0));
         }
     }
@@ -525,7 +508,7 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         plot.draw()->AddRect(r0, r1, kLiveColor, 0.0f, 0, 1.5f);
         char buf[96];
         std::snprintf(buf, sizeof buf, "ω %.3f - %.3f: release to compute", std::min(box_w0_, w_mouse), std::max(box_w0_, w_mouse));
-        plate(plot.draw(), ImVec2(0.5f * (r0.x + r1.x), a.y + ImGui::GetFontSize() * 3.0f), buf, pal.title_text, ImVec2(0.5f, 0));
+        plate_text(plot.draw(), ImVec2(0.5f * (r0.x + r1.x), a.y + ImGui::GetFontSize() * 3.0f), buf, pal.title_text, ImVec2(0.5f, 0));
         if (!ImGui::IsMouseDown(ImGuiMouseButton_Right)) {
             box_active_ = false;
             if (std::abs(x1 - x0) >= 5.0f) apply_box(c, box_w0_, w_mouse, vy);
@@ -609,7 +592,7 @@ void BifurcationPanel::draw_strip(const BifurcationContext& c, Range view_x, Bif
     else
         std::snprintf(info, sizeof info, "%s λmax at %zu ω%s  (red: > 0, chaos; blue: < 0, periodic; grey: about 0)", lyap_model_.c_str(),
                       lyap_.size(), is_stale ? " — another model or xI: press B" : "");
-    plate(plot.draw(), ImVec2(a.x + 6, a.y + 4), info, is_stale ? pal.warn : pal.axis_text);
+    plate_text(plot.draw(), ImVec2(a.x + 6, a.y + 4), info, is_stale ? pal.warn : pal.axis_text);
     plot.vline(c.omega, pal.cursor, 1.5f);
     if (plot.hovered()) {
         const double w = std::clamp(plot.x_at(ImGui::GetIO().MousePos.x), 0.0, kMaxOmega);

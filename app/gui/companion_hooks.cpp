@@ -11,20 +11,9 @@
 #include "app.hpp"
 #include "plot2d.hpp"
 #include "theme.hpp"
+#include "widgets.hpp"
 
 namespace impactlab::gui {
-
-namespace {
-void hover_tip(const char* text) {
-    if (!ImGui::IsItemHovered()) return;
-    ImGui::BeginTooltip();
-    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);
-    ImGui::TextUnformatted(text);
-    ImGui::PopTextWrapPos();
-    ImGui::EndTooltip();
-}
-
-}  // namespace
 
 // Magenta: apart from the cart's trace, the section dots and the bumper, in both themes.
 ImU32 App::companion_color(float alpha) {
@@ -64,7 +53,7 @@ void App::draw_companion_controls() {
     const bool ghost = companion_mode_ == CompanionMode::Ghost;
     ImGui::SetNextItemWidth(ghost ? ImGui::GetContentRegionAvail().x * 0.62f : -1.0f);
     if (ImGui::Combo("##companion", &mode, modes, 3)) set_companion(static_cast<CompanionMode>(mode));
-    hover_tip("A second cart beside the first, on the same forcing and bumper, drawn translucent in the rig, the "
+    tooltip("A second cart beside the first, on the same forcing and bumper, drawn translucent in the rig, the "
               "phase portrait, the potential and x(t).\ntwin: the same model from x + 1 µm: in chaos the "
               "two part by orders of magnitude (sensitivity to initial conditions), on a periodic orbit they "
               "do not.\nghost: the same state under another impact law (switch C to G and see where they "
@@ -79,16 +68,16 @@ void App::draw_companion_controls() {
                     ghost_impact_ = static_cast<int>(i);
                     set_companion(CompanionMode::Ghost);
                 }
-                hover_tip(imps[i].summary);
+                tooltip(imps[i].summary);
             }
             ImGui::EndCombo();
         }
-        hover_tip("The ghost's impact law; its stiffness is the cart's.");
+        tooltip("The ghost's impact law; its stiffness is the cart's.");
     }
     if (companion_mode_ != CompanionMode::Off && companion_.have()) {
         const double d = companion_.separation_now(), d0 = companion_.separation_start();
         ImGui::TextDisabled("|Δx|");
-        hover_tip("The distance between the two carts now, and how many decades it grew since they started.");
+        tooltip("The distance between the two carts now, and how many decades it grew since they started.");
         ImGui::SameLine();
         if (companion_mode_ == CompanionMode::Twin && d0 > 0 && d > 0)
             ImGui::Text("%.2e m  (%+.1f decades)", d, std::log10(d / d0));
@@ -108,7 +97,7 @@ void App::draw_grazing() {
         else if (std::abs(gap) < 1e-4) ImGui::Text("x_I − max x = %+.2f µm", gap * 1e6);   // near grazing
         else ImGui::Text("x_I − max x = %+.3f mm", gap * 1e3);
     }
-    hover_tip("The grazing monitor: how close the orbit came to the bumper over the last forcing period. "
+    tooltip("The grazing monitor: how close the orbit came to the bumper over the last forcing period. "
               "A grazing bifurcation is coming when the gap shrinks to 0 (from a clear orbit) or the impact "
               "velocity to 0 (from an impacting one).");
     ImGui::TextDisabled("impact");
@@ -122,7 +111,7 @@ void App::draw_grazing() {
     } else {
         ImGui::Text("entry %.4f m/s, depth %.1f µm", grazing_.v, grazing_.force * 1e6);
     }
-    hover_tip("Rigid bumper (G, H): the velocity v− of the last impact in the period. Compliant (C, C1): the "
+    tooltip("Rigid bumper (G, H): the velocity v− of the last impact in the period. Compliant (C, C1): the "
               "entry velocity of the last contact and the deepest penetration x − x_I.");
 }
 

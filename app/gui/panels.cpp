@@ -20,6 +20,7 @@
 #include "impactlab/sweep.hpp"
 #include "theme.hpp"
 #include "view_fit.hpp"
+#include "widgets.hpp"
 
 namespace impactlab::gui {
 
@@ -35,25 +36,6 @@ void section(const char* label) {
     ImGui::TextUnformatted(label);
     ImGui::PopStyleColor();
     ImGui::Separator();
-}
-
-void tooltip(const char* text) {
-    if (ImGui::IsItemHovered()) {
-        ImGui::BeginTooltip();
-        ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);
-        ImGui::TextUnformatted(text);
-        ImGui::PopTextWrapPos();
-        ImGui::EndTooltip();
-    }
-}
-
-// A small text with a dark/light plate behind it, for labels over the rig.
-void plate_text(ImDrawList* dl, ImVec2 p, const char* text, ImU32 col, ImVec2 align = ImVec2(0, 0)) {
-    const ImVec2 ts = ImGui::CalcTextSize(text);
-    const ImVec2 a(std::round(p.x - ts.x * align.x), std::round(p.y - ts.y * align.y));
-    const ImU32 bg = palette().dark ? IM_COL32(10, 12, 16, 150) : IM_COL32(255, 255, 255, 170);
-    dl->AddRectFilled(ImVec2(a.x - 3, a.y - 1), ImVec2(a.x + ts.x + 3, a.y + ts.y + 1), bg, 3.0f);
-    dl->AddText(a, col, text);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "app.hpp"
+#include "widgets.hpp"
 
 namespace impactlab::gui {
 
@@ -42,7 +43,7 @@ void App::draw_ramp_controls() {
         return;
     }
     if (ImGui::Button("Ramp ω")) start_ramp(ramp_target_, ramp_rate_);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", "Moves ω slowly to the target while the rig runs (the paper's EF protocol, live): the section\n"
+    tooltip("Moves ω slowly to the target while the rig runs (the paper's EF protocol, live): the section\n"
                  "points it passes are drawn over the bifurcation diagram, which grows as you watch.\n"
                  "Any other change of ω, a preset or Reset stops it.");
     ImGui::SameLine();

@@ -1,0 +1,26 @@
+#include "widgets.hpp"
+
+#include <cmath>
+
+#include "theme.hpp"
+
+namespace impactlab::gui {
+
+void tooltip(const char* text) {
+    if (!ImGui::IsItemHovered()) return;
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);
+    ImGui::TextUnformatted(text);
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+}
+
+void plate_text(ImDrawList* dl, ImVec2 p, const char* text, ImU32 col, ImVec2 align) {
+    const ImVec2 ts = ImGui::CalcTextSize(text);
+    const ImVec2 a(std::round(p.x - ts.x * align.x), std::round(p.y - ts.y * align.y));
+    const ImU32 bg = palette().dark ? IM_COL32(10, 12, 16, 170) : IM_COL32(255, 255, 255, 190);
+    dl->AddRectFilled(ImVec2(a.x - 3, a.y - 1), ImVec2(a.x + ts.x + 3, a.y + ts.y + 1), bg, 3.0f);
+    dl->AddText(a, col, text);
+}
+
+}  // namespace impactlab::gui
