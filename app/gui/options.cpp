@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 #include <utility>
 
 #include "impactlab/params.hpp"
@@ -123,6 +124,27 @@ double number(const std::string& flag, const std::string& text, double lo, doubl
     return v;
 }
 
+// "A:B" with A in [lo_a, hi_a] and B in [lo_b, hi_b] (--bif-zoom, --bif-range, --bif-box, --ramp); `form` names
+// the two parts in the message ("W0:W1").
+std::pair<double, double> number_pair(const std::string& flag, const std::string& text, const char* form, double lo_a,
+                                      double hi_a, double lo_b, double hi_b) {
+    const auto c = text.find(':');
+    if (c == std::string::npos) throw OptionsError(flag + ": '" + text + "' is not " + form);
+    return {number(flag, text.substr(0, c), lo_a, hi_a), number(flag, text.substr(c + 1), lo_b, hi_b)};
+}
+
+// An omega range W0:W1 within [0, 30] rad/s, at least min_width wide.
+std::pair<double, double> omega_range(const std::string& flag, const std::string& text, double min_width) {
+    const auto r = number_pair(flag, text, "W0:W1", 0.0, 30.0, 0.0, 30.0);
+    if (!(r.second - r.first >= min_width)) {
+        std::string what = flag;   // (appended: GCC 12's -Wrestrict false positive on a + chain)
+        what.append(": ").append(text).append(min_width > 0 ? " is too narrow (W0 < W1 by at least " : " is empty (W0 < W1 wanted");
+        if (min_width > 0) what.append(std::to_string(min_width).substr(0, 4)).append(" rad/s wanted");
+        throw OptionsError(what.append(")"));
+    }
+    return r;
+}
+
 int integer(const std::string& flag, const std::string& text, int lo, int hi) {
     errno = 0;
     char* end = nullptr;
@@ -218,35 +240,12 @@ Options parse_options(const std::vector<std::string>& args) {
                 throw OptionsError("--bifurcation: '" + p + "' is not one of cf-up, cf-down, ef");
             o.bifurcation = p;
         } else if (a == "--bif-steps") o.bif_steps = integer(a, value(), 10, 2000);
-        else if (a == "--bif-zoom") {
-            const std::string& z = value();
-            const auto c = z.find(':');
-            if (c == std::string::npos) throw OptionsError("--bif-zoom: '" + z + "' is not W0:W1");
-            o.bif_zoom_lo = number(a, z.substr(0, c), 0.0, 30.0);
-            o.bif_zoom_hi = number(a, z.substr(c + 1), 0.0, 30.0);
-            if (!(o.bif_zoom_hi > o.bif_zoom_lo)) throw OptionsError("--bif-zoom: " + z + " is empty (W0 < W1 wanted)");
-        } else if (a == "--bif-range") {
-            const std::string& z = value();
-            const auto c = z.find(':');
-            if (c == std::string::npos) throw OptionsError("--bif-range: '" + z + "' is not W0:W1");
-            o.bif_range_lo = number(a, z.substr(0, c), 0.0, 30.0);
-            o.bif_range_hi = number(a, z.substr(c + 1), 0.0, 30.0);
-            if (!(o.bif_range_hi > o.bif_range_lo)) throw OptionsError("--bif-range: " + z + " is empty (W0 < W1 wanted)");
-        } else if (a == "--ramp") {
-            const std::string& z = value();
-            const auto c = z.find(':');
-            if (c == std::string::npos) throw OptionsError("--ramp: '" + z + "' is not W1:RATE (target rad/s : rad/s per s)");
-            o.ramp_to = number(a, z.substr(0, c), 0.0, 30.0);
-            o.ramp_rate = number(a, z.substr(c + 1), 1e-3, 2.0);
-        } else if (a == "--bif-box") {
-            const std::string& z = value();
-            const auto c = z.find(':');
-            if (c == std::string::npos) throw OptionsError("--bif-box: '" + z + "' is not W0:W1");
-            o.bif_box_lo = number(a, z.substr(0, c), 0.0, 30.0);
-            o.bif_box_hi = number(a, z.substr(c + 1), 0.0, 30.0);
-            if (!(o.bif_box_hi - o.bif_box_lo >= 0.02))
-                throw OptionsError("--bif-box: " + z + " is narrower than 0.02 rad/s (W0 < W1 wanted)");
-        } else if (a == "--bif-lyapunov") o.bif_lyapunov = true;
+        else if (a == "--bif-zoom") std::tie(o.bif_zoom_lo, o.bif_zoom_hi) = omega_range(a, value(), 0.0);
+        else if (a == "--bif-range") std::tie(o.bif_range_lo, o.bif_range_hi) = omega_range(a, value(), 0.0);
+        else if (a == "--bif-box") std::tie(o.bif_box_lo, o.bif_box_hi) = omega_range(a, value(), 0.02);
+        else if (a == "--ramp")
+            std::tie(o.ramp_to, o.ramp_rate) = number_pair(a, value(), "W1:RATE (target rad/s : rad/s per s)", 0.0, 30.0, 1e-3, 2.0);
+        else if (a == "--bif-lyapunov") o.bif_lyapunov = true;
         else if (a == "--lyap-steps") o.lyap_steps = integer(a, value(), 5, 300);
         else if (a == "--bif-nowait") o.bif_nowait = true;
         else if (a == "--plane") o.plane = value();

@@ -108,6 +108,32 @@ TEST_CASE("options: the fixed flags, values, and clear errors for bad ones") {
     }
 }
 
+TEST_CASE("options: the W0:W1 ranges and the ramp's W1:RATE, with the flag in every error") {
+    const Options o = parse_options({"--bif-range", "8:14", "--bif-box", "12:12.5", "--bif-zoom", "0:25", "--ramp",
+                                     "20:0.05"});
+    CHECK(o.bif_range_lo == 8.0);
+    CHECK(o.bif_range_hi == 14.0);
+    CHECK(o.bif_box_lo == 12.0);
+    CHECK(o.bif_box_hi == 12.5);
+    CHECK(o.bif_zoom_hi == 25.0);
+    CHECK(o.ramp_to == 20.0);
+    CHECK(o.ramp_rate == 0.05);
+    auto error = [](std::vector<std::string> args) {
+        try {
+            parse_options(args);
+        } catch (const OptionsError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    CHECK(error({"--bif-range", "14:8"}) == "--bif-range: 14:8 is empty (W0 < W1 wanted)");
+    CHECK(error({"--bif-box", "12:12.01"}) == "--bif-box: 12:12.01 is too narrow (W0 < W1 by at least 0.02 rad/s wanted)");
+    CHECK(error({"--bif-zoom", "12"}) == "--bif-zoom: '12' is not W0:W1");
+    CHECK(error({"--ramp", "11"}).find("--ramp: '11' is not W1:RATE") == 0);
+    CHECK(error({"--ramp", "11:5"}).find("--ramp") == 0);    // rate beyond 2 rad/s per s
+    CHECK(error({"--ramp", "40:0.1"}).find("--ramp") == 0);  // target beyond 30 rad/s
+}
+
 TEST_CASE("presets: every model's presets land on the attractor they name") {
     for (const char* name : {"A1H", "A1G", "A1C", "A1C1", "A3H", "A3G", "A3C", "A3C1"}) {
         const std::string model = name;
