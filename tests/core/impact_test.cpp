@@ -13,8 +13,10 @@
 #include "impactlab/forces.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/simulator.hpp"
+#include "coasting.hpp"
 
 using namespace impactlab;
+using impactlab::testing::coasting;
 
 namespace {
 
@@ -45,19 +47,6 @@ Tolerances tight(double rtol) {
     Tolerances t;
     t.rtol = rtol;
     return t;
-}
-
-// No springs, no magnets, no resistance, no forcing: the cart coasts at constant velocity between contacts.
-Params coasting(const char* version) {
-    Params p = make_version(version);
-    p.k = 0;
-    p.a = {};
-    p.b = {};
-    p.c = 0;
-    p.T = 0;
-    p.m0e = 0;
-    p.xI = 0;
-    return p;
 }
 
 // MODEL.md's rigid laws, written out here from its table (not read from the registry).
