@@ -140,19 +140,25 @@ void SimEngine::put(SimMsg& m) {
     if (sink_) sink_->put(m);
 }
 
+double SimEngine::next_section_time() const {
+    const double t_sec = d_.time_of_phase(kTwoPi * static_cast<double>(s_.next_section));
+    return std::isfinite(t_sec) ? t_sec : s_.t + 1.0;   // a stopped drive: a second, not forever
+}
+
+void SimEngine::change_drive(const Drive& d) {
+    d_ = d;
+    Simulator::sync_sections(d_, s_);
+    if (stepping_) step_target_ = next_section_time();   // the stepped period ends at the new drive's section
+    ++epoch_;   // not bump(): the energy balance goes on through a change of omega (the new rate's work counts)
+    emit_now();
+}
+
 bool SimEngine::apply(const SimCommand& c) {
     switch (c.kind) {
         case CmdKind::SetOmega: {
             const double w = std::clamp(std::isfinite(c.a) ? c.a : 0.0, 0.0, kMaxOmega);
             // Same phase, new rate from now on: phi stays continuous.
-            d_ = Drive(w, s_.t, d_.phi(s_.t));
-            Simulator::sync_sections(d_, s_);
-            if (stepping_) {   // the period being stepped ends at the next section of the new drive
-                const double t_sec = d_.time_of_phase(kTwoPi * static_cast<double>(s_.next_section));
-                step_target_ = std::isfinite(t_sec) ? t_sec : s_.t + 1.0;
-            }
-            ++epoch_;   // not bump(): the energy balance goes on through a change of omega
-            emit_now();
+            change_drive(Drive(w, s_.t, d_.phi(s_.t)));
             return true;
         }
         case CmdKind::Ramp: {
@@ -161,14 +167,7 @@ bool SimEngine::apply(const SimCommand& c) {
             const double rate = std::clamp(std::isfinite(c.b) ? std::abs(c.b) : kMaxRampRate, kMinRampRate, kMaxRampRate);
             if (std::abs(w1 - w0) < 1e-9) return true;   // nothing to ramp (and the knots must differ in t)
             // Knots at now and at the end of the ramp: constant after it, phi continuous through both.
-            d_ = Drive::piecewise_linear({s_.t, s_.t + std::abs(w1 - w0) / rate}, {w0, w1}, d_.phi(s_.t));
-            Simulator::sync_sections(d_, s_);
-            if (stepping_) {
-                const double t_sec = d_.time_of_phase(kTwoPi * static_cast<double>(s_.next_section));
-                step_target_ = std::isfinite(t_sec) ? t_sec : s_.t + 1.0;
-            }
-            ++epoch_;   // not bump(): the energy balance goes on through the ramp
-            emit_now();
+            change_drive(Drive::piecewise_linear({s_.t, s_.t + std::abs(w1 - w0) / rate}, {w0, w1}, d_.phi(s_.t)));
             return true;
         }
         case CmdKind::SetXI: {
@@ -201,8 +200,7 @@ bool SimEngine::apply(const SimCommand& c) {
             return true;
         case CmdKind::StepPeriod: {
             // Run to the next section phi = 2 pi n (one forcing period away at most), then pause.
-            const double t_sec = d_.time_of_phase(kTwoPi * static_cast<double>(s_.next_section));
-            step_target_ = std::isfinite(t_sec) ? t_sec : s_.t + 1.0;
+            step_target_ = next_section_time();
             stepping_ = true;
             paused_ = true;
             return true;

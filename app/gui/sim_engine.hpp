@@ -95,6 +95,9 @@ private:
     class Tap;   // the Observer that turns the simulator's pieces and events into records
     void emit_now();
     void restart_grid();
+    double next_section_time() const;   // when phi reaches the next section 2 pi n under the current drive
+    // A new drive from now (SetOmega, Ramp): phi continuous, the sections and a stepped period follow it.
+    void change_drive(const Drive& d);
     void put(SimMsg& m);   // tags and hands a record to the sink
     double move_bumper_toward_target(double t_end);   // one push; returns the sim time it lasts to
     void advance_held(double t_end);                   // time passes with the cart in the hand
