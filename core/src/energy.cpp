@@ -21,20 +21,14 @@ double EnergyBalance::turnover() const {
            std::abs(dissipated_resistance) + std::abs(dissipated_bumper);
 }
 
-double EnergyLedger::elastic_bumper_energy(double x) const {
-    return mechanical_energy(*p_, x, 0.0) - spring_magnet_potential(*p_, x);
-}
-
 void EnergyLedger::reset(const State& s) {
     b_ = EnergyBalance{};
     b_.t0 = b_.t = s.t;
     b_.E0 = b_.E = mechanical_energy(*p_, s.x, s.v);
     b_.x = s.x;
     b_.v = s.v;
-    x_end_ = s.x;
-    v_end_ = s.v;
     bumper_work_ = jump_loss_ = 0;
-    elastic0_ = p_->compliant() ? elastic_bumper_energy(s.x) : 0.0;
+    elastic0_ = bumper_elastic_energy(*p_, s.x);
     started_ = true;
 }
 
@@ -44,8 +38,8 @@ void EnergyLedger::on_piece(const Piece& piece) {
     const Vec2 y0 = piece.at(piece.t0);
     if (!started_) reset(State{piece.t0, y0[0], y0[1]});
     // A jump between pieces is a rigid impact (v- to 0 or to v+) or a release (0 to v+): the energy it takes
-    // or gives back is the bumper's.
-    jump_loss_ += mechanical_energy(p, x_end_, v_end_) - mechanical_energy(p, y0[0], y0[1]);
+    // or gives back is the bumper's. b_ holds where the last piece ended, and E there.
+    if (y0[0] != b_.x || y0[1] != b_.v) jump_loss_ += b_.E - mechanical_energy(p, y0[0], y0[1]);
     if (piece.step && piece.t1 > piece.t0) {   // held at the bumper (v = 0) no force does work
         const double half = 0.5 * (piece.t1 - piece.t0), mid = 0.5 * (piece.t1 + piece.t0);
         for (int i = 0; i < 5; ++i) {
@@ -63,14 +57,12 @@ void EnergyLedger::on_piece(const Piece& piece) {
         }
     }
     const Vec2 y1 = piece.at(piece.t1);
-    x_end_ = y1[0];
-    v_end_ = y1[1];
     b_.t = piece.t1;
     b_.x = y1[0];
     b_.v = y1[1];
     b_.E = mechanical_energy(p, y1[0], y1[1]);
     b_.dissipated_bumper = jump_loss_;
-    if (p.compliant()) b_.dissipated_bumper += bumper_work_ - (elastic_bumper_energy(y1[0]) - elastic0_);
+    if (p.compliant()) b_.dissipated_bumper += bumper_work_ - (bumper_elastic_energy(p, y1[0]) - elastic0_);
 }
 
 }  // namespace impactlab

@@ -123,13 +123,14 @@ double normal_force(const Params& p, const Drive& d, double t) {
     return N;
 }
 
+double bumper_elastic_energy(const Params& p, double x) {
+    if (!p.compliant() || x <= p.xI) return 0.0;
+    const double n1 = p.ip[2];
+    return p.ip[0] * std::pow(x - p.xI, n1 + 1.0) / (n1 + 1.0);
+}
+
 double mechanical_energy(const Params& p, double x, double v) {
-    double E = 0.5 * p.m * v * v + spring_magnet_potential(p, x);
-    if (p.compliant() && x > p.xI) {
-        const double n1 = p.ip[2];
-        E += p.ip[0] * std::pow(x - p.xI, n1 + 1.0) / (n1 + 1.0);
-    }
-    return E;
+    return 0.5 * p.m * v * v + spring_magnet_potential(p, x) + bumper_elastic_energy(p, x);
 }
 
 double bumper_force(const Params& p, const Drive& d, const State& s) {

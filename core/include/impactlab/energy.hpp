@@ -41,11 +41,9 @@ public:
     const EnergyBalance& balance() const { return b_; }
 
 private:
-    double elastic_bumper_energy(double x) const;   // the compliant bumper's share of mechanical_energy [J]
     const Params* p_;
     const Drive* d_;
     EnergyBalance b_;
-    double x_end_ = 0, v_end_ = 0;   // where the last piece ended: a jump to the next piece is an impact
     double jump_loss_ = 0;           // energy taken by the jumps between pieces (rigid impacts) [J]
     double bumper_work_ = 0;         // integral of F_I v over the compliant contact [J]
     double elastic0_ = 0;            // the bumper's elastic energy at t0 [J]

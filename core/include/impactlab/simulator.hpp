@@ -105,6 +105,8 @@ private:
 double normal_force(const Params& p, const Drive& d, double t);
 // Total mechanical energy 1/2 m v^2 + V(x) (+ the bumper's elastic energy for compliant models) [J].
 double mechanical_energy(const Params& p, double x, double v);
+// Its last term: kI h^(n1+1) / (n1+1) at the compliant bumper's penetration h = x - xI > 0, else 0 [J].
+double bumper_elastic_energy(const Params& p, double x);
 // The force the bumper exerts at this instant [N]: F_I (compliant), N (regime III), the mean force of the
 // impulse (regime II), else 0.
 double bumper_force(const Params& p, const Drive& d, const State& s);
