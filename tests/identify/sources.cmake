@@ -4,4 +4,5 @@ set(IMPACTLAB_IDENTIFY_TEST_SOURCES
   identify/effect_laws_test.cpp
   identify/loop_test.cpp
   identify/shared_data_test.cpp
+  identify/audit_test.cpp
 )

@@ -473,56 +473,73 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
     const std::vector<double> e_base = wins.size() >= 12 ? held_out(base) : std::vector<double>{};
     std::vector<double> e_cur = e_base;
     std::size_t tried = 0;
-    for (auto& f : found) {
-        if (pr.progress)   // the validation's share of the fit, effect by effect
-            pr.progress->fraction.store(0.34 + 0.46 * static_cast<double>(++tried) / static_cast<double>(found.size() + 1),
-                                        std::memory_order_relaxed);
-        RejectedEffect rej{f.id, "", 0, 0, f.parameters};
-        if (e_cur.empty()) {
-            rej.reason = "too few windows to validate it on held-out data";
-            rep.effects_rejected.push_back(std::move(rej));
-            continue;
-        }
-        Model cand = cur;
-        apply_effect(cand, f.id, f.parameters);
-        const std::string why = unphysical(cand);
-        if (!why.empty()) {
-            rej.reason = "unphysical: " + why;
-            rep.effects_rejected.push_back(std::move(rej));
-            continue;
-        }
-        std::vector<double> e_new;
-        if (f.evidence == "impact law") {
-            // Refitted on the other fold's impacts, for each fold in turn.
-            std::array<Model, 2> per_fold{cur, cur};
-            for (std::size_t ff = 0; ff < 2; ++ff) {
-                const std::vector<char>& use = impacts_in[1 - ff];
-                // A fold with fewer than three impacts cannot refit the law: there the whole record's values
-                // stand (the windows are still held out).
-                if (std::count(use.begin(), use.end(), 1) < 3) per_fold[ff] = cand;
-                else if (f.id == "bumper_offset") fit_bumper_shift(pr, per_fold[ff], use, o.rtol, 0.05 * pr.sigma_x);
-                else apply_effect(per_fold[ff], f.id, refit_impact_law(pr, cur, f, use));
+    // An effect turned down for too small a fall is tried again once another has been kept: validated alone, a
+    // force's per-fold refit absorbs the error of a partner effect not yet in the model (an even stiffness
+    // and a phase offset, say) and its fall looks small. It must pass the same test against the new model.
+    std::vector<std::size_t> queue(found.size());
+    std::iota(queue.begin(), queue.end(), std::size_t{0});
+    std::vector<std::pair<std::size_t, RejectedEffect>> too_small;
+    for (int pass = 0; pass < 3 && !queue.empty(); ++pass) {
+        bool kept_one = false;
+        too_small.clear();
+        for (std::size_t fi : queue) {
+            FoundEffect& f = found[fi];
+            if (pr.progress)   // the validation's share of the fit, effect by effect
+                pr.progress->fraction.store(0.34 + 0.46 * static_cast<double>(std::min(++tried, found.size())) / static_cast<double>(found.size() + 1),
+                                            std::memory_order_relaxed);
+            RejectedEffect rej{f.id, "", 0, 0, f.parameters};
+            if (e_cur.empty()) {
+                rej.reason = "too few windows to validate it on held-out data";
+                rep.effects_rejected.push_back(std::move(rej));
+                continue;
             }
-            e_new = held_out_folds(per_fold);
-        } else {
-            e_new = held_out(cand);
+            Model cand = cur;
+            apply_effect(cand, f.id, f.parameters);
+            const std::string why = unphysical(cand);
+            if (!why.empty()) {
+                rej.reason = "unphysical: " + why;
+                rep.effects_rejected.push_back(std::move(rej));
+                continue;
+            }
+            std::vector<double> e_new;
+            if (f.evidence == "impact law") {
+                // Refitted on the other fold's impacts, for each fold in turn.
+                std::array<Model, 2> per_fold{cur, cur};
+                for (std::size_t ff = 0; ff < 2; ++ff) {
+                    const std::vector<char>& use = impacts_in[1 - ff];
+                    // A fold with fewer than three impacts cannot refit the law: there the whole record's values
+                    // stand (the windows are still held out).
+                    if (std::count(use.begin(), use.end(), 1) < 3) per_fold[ff] = cand;
+                    else if (f.id == "bumper_offset") fit_bumper_shift(pr, per_fold[ff], use, o.rtol, 0.05 * pr.sigma_x);
+                    else apply_effect(per_fold[ff], f.id, refit_impact_law(pr, cur, f, use));
+                }
+                e_new = held_out_folds(per_fold);
+            } else {
+                e_new = held_out(cand);
+            }
+            const Compare c = compare(e_cur, e_new);
+            f.validation_gain = rej.validation_gain = c.gain;
+            f.validation_z = rej.validation_z = c.z;
+            const double excess = std::max(c.sum_cur - noise_sse, 0.0);
+            const bool better = c.z >= 3.0 && c.sum_cur - c.sum_new > 0.02 * excess && c.gain > 1e-3;
+            if (!better) {
+                char buf[200];
+                std::snprintf(buf, sizeof buf, "held-out simulation error %s by %.2f %% (paired z = %.1f over %zu windows): not better beyond the noise",
+                              c.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(c.gain), c.z, wins.size());
+                rej.reason = buf;
+                too_small.emplace_back(fi, std::move(rej));
+                continue;
+            }
+            cur = std::move(cand);
+            e_cur = e_new;
+            rep.effects_found.push_back(f);
+            kept_one = true;
         }
-        const Compare c = compare(e_cur, e_new);
-        f.validation_gain = rej.validation_gain = c.gain;
-        f.validation_z = rej.validation_z = c.z;
-        const double excess = std::max(c.sum_cur - noise_sse, 0.0);
-        const bool better = c.z >= 3.0 && c.sum_cur - c.sum_new > 0.02 * excess && c.gain > 1e-3;
-        if (!better) {
-            char buf[200];
-            std::snprintf(buf, sizeof buf, "held-out simulation error %s by %.2f %% (paired z = %.1f over %zu windows): not better beyond the noise",
-                          c.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(c.gain), c.z, wins.size());
-            rej.reason = buf;
-            rep.effects_rejected.push_back(std::move(rej));
-            continue;
-        }
-        cur = std::move(cand);
-        e_cur = e_new;
-        rep.effects_found.push_back(std::move(f));
+        queue.clear();
+        if (kept_one)
+            for (const auto& t : too_small) queue.push_back(t.first);
+        if (queue.empty() || pass == 2)
+            for (auto& t : too_small) rep.effects_rejected.push_back(std::move(t.second));
     }
     if (!rep.effects_found.empty()) {
         const Compare c = compare(e_base, e_cur);

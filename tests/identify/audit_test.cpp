@@ -1,0 +1,48 @@
+// Cases from an adversarial audit of the measured-data loop (records the recovery matrix and the null check
+// do not cover), each a failure once seen and fixed; 20 s records so each case stays within a few seconds.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "impactlab/identify.hpp"
+
+namespace id = impactlab::identify;
+
+namespace {
+
+id::SynthOptions steps_9_16(unsigned seed) {
+    id::SynthOptions o;
+    o.duration = 20.0;
+    o.seed = seed;
+    id::steps_profile({9.0, 16.0}, 9.0, 2.0, o.knot_t, o.knot_omega);   // periodic, then chaotic with impacts
+    return o;
+}
+
+id::FitReport analyse(const id::Model& truth, const id::SynthOptions& so, const std::string& model) {
+    id::FitOptions fo;
+    fo.plots = false;
+    return id::run_fit(id::synthesize(truth, so), id::resolve_fit_model(model, id::Forcing::Unbalance), fo);
+}
+
+bool named(const id::FitReport& r, const std::string& effect) {
+    return std::any_of(r.effects_found.begin(), r.effects_found.end(), [&](const id::FoundEffect& f) { return f.id == effect; });
+}
+
+}  // namespace
+
+TEST_CASE("audit: two force effects at once are both kept, whichever the validation tries first") {
+    // Validated alone, a phase offset's per-fold refit soaks up the even stiffness not yet in the model and its
+    // held-out fall looked too small; it was turned down for good, leaving a model 10x the noise. It is now
+    // tried again once the even stiffness is in.
+    id::Model truth = id::resolve_fit_model("A1G", id::Forcing::Unbalance);
+    id::apply_effect(truth, "even_stiffness", {{"k2", 3000.0}});
+    id::apply_effect(truth, "phase_offset", {{"delta", 0.05}});
+    const id::FitReport r = analyse(truth, steps_9_16(1), "A1G");
+    CHECK(r.effects_found.size() == 2);
+    CHECK(named(r, "even_stiffness"));
+    CHECK(named(r, "phase_offset"));
+    CHECK(r.validation_rms_after_m < 1.5 * r.sigma_x);
+    CHECK(r.error_after.shooting_rms_1_m < 1.5 * r.sigma_x);
+}
