@@ -96,6 +96,9 @@ bool App::init(std::string& error) {
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_SAMPLES, 0);
+    // Nothing draws with depth or stencil; without those buffers llvmpipe renders each tile faster.
+    glfwWindowHint(GLFW_DEPTH_BITS, 0);
+    glfwWindowHint(GLFW_STENCIL_BITS, 0);
     win_ = glfwCreateWindow(opt_.width, opt_.height, "impactlab - forced impact oscillator", nullptr, nullptr);
     if (!win_) {
         error = "cannot create an OpenGL 3.3 core window";
@@ -441,6 +444,7 @@ void App::frame() {
     end_replay_frame();
     handle_session_request();
     ImGui::Render();
+    flush_canvas_uploads();   // the plots' images, now that the rig's has had the build's time to render
     plot_gpu::upload();
     const double t_built = now_s();
 

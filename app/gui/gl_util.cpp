@@ -2,6 +2,7 @@
 
 #include <stb_image_write.h>   // libstb exports the implementation
 
+#include <algorithm>
 #include <cstring>
 
 namespace impactlab::gui {
@@ -68,7 +69,19 @@ GLuint upload_rgba_texture(GLuint tex, int w, int h, const unsigned char* rgba) 
     return tex;
 }
 
+namespace {
+// The textures with an upload recorded this frame (the GL thread's only).
+std::vector<CanvasTexture*>& pending_canvases() {
+    static std::vector<CanvasTexture*> list;
+    return list;
+}
+}  // namespace
+
 CanvasTexture::~CanvasTexture() {
+    if (pending_) {
+        auto& list = pending_canvases();
+        list.erase(std::remove(list.begin(), list.end(), this), list.end());
+    }
     if (tex_) glDeleteTextures(1, &tex_);
 }
 
@@ -78,21 +91,55 @@ GLuint CanvasTexture::ensure() {
 }
 
 GLuint CanvasTexture::upload(const unsigned char* rgba, int w, int h, int x0, int y0, int x1, int y1) {
-    if (!tex_ || w != w_ || h != h_) {
-        tex_ = upload_rgba_texture(tex_, w, h, rgba);   // keeps the name if there is one
-        w_ = w;
-        h_ = h;
-        return tex_;
+    ensure();
+    const bool resized = w != pw_ || h != ph_;
+    if (!pending_ || resized) {
+        x0_ = y0_ = 0;
+        x1_ = y1_ = -1;
     }
-    if (x1 < x0 || y1 < y0) return tex_;
+    rgba_ = rgba;
+    pw_ = w;
+    ph_ = h;
+    if (w != w_ || h != h_) {   // a new size: all of it
+        x0_ = y0_ = 0;
+        x1_ = w - 1;
+        y1_ = h - 1;
+    } else if (x0 <= x1 && y0 <= y1) {   // drawn twice before a flush: the union
+        if (x1_ < x0_) {
+            x0_ = x0, y0_ = y0, x1_ = x1, y1_ = y1;
+        } else {
+            x0_ = std::min(x0_, x0), y0_ = std::min(y0_, y0), x1_ = std::max(x1_, x1), y1_ = std::max(y1_, y1);
+        }
+    }
+    if (!pending_) {
+        pending_ = true;
+        pending_canvases().push_back(this);
+    }
+    return tex_;
+}
+
+void CanvasTexture::send() {
+    pending_ = false;
+    if (pw_ != w_ || ph_ != h_) {
+        tex_ = upload_rgba_texture(tex_, pw_, ph_, rgba_);   // keeps the name
+        w_ = pw_;
+        h_ = ph_;
+        return;
+    }
+    if (x1_ < x0_ || y1_ < y0_) return;
     glBindTexture(GL_TEXTURE_2D, tex_);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, w);
-    const unsigned char* first = rgba + (static_cast<std::size_t>(y0) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x0)) * 4;
-    glTexSubImage2D(GL_TEXTURE_2D, 0, x0, y0, x1 - x0 + 1, y1 - y0 + 1, GL_RGBA, GL_UNSIGNED_BYTE, first);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, pw_);
+    const unsigned char* first = rgba_ + (static_cast<std::size_t>(y0_) * static_cast<std::size_t>(pw_) + static_cast<std::size_t>(x0_)) * 4;
+    glTexSubImage2D(GL_TEXTURE_2D, 0, x0_, y0_, x1_ - x0_ + 1, y1_ - y0_ + 1, GL_RGBA, GL_UNSIGNED_BYTE, first);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
     glBindTexture(GL_TEXTURE_2D, 0);
-    return tex_;
+}
+
+void flush_canvas_uploads() {
+    auto& list = pending_canvases();
+    for (CanvasTexture* t : list) t->send();
+    list.clear();
 }
 
 std::vector<unsigned char> read_framebuffer_rgb(int w, int h) {

@@ -17,6 +17,10 @@ GLuint build_program(const char* vert_src, const char* frag_src, const char* nam
 GLuint upload_rgba_texture(GLuint tex, int w, int h, const unsigned char* rgba);
 
 // An RGBA8 texture the size of a CPU image (a plot canvas), updated a rectangle at a time.
+//
+// upload() only records what changed; flush_canvas_uploads() sends every recorded rectangle once the whole
+// UI is built. Under llvmpipe a texture upload waits for the rendering already queued (the rig's image,
+// drawn while the tiles are built), so uploading in the middle of the frame would serialise the two.
 class CanvasTexture {
 public:
     CanvasTexture() = default;
@@ -25,14 +29,24 @@ public:
     CanvasTexture& operator=(const CanvasTexture&) = delete;
     // Creates the texture name now (so a draw command can refer to it before the first upload).
     GLuint ensure();
-    // Uploads columns [x0, x1] of rows [y0, y1] of `rgba` (w x h); all of it when the size is new.
+    // Records columns [x0, x1] of rows [y0, y1] of `rgba` (w x h) for the next flush (all of it when the
+    // size is new). `rgba` must stay valid and unchanged until then.
     GLuint upload(const unsigned char* rgba, int w, int h, int x0, int y0, int x1, int y1);
     GLuint id() const { return tex_; }
 
 private:
+    friend void flush_canvas_uploads();
+    void send();
     GLuint tex_ = 0;
-    int w_ = 0, h_ = 0;
+    int w_ = 0, h_ = 0;                 // the texture's size on the GL side
+    const unsigned char* rgba_ = nullptr;
+    int pw_ = 0, ph_ = 0;               // the recorded image's size
+    int x0_ = 0, y0_ = 0, x1_ = -1, y1_ = -1;   // the rectangle to send (empty: nothing pending)
+    bool pending_ = false;
 };
+
+// Sends every recorded CanvasTexture upload: once a frame, after the UI is built and before it is rendered.
+void flush_canvas_uploads();
 
 // Reads the current read framebuffer (w x h from the lower left) and writes a PNG (top row first).
 // Returns false and fills `error` on failure.

@@ -329,6 +329,9 @@ GLuint RigView::render(int w, int h, const RigState& s, const Palette& pal) {
 
     glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(prev_fbo));
     glViewport(prev_vp[0], prev_vp[1], prev_vp[2], prev_vp[3]);
+    // Start rendering now: a software rasterizer then draws the image on its own threads while the UI
+    // thread builds the other tiles, instead of after them.
+    glFlush();
     return color_;
 }
 
