@@ -46,3 +46,27 @@ TEST_CASE("audit: two force effects at once are both kept, whichever the validat
     CHECK(r.validation_rms_after_m < 1.5 * r.sigma_x);
     CHECK(r.error_after.shooting_rms_1_m < 1.5 * r.sigma_x);
 }
+
+TEST_CASE("audit: a baseline fit never hands back parameters worse than those given, and keeps a real improvement") {
+    // At 200 Hz the equation error's fit of the baseline is biased: it moved A1H's parameters to a model whose
+    // shooting error was ten times the sensor noise, and handed that back. It must now beat the parameters
+    // given on held-out windows, or they stay.
+    const id::Model a1h = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
+    id::FitOptions fo;
+    fo.plots = false;
+    fo.fit_baseline = true;
+    id::SynthOptions so = steps_9_16(1);
+    so.rate = 200.0;
+    const id::MeasuredData coarse = id::synthesize(a1h, so);
+    const id::FitReport r = id::run_fit(coarse, a1h, fo);
+    CHECK(r.effects_found.empty());
+    CHECK(r.after.p.c == a1h.p.c);
+    CHECK(r.after.p.T == a1h.p.T);
+    CHECK(r.after.p.k == a1h.p.k);
+    CHECK(r.error_after.shooting_rms_1_m <= 1.01 * id::evaluate_model(coarse, a1h, fo).shooting_rms_1_m);
+    // A3 data fitted from A1's parameters: the fitted baseline is far better than the one given, and stays.
+    const id::MeasuredData a3 = id::synthesize(id::resolve_fit_model("A3H", id::Forcing::Unbalance), steps_9_16(1));
+    const id::FitReport r3 = id::run_fit(a3, a1h, fo);
+    CHECK(r3.baseline == "fit");
+    CHECK(r3.error_after.shooting_rms_1_m < 0.1 * id::evaluate_model(a3, a1h, fo).shooting_rms_1_m);
+}

@@ -365,6 +365,124 @@ double t_test_z(const std::vector<double>& d) {
     return std::copysign(f_to_z(t * t, 1.0, n - 1.0), t);
 }
 
+// The record cut for held-out checks: windows within the predictability horizon of `m`, and blocks of
+// about an eighth of the record alternately in fold 0 and fold 1 (rows and windows by fold).
+struct HeldOutSplit {
+    Horizon hz;
+    double periods = 0;   // window length [forcing periods]
+    std::vector<std::pair<std::size_t, std::size_t>> wins;
+    std::array<Prep, 2> fold_pr;
+    std::array<std::vector<std::size_t>, 2> fold_wins;   // indices into wins
+    double t0 = 0, block = 1;
+    int fold_of(const Prep& pr, std::size_t i) const { return static_cast<int>(std::floor((pr.data->t[i] - t0) / block)) % 2; }
+};
+HeldOutSplit held_out_split(const Prep& pr, const Model& m, double rtol) {
+    const MeasuredData& data = *pr.data;
+    HeldOutSplit s{predictability_horizon(pr, m, rtol), 0, {}, {pr, pr}, {}, data.t.front(), 1};
+    // Within the horizon, windows short enough that there are about 40 of them (the paired test's power).
+    double L = s.hz.periods;
+    while (L > 0.25 && L * pr.period >= 32.0 * pr.dt && windows(pr, L).size() < 40) L *= 0.5;
+    s.periods = L;
+    if (L > 0) s.wins = windows(pr, L);
+    s.block = std::max((data.t.back() - s.t0) / 8.0, 2.0 * s.hz.periods * pr.period);
+    for (std::size_t f = 0; f < 2; ++f) {
+        s.fold_pr[f].rows.clear();
+        for (std::size_t r : pr.rows)
+            if (s.fold_of(pr, r) == static_cast<int>(f)) s.fold_pr[f].rows.push_back(r);
+    }
+    for (std::size_t w = 0; w < s.wins.size(); ++w) s.fold_wins[static_cast<std::size_t>(s.fold_of(pr, s.wins[w].first))].push_back(w);
+    return s;
+}
+
+// Two models' held-out errors compared window by window: the relative fall of the summed error, and the
+// paired z of the fall. The paired test runs over the informative windows, where the two models' errors
+// differ by more than a tenth of the window's noise: an impact-law effect changes only the windows with
+// impacts in them. The t statistic is read through F(1, n-1), so a few windows need a large and consistent
+// fall.
+struct Compare { double gain = 0, z = 0, sum_cur = 0, sum_new = 0; };
+Compare compare_held_out(const Prep& pr, const std::vector<std::pair<std::size_t, std::size_t>>& wins, const std::vector<double>& cur,
+                         const std::vector<double>& cand) {
+    Compare c;
+    std::vector<double> d, rel;
+    for (std::size_t w = 0; w < cur.size(); ++w) {
+        if (!std::isfinite(cur[w]) && !std::isfinite(cand[w])) continue;
+        // A window the new model cannot simulate counts against it; one the old cannot, for it.
+        const double a = std::isfinite(cur[w]) ? cur[w] : 10.0 * cand[w] + 1.0, b = std::isfinite(cand[w]) ? cand[w] : 10.0 * cur[w] + 1.0;
+        c.sum_cur += a;
+        c.sum_new += b;
+        const double noise_w = static_cast<double>(wins[w].second - wins[w].first + 1) * pr.sigma_x * pr.sigma_x;
+        if (std::abs(a - b) > 0.1 * noise_w) {
+            d.push_back(a - b);
+            rel.push_back((a - b) / std::max(a, noise_w));
+        }
+    }
+    c.gain = c.sum_cur > 0 ? (c.sum_cur - c.sum_new) / c.sum_cur : 0.0;
+    if (d.size() < 3) return c;
+    const double n = static_cast<double>(d.size());
+    const double z_t = t_test_z(d);
+    // Wilcoxon's signed-rank test as well: chaotic windows make the differences heavy-tailed, and a
+    // consistent sign over the windows is what a real effect shows and a spurious one does not.
+    std::vector<std::size_t> order(d.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return std::abs(d[i]) < std::abs(d[j]); });
+    double w_plus = 0;
+    for (std::size_t r = 0; r < order.size(); ++r)
+        if (d[order[r]] > 0) w_plus += static_cast<double>(r + 1);
+    const double z_w = (w_plus - n * (n + 1) / 4.0) / std::sqrt(n * (n + 1) * (2 * n + 1) / 24.0);
+    // And the t test on each window's relative fall (bounded above by 1, so light-tailed): a bumper
+    // offset removes most of the error of the few windows with impacts in them, every time.
+    c.z = std::max({z_t, z_w, t_test_z(rel)});
+    return c;
+}
+
+// Whether a change `cand` of model `cur` is better beyond the noise on held-out windows: a paired z >= 3 and
+// a fall of the summed error by at least 2 % of its part above the sensor noise.
+bool better_beyond_noise(const Prep& pr, const std::vector<std::pair<std::size_t, std::size_t>>& wins, const Compare& c) {
+    std::size_t samples = 0;
+    for (const auto& [a, b] : wins) samples += b - a + 1;
+    const double excess = std::max(c.sum_cur - static_cast<double>(samples) * pr.sigma_x * pr.sigma_x, 0.0);
+    return c.z >= 3.0 && c.sum_cur - c.sum_new > 0.02 * excess && c.gain > 1e-3;
+}
+
+// Whether the fitted baseline predicts held-out data better than the parameters given (a record forced by
+// the unbalance, whose given model is a physical one): each fold's windows simulated with the base
+// parameters refitted on the other fold's equation error, against the given model, by the same test as an
+// effect. A baseline fit that only matches the equation error (biased at a few samples per period, or
+// fitting noise) must not replace the parameters it was given.
+bool baseline_predicts_better(const Prep& pr, const Model& given, const Model& fitted, const std::vector<std::string>& names,
+                              const FitOptions& o, std::string& why) {
+    const HeldOutSplit sp = held_out_split(pr, given, o.rtol);
+    if (sp.wins.size() < 12) {
+        why = "too few windows to check it on held-out data";
+        return false;
+    }
+    std::vector<double> e_given(sp.wins.size(), INFINITY), e_fit(sp.wins.size(), INFINITY);
+    for (std::size_t f = 0; f < 2; ++f) {
+        std::vector<std::pair<std::size_t, std::size_t>> sub;
+        for (std::size_t w : sp.fold_wins[f]) sub.push_back(sp.wins[w]);
+        Model mf = fitted;
+        std::vector<Knob> knobs = base_knobs(mf, names);
+        if (sp.fold_pr[1 - f].rows.size() >= 20) {
+            Eigen::VectorXd R;
+            Eigen::MatrixXd J;
+            lm_residual(sp.fold_pr[1 - f], mf, knobs, 15, R, J);
+        }
+        if (!unphysical(mf).empty()) mf = fitted;
+        const std::vector<double> eg = window_sse(pr, given, sub, o.refine_shooting, o.rtol);
+        const std::vector<double> ef = window_sse(pr, mf, sub, o.refine_shooting, o.rtol);
+        for (std::size_t k = 0; k < sub.size(); ++k) {
+            e_given[sp.fold_wins[f][k]] = eg[k];
+            e_fit[sp.fold_wins[f][k]] = ef[k];
+        }
+    }
+    const Compare c = compare_held_out(pr, sp.wins, e_given, e_fit);
+    char buf[240];
+    std::snprintf(buf, sizeof buf, "held-out simulation error %s by %.2f %% (paired z = %.1f over %zu windows)",
+                  c.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(c.gain), c.z, sp.wins.size());
+    why = buf;
+    return better_beyond_noise(pr, sp.wins, c);
+}
+
 // The held-out validation of the effects found (stage 6 of run_fit). The record is cut into blocks of about
 // an eighth of its length, alternately in fold 0 and fold 1. For each fold, the force effects' parameters are
 // refitted on the equation error of the other fold's rows (an impact-law effect on the other fold's impacts),
@@ -374,29 +492,17 @@ double t_test_z(const std::vector<double>& d) {
 // paired z >= 3 over the windows and by at least 2 % of the error above the sensor noise.
 void validate_effects(const Prep& pr, const Model& base, const std::vector<Candidate>& cands, const FitOptions& o,
                       FitReport& rep, Model& after) {
-    const MeasuredData& data = *pr.data;
     // The horizon of the best model at hand (the baseline with every effect found): a wrong baseline's error
     // grows from its own fault, not from the record's instability. An unphysical candidate falls back to the
     // baseline.
-    const Horizon hz = predictability_horizon(pr, unphysical(after).empty() ? after : base, o.rtol);
-    rep.horizon_growth = hz.growth;
-    // Within the horizon, windows short enough that there are about 40 of them (the paired test's power).
-    double L = hz.periods;
-    while (L > 0.25 && L * pr.period >= 32.0 * pr.dt && windows(pr, L).size() < 40) L *= 0.5;
-    rep.horizon_periods = L;
-    const auto wins = L > 0 ? windows(pr, L) : std::vector<std::pair<std::size_t, std::size_t>>{};
+    const HeldOutSplit sp = held_out_split(pr, unphysical(after).empty() ? after : base, o.rtol);
+    rep.horizon_growth = sp.hz.growth;
+    rep.horizon_periods = sp.periods;
+    const auto& wins = sp.wins;
     rep.validation_windows = wins.size();
-    const double t0 = data.t.front(), span = data.t.back() - t0;
-    const double block = std::max(span / 8.0, 2.0 * hz.periods * pr.period);
-    auto fold_of = [&](std::size_t i) { return static_cast<int>(std::floor((data.t[i] - t0) / block)) % 2; };
-    std::array<Prep, 2> fold_pr{pr, pr};
-    std::array<std::vector<std::size_t>, 2> fold_wins;
-    for (int f = 0; f < 2; ++f) {
-        fold_pr[static_cast<std::size_t>(f)].rows.clear();
-        for (std::size_t r : pr.rows)
-            if (fold_of(r) == f) fold_pr[static_cast<std::size_t>(f)].rows.push_back(r);
-    }
-    for (std::size_t w = 0; w < wins.size(); ++w) fold_wins[static_cast<std::size_t>(fold_of(wins[w].first))].push_back(w);
+    const std::array<Prep, 2>& fold_pr = sp.fold_pr;
+    const std::array<std::vector<std::size_t>, 2>& fold_wins = sp.fold_wins;
+    auto fold_of = [&](std::size_t i) { return sp.fold_of(pr, i); };
     const std::size_t n_base_effects = base.p.effects.size();
 
     // Held-out SSE of each window: fold f's windows simulated with model_for[f], its force effects refitted
@@ -428,44 +534,7 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
     }
     std::size_t samples = 0;
     for (const auto& [a, b] : wins) samples += b - a + 1;
-    const double noise_sse = static_cast<double>(samples) * pr.sigma_x * pr.sigma_x;
-    struct Compare { double gain = 0, z = 0, sum_cur = 0, sum_new = 0; };
-    // The paired test runs over the informative windows, where the two models' errors differ by more than a
-    // tenth of the window's noise: an impact-law effect changes only the windows with impacts in them. The
-    // t statistic is read through F(1, n-1), so a few windows need a large and consistent fall.
-    auto compare = [&](const std::vector<double>& cur, const std::vector<double>& cand) {
-        Compare c;
-        std::vector<double> d, rel;
-        for (std::size_t w = 0; w < cur.size(); ++w) {
-            if (!std::isfinite(cur[w]) && !std::isfinite(cand[w])) continue;
-            // A window the new model cannot simulate counts against it; one the old cannot, for it.
-            const double a = std::isfinite(cur[w]) ? cur[w] : 10.0 * cand[w] + 1.0, b = std::isfinite(cand[w]) ? cand[w] : 10.0 * cur[w] + 1.0;
-            c.sum_cur += a;
-            c.sum_new += b;
-            const double noise_w = static_cast<double>(wins[w].second - wins[w].first + 1) * pr.sigma_x * pr.sigma_x;
-            if (std::abs(a - b) > 0.1 * noise_w) {
-                d.push_back(a - b);
-                rel.push_back((a - b) / std::max(a, noise_w));
-            }
-        }
-        c.gain = c.sum_cur > 0 ? (c.sum_cur - c.sum_new) / c.sum_cur : 0.0;
-        if (d.size() < 3) return c;
-        const double n = static_cast<double>(d.size());
-        const double z_t = t_test_z(d);
-        // Wilcoxon's signed-rank test as well: chaotic windows make the differences heavy-tailed, and a
-        // consistent sign over the windows is what a real effect shows and a spurious one does not.
-        std::vector<std::size_t> order(d.size());
-        std::iota(order.begin(), order.end(), 0);
-        std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return std::abs(d[i]) < std::abs(d[j]); });
-        double w_plus = 0;
-        for (std::size_t r = 0; r < order.size(); ++r)
-            if (d[order[r]] > 0) w_plus += static_cast<double>(r + 1);
-        const double z_w = (w_plus - n * (n + 1) / 4.0) / std::sqrt(n * (n + 1) * (2 * n + 1) / 24.0);
-        // And the t test on each window's relative fall (bounded above by 1, so light-tailed): a bumper
-        // offset removes most of the error of the few windows with impacts in them, every time.
-        c.z = std::max({z_t, z_w, t_test_z(rel)});
-        return c;
-    };
+    auto compare = [&](const std::vector<double>& cur, const std::vector<double>& cand) { return compare_held_out(pr, wins, cur, cand); };
 
     std::vector<FoundEffect> found = std::move(rep.effects_found);
     rep.effects_found.clear();
@@ -520,9 +589,7 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
             const Compare c = compare(e_cur, e_new);
             f.validation_gain = rej.validation_gain = c.gain;
             f.validation_z = rej.validation_z = c.z;
-            const double excess = std::max(c.sum_cur - noise_sse, 0.0);
-            const bool better = c.z >= 3.0 && c.sum_cur - c.sum_new > 0.02 * excess && c.gain > 1e-3;
-            if (!better) {
+            if (!better_beyond_noise(pr, wins, c)) {
                 char buf[200];
                 std::snprintf(buf, sizeof buf, "held-out simulation error %s by %.2f %% (paired z = %.1f over %zu windows): not better beyond the noise",
                               c.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(c.gain), c.z, wins.size());
@@ -1266,8 +1333,9 @@ const char* fit_stage_name(FitStage s) {
     return "?";
 }
 
-FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOptions& o, const MeasuredData* test,
+FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOptions& options, const MeasuredData* test,
                   FitProgress* progress) {
+    FitOptions o = options;   // a baseline fit that does not hold on held-out data turns into a fixed baseline
     // Where each stage starts in the whole fit's progress (their typical share of the run time).
     static constexpr double kStageStart[] = {0.0, 0.04, 0.10, 0.14, 0.18, 0.24, 0.34, 0.80, 1.0};
     auto enter = [&](FitStage s) {
@@ -1309,9 +1377,22 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
 
     enter(FitStage::Baseline);
     // ---- 1. the baseline --------------------------------------------------------------------------------
-    const std::vector<std::string> base_names =
+    std::vector<std::string> base_names =
         o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0) : o.fit_params) : std::vector<std::string>{};
     Model base = fit_baseline_stage(pr, model0, o, base_names, rep);
+    // Never a worse model than the one given: on a record forced by the unbalance (the given model is the rig's
+    // physical one, not a starting guess) the fitted baseline must predict held-out data better.
+    if (o.fit_baseline && pr.phi_forced) {
+        std::string why;
+        if (!baseline_predicts_better(pr, model0, base, base_names, o, why)) {
+            rep.notes.push_back("the fitted baseline does not predict held-out data better than the parameters given (" + why +
+                                "); the parameters given are kept, fixed");
+            base = model0;
+            o.fit_baseline = false;
+            base_names.clear();
+            rep.baseline = "fixed";
+        }
+    }
     std::vector<double> pw;
     Eigen::VectorXd R0;
     residual(pr, base, R0, pw);
