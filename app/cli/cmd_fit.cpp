@@ -198,6 +198,8 @@ int cmd_fit(const std::vector<std::string>& argv) {
     if (b.simulation_rms_m >= 0) std::printf("%-34s %14.5g %14.5g\n", "free-run simulation RMS", b.simulation_rms_m, e.simulation_rms_m);
     if (b.test_simulation_rms_m >= 0)
         std::printf("%-34s %14.5g %14.5g\n", "free-run simulation RMS (test)", b.test_simulation_rms_m, e.test_simulation_rms_m);
+    if (b.test_shooting_rms_m >= 0)
+        std::printf("%-34s %14.5g %14.5g\n", ("shooting RMS (test) " + xu).c_str(), b.test_shooting_rms_m, e.test_shooting_rms_m);
     std::printf("report: %s/report.json, report.md (%.2f s)\n", dir.c_str(), r.runtime_s);
     return 0;
 }

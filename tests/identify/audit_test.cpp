@@ -70,3 +70,29 @@ TEST_CASE("audit: a baseline fit never hands back parameters worse than those gi
     CHECK(r3.baseline == "fit");
     CHECK(r3.error_after.shooting_rms_1_m < 0.1 * id::evaluate_model(a3, a1h, fo).shooting_rms_1_m);
 }
+
+TEST_CASE("audit: test rows of a chaotic record are judged within the predictability horizon, not by a free run") {
+    // With the true effect found, the free run over a chaotic test part still ended further from the data than
+    // the model without it (another trajectory, whatever the model): the only test error reported said the
+    // model handed back was worse. The test rows' shooting error within the horizon says it is not.
+    id::Model truth = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
+    id::apply_effect(truth, "constant_force", {{"F0", -0.05}});
+    id::SynthOptions so;
+    so.duration = 15.0;
+    so.knot_omega = {16.0};
+    const id::MeasuredData fit_part = id::synthesize(truth, so);
+    so.x0 = -0.0105;
+    so.seed = 2;
+    const id::MeasuredData test_part = id::synthesize(truth, so);
+    id::FitOptions fo;
+    fo.plots = false;
+    const id::FitReport r = id::run_fit(fit_part, id::resolve_fit_model("A1H", id::Forcing::Unbalance), fo, &test_part);
+    REQUIRE(r.effects_found.size() == 1);
+    CHECK(r.effects_found.front().id == "constant_force");
+    REQUIRE(r.error_before.test_shooting_rms_m > 0);
+    CHECK(r.error_after.test_shooting_rms_m < 0.3 * r.error_before.test_shooting_rms_m);
+    CHECK(r.error_after.test_shooting_rms_m < 1.5 * r.sigma_x);
+    const bool noted = std::any_of(r.notes.begin(), r.notes.end(), [](const std::string& n) { return n.find("drifts onto another") != std::string::npos; });
+    CHECK(noted == (r.error_after.test_simulation_rms_m > r.error_before.test_simulation_rms_m));
+    CHECK(id::report_json_text(r).find("test_shooting_rms_m") != std::string::npos);
+}

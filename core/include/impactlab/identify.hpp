@@ -90,6 +90,10 @@ struct ErrorSummary {
     std::vector<std::pair<double, double>> diagram_per_bin;   // (omega at the bin's centre, distance [m])
     double simulation_rms_m = -1;     // free run over the whole record (input-forced data); < 0: not computed
     double test_simulation_rms_m = -1;// the same on the test rows, if given
+    // Shooting on the test rows over windows as long as the held-out validation's (within the predictability
+    // horizon, initial states fitted): a chaotic test part's free run drifts onto another trajectory whatever
+    // the model, so only this says whether the model predicts the test rows better. < 0: no test rows.
+    double test_shooting_rms_m = -1;
 };
 
 struct FoundEffect {

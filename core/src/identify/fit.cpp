@@ -890,6 +890,23 @@ void errors_stage(const Prep& pr, const Model& model0, const Model& base, const 
                 }
             e->test_simulation_rms_m = c ? std::sqrt(s / static_cast<double>(c)) : -1;
         }
+        const auto wins = windows(pt, rep.horizon_periods > 0 ? rep.horizon_periods : 1.0);
+        for (auto [m, e] : {std::pair<const Model*, ErrorSummary*>{&base, &rep.error_before}, {&after, &rep.error_after}}) {
+            double s = 0;
+            std::size_t c = 0;
+            const std::vector<double> sse = window_sse(pt, *m, wins, o.refine_shooting, o.rtol);
+            for (std::size_t w = 0; w < wins.size(); ++w)
+                if (std::isfinite(sse[w])) {
+                    s += sse[w];
+                    c += wins[w].second - wins[w].first + 1;
+                }
+            e->test_shooting_rms_m = c ? std::sqrt(s / static_cast<double>(c)) : -1;
+        }
+        if (rep.error_after.test_simulation_rms_m > rep.error_before.test_simulation_rms_m &&
+            rep.error_after.test_shooting_rms_m <= rep.error_before.test_shooting_rms_m)
+            rep.notes.push_back("the free run over the test rows ends further from them with the effects found, while the "
+                                "shooting error within the predictability horizon falls: the free run drifts onto another "
+                                "trajectory (a chaotic record), which no model avoids");
     }
 
     // The material for the plots.

@@ -34,6 +34,7 @@ json errors_json(const ErrorSummary& e) {
     for (const auto& [w, dist] : e.diagram_per_bin) j["diagram_per_bin"].push_back({{"omega", w}, {"distance_m", num(dist)}});
     if (e.simulation_rms_m >= 0) j["simulation_rms_m"] = num(e.simulation_rms_m);
     if (e.test_simulation_rms_m >= 0) j["test_simulation_rms_m"] = num(e.test_simulation_rms_m);
+    if (e.test_shooting_rms_m >= 0) j["test_shooting_rms_m"] = num(e.test_shooting_rms_m);
     return j;
 }
 
@@ -296,6 +297,8 @@ std::string markdown(const FitReport& r, bool with_plots) {
     if (b.simulation_rms_m >= 0) row("free-run simulation RMS (as measured)", b.simulation_rms_m, a.simulation_rms_m, 1, "%.4g");
     if (b.test_simulation_rms_m >= 0)
         row("free-run simulation RMS on the test rows (as measured)", b.test_simulation_rms_m, a.test_simulation_rms_m, 1, "%.4g");
+    if (b.test_shooting_rms_m >= 0)
+        row(("shooting RMS on the test rows, validation windows [" + xu + "]").c_str(), b.test_shooting_rms_m, a.test_shooting_rms_m, xs, "%.4g");
     md << "\n" << b.impact.impacts << " impacts found in the data.\n\n";
     md << "## Candidates (first round: each alone on the baseline residual)\n\n"
           "| id | share of residual (in sample) | cross-validated gain | z | coefficients alone | selected |\n|---|---|---|---|---|---|\n";
