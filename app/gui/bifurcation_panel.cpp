@@ -281,12 +281,12 @@ void BifurcationPanel::update_texture(int w, int h) {
     for (float n : count) mx = std::max(mx, n);
     max_count_ = mx;
     const float norm = 1.0f / std::log1p(std::max(mx, 1.0f));
-    std::vector<unsigned char> rgba(count.size() * 4, 0);
+    image_.assign(count.size() * 4, 0);
     for (std::size_t i = 0; i < count.size(); ++i) {
         if (count[i] <= 0) continue;
-        density_color(palette().dark, std::log1p(count[i]) * norm, &rgba[i * 4]);
+        density_color(palette().dark, std::log1p(count[i]) * norm, &image_[i * 4]);
     }
-    tex_ = upload_rgba_texture(static_cast<GLuint>(tex_), w, h, rgba.data());
+    tex_ = upload_rgba_texture(static_cast<GLuint>(tex_), w, h, image_.data());
 }
 
 void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toast) {
@@ -430,9 +430,7 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
     if (have_) {
         update_texture(static_cast<int>(b.x - a.x), static_cast<int>(b.y - a.y));
         // A diagram of another model (or bumper position) stays, dimmed, until B computes the new one.
-        const ImU32 tint = is_stale ? IM_COL32(255, 255, 255, 90) : IM_COL32(255, 255, 255, 255);
-        if (tex_) plot.draw()->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(tex_)), a, b,
-                                        ImVec2(0, 0), ImVec2(1, 1), tint);
+        if (tex_) plot.image(image_.data(), tex_w_, tex_h_, static_cast<GLuint>(tex_), is_stale ? 90.0f / 255.0f : 1.0f);
         char info[160];
         const char* cut = shown_.cancelled ? " (cancelled)" : "";
         if (shown_req_.protocol == BifProtocol::Ef)
@@ -465,6 +463,7 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         // map's 400 points would otherwise cost ~20k vertices a frame, a third of the frame under llvmpipe).
         const float step = 0.5f * r;
         std::vector<std::uint8_t> taken(static_cast<std::size_t>(std::max(1.0f, (b.y - a.y) / step)) + 2, 0);
+        std::vector<ImVec2> dots;
         for (std::size_t i = first; i < h.size(); ++i) {
             const ImVec2 p = plot.to_px(c.omega, h[i].x);
             if (p.y < a.y - r || p.y > b.y + r) continue;
@@ -472,8 +471,12 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
                                                                   static_cast<float>(taken.size() - 1)));
             if (taken[cell]) continue;
             taken[cell] = 1;
-            plot.draw()->AddCircleFilled(p, r + 1.2f, IM_COL32(0, 0, 0, 200), 10);
-            plot.draw()->AddCircleFilled(p, r, kLiveColor, 10);
+            dots.push_back(p);
+        }
+        // Each dot over a dark rim, the next one's rim over it (drawn into the plot's image: no triangles).
+        for (const ImVec2& p : dots) {
+            plot.dots(&p, 1, IM_COL32(0, 0, 0, 200), 2.0f * r + 2.4f);
+            plot.dots(&p, 1, kLiveColor, 2.0f * r);
         }
     }
     {

@@ -113,6 +113,7 @@ private:
     // The density image, for the view shown.
     unsigned tex_ = 0;
     int tex_w_ = 0, tex_h_ = 0;
+    std::vector<unsigned char> image_;   // the texture's pixels (composited into the plot's own image)
     bool dirty_ = true;
     bool dark_ = true;               // the theme the image was drawn for
     Range view_x_, view_y_;

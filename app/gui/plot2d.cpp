@@ -10,6 +10,7 @@
 #include <imgui_internal.h>   // SetItemUsingMouseWheel: the wheel zooms the plot, not the window
 
 #include "gl_util.hpp"
+#include "opaque_image.hpp"
 #include "theme.hpp"
 #include "view_fit.hpp"
 
@@ -166,11 +167,6 @@ Plot::TrailSlot* Plot::trail_slot() {
     return slot.get();
 }
 
-void Plot::show_trail(TrailSlot& slot) {
-    const TrailCanvas& t = slot.trail;
-    slot.tex.upload(t.rgba(), t.width(), t.height(), 0, 0, t.width() - 1, t.height() - 1);
-    dl_->AddImage(as_texture_id(slot.tex.id()), min_, max_);
-}
 
 void Plot::flush_raster(ImU32 color, float thickness) {
     if (gbuf_.size() < 2) return;
@@ -221,8 +217,22 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
     by_ = -(max_.y - min_.y) / y_.span();
     ay_ = max_.y - by_ * y_.lo;
 
-    if (g_backdrops_by_clear) g_backdrops.push_back({min_, max_, pal.plot_bg});
-    else dl_->AddRectFilled(min_, max_, pal.plot_bg);
+    opaque_ = plot_backend() == PlotBackend::Raster;
+    if (opaque_) {
+        // One opaque image of the whole data area: the backdrop, the grid and everything drawn with the
+        // canvas are composited on the CPU, and ImDrawList's overlays go over it.
+        auto& slot = canvases()[id_];
+        if (!slot) slot = std::make_unique<CanvasSlot>();
+        canvas_ = slot.get();
+        canvas_->canvas.begin_opaque({min_.x, min_.y}, {max_.x, max_.y}, pal.plot_bg);
+        opaque_image::add(dl_, canvas_->tex.ensure(), min_, max_);
+    } else if (g_backdrops_by_clear) {
+        g_backdrops.push_back({min_, max_, pal.plot_bg});
+    } else {
+        dl_->AddRectFilled(min_, max_, pal.plot_bg);
+    }
+    RasterCanvas* grid = opaque_ ? &canvas_->canvas : nullptr;
+    if (grid) grid->layer(pal.grid);
 
     // Ticks and grid.
     char buf[32];
@@ -233,7 +243,8 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
     const int dx = decimals_for(sx * axes.x_scale), dy = decimals_for(sy * axes.y_scale);
     for (double v = std::ceil(x_.lo / sx) * sx; v <= x_.hi + 1e-9 * sx; v += sx) {
         const float px = std::round(to_px(v, 0).x) + 0.5f;
-        dl_->AddLine(ImVec2(px, min_.y), ImVec2(px, max_.y), pal.grid);
+        if (grid) grid->segment({px, min_.y}, {px, max_.y}, 1.0f, 1.0f, 1.0f);
+        else dl_->AddLine(ImVec2(px, min_.y), ImVec2(px, max_.y), pal.grid);
         dl_->AddLine(ImVec2(px, max_.y), ImVec2(px, max_.y + fs * 0.3f), pal.plot_frame);
         format_tick(buf, sizeof buf, v * axes.x_scale, dx);
         const ImVec2 ts = ImGui::CalcTextSize(buf);
@@ -242,7 +253,8 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
     }
     for (double v = std::ceil(y_.lo / sy) * sy; v <= y_.hi + 1e-9 * sy; v += sy) {
         const float py = std::round(to_px(0, v).y) + 0.5f;
-        dl_->AddLine(ImVec2(min_.x, py), ImVec2(max_.x, py), pal.grid);
+        if (grid) grid->segment({min_.x, py}, {max_.x, py}, 1.0f, 1.0f, 1.0f);
+        else dl_->AddLine(ImVec2(min_.x, py), ImVec2(max_.x, py), pal.grid);
         dl_->AddLine(ImVec2(min_.x - fs * 0.3f, py), ImVec2(min_.x, py), pal.plot_frame);
         format_tick(buf, sizeof buf, v * axes.y_scale, dy);
         const ImVec2 ts = ImGui::CalcTextSize(buf);
@@ -348,7 +360,8 @@ void Plot::end() {
         const RasterCanvas& cv = canvas_->canvas;
         const PixelRect r = canvas_->canvas.finish();
         canvas_->tex.upload(cv.rgba(), cv.width(), cv.height(), r.x0, r.y0, r.x1, r.y1);
-        // Move the four corners of the image quad AddImage wrote (ImDrawList::PrimRectUV order: a, b, c, d
+        // An opaque canvas is shown whole by the image begin() placed; a transparent one only where drawn:
+        // move the four corners of the image quad AddImage wrote (ImDrawList::PrimRectUV order: a, b, c, d
         // clockwise from the top left) onto the drawn rectangle; an empty one collapses to nothing.
         const float w = static_cast<float>(cv.width()), h = static_cast<float>(cv.height());
         const float x0 = r.empty() ? 0.0f : static_cast<float>(r.x0), x1 = r.empty() ? 0.0f : static_cast<float>(r.x1 + 1);
@@ -356,7 +369,7 @@ void Plot::end() {
         const ImVec2 o(std::floor(min_.x), std::floor(min_.y));
         const ImVec2 pos[4] = {{o.x + x0, o.y + y0}, {o.x + x1, o.y + y0}, {o.x + x1, o.y + y1}, {o.x + x0, o.y + y1}};
         const ImVec2 uv[4] = {{x0 / w, y0 / h}, {x1 / w, y0 / h}, {x1 / w, y1 / h}, {x0 / w, y1 / h}};
-        if (canvas_vtx_ >= 0 && canvas_vtx_ + 4 <= dl_->VtxBuffer.Size)
+        if (!cv.opaque() && canvas_vtx_ >= 0 && canvas_vtx_ + 4 <= dl_->VtxBuffer.Size)
             for (int k = 0; k < 4; ++k) {
                 dl_->VtxBuffer[canvas_vtx_ + k].pos = pos[k];
                 dl_->VtxBuffer[canvas_vtx_ + k].uv = uv[k];
@@ -390,24 +403,55 @@ void Plot::flush(std::vector<ImVec2>& pts, ImU32 color, float thickness) {
 
 void Plot::vline(double x, ImU32 color, float thickness, bool dashed) {
     const float px = to_px(x, 0).x;
+    RasterCanvas* cv = opaque_ ? canvas() : nullptr;
+    if (cv) cv->layer(color);
+    auto line = [&](ImVec2 a, ImVec2 b) {
+        if (cv) cv->segment({a.x, a.y}, {b.x, b.y}, thickness, 1.0f, 1.0f);
+        else dl_->AddLine(a, b, color, thickness);
+    };
     if (!dashed) {
-        dl_->AddLine(ImVec2(px, min_.y), ImVec2(px, max_.y), color, thickness);
+        line(ImVec2(px, min_.y), ImVec2(px, max_.y));
         return;
     }
     const float dash = ImGui::GetFontSize() * 0.35f;
-    for (float y = min_.y; y < max_.y; y += 2 * dash)
-        dl_->AddLine(ImVec2(px, y), ImVec2(px, std::min(y + dash, max_.y)), color, thickness);
+    for (float y = min_.y; y < max_.y; y += 2 * dash) line(ImVec2(px, y), ImVec2(px, std::min(y + dash, max_.y)));
 }
 
 void Plot::hline(double y, ImU32 color, float thickness, bool dashed) {
     const float py = to_px(0, y).y;
+    RasterCanvas* cv = opaque_ ? canvas() : nullptr;
+    if (cv) cv->layer(color);
+    auto line = [&](ImVec2 a, ImVec2 b) {
+        if (cv) cv->segment({a.x, a.y}, {b.x, b.y}, thickness, 1.0f, 1.0f);
+        else dl_->AddLine(a, b, color, thickness);
+    };
     if (!dashed) {
-        dl_->AddLine(ImVec2(min_.x, py), ImVec2(max_.x, py), color, thickness);
+        line(ImVec2(min_.x, py), ImVec2(max_.x, py));
         return;
     }
     const float dash = ImGui::GetFontSize() * 0.35f;
-    for (float x = min_.x; x < max_.x; x += 2 * dash)
-        dl_->AddLine(ImVec2(x, py), ImVec2(std::min(x + dash, max_.x), py), color, thickness);
+    for (float x = min_.x; x < max_.x; x += 2 * dash) line(ImVec2(x, py), ImVec2(std::min(x + dash, max_.x), py));
+}
+
+void Plot::dots(const ImVec2* at, std::size_t n, ImU32 color, float diameter) {
+    if (n == 0) return;
+    if (opaque_) {
+        RasterCanvas* cv = canvas();
+        cv->layer(color);
+        for (std::size_t i = 0; i < n; ++i) cv->dot({at[i].x, at[i].y}, diameter);
+        return;
+    }
+    for (std::size_t i = 0; i < n; ++i) dl_->AddCircleFilled(at[i], 0.5f * diameter, color, 10);
+}
+
+void Plot::image(const std::uint8_t* rgba, int w, int h, GLuint tex, float alpha) {
+    if (opaque_) {
+        canvas()->blend_image(rgba, w, h, alpha);
+        return;
+    }
+    if (tex)
+        dl_->AddImage(as_texture_id(tex), min_, max_, ImVec2(0, 0), ImVec2(1, 1),
+                      IM_COL32(255, 255, 255, static_cast<int>(std::clamp(alpha, 0.0f, 1.0f) * 255.0f + 0.5f)));
 }
 
 void Plot::text(double x, double y, const char* s, ImU32 color, ImVec2 align) {
@@ -421,11 +465,25 @@ void Plot::shade_right_of(double x0, ImU32 color) {
     if (px >= max_.x) return;
     ImVec4 c = ImGui::ColorConvertU32ToFloat4(color);
     c.w *= 0.12f;
-    dl_->AddRectFilled(ImVec2(px, min_.y), max_, ImGui::ColorConvertFloat4ToU32(c));
+    const ImU32 fill = ImGui::ColorConvertFloat4ToU32(c);
     c.w = ImGui::ColorConvertU32ToFloat4(color).w * 0.35f;
     const ImU32 hatch = ImGui::ColorConvertFloat4ToU32(c);
     const float step = ImGui::GetFontSize() * 0.6f;
     const float h = max_.y - min_.y;
+    if (opaque_) {
+        RasterCanvas* cv = canvas();
+        cv->layer(fill);
+        cv->fill_rect({px, min_.y}, {max_.x, max_.y});
+        cv->layer(hatch);
+        // Lines up and to the right at 45 degrees, each cut where it enters the region x >= px.
+        for (float x = px - h; x < max_.x; x += step) {
+            const float t0 = std::max(0.0f, (px - x) / h);
+            if (t0 >= 1.0f) continue;
+            cv->segment({x + t0 * h, max_.y - t0 * h}, {x + h, min_.y}, 1.0f, 1.0f, 1.0f);
+        }
+        return;
+    }
+    dl_->AddRectFilled(ImVec2(px, min_.y), max_, fill);
     dl_->PushClipRect(ImVec2(px, min_.y), max_, true);
     for (float x = px - h; x < max_.x; x += step) dl_->AddLine(ImVec2(x, max_.y), ImVec2(x + h, min_.y), hatch);
     dl_->PopClipRect();

@@ -126,13 +126,19 @@ public:
     void trail(std::size_t n, std::uint64_t seq0, std::uint64_t generation, Get&& get, ImU32 color,
                float thickness = 1.5f);
 
+    // An image of the data area's size (w x h pixels, rows top-down, straight alpha) over what is drawn,
+    // at `alpha` times its opacity: composited into the plot's image (raster backend), else texture `tex`.
+    void image(const std::uint8_t* rgba, int w, int h, GLuint tex, float alpha = 1.0f);
+    // Dots of `diameter` at display-pixel positions, all of them (no per-pixel thinning: for a few markers).
+    void dots(const ImVec2* at, std::size_t n, ImU32 color, float diameter);
     void vline(double x, ImU32 color, float thickness = 1.0f, bool dashed = false);
     void hline(double y, ImU32 color, float thickness = 1.0f, bool dashed = false);
     void text(double x, double y, const char* s, ImU32 color, ImVec2 align = ImVec2(0, 0));
     // Fills the part of the area with x > x0 (a forbidden region), hatched.
     void shade_right_of(double x0, ImU32 color);
 
-    // Up to this many markers, scatter() draws them with ImDrawList.
+    // Up to this many markers, scatter() draws them with ImDrawList (not with the raster backend, whose
+    // plots are one opaque image that dots cost nothing to join).
     static constexpr std::size_t kFewDots = 256;
 
     // Statistics of the last frame (benchmark)
@@ -152,13 +158,14 @@ public:
     };
     struct TrailSlot {
         TrailCanvas trail;
-        CanvasTexture tex;
     };
 
 private:
     RasterCanvas* canvas();   // the plot's canvas, begun and placed in the draw order on first use
     TrailSlot* trail_slot();
-    void show_trail(TrailSlot& slot);   // uploads the trail's image and places it over the area
+    // The raster backend's plots are one opaque image (backdrop, grid and data composited on the CPU,
+    // drawn without blending: opaque_image.hpp), begun by begin(); ImDrawList draws over it.
+    bool opaque_ = false;
     PlotMapping mapping() const { return {ax_, bx_, ay_, by_}; }
     CanvasSlot* canvas_ = nullptr;
     int canvas_vtx_ = -1;     // where the canvas's image quad sits in the draw list (set by end())
@@ -325,13 +332,13 @@ void Plot::trail(std::size_t n, std::uint64_t seq0, std::uint64_t generation, Ge
     }
     g_stat_points() += n - from;
     tc->finish();
-    show_trail(*slot);
+    canvas()->blend_image(tc->rgba(), tc->width(), tc->height());
 }
 
 template <class Get>
 void Plot::scatter(std::size_t n, Get&& get, ImU32 color, float size) {
     if (n == 0) return;
-    if (n <= kFewDots) {
+    if (n <= kFewDots && !opaque_) {
         // A few markers: ImDrawList circles cost less than a canvas the size of the plot.
         for (std::size_t i = 0; i < n; ++i) {
             const auto p = get(i);

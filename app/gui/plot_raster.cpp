@@ -69,6 +69,29 @@ Rgba8 unpack(PackedColor c) {
             static_cast<std::uint8_t>(c >> kColorBShift), static_cast<std::uint8_t>(c >> kColorAShift)};
 }
 
+// Straight-alpha "over" of colour (r, g, b) at opacity sa (0..255) onto pixel d, in 8 bits. An empty
+// pixel below is a plain store, an opaque one an integer mix (the opaque canvases' every pixel).
+inline void over(std::uint8_t* d, unsigned r, unsigned g, unsigned b, unsigned sa) {
+    if (d[3] == 0) {
+        d[0] = static_cast<std::uint8_t>(r), d[1] = static_cast<std::uint8_t>(g), d[2] = static_cast<std::uint8_t>(b);
+        d[3] = static_cast<std::uint8_t>(sa);
+        return;
+    }
+    if (d[3] == 255) {
+        const unsigned ia = 255 - sa;
+        d[0] = static_cast<std::uint8_t>((r * sa + d[0] * ia + 127) / 255);
+        d[1] = static_cast<std::uint8_t>((g * sa + d[1] * ia + 127) / 255);
+        d[2] = static_cast<std::uint8_t>((b * sa + d[2] * ia + 127) / 255);
+        return;
+    }
+    const float as = sa / 255.0f, ad = d[3] / 255.0f * (1.0f - as);
+    const float ao = as + ad, k = 1.0f / ao;
+    d[0] = static_cast<std::uint8_t>((r * as + d[0] * ad) * k + 0.5f);
+    d[1] = static_cast<std::uint8_t>((g * as + d[1] * ad) * k + 0.5f);
+    d[2] = static_cast<std::uint8_t>((b * as + d[2] * ad) * k + 0.5f);
+    d[3] = static_cast<std::uint8_t>(ao * 255.0f + 0.5f);
+}
+
 }  // namespace
 
 void PixelRect::add(const PixelRect& r) {
@@ -93,6 +116,8 @@ void RasterCanvas::begin(PxPoint min, PxPoint max) {
         h_ = h;
         cover_.assign(n, 0);
         rgba_.assign(n * 4, 0);
+    } else if (opaque_) {   // the last frame filled everything
+        std::fill(rgba_.begin(), rgba_.end(), std::uint8_t{0});
     } else if (!drawn_.empty()) {
         // Only what the last frame drew is dirty.
         const std::size_t cols = static_cast<std::size_t>(drawn_.x1 - drawn_.x0 + 1) * 4;
@@ -103,6 +128,31 @@ void RasterCanvas::begin(PxPoint min, PxPoint max) {
     layer_rect_ = PixelRect{};
     layer_open_ = false;
     active_ = true;
+    opaque_ = false;
+}
+
+void RasterCanvas::begin_opaque(PxPoint min, PxPoint max, PackedColor backdrop) {
+    const PixelArea area = pixel_area(min, max);
+    x0_ = area.x0;
+    y0_ = area.y0;
+    const std::size_t n = static_cast<std::size_t>(area.w) * static_cast<std::size_t>(area.h);
+    if (area.w != w_ || area.h != h_) {
+        w_ = area.w;
+        h_ = area.h;
+        cover_.assign(n, 0);
+        rgba_.resize(n * 4);
+    }
+    const Rgba8 c = unpack(backdrop);
+    const std::uint8_t px[4] = {c.r, c.g, c.b, 255};
+    std::uint32_t word = 0;
+    std::memcpy(&word, px, 4);
+    std::uint32_t* dst = reinterpret_cast<std::uint32_t*>(rgba_.data());
+    std::fill(dst, dst + n, word);
+    drawn_ = PixelRect{0, 0, w_ - 1, h_ - 1};
+    layer_rect_ = PixelRect{};
+    layer_open_ = false;
+    active_ = true;
+    opaque_ = true;
 }
 
 void RasterCanvas::layer(PackedColor color) {
@@ -116,29 +166,25 @@ void RasterCanvas::flatten_layer() {
         layer_open_ = false;
         return;
     }
-    // Straight-alpha "over" in 8 bits: the common case (an empty pixel below) is a plain store.
     const Rgba8 col = unpack(color_);
-    const std::uint8_t cr = col.r, cg = col.g, cb = col.b;
     const unsigned ca = col.a;
     for (int y = layer_rect_.y0; y <= layer_rect_.y1; ++y) {
         const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(w_);
         for (int x = layer_rect_.x0; x <= layer_rect_.x1; ++x) {
             const std::size_t i = row + static_cast<std::size_t>(x);
+            // Most of a layer's rectangle is empty: skip it eight pixels at a time.
+            if (x + 8 <= layer_rect_.x1 + 1) {
+                std::uint64_t eight;
+                std::memcpy(&eight, &cover_[i], 8);
+                if (!eight) {
+                    x += 7;
+                    continue;
+                }
+            }
             const unsigned c = cover_[i];
             if (!c) continue;
             cover_[i] = 0;
-            const unsigned sa = (ca * c + 127) / 255;
-            std::uint8_t* d = &rgba_[i * 4];
-            if (d[3] == 0) {
-                d[0] = cr, d[1] = cg, d[2] = cb, d[3] = static_cast<std::uint8_t>(sa);
-                continue;
-            }
-            const float as = sa / 255.0f, ad = d[3] / 255.0f * (1.0f - as);
-            const float ao = as + ad, k = 1.0f / ao;
-            d[0] = static_cast<std::uint8_t>((cr * as + d[0] * ad) * k + 0.5f);
-            d[1] = static_cast<std::uint8_t>((cg * as + d[1] * ad) * k + 0.5f);
-            d[2] = static_cast<std::uint8_t>((cb * as + d[2] * ad) * k + 0.5f);
-            d[3] = static_cast<std::uint8_t>(ao * 255.0f + 0.5f);
+            over(&rgba_[i * 4], col.r, col.g, col.b, (ca * c + 127) / 255);
         }
     }
     drawn_.add(layer_rect_);
@@ -147,6 +193,17 @@ void RasterCanvas::flatten_layer() {
 }
 
 void RasterCanvas::segment(PxPoint a, PxPoint b, float width, float alpha_a, float alpha_b) {
+    // Axis-aligned and of one opacity (grid lines, dashes, markers' lines): a bar, without a distance per pixel.
+    if (alpha_a == 1.0f && alpha_b == 1.0f && width <= 6.0f && (a.x != b.x || a.y != b.y)) {
+        if (a.x == b.x) {
+            vspan(a.x, a.y, b.y, width);
+            return;
+        }
+        if (a.y == b.y) {
+            hspan(a.y, a.x, b.x, width);
+            return;
+        }
+    }
     const PxPoint o{static_cast<float>(x0_), static_cast<float>(y0_)};
     const float da = alpha_a * 255.0f, db = (alpha_b - alpha_a) * 255.0f;
     std::uint8_t* cover = cover_.data();
@@ -188,6 +245,81 @@ void RasterCanvas::vspan(float x, float y0, float y1, float width) {
     }
     r.x1 = r.x0 + ncols - 1;
     layer_rect_.add(r);
+}
+
+void RasterCanvas::hspan(float y, float x0, float x1, float width) {
+    const float hw = 0.5f * width;
+    const float cy = y - static_cast<float>(y0_);
+    const float left = std::min(x0, x1) - static_cast<float>(x0_) - hw, right = std::max(x0, x1) - static_cast<float>(x0_) + hw;
+    PixelRect r;
+    r.y0 = std::max(0, static_cast<int>(std::floor(cy - hw)));
+    r.y1 = std::min(h_ - 1, static_cast<int>(std::floor(cy + hw)));
+    r.x0 = std::max(0, static_cast<int>(std::floor(left)));
+    r.x1 = std::min(w_ - 1, static_cast<int>(std::floor(right)));
+    if (r.empty()) return;
+    // Vertical coverage of each row: the overlap of [cy - hw, cy + hw] with [k, k + 1].
+    const int nrows = std::min(8, r.y1 - r.y0 + 1);
+    for (int k = 0; k < nrows; ++k) {
+        const float a = static_cast<float>(r.y0 + k), b = a + 1.0f;
+        const float rc = std::max(0.0f, std::min(b, cy + hw) - std::max(a, cy - hw));
+        std::uint8_t* row = &cover_[static_cast<std::size_t>(r.y0 + k) * static_cast<std::size_t>(w_)];
+        for (int x = r.x0; x <= r.x1; ++x) {
+            const float px = static_cast<float>(x) + 0.5f;
+            const float hc = std::min(1.0f, std::max(0.0f, std::min(px - left, right - px) + 0.5f));
+            const auto c8 = static_cast<std::uint8_t>(hc * rc * 255.0f + 0.5f);
+            row[x] = std::max(row[x], c8);
+        }
+    }
+    r.y1 = r.y0 + nrows - 1;
+    layer_rect_.add(r);
+}
+
+void RasterCanvas::fill_rect(PxPoint min, PxPoint max, float alpha) {
+    const int x0 = std::max(0, static_cast<int>(std::lround(min.x)) - x0_);
+    const int y0 = std::max(0, static_cast<int>(std::lround(min.y)) - y0_);
+    const int x1 = std::min(w_, static_cast<int>(std::lround(max.x)) - x0_) - 1;
+    const int y1 = std::min(h_, static_cast<int>(std::lround(max.y)) - y0_) - 1;
+    if (x1 < x0 || y1 < y0) return;
+    const auto c8 = static_cast<std::uint8_t>(std::clamp(alpha, 0.0f, 1.0f) * 255.0f + 0.5f);
+    for (int y = y0; y <= y1; ++y) {
+        std::uint8_t* row = &cover_[static_cast<std::size_t>(y) * static_cast<std::size_t>(w_)];
+        for (int x = x0; x <= x1; ++x) row[x] = std::max(row[x], c8);
+    }
+    layer_rect_.add(PixelRect{x0, y0, x1, y1});
+}
+
+void RasterCanvas::blend_image(const std::uint8_t* rgba, int w, int h, float alpha) {
+    flatten_layer();
+    const int cw = std::min(w, w_), ch = std::min(h, h_);
+    const unsigned k = static_cast<unsigned>(std::clamp(alpha, 0.0f, 1.0f) * 255.0f + 0.5f);
+    PixelRect touched;
+    // The alpha bytes of two RGBA pixels, as a 64-bit word read from memory (any byte order).
+    const std::uint8_t alpha_bytes[8] = {0, 0, 0, 255, 0, 0, 0, 255};
+    std::uint64_t alphas = 0;
+    std::memcpy(&alphas, alpha_bytes, 8);
+    for (int y = 0; y < ch; ++y) {
+        const std::uint8_t* s = rgba + static_cast<std::size_t>(y) * static_cast<std::size_t>(w) * 4;
+        std::uint8_t* d = &rgba_[static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) * 4];
+        int first = -1, last = -1;
+        for (int x = 0; x < cw; ++x, s += 4, d += 4) {
+            if (x + 2 <= cw) {   // mostly transparent: two pixels at a time
+                std::uint64_t two;
+                std::memcpy(&two, s, 8);
+                if (!(two & alphas)) {
+                    ++x, s += 4, d += 4;
+                    continue;
+                }
+            }
+            if (!s[3]) continue;
+            const unsigned sa = k == 255 ? s[3] : (s[3] * k + 127) / 255;
+            if (!sa) continue;
+            over(d, s[0], s[1], s[2], sa);
+            if (first < 0) first = x;
+            last = x;
+        }
+        if (first >= 0) touched.add(PixelRect{first, y, last, y});
+    }
+    drawn_.add(touched);
 }
 
 PixelRect RasterCanvas::finish() {

@@ -38,6 +38,10 @@ class RasterCanvas {
 public:
     // Starts a frame over the area [min, max) (display pixels); clears what the last frame drew.
     void begin(PxPoint min, PxPoint max);
+    // Starts a frame over [min, max) filled with the opaque `backdrop`: what is drawn is composited onto it
+    // and the whole area is the frame's image (every pixel opaque, so it can be shown without blending).
+    void begin_opaque(PxPoint min, PxPoint max, PackedColor backdrop);
+    bool opaque() const { return opaque_; }
     bool active() const { return active_; }
     // A layer of one colour: segments and dots combine by maximum opacity (no dark joints), then the layer
     // is composited over what is below when the next layer starts or the canvas ends.
@@ -48,6 +52,13 @@ public:
     // A vertical bar over [y0, y1] (display pixels) `width` px wide centred on x, with rounded-off ends:
     // what a dense series draws per pixel column (much cheaper than the segments it stands for).
     void vspan(float x, float y0, float y1, float width);
+    // The same across: a horizontal bar over [x0, x1] `width` px high centred on y.
+    void hspan(float y, float x0, float x1, float width);
+    // The whole pixels of [min, max) (display pixels, rounded to the nearest pixel edges) at opacity alpha.
+    void fill_rect(PxPoint min, PxPoint max, float alpha = 1.0f);
+    // Composites a straight-alpha image (w x h, rows top-down; at most the canvas's size is used) over what
+    // is drawn so far, at `alpha` times its own opacity. Closes the open layer first (draw order).
+    void blend_image(const std::uint8_t* rgba, int w, int h, float alpha = 1.0f);
     // Composites the last layer. Returns the pixels drawn this frame (canvas coordinates; empty if nothing
     // was drawn): all that needs uploading and showing.
     PixelRect finish();
@@ -57,7 +68,7 @@ public:
 
 private:
     void flatten_layer();
-    bool active_ = false;
+    bool active_ = false, opaque_ = false;
     int x0_ = 0, y0_ = 0, w_ = 0, h_ = 0;
     std::vector<std::uint8_t> cover_;   // current layer's opacity (max-combined)
     PixelRect layer_rect_;              // dirty rectangle of the current layer

@@ -104,6 +104,123 @@ TEST_CASE("raster canvas: a vertical bar has full coverage inside and its width 
     CHECK(alpha_at(c.rgba(), 16, 8, 2) == 0);   // nothing far above the span
 }
 
+namespace {
+const std::uint8_t* pixel(const RasterCanvas& c, int x, int y) {
+    return c.rgba() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(c.width()) + static_cast<std::size_t>(x)) * 4;
+}
+constexpr PackedColor kGrey = 0xFF404040u;   // the opaque backdrop
+}  // namespace
+
+TEST_CASE("opaque canvas: the backdrop fills every pixel, and the whole area is what the frame shows") {
+    RasterCanvas c;
+    c.begin_opaque({10.0f, 20.0f}, {50.0f, 45.0f}, kGrey & 0x00FFFFFFu);   // a backdrop's alpha is ignored
+    CHECK(c.opaque());
+    const PixelRect r = c.finish();
+    CHECK(r.x0 == 0);
+    CHECK(r.y0 == 0);
+    CHECK(r.x1 == 39);
+    CHECK(r.y1 == 24);
+    for (int y = 0; y < c.height(); ++y)
+        for (int x = 0; x < c.width(); ++x) {
+            const std::uint8_t* p = pixel(c, x, y);
+            REQUIRE(p[0] == 0x40);
+            REQUIRE(p[3] == 255);
+        }
+    // A transparent frame after an opaque one starts from nothing.
+    c.begin({10.0f, 20.0f}, {50.0f, 45.0f});
+    CHECK(!c.opaque());
+    c.finish();
+    CHECK(pixel(c, 5, 5)[3] == 0);
+}
+
+TEST_CASE("opaque canvas: layers mix into the backdrop by their opacity and every pixel stays opaque") {
+    RasterCanvas c;
+    c.begin_opaque({0, 0}, {32, 32}, kGrey);
+    c.layer(kRed);
+    c.fill_rect({4, 4}, {12, 12});                   // opaque red over grey: red
+    c.layer(0x80FF0000u);                            // blue at alpha 128
+    c.fill_rect({20, 20}, {28, 28});
+    c.finish();
+    const std::uint8_t* red = pixel(c, 8, 8);
+    CHECK(red[0] == 255);
+    CHECK(red[1] == 0);
+    CHECK(red[3] == 255);
+    const std::uint8_t* mix = pixel(c, 24, 24);      // (255 * 128 + 64 * 127) / 255 = 160, grey elsewhere
+    CHECK(mix[2] == doctest::Approx(160).epsilon(0.01));
+    CHECK(mix[0] == doctest::Approx(32).epsilon(0.05));
+    CHECK(mix[3] == 255);
+    // fill_rect covers exactly the whole pixels of [min, max).
+    CHECK(pixel(c, 3, 8)[0] == 0x40);
+    CHECK(pixel(c, 4, 8)[0] == 255);
+    CHECK(pixel(c, 11, 8)[0] == 255);
+    CHECK(pixel(c, 12, 8)[0] == 0x40);
+}
+
+TEST_CASE("opaque canvas: an image composites over it by its alpha, scaled by the call's opacity") {
+    RasterCanvas c;
+    c.begin_opaque({0, 0}, {16, 8}, kGrey);
+    std::vector<std::uint8_t> img(16 * 8 * 4, 0);   // transparent but for two pixels
+    auto put = [&](int x, int y, std::uint8_t r, std::uint8_t a) {
+        std::uint8_t* p = &img[(static_cast<std::size_t>(y) * 16 + static_cast<std::size_t>(x)) * 4];
+        p[0] = r, p[3] = a;
+    };
+    put(3, 2, 255, 255);
+    put(9, 5, 255, 255);
+    c.blend_image(img.data(), 16, 8, 1.0f);
+    CHECK(pixel(c, 3, 2)[0] == 255);
+    CHECK(pixel(c, 4, 2)[0] == 0x40);   // its neighbour (read two at a time) untouched
+    CHECK(pixel(c, 9, 5)[0] == 255);
+    c.blend_image(img.data(), 16, 8, 0.0f);   // nothing
+    c.finish();
+    RasterCanvas half;
+    half.begin_opaque({0, 0}, {16, 8}, kGrey);
+    half.blend_image(img.data(), 16, 8, 0.5f);
+    half.finish();
+    CHECK(pixel(half, 3, 2)[0] == doctest::Approx((255 * 128 + 64 * 127) / 255).epsilon(0.02));
+    CHECK(pixel(half, 8, 5)[0] == 0x40);
+    // A smaller image lands at the top left and leaves the rest as it was.
+    RasterCanvas wide;
+    wide.begin_opaque({0, 0}, {20, 10}, kGrey);
+    wide.blend_image(img.data(), 16, 8);
+    wide.finish();
+    CHECK(pixel(wide, 9, 5)[0] == 255);
+    CHECK(pixel(wide, 18, 9)[0] == 0x40);
+}
+
+TEST_CASE("raster canvas: axis-aligned lines (grid, dashes) cover their pixels like the general segment") {
+    RasterCanvas c;
+    c.begin({0, 0}, {40, 40});
+    c.layer(kRed);
+    c.segment({10.5f, 5.0f}, {10.5f, 35.0f}, 1.0f, 1.0f, 1.0f);   // a grid line on the pixel centres
+    c.segment({5.0f, 20.5f}, {35.0f, 20.5f}, 1.0f, 1.0f, 1.0f);
+    c.finish();
+    CHECK(alpha_at(c.rgba(), 40, 10, 15) == 255);
+    CHECK(alpha_at(c.rgba(), 40, 9, 15) == 0);
+    CHECK(alpha_at(c.rgba(), 40, 11, 15) == 0);
+    CHECK(alpha_at(c.rgba(), 40, 25, 20) == 255);
+    CHECK(alpha_at(c.rgba(), 40, 25, 19) == 0);
+    CHECK(alpha_at(c.rgba(), 40, 25, 21) == 0);
+    CHECK(alpha_at(c.rgba(), 40, 10, 38) == 0);   // not past its ends
+    CHECK(alpha_at(c.rgba(), 40, 38, 20) == 0);
+    // Off the grid and 2 px wide: the same total coverage across as the general (distance) rasterizer.
+    RasterCanvas a, b;
+    a.begin({0, 0}, {40, 40});
+    a.layer(kRed);
+    a.segment({5.0f, 20.3f}, {35.0f, 20.3f}, 2.0f, 1.0f, 1.0f);   // the bar
+    a.finish();
+    b.begin({0, 0}, {40, 40});
+    b.layer(kRed);
+    b.segment({5.0f, 20.3f}, {35.0f, 20.3f}, 2.0f, 1.0f, 0.999f);   // not one opacity: the general path
+    b.finish();
+    int sa = 0, sb = 0;
+    for (int y = 0; y < 40; ++y) {
+        sa += alpha_at(a.rgba(), 40, 20, y);
+        sb += alpha_at(b.rgba(), 40, 20, y);
+    }
+    CHECK(sa == doctest::Approx(sb).epsilon(0.03));
+    CHECK(sa == doctest::Approx(2 * 255).epsilon(0.03));
+}
+
 TEST_CASE("trail canvas: drawn frame by frame, it matches one full redraw of the same window") {
     const Orbit o;
     constexpr std::uint64_t kWindow = 3000, kPerFrame = 170, kFrames = 60;

@@ -1,0 +1,88 @@
+#include "opaque_image.hpp"
+
+#include <GL/glext.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "embedded_shaders.hpp"
+#include "gl_util.hpp"
+
+namespace impactlab::gui::opaque_image {
+
+namespace {
+
+struct Item {
+    GLuint tex;
+    ImVec2 min, max, uv0, uv1;
+};
+
+GLuint g_prog = 0, g_vao = 0;
+GLint g_rect = -1, g_uv = -1, g_display_pos = -1, g_display_size = -1, g_tex = -1;
+std::vector<Item> g_items;   // this frame's images (the callbacks refer to them by index)
+
+void draw_item(const ImDrawList*, const ImDrawCmd* cmd) {
+    const auto index = static_cast<std::size_t>(reinterpret_cast<std::intptr_t>(cmd->UserCallbackData));
+    if (index >= g_items.size()) return;
+    const Item& it = g_items[index];
+    const ImDrawData* dd = ImGui::GetDrawData();
+    // Scissor to the clip rectangle (framebuffer pixels, origin at the bottom left), as ImGui's backend does.
+    const ImVec2 scale = dd->FramebufferScale;
+    const float fb_h = dd->DisplaySize.y * scale.y;
+    const ImVec4 c = cmd->ClipRect;
+    const float x0 = (c.x - dd->DisplayPos.x) * scale.x, y0 = (c.y - dd->DisplayPos.y) * scale.y;
+    const float x1 = (c.z - dd->DisplayPos.x) * scale.x, y1 = (c.w - dd->DisplayPos.y) * scale.y;
+    if (x1 <= x0 || y1 <= y0) return;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(static_cast<GLint>(x0), static_cast<GLint>(fb_h - y1), static_cast<GLsizei>(x1 - x0),
+              static_cast<GLsizei>(y1 - y0));
+    glDisable(GL_BLEND);
+    glUseProgram(g_prog);
+    glUniform4f(g_rect, it.min.x, it.min.y, it.max.x, it.max.y);
+    glUniform4f(g_uv, it.uv0.x, it.uv0.y, it.uv1.x, it.uv1.y);
+    glUniform2f(g_display_pos, dd->DisplayPos.x, dd->DisplayPos.y);
+    glUniform2f(g_display_size, dd->DisplaySize.x, dd->DisplaySize.y);
+    glUniform1i(g_tex, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, it.tex);
+    glBindVertexArray(g_vao);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    // ImGui restores its own state with the ImDrawCallback_ResetRenderState queued after this callback.
+}
+
+}  // namespace
+
+bool init(std::string& error) {
+    g_prog = build_program(shaders::image_opaque_vert, shaders::image_opaque_frag, "image_opaque", error);
+    if (!g_prog) return false;
+    g_rect = glGetUniformLocation(g_prog, "u_rect");
+    g_uv = glGetUniformLocation(g_prog, "u_uv");
+    g_display_pos = glGetUniformLocation(g_prog, "u_display_pos");
+    g_display_size = glGetUniformLocation(g_prog, "u_display_size");
+    g_tex = glGetUniformLocation(g_prog, "u_tex");
+    glGenVertexArrays(1, &g_vao);
+    return true;
+}
+
+void shutdown() {
+    if (g_vao) glDeleteVertexArrays(1, &g_vao);
+    if (g_prog) glDeleteProgram(g_prog);
+    g_vao = g_prog = 0;
+}
+
+bool ready() { return g_prog != 0; }
+
+void begin_frame() { g_items.clear(); }
+
+void add(ImDrawList* dl, GLuint tex, ImVec2 min, ImVec2 max, ImVec2 uv0, ImVec2 uv1) {
+    const auto id = reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(tex));
+    if (!g_prog) {
+        dl->AddImage(id, min, max, uv0, uv1);
+        return;
+    }
+    g_items.push_back({tex, min, max, uv0, uv1});
+    dl->AddCallback(draw_item, reinterpret_cast<void*>(static_cast<std::intptr_t>(g_items.size() - 1)));
+    dl->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
+}
+
+}  // namespace impactlab::gui::opaque_image
