@@ -547,9 +547,12 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
     // and a phase offset, say) and its fall looks small. It must pass the same test against the new model.
     std::vector<std::size_t> queue(found.size());
     std::iota(queue.begin(), queue.end(), std::size_t{0});
-    std::vector<std::pair<std::size_t, RejectedEffect>> too_small;
+    struct TooSmall {
+        std::size_t effect, kept_before;   // index into found; effects kept when it was tried
+        RejectedEffect rej;
+    };
+    std::vector<TooSmall> too_small;
     for (int pass = 0; pass < 3 && !queue.empty(); ++pass) {
-        bool kept_one = false;
         too_small.clear();
         for (std::size_t fi : queue) {
             FoundEffect& f = found[fi];
@@ -594,19 +597,19 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
                 std::snprintf(buf, sizeof buf, "held-out simulation error %s by %.2f %% (paired z = %.1f over %zu windows): not better beyond the noise",
                               c.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(c.gain), c.z, wins.size());
                 rej.reason = buf;
-                too_small.emplace_back(fi, std::move(rej));
+                too_small.push_back({fi, rep.effects_found.size(), std::move(rej)});
                 continue;
             }
             cur = std::move(cand);
             e_cur = e_new;
             rep.effects_found.push_back(f);
-            kept_one = true;
         }
+        // Again only those tried before the last effect kept (the others met the same model).
         queue.clear();
-        if (kept_one)
-            for (const auto& t : too_small) queue.push_back(t.first);
-        if (queue.empty() || pass == 2)
-            for (auto& t : too_small) rep.effects_rejected.push_back(std::move(t.second));
+        for (const auto& t : too_small)
+            if (t.kept_before < rep.effects_found.size()) queue.push_back(t.effect);
+        for (auto& t : too_small)
+            if (pass == 2 || t.kept_before == rep.effects_found.size()) rep.effects_rejected.push_back(std::move(t.rej));
     }
     if (!rep.effects_found.empty()) {
         const Compare c = compare(e_base, e_cur);
