@@ -491,7 +491,7 @@ bool baseline_predicts_better(const Prep& pr, const Model& given, const Model& f
 // order they were found; each must lower the summed held-out error against the model without it, with a
 // paired z >= 3 over the windows and by at least 2 % of the error above the sensor noise.
 void validate_effects(const Prep& pr, const Model& base, const std::vector<Candidate>& cands, const FitOptions& o,
-                      FitReport& rep, Model& after) {
+                      const SentenceContext& sc, FitReport& rep, Model& after) {
     // The horizon of the best model at hand (the baseline with every effect found): a wrong baseline's error
     // grows from its own fault, not from the record's instability. An unphysical candidate falls back to the
     // baseline.
@@ -566,7 +566,26 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
                 continue;
             }
             Model cand = cur;
-            apply_effect(cand, f.id, f.parameters);
+            if (f.evidence == "impact law" && pr.impacts.size() >= 3) {
+                // Refitted on every impact against the model it joins (the stage fitted it against the model
+                // with every effect found, some of which may have gone): the model kept is the model validated.
+                const std::vector<char> all(pr.impacts.size(), 1);
+                if (f.id == "bumper_offset") f.parameters = {{"dx", fit_bumper_shift(pr, cand, all, o.rtol, 0.05 * pr.sigma_x)}};
+                else apply_effect(cand, f.id, f.parameters = refit_impact_law(pr, cur, f, all));
+                f.sentence = sentence(f.id, cur, f.parameters, f.sigma, sc);
+                rej.parameters = f.parameters;
+                // A shift of the flat tops must still stand out as the stage required.
+                const double dx = f.parameters.front().second, se = f.sigma.empty() ? 0.0 : f.sigma.front().second;
+                if (f.id == "bumper_offset" && !(std::abs(dx) >= o.z_threshold * se && std::abs(dx) > 2.0 * pr.sigma_x + 1e-7)) {
+                    char buf[200];
+                    std::snprintf(buf, sizeof buf, "refitted against the model it joins, the shift is %.3g +/- %.2g m: not significant", dx, se);
+                    rej.reason = buf;
+                    too_small.push_back({fi, rep.effects_found.size(), std::move(rej)});
+                    continue;
+                }
+            } else {
+                apply_effect(cand, f.id, f.parameters);
+            }
             const std::string why = unphysical(cand);
             if (!why.empty()) {
                 rej.reason = "unphysical: " + why;
@@ -1451,7 +1470,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     enter(FitStage::Validation);
     // ---- 6. validation: an effect stays only if it lowers the short-horizon simulation error on data held
     //         out from its fit, by more than the windows' scatter; the final model must beat the baseline ----
-    validate_effects(pr, base, screen.cands, o, rep, after);
+    validate_effects(pr, base, screen.cands, o, sc, rep, after);
     output_error_stage(pr, base, screen.cands, base_names, o, sc, rep, after);
 
     std::stable_sort(rep.effects_found.begin(), rep.effects_found.end(),
