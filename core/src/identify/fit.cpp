@@ -491,7 +491,12 @@ bool baseline_predicts_better(const Prep& pr, const Model& given, const Model& f
 // order they were found; each must lower the summed held-out error against the model without it, with a
 // paired z >= 3 over the windows and by at least 2 % of the error above the sensor noise.
 void validate_effects(const Prep& pr, const Model& base, const std::vector<Candidate>& cands, const FitOptions& o,
-                      const SentenceContext& sc, FitReport& rep, Model& after) {
+                      const std::vector<std::string>& base_names, const SentenceContext& sc, FitReport& rep, Model& after) {
+    // A fitted baseline of a record forced by the unbalance is refitted with the effects (per fold, and on the
+    // whole record at the end): base parameters fitted without an effect have absorbed what they could of it
+    // (a spring rate bent by a missing even stiffness), and those values beside the effect's make neither
+    // model. An input-forced record keeps its output-error baseline (refined on the free-run error).
+    const bool refit_base = o.fit_baseline && pr.phi_forced && !base_names.empty();
     // The horizon of the best model at hand (the baseline with every effect found): a wrong baseline's error
     // grows from its own fault, not from the record's instability. An unphysical candidate falls back to the
     // baseline.
@@ -512,6 +517,8 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
         for (std::size_t f = 0; f < 2; ++f) {
             Model mf = model_for[f];
             std::vector<Knob> knobs = found_effect_knobs(mf, n_base_effects, cands);
+            if (refit_base)
+                for (const Knob& k : base_knobs(mf, base_names)) knobs.push_back(k);
             const Prep& fit_on = fold_pr[1 - f];
             if (!knobs.empty() && fit_on.rows.size() >= 20) {
                 Eigen::VectorXd R;
@@ -640,11 +647,14 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
             e_cur = e_base;
         }
     }
-    // The kept force effects were fitted jointly with the rejected ones: refit them on the whole record
-    // (equation error; an input-forced record keeps its output-error values when nothing was dropped).
-    if (!rep.effects_rejected.empty() && !rep.effects_found.empty() && pr.phi_forced) {
+    // The kept force effects were fitted jointly with the rejected ones (and a fitted baseline of a record
+    // forced by the unbalance without them): refit them on the whole record (equation error; an input-forced
+    // record keeps its output-error values when nothing was dropped).
+    if ((!rep.effects_rejected.empty() || refit_base) && !rep.effects_found.empty() && pr.phi_forced) {
         Model refit = cur;
         std::vector<Knob> knobs = found_effect_knobs(refit, n_base_effects, cands);
+        if (refit_base)
+            for (const Knob& k : base_knobs(refit, base_names)) knobs.push_back(k);
         if (!knobs.empty()) {
             Eigen::VectorXd R;
             Eigen::MatrixXd J;
@@ -1470,7 +1480,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     enter(FitStage::Validation);
     // ---- 6. validation: an effect stays only if it lowers the short-horizon simulation error on data held
     //         out from its fit, by more than the windows' scatter; the final model must beat the baseline ----
-    validate_effects(pr, base, screen.cands, o, sc, rep, after);
+    validate_effects(pr, base, screen.cands, o, base_names, sc, rep, after);
     output_error_stage(pr, base, screen.cands, base_names, o, sc, rep, after);
 
     std::stable_sort(rep.effects_found.begin(), rep.effects_found.end(),
