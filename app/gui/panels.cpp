@@ -16,7 +16,6 @@
 #include "contact_label.hpp"
 #include "energy_bar.hpp"
 #include "gl_util.hpp"
-#include "opaque_image.hpp"
 #include "impactlab/forces.hpp"
 #include "impactlab/sweep.hpp"
 #include "theme.hpp"
@@ -361,11 +360,10 @@ void App::draw_rig() {
     st.magnify = magnification();   // the drawing only (layout.hpp: RigMagnify)
     // Rendered at the framebuffer's resolution (sharp on high-DPI screens), shown at display size.
     const float fbs = std::max(1.0f, ImGui::GetIO().DisplayFramebufferScale.x);
-    const GLuint tex = rig_.render(static_cast<int>(w * fbs), static_cast<int>(h * fbs), st, pal);
+    rig_.prepare(static_cast<int>(w * fbs), static_cast<int>(h * fbs), st, pal);
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
-    const ImVec2 size(static_cast<float>(w), static_cast<float>(h));
-    ImGui::Dummy(size);   // the item the mouse hovers; the image is drawn opaque (the rig fills its texture)
-    opaque_image::add(ImGui::GetWindowDrawList(), tex, p0, ImVec2(p0.x + size.x, p0.y + size.y), ImVec2(0, 1), ImVec2(1, 0));
+    ImGui::Dummy(ImVec2(static_cast<float>(w), static_cast<float>(h)));   // the item the mouse hovers
+    rig_.add_to(ImGui::GetWindowDrawList(), p0);
     rig_mouse(p0, fbs);   // drag the cart
 
     ImDrawList* dl = ImGui::GetWindowDrawList();

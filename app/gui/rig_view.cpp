@@ -37,12 +37,19 @@ bool RigView::init(std::string& error) {
 
     glGenVertexArrays(1, &vao_);
     glGenBuffers(1, &vbo_);
+    glGenVertexArrays(1, &empty_vao_);
+    return true;
+}
+
+void RigView::draw_shapes(std::size_t first, std::size_t count) {
+    if (count == 0) return;
+    // GL 3.3 has no base instance: the attributes point at the range's first record.
     glBindVertexArray(vao_);
     glBindBuffer(GL_ARRAY_BUFFER, vbo_);
     const GLsizei stride = sizeof(Shape);
     auto attrib = [&](GLuint loc, GLint n, std::size_t offset) {
         glEnableVertexAttribArray(loc);
-        glVertexAttribPointer(loc, n, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset));
+        glVertexAttribPointer(loc, n, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(first * sizeof(Shape) + offset));
         glVertexAttribDivisor(loc, 1);
     };
     attrib(0, 2, offsetof(Shape, p0));
@@ -51,21 +58,20 @@ bool RigView::init(std::string& error) {
     attrib(3, 4, offsetof(Shape, shape));
     attrib(4, 4, offsetof(Shape, fill));
     attrib(5, 4, offsetof(Shape, line));
-    glBindVertexArray(0);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
-    glGenVertexArrays(1, &empty_vao_);
-    return true;
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(count));
 }
 
 void RigView::shutdown() {
-    if (color_) glDeleteTextures(1, &color_);
-    if (fbo_) glDeleteFramebuffers(1, &fbo_);
+    if (backdrop_tex_) glDeleteTextures(1, &backdrop_tex_);
+    if (backdrop_fbo_) glDeleteFramebuffers(1, &backdrop_fbo_);
+    backdrop_tex_ = backdrop_fbo_ = 0;
+    backdrop_key_.clear();
     if (vbo_) glDeleteBuffers(1, &vbo_);
     if (vao_) glDeleteVertexArrays(1, &vao_);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
     if (shapes_prog_) glDeleteProgram(shapes_prog_);
     if (backdrop_prog_) glDeleteProgram(backdrop_prog_);
-    color_ = fbo_ = vbo_ = vao_ = empty_vao_ = shapes_prog_ = backdrop_prog_ = 0;
+    vbo_ = vao_ = empty_vao_ = shapes_prog_ = backdrop_prog_ = 0;
 }
 
 ImVec2 RigView::to_image(double x, double y) const {
@@ -168,6 +174,14 @@ void RigView::build(const RigState& st, const Palette& pal) {
         capsule(xx, kRulerY, xx, kRulerY + len, mm % 10 == 0 ? 0.00032 : 0.00020, tick, 0.9f, 0);
     }
 
+    // Fixed magnet on its bracket under the rail, at x = 0.
+    box(0.0, kMagnetFixedY - 0.0095, 0.016, 0.0028, 0.001, pal.wall, 1, 4, 0, hatch);
+    box(0.0, kMagnetFixedY + 0.5 * kMagnetHalf, kMagnetHalf, 0.5 * kMagnetHalf, 0.0008, pal.magnet_n, 1, 1);
+    box(0.0, kMagnetFixedY - 0.5 * kMagnetHalf, kMagnetHalf, 0.5 * kMagnetHalf, 0.0008, pal.magnet_s, 1, 1);
+
+    // Everything above depends only on the view (magnification, palette): the static layer (render()).
+    static_count_ = shapes_.size();
+
     // Bumper: a block on a threaded rod from the right end, rubber face at the contact plane xI + half cart.
     const double face = mag_.bumper_face(st.xI);
     const double F = std::max(0.0, st.bumper_force);
@@ -188,11 +202,6 @@ void RigView::build(const RigState& st, const Palette& pal) {
             nullptr, 0.005 + 0.016 * heat);
     }
     box(face + 0.002, kBumperY, 0.002, kBumperHalfH, 0.0012, pad, 1, 0, 0.0005, kDark);
-
-    // Fixed magnet on its bracket under the rail, at x = 0.
-    box(0.0, kMagnetFixedY - 0.0095, 0.016, 0.0028, 0.001, pal.wall, 1, 4, 0, hatch);
-    box(0.0, kMagnetFixedY + 0.5 * kMagnetHalf, kMagnetHalf, 0.5 * kMagnetHalf, 0.0008, pal.magnet_n, 1, 1);
-    box(0.0, kMagnetFixedY - 0.5 * kMagnetHalf, kMagnetHalf, 0.5 * kMagnetHalf, 0.0008, pal.magnet_s, 1, 1);
 
     // Springs from the end blocks to the cart's ends.
     spring(-wall_in, x - kCartHalfW, kSpringY, pal);
@@ -256,83 +265,148 @@ void RigView::build(const RigState& st, const Palette& pal) {
     capsule(x, kRulerY - 0.0055, x, kCartHalfH, 0.0004, pal.hot, 0.8f, 0);
 }
 
-GLuint RigView::render(int w, int h, const RigState& s, const Palette& pal) {
-    w = std::max(w, 16);
-    h = std::max(h, 16);
-    if (!fbo_ || w != fb_w_ || h != fb_h_) {
-        if (!fbo_) glGenFramebuffers(1, &fbo_);
-        color_ = upload_rgba_texture(color_, w, h, nullptr);
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_, 0);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        fb_w_ = w;
-        fb_h_ = h;
-    }
+void RigView::prepare(int w, int h, const RigState& s, const Palette& pal) {
+    fb_w_ = std::max(w, 16);
+    fb_h_ = std::max(h, 16);
+    state_ = s;
+    pal_ = pal;
     // Fit the rig (to scale: one zoom for both axes).
     mag_.gain = std::clamp(s.magnify, RigMagnify::kMin, RigMagnify::kMax);
     const double view_half_w = mag_.wall_x() + kViewMargin;
-    px_per_m_ = static_cast<float>(std::min(w / (2.0 * view_half_w), h / (kViewTop - kViewBottom)));
+    px_per_m_ = static_cast<float>(std::min(fb_w_ / (2.0 * view_half_w), fb_h_ / (kViewTop - kViewBottom)));
     cx_ = 0.0;
     cy_ = 0.5 * (kViewTop + kViewBottom);
-
     build(s, pal);
+}
 
-    GLint prev_fbo = 0, prev_vp[4];
-    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &prev_fbo);
-    glGetIntegerv(GL_VIEWPORT, prev_vp);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-    glViewport(0, 0, w, h);
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
+void RigView::add_to(ImDrawList* dl, ImVec2 min) {
+    at_ = min;
+    dl->AddCallback(
+        [](const ImDrawList*, const ImDrawCmd* cmd) { static_cast<RigView*>(cmd->UserCallbackData)->render(cmd->ClipRect); }, this);
+    dl->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
+}
+
+void RigView::render(const ImVec4& clip_rect) {
+    const ImDrawData* dd = ImGui::GetDrawData();
+    if (!dd || !shapes_prog_) return;
+    const int w = fb_w_, h = fb_h_;
+    const Palette& pal = pal_;
+    const RigState& s = state_;
+    // Where the image goes, in framebuffer pixels from the lower left, and the clip rectangle likewise.
+    const ImVec2 scale = dd->FramebufferScale;
+    const float fb_h = dd->DisplaySize.y * scale.y;
+    const GLint vx = static_cast<GLint>(std::lround((at_.x - dd->DisplayPos.x) * scale.x));
+    const GLint vy = static_cast<GLint>(std::lround(fb_h - (at_.y - dd->DisplayPos.y) * scale.y)) - h;
+    const float cx0 = (clip_rect.x - dd->DisplayPos.x) * scale.x, cy0 = (clip_rect.y - dd->DisplayPos.y) * scale.y;
+    const float cx1 = (clip_rect.z - dd->DisplayPos.x) * scale.x, cy1 = (clip_rect.w - dd->DisplayPos.y) * scale.y;
+    const GLint sx0 = std::max(vx, static_cast<GLint>(cx0)), sx1 = std::min(vx + w, static_cast<GLint>(cx1));
+    const GLint sy0 = std::max(vy, static_cast<GLint>(fb_h - cy1)), sy1 = std::min(vy + h, static_cast<GLint>(fb_h - cy0));
+    if (sx1 <= sx0 || sy1 <= sy0) return;
+    const auto scissor = [&](GLint x0, GLint y0, GLint x1, GLint y1) {   // image pixels, clipped to the clip rectangle
+        const GLint a = std::max(sx0, vx + x0), b = std::max(sy0, vy + y0);
+        const GLint c = std::min(sx1, vx + x1), d = std::min(sy1, vy + y1);
+        glScissor(a, b, std::max(0, c - a), std::max(0, d - b));
+    };
 
     const float view_h = static_cast<float>(h / px_per_m_);
+    const float view_w = static_cast<float>(w / px_per_m_);
     const auto set_common = [&](GLuint prog) {
         glUseProgram(prog);
         glUniform2f(glGetUniformLocation(prog, "u_center"), static_cast<float>(cx_), static_cast<float>(cy_));
         glUniform1f(glGetUniformLocation(prog, "u_px_per_m"), px_per_m_);
         glUniform2f(glGetUniformLocation(prog, "u_viewport"), static_cast<float>(w), static_cast<float>(h));
     };
-
-    // Backdrop (opaque).
-    glDisable(GL_BLEND);
-    set_common(backdrop_prog_);
     const GLuint bp = backdrop_prog_;
-    glUniform3fv(glGetUniformLocation(bp, "u_bg_top"), 1, pal.bg_top);
-    glUniform3fv(glGetUniformLocation(bp, "u_bg_bottom"), 1, pal.bg_bottom);
-    glUniform3fv(glGetUniformLocation(bp, "u_grid"), 1, pal.rig_grid);
-    glUniform3fv(glGetUniformLocation(bp, "u_field"), 1, pal.field);
+    const auto quad = [&](double x0, double y0, double x1, double y1) {
+        glUniform4f(glGetUniformLocation(bp, "u_quad"), static_cast<float>(x0), static_cast<float>(y0), static_cast<float>(x1),
+                    static_cast<float>(y1));
+        glBindVertexArray(empty_vao_);
+        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    };
+    const double x_lo = cx_ - 0.5 * view_w, x_hi = cx_ + 0.5 * view_w, y_lo = cy_ - 0.5 * view_h, y_hi = cy_ + 0.5 * view_h;
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    // The shapes are uploaded now, when the frame before (which drew the last ones) is done.
+    glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(shapes_.size() * sizeof(Shape)), shapes_.data(), GL_STREAM_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+    // The backdrop's static part and the static shapes, when what they show has changed (size, zoom,
+    // magnification, palette): drawn into their own image, which each frame copies.
     const double plate_x = mag_.wall_x() + kPlateMargin;
-    glUniform4f(glGetUniformLocation(bp, "u_plate"), static_cast<float>(-plate_x), static_cast<float>(kPlateY0),
-                static_cast<float>(plate_x), static_cast<float>(kPlateY1));
-    glUniform2f(glGetUniformLocation(bp, "u_mag_cart"), static_cast<float>(mag_.draw_x(s.x)), static_cast<float>(kMagnetCartY));
+    std::vector<float> key{static_cast<float>(w), static_cast<float>(h), px_per_m_, static_cast<float>(cx_),
+                           static_cast<float>(cy_), static_cast<float>(plate_x)};
+    key.insert(key.end(), pal.bg_top, pal.bg_top + 3);
+    key.insert(key.end(), pal.bg_bottom, pal.bg_bottom + 3);
+    key.insert(key.end(), pal.rig_grid, pal.rig_grid + 3);
+    for (std::size_t i = 0; i < static_count_; ++i) {
+        const float* f = reinterpret_cast<const float*>(&shapes_[i]);
+        key.insert(key.end(), f, f + sizeof(Shape) / sizeof(float));
+    }
+    if (key != backdrop_key_) {
+        backdrop_key_ = key;
+        if (!backdrop_fbo_) glGenFramebuffers(1, &backdrop_fbo_);
+        backdrop_tex_ = upload_rgba_texture(backdrop_tex_, w, h, nullptr);
+        GLint prev = 0;
+        glGetIntegerv(GL_FRAMEBUFFER_BINDING, &prev);
+        glBindFramebuffer(GL_FRAMEBUFFER, backdrop_fbo_);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, backdrop_tex_, 0);
+        glViewport(0, 0, w, h);
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_BLEND);
+        set_common(bp);
+        glUniform1i(glGetUniformLocation(bp, "u_mode"), 0);
+        glUniform3fv(glGetUniformLocation(bp, "u_bg_top"), 1, pal.bg_top);
+        glUniform3fv(glGetUniformLocation(bp, "u_bg_bottom"), 1, pal.bg_bottom);
+        glUniform3fv(glGetUniformLocation(bp, "u_grid"), 1, pal.rig_grid);
+        glUniform4f(glGetUniformLocation(bp, "u_plate"), static_cast<float>(-plate_x), static_cast<float>(kPlateY0),
+                    static_cast<float>(plate_x), static_cast<float>(kPlateY1));
+        glUniform1f(glGetUniformLocation(bp, "u_view_top"), static_cast<float>(y_hi));
+        glUniform1f(glGetUniformLocation(bp, "u_view_bottom"), static_cast<float>(y_lo));
+        quad(x_lo, y_lo, x_hi, y_hi);
+        glEnable(GL_BLEND);
+        glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+        set_common(shapes_prog_);
+        draw_shapes(0, static_count_);
+        glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(prev));
+    }
+    glViewport(vx, vy, w, h);
+    glEnable(GL_SCISSOR_TEST);
+    scissor(0, 0, w, h);
+    // The copy: one unblended image the renderer draws at memory speed.
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, backdrop_fbo_);
+    glBlitFramebuffer(0, 0, w, h, vx, vy, vx + w, vy + h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+
+    // The magnets' field lines over it, only in a box round the magnets (they fade out before its edge).
+    constexpr double kFieldReach = 0.045;
+    const double cart_mx = mag_.draw_x(s.x);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    set_common(bp);
+    glUniform1i(glGetUniformLocation(bp, "u_mode"), 1);
+    glUniform3fv(glGetUniformLocation(bp, "u_field"), 1, pal.field);
+    glUniform2f(glGetUniformLocation(bp, "u_mag_cart"), static_cast<float>(cart_mx), static_cast<float>(kMagnetCartY));
     glUniform2f(glGetUniformLocation(bp, "u_mag_fixed"), 0.0f, static_cast<float>(kMagnetFixedY));
     glUniform1f(glGetUniformLocation(bp, "u_field_gain"),
                 static_cast<float>(std::clamp(std::abs(s.magnet_force) / 8.0, 0.0, 1.0)));
-    glUniform1f(glGetUniformLocation(bp, "u_view_top"), static_cast<float>(cy_ + 0.5 * view_h));
-    glUniform1f(glGetUniformLocation(bp, "u_view_bottom"), static_cast<float>(cy_ - 0.5 * view_h));
-    glBindVertexArray(empty_vao_);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-
-    // Shapes, premultiplied alpha, in the order built.
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    glUniform1f(glGetUniformLocation(bp, "u_field_reach"), static_cast<float>(kFieldReach));
+    const double fx0 = std::max(x_lo, std::min(cart_mx, 0.0) - kFieldReach), fy0 = std::max(y_lo, kMagnetFixedY - kFieldReach);
+    const double fx1 = std::min(x_hi, std::max(cart_mx, 0.0) + kFieldReach), fy1 = std::min(y_hi, kMagnetCartY + kFieldReach);
+    quad(fx0, fy0, fx1, fy1);
+    // The static shapes the lines crossed (the lower rail, the fixed magnet) go back over them, in the box only.
     set_common(shapes_prog_);
-    glBindVertexArray(vao_);
-    glBindBuffer(GL_ARRAY_BUFFER, vbo_);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(shapes_.size() * sizeof(Shape)), shapes_.data(),
-                 GL_STREAM_DRAW);
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(shapes_.size()));
+    const auto px_x = [&](double x) { return static_cast<GLint>(std::floor(0.5 * w + (x - cx_) * px_per_m_)); };
+    const auto px_y = [&](double y) { return static_cast<GLint>(std::floor(0.5 * h + (y - cy_) * px_per_m_)); };
+    scissor(px_x(fx0), px_y(fy0), px_x(fx1) + 1, px_y(fy1) + 1);
+    draw_shapes(0, static_count_);
+    // The moving shapes, premultiplied alpha, in the order built.
+    scissor(0, 0, w, h);
+    draw_shapes(static_count_, shapes_.size() - static_count_);
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     glUseProgram(0);
-
-    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(prev_fbo));
-    glViewport(prev_vp[0], prev_vp[1], prev_vp[2], prev_vp[3]);
-    // Start rendering now: a software rasterizer then draws the image on its own threads while the UI
-    // thread builds the other tiles, instead of after them.
-    glFlush();
-    return color_;
+    // ImGui restores its own state (viewport, scissor, blending) with the ResetRenderState after this.
 }
 
 }  // namespace impactlab::gui

@@ -47,8 +47,11 @@ public:
     // Compiles the shaders; false with a message if the driver refuses them.
     bool init(std::string& error);
     void shutdown();
-    // Draws into the view's framebuffer at w x h pixels and returns its colour texture.
-    GLuint render(int w, int h, const RigState& s, const Palette& pal);
+    // Lays the rig out for a w x h pixel image and builds its shapes (CPU only: the UI thread, building).
+    void prepare(int w, int h, const RigState& s, const Palette& pal);
+    // Queues the prepared image in `dl` with its top left at `min` (display pixels): it is rendered there
+    // when ImGui's draw data is, in the same pass as the rest of the window (no image of its own to wait for).
+    void add_to(ImDrawList* dl, ImVec2 min);
     // Image pixel (top-left origin) of a world point, for the labels drawn over the image.
     ImVec2 to_image(double x, double y) const;
     float px_per_m() const { return px_per_m_; }
@@ -77,12 +80,21 @@ private:
 
     GLuint shapes_prog_ = 0, backdrop_prog_ = 0;
     GLuint vao_ = 0, vbo_ = 0, empty_vao_ = 0;
-    GLuint fbo_ = 0, color_ = 0;
-    int fb_w_ = 0, fb_h_ = 0;
+    void render(const ImVec4& clip_rect);   // GL thread, from the draw list's callback
+    int fb_w_ = 0, fb_h_ = 0;            // the image's size [framebuffer px]
+    ImVec2 at_{};                        // its top left [display px]
+    RigState state_{};                   // what prepare() was given
+    Palette pal_{};
+    // The backdrop's static part (gradient and plate grid), drawn when its view or palette changes and
+    // copied into the image each frame: under a software renderer it was a third of the rig's cost.
+    GLuint backdrop_fbo_ = 0, backdrop_tex_ = 0;
+    std::vector<float> backdrop_key_;   // what it was drawn for
     float px_per_m_ = 1000;
     double cx_ = 0, cy_ = 0;
     RigMagnify mag_;
     std::vector<Shape> shapes_;
+    std::size_t static_count_ = 0;   // shapes_[0, static_count_) are the static layer's (walls, rails, ruler, fixed magnet)
+    void draw_shapes(std::size_t first, std::size_t count);
 };
 
 }  // namespace impactlab::gui
