@@ -142,3 +142,25 @@ TEST_CASE("audit: with a fitted baseline, the effects join the base parameters r
     CHECK(r.after.p.k == doctest::Approx(truth.p.k).epsilon(0.01));
     CHECK(r.error_after.shooting_rms_1_m < 1.5 * r.sigma_x);
 }
+
+TEST_CASE("audit: a wrong cart mass is named as such, alone, with the mass within 3 sigma") {
+    // Data made with m 5 % low read as sensor_gain + unexplained_x + viscous_damping, 3 % high as
+    // unbalance_scale + phase_offset + unexplained_x + coulomb_friction: no candidate moved m (a force law
+    // cannot take the acceleration). cart_mass is screened by the residual's m x'' column and validated.
+    for (const double scale : {0.95, 1.03}) {
+        CAPTURE(scale);
+        id::Model truth = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
+        truth.p.m *= scale;
+        const id::Model a1h = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
+        const id::FitReport r = analyse(truth, steps_9_16(1), "A1H");
+        REQUIRE(r.effects_found.size() == 1);
+        const id::FoundEffect& f = r.effects_found.front();
+        REQUIRE(f.id == "cart_mass");
+        REQUIRE(f.parameters.size() == 1);
+        REQUIRE(f.sigma.size() == 1);
+        CHECK(std::abs(a1h.p.m + f.parameters.front().second - truth.p.m) <= 3.0 * f.sigma.front().second);
+        CHECK(r.after.p.m == doctest::Approx(truth.p.m).epsilon(1e-3));
+        CHECK(r.after.p.effects.empty());
+        CHECK(r.validation_rms_after_m < 1.5 * r.sigma_x);
+    }
+}

@@ -43,7 +43,7 @@ TEST_CASE("effect laws: derivatives agree with finite differences") {
 
 TEST_CASE("effect catalogue: every registry law plus the base-changing effects") {
     for (const auto& law : effect_laws()) CHECK(identify::find_catalogue_effect(law.id) != nullptr);
-    for (const char* id : {"bumper_offset", "impact_duration", "restitution"}) {
+    for (const char* id : {"bumper_offset", "impact_duration", "restitution", "cart_mass"}) {
         const auto* e = identify::find_catalogue_effect(id);
         REQUIRE(e != nullptr);
         CHECK(e->changes_base);
@@ -61,6 +61,9 @@ TEST_CASE("effect catalogue: every registry law plus the base-changing effects")
     CHECK(m.sensor_gain() == doctest::Approx(1.02));
     identify::apply_effect(m, "stribeck_friction", {{"", 0.4}, {"vs", 0.03}});
     CHECK(m.p.effects.back().p[1] == doctest::Approx(0.03));
+    identify::apply_effect(m, "cart_mass", {{"dm", -0.2}});   // moves m, adds no force
+    CHECK(m.p.m == doctest::Approx(6.73766 - 0.2));
+    CHECK_THROWS_AS(identify::apply_effect(m, "cart_mass", {{"dm", -7.0}}), ParamError);
     CHECK_THROWS_AS(identify::apply_effect(m, "no_such_effect", {}), ParamError);
     CHECK_THROWS_AS(identify::apply_effect(m, "constant_force", {{"F9", 1.0}}), ParamError);
     const identify::Model duffing = identify::resolve_fit_model("duffing", identify::Forcing::Input);

@@ -1,6 +1,6 @@
 // The effect catalogue of impactlab fit: the registry's effects (each law carries how it is looked for and
-// described, core/src/effects) turned into candidates, plus the three effects that change the base model
-// rather than add a force (bumper_offset, impact_duration, restitution), which live here.
+// described, core/src/effects) turned into candidates, plus the four effects that change the base model
+// rather than add a force (bumper_offset, impact_duration, restitution, cart_mass), which live here.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -78,6 +78,9 @@ std::vector<EffectInfo> build_catalogue() {
                    {"Ti0", "Ti1", "a_T"}, {"s", "s", "s/m"}, {6.2193e-3, 4.0689e-3, 2.1733}, false, true});
     out.push_back({"restitution", "a velocity-dependent restitution kappa(v-) (sets the impact law's kappa0, kappa1, a_kappa)",
                    {"kappa0", "kappa1", "a_kappa"}, {"-", "-", "s/m"}, {0.6150, 0.1350, 0.6594}, false, true});
+    // A force law cannot take the acceleration, so a wrong mass is a base parameter moved: the residual's
+    // m x'' term (fit screens it as the column of m, see library_candidates).
+    out.push_back({"cart_mass", "the cart's mass is m + dm instead of m (moves m)", {"dm"}, {"kg"}, {0.0}, false, true});
     return out;
 }
 
@@ -127,6 +130,11 @@ void apply_effect(Model& m, const std::string& id, const std::vector<std::pair<s
         }
         for (std::size_t k = 0; k < v.size(); ++k)
             if (given[k]) inst->p[k] = v[k];
+        return;
+    }
+    if (id == "cart_mass") {
+        if (!(m.p.m + v[0] > 0)) throw ParamError("effect 'cart_mass': dm = " + std::to_string(v[0]) + " leaves no mass");
+        m.p.m += v[0];
         return;
     }
     if (!m.bumper()) throw ParamError("effect '" + id + "' needs a model with a bumper");
@@ -194,12 +202,30 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
         c.positive = h.positive;
         out.push_back(std::move(c));
     }
+    // A wrong cart mass: the residual is then dm x'', so its column is the acceleration's. It competes with the
+    // force laws in the screening and the validation like any other. Not with fitted base parameters (m, or
+    // m0e or the input gain, which rescale the whole equation with it), nor for a plain Duffing model (m = 1
+    // is its unit of force).
+    const bool cart_mass_wanted = (o.only.empty() || std::find(o.only.begin(), o.only.end(), "cart_mass") != o.only.end()) &&
+                                  std::find(o.exclude.begin(), o.exclude.end(), "cart_mass") == o.exclude.end();
+    if (cart_mass_wanted && !o.fit_baseline && m.p.stiffness_id != "duffing" && m.p.m > 0) {
+        Candidate c;
+        c.id = "cart_mass";
+        c.base = "m";
+        c.param = "dm";
+        c.free = {0};
+        c.step = {1e-4 * m.p.m};
+        c.linear = {0};
+        c.lo = -0.5 * m.p.m;   // the mass found stays within [0.5, 2] times the model's
+        c.hi = m.p.m;
+        out.push_back(std::move(c));
+    }
     return out;
 }
 
 EffectInstance start_instance(const Candidate& c, const Model& m, const Prep& pr, double start) {
     EffectInstance e{c.law, {}};
-    if (c.law->start) {
+    if (c.law && c.law->start) {
         // What the law may take its shape from: the model, and the data's ranges in true coordinates.
         const MeasuredData& d = *pr.data;
         const double g = m.sensor_gain(), o = m.sensor_offset();
@@ -278,7 +304,12 @@ std::string sentence(const std::string& id, const Model& b, const std::vector<st
         const EffectReportContext ctx{&b.p, b.p.stiffness_id != "duffing", c.v_typ, c.x_typ};
         return law->describe(p.data(), sg.data(), ctx);
     }
-    // The three that change the base model.
+    // The four that change the base model.
+    if (id == "cart_mass") {
+        const double dm = val("dm");
+        return "the cart's mass is " + pm(b.p.m + dm, sig("dm")) + " kg, " + fmt("%+.3g", 100.0 * dm / b.p.m) + " % off the model's " +
+               fmt("%.6g", b.p.m) + " kg: the residual follows the acceleration";
+    }
     if (id == "bumper_offset") {
         const double dx = val("dx");
         return "the bumper stands " + pm(std::abs(dx), sig("dx"), 1e3) + " mm " + (dx > 0 ? "to the right (+x)" : "to the left (-x)") +

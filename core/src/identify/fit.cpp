@@ -241,16 +241,33 @@ void effect_knobs(const Candidate& c, EffectInstance& inst, std::vector<Knob>& k
     }
 }
 
-// Knobs of the effects a fit added to model m (those after its first `first` effects), as their candidates
-// fit them.
-std::vector<Knob> found_effect_knobs(Model& m, std::size_t first, const std::vector<Candidate>& cands) {
+// A base parameter's value in model m.
+double base_value(const Model& m, const char* name) {
+    Model copy = m;
+    return *base_params(copy, {name}).front().value;
+}
+
+// The knob of a base-changing candidate (cart_mass: m), its bounds about the base model's value.
+Knob base_change_knob(const Candidate& c, Model& m, const Model& base) {
+    const double at_base = base_value(base, c.base);
+    return {base_params(m, {c.base}).front().value, c.step[0], at_base + c.lo, at_base + c.hi, c.base};
+}
+
+// The value of a base-changing candidate's parameter in model m (what it moved from the base model).
+double base_change(const Candidate& c, const Model& m, const Model& base) { return base_value(m, c.base) - base_value(base, c.base); }
+
+// Knobs of the effects a fit added to model m (the effects after base's, and a base parameter a
+// base-changing candidate moved), as their candidates fit them.
+std::vector<Knob> found_effect_knobs(Model& m, const Model& base, const std::vector<Candidate>& cands) {
     std::vector<Knob> knobs;
-    for (std::size_t k = first; k < m.p.effects.size(); ++k)
+    for (std::size_t k = base.p.effects.size(); k < m.p.effects.size(); ++k)
         for (const auto& c : cands)
-            if (c.id == m.p.effects[k].law->id) {
+            if (c.law && c.id == m.p.effects[k].law->id) {
                 effect_knobs(c, m.p.effects[k], knobs);
                 break;
             }
+    for (const auto& c : cands)
+        if (c.base && base_change(c, m, base) != 0.0) knobs.push_back(base_change_knob(c, m, base));
     return knobs;
 }
 
@@ -508,7 +525,6 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
     const std::array<Prep, 2>& fold_pr = sp.fold_pr;
     const std::array<std::vector<std::size_t>, 2>& fold_wins = sp.fold_wins;
     auto fold_of = [&](std::size_t i) { return sp.fold_of(pr, i); };
-    const std::size_t n_base_effects = base.p.effects.size();
 
     // Held-out SSE of each window: fold f's windows simulated with model_for[f], its force effects refitted
     // on the other fold's rows (the impact-law effects come refitted on the other fold's impacts).
@@ -516,7 +532,7 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
         std::vector<double> e(wins.size(), INFINITY);
         for (std::size_t f = 0; f < 2; ++f) {
             Model mf = model_for[f];
-            std::vector<Knob> knobs = found_effect_knobs(mf, n_base_effects, cands);
+            std::vector<Knob> knobs = found_effect_knobs(mf, base, cands);
             if (refit_base)
                 for (const Knob& k : base_knobs(mf, base_names)) knobs.push_back(k);
             const Prep& fit_on = fold_pr[1 - f];
@@ -652,7 +668,7 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
     // record keeps its output-error values when nothing was dropped).
     if ((!rep.effects_rejected.empty() || refit_base) && !rep.effects_found.empty() && pr.phi_forced) {
         Model refit = cur;
-        std::vector<Knob> knobs = found_effect_knobs(refit, n_base_effects, cands);
+        std::vector<Knob> knobs = found_effect_knobs(refit, base, cands);
         if (refit_base)
             for (const Knob& k : base_knobs(refit, base_names)) knobs.push_back(k);
         if (!knobs.empty()) {
@@ -661,9 +677,15 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
             lm_residual(pr, refit, knobs, 20, R, J);
             if (unphysical(refit).empty()) cur = refit;
         }
-        for (auto& f : rep.effects_found)
+        for (auto& f : rep.effects_found) {
             for (const auto& e : cur.p.effects)
                 if (f.id == e.law->id) f.parameters = named(e);
+            for (const auto& c : cands)
+                if (c.base && f.id == c.id) {
+                    f.parameters = {{c.param, base_change(c, cur, base)}};
+                    f.sentence = sentence(f.id, base, f.parameters, f.sigma, sc);
+                }
+        }
     }
     auto total = [&](const std::vector<double>& e) {
         double s = 0;
@@ -1039,7 +1061,16 @@ Screen screen_candidates(const Prep& pr, const Model& base, const FitOptions& o,
                 const int k = c.free[static_cast<std::size_t>(li)];
                 const double h = c.step[static_cast<std::size_t>(li)];
                 Eigen::VectorXd col(static_cast<Eigen::Index>(pr.rows.size()));
-                if (c.sensor) {
+                if (c.base) {   // the base parameter it moves: its column, as the fitted base parameters'
+                    Model mp = base;
+                    double* value = base_params(mp, {c.base}).front().value;
+                    *value += h;
+                    residual(pr, mp, Rtmp, pw);
+                    *value -= 2 * h;
+                    Eigen::VectorXd Rm;
+                    residual(pr, mp, Rm, pw);
+                    col = -(Rtmp - Rm) / (2 * h);
+                } else if (c.sensor) {
                     Model mp = base;
                     mp.p.effects.push_back(g.inst);
                     mp.p.effects.back().p[static_cast<std::size_t>(k)] += h;
@@ -1163,6 +1194,10 @@ Selection select_effects(const Screen& screen, const Eigen::VectorXd& R0, const 
                 double cv, in;
                 Eigen::VectorXd beta;
                 cv_sse(folds, cols, cv, in, &beta);
+                if (c.base) {
+                    rep.candidates.push_back({c.id, e.gain_in, e.z, false, {{c.param, beta[static_cast<Eigen::Index>(cur.size())]}}, e.gain_cv});
+                    continue;
+                }
                 EffectInstance inst = g.inst;
                 for (std::size_t li = 0; li < c.linear.size(); ++li)
                     inst.p[static_cast<std::size_t>(c.free[static_cast<std::size_t>(c.linear[li])])] +=
@@ -1211,7 +1246,8 @@ Model refit_stage(const Prep& pr, const Model& base, const Screen& screen, Selec
     std::vector<double> pw;
     Model after = base;
     std::vector<FoundEffect> force_found;
-    const std::size_t first_new = base.p.effects.size();
+    constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+    std::vector<std::size_t> inst_of;   // per chosen effect: its instance in after.p.effects (kNone: base-changing)
     for (;;) {
         after = base;
         {
@@ -1221,20 +1257,30 @@ Model refit_stage(const Prep& pr, const Model& base, const Screen& screen, Selec
             Eigen::VectorXd beta;
             cv_sse(folds, cols, cv, in, &beta);
             std::size_t pos = base_cols.size();   // base parameters: refitted below
+            inst_of.clear();
             for (std::size_t gi : chosen) {
                 const Group& g = groups[gi];
-                EffectInstance inst = g.inst;
                 const Candidate& c = cands[g.cand];
+                if (c.base) {   // a base-changing candidate moves its base parameter
+                    apply_effect(after, c.id, {{c.param, std::clamp(beta[static_cast<Eigen::Index>(pos++)], c.lo, c.hi)}});
+                    inst_of.push_back(kNone);
+                    continue;
+                }
+                EffectInstance inst = g.inst;
                 for (int li : c.linear)
                     inst.p[static_cast<std::size_t>(c.free[static_cast<std::size_t>(li)])] += beta[static_cast<Eigen::Index>(pos++)];
+                inst_of.push_back(after.p.effects.size());
                 after.p.effects.push_back(inst);
             }
         }
         std::vector<Knob> knobs;
         if (o.fit_baseline) knobs = base_knobs(after, base_names);
         const std::size_t n_base_knobs = knobs.size();
-        for (std::size_t k = 0; k < chosen.size(); ++k)
-            effect_knobs(cands[groups[chosen[k]].cand], after.p.effects[first_new + k], knobs);
+        for (std::size_t k = 0; k < chosen.size(); ++k) {
+            const Candidate& c = cands[groups[chosen[k]].cand];
+            if (c.base) knobs.push_back(base_change_knob(c, after, base));
+            else effect_knobs(c, after.p.effects[inst_of[k]], knobs);
+        }
         Eigen::VectorXd R1;
         Eigen::MatrixXd J1;
         if (knobs.empty()) residual(pr, after, R1, pw);
@@ -1252,11 +1298,22 @@ Model refit_stage(const Prep& pr, const Model& base, const Screen& screen, Selec
         std::size_t kk = n_base_knobs;
         for (std::size_t k = 0; k < chosen.size(); ++k) {
             const Candidate& c = cands[groups[chosen[k]].cand];
-            const EffectInstance& inst = after.p.effects[first_new + k];
             FoundEffect f;
             f.id = c.id;
             f.evidence = "equation error";
             f.explained_fraction = step_gain[k] * in_base / std::max(in0, 1e-300);
+            if (c.base) {   // one parameter, its null value the base model's
+                const double d = base_change(c, after, base);
+                f.parameters = {{c.param, d}};
+                f.sigma = {{c.param, knob_sigma[kk]}};
+                f.z = std::min(std::abs(d) / std::max(knob_sigma[kk], 1e-300),
+                               group_z_dss(J1, R1, {static_cast<int>(kk)}, Eigen::VectorXd::Constant(1, d), 2 * hac_lag));
+                ++kk;
+                f.sentence = sentence(c.id, base, f.parameters, f.sigma, sc);
+                force_found.push_back(std::move(f));
+                continue;
+            }
+            const EffectInstance& inst = after.p.effects[inst_of[k]];
             f.parameters = named(inst);
             std::vector<int> sub;
             for (std::size_t li = 0; li < c.free.size(); ++li, ++kk) {
@@ -1347,7 +1404,7 @@ void output_error_stage(const Prep& pr, const Model& base, const std::vector<Can
     if (pr.phi_forced || !o.fit_baseline || rep.effects_found.empty()) return;
     Model refined = after;
     std::vector<Knob> knobs = base_knobs(refined, base_names);
-    for (const Knob& k : found_effect_knobs(refined, base.p.effects.size(), cands)) knobs.push_back(k);
+    for (const Knob& k : found_effect_knobs(refined, base, cands)) knobs.push_back(k);
     lm_simulation(pr, refined, knobs, 20, o.rtol);
     if (!unphysical(refined).empty() || !refinement_predicts_better(pr, refined, after, o.rtol)) {
         rep.notes.push_back("the output-error refit of the effects predicts the held-out part worse within the "

@@ -234,10 +234,15 @@ struct Candidate {
     std::vector<double> starts;     // starting values of the nonlinear parameter free[linear.size()]
     bool generic = false, sensor = false;
     bool positive = false;          // the first linear parameter must come out > 0 to make physical sense
+    // A base-changing candidate (law == nullptr): the base parameter it moves by its one parameter (cart_mass:
+    // "m", moved by dm), within [lo, hi]; screened by that parameter's column, applied by apply_effect.
+    const char* base = nullptr;
+    const char* param = nullptr;   // its parameter's name ("dm")
+    double lo = 0, hi = 0;
 };
 std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const FitOptions& o);
 // The instance a candidate starts from: shape parameters from the model, the free ones at their null value
-// (or `start` for the nonlinear one).
+// (or `start` for the nonlinear one); an empty instance (no law) for a base-changing candidate.
 EffectInstance start_instance(const Candidate& c, const Model& m, const Prep& pr, double start);
 
 struct SentenceContext {

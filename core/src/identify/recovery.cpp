@@ -15,6 +15,7 @@ std::vector<RecoveryCase> recovery_cases(const std::vector<std::string>& version
         {{"", "phase_offset", "delta", 0.05}, false},    {{"", "unbalance_scale", "s", 0.05}, false},
         {{"", "sensor_offset", "o", 3e-4}, false},       {{"", "sensor_gain", "g", 1.03}, false},
         {{"", "bumper_offset", "dx", 5e-4}, false},      {{"", "restitution", "kappa0", 0.4}, true},
+        {{"", "cart_mass", "dm", -0.2}, false},
     };
     std::vector<RecoveryCase> out;
     for (const auto& v : versions) {
@@ -70,7 +71,7 @@ NullResult run_null(const std::string& version, double duration, unsigned seed) 
     const FitReport rep = run_fit(synthesize(truth, so), truth, fo);
     NullResult r;
     for (const auto& f : rep.effects_found) r.found.push_back(f.id);
-    r.model_unchanged = rep.after.p.effects.empty() && rep.after.p.xI == truth.p.xI && rep.after.p.impact == truth.p.impact &&
+    r.model_unchanged = rep.after.p.effects.empty() && rep.after.p.m == truth.p.m && rep.after.p.xI == truth.p.xI && rep.after.p.impact == truth.p.impact &&
                         rep.after.p.ip == truth.p.ip && rep.after.p.input_gain == truth.p.input_gain;
     r.rms_m = rep.error_after.shooting_rms_1_m;
     return r;
