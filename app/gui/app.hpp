@@ -247,7 +247,7 @@ private:
     std::vector<std::uint32_t> pc_buckets_[16];              // per frame: map points by age band and impacts
     std::unique_ptr<SimEngine> bench_engine_;
     std::unique_ptr<MsgSink> bench_sink_;
-    double bench_build_s_ = 0, bench_wait_s_ = 0, bench_submit_s_ = 0;
+    double bench_events_s_ = 0, bench_build_s_ = 0, bench_wait_s_ = 0, bench_submit_s_ = 0;
     static constexpr int kBenchFrames = 220;   // --bench-plot: 20 warm-up frames and 200 timed
     std::vector<SimMsg> bench_feed_;           // the timed frames' samples, computed before
     std::size_t bench_fed_ = 0;

@@ -36,21 +36,28 @@ void draw_item(const ImDrawList*, const ImDrawCmd* cmd) {
     glEnable(GL_SCISSOR_TEST);
     glScissor(static_cast<GLint>(x0), static_cast<GLint>(fb_h - y1), static_cast<GLsizei>(x1 - x0),
               static_cast<GLsizei>(y1 - y0));
-    glDisable(GL_BLEND);
-    glUseProgram(g_prog);
-    glUniform4f(g_rect, it.min.x, it.min.y, it.max.x, it.max.y);
-    glUniform4f(g_uv, it.uv0.x, it.uv0.y, it.uv1.x, it.uv1.y);
-    glUniform2f(g_display_pos, dd->DisplayPos.x, dd->DisplayPos.y);
-    glUniform2f(g_display_size, dd->DisplaySize.x, dd->DisplaySize.y);
-    glUniform1i(g_tex, 0);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, it.tex);
-    glBindVertexArray(g_vao);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    draw(it.tex, it.min, it.max, it.uv0, it.uv1);
     // ImGui restores its own state with the ImDrawCallback_ResetRenderState queued after this callback.
 }
 
 }  // namespace
+
+bool draw(GLuint tex, ImVec2 min, ImVec2 max, ImVec2 uv0, ImVec2 uv1) {
+    const ImDrawData* dd = ImGui::GetDrawData();
+    if (!g_prog || !dd) return false;
+    glDisable(GL_BLEND);
+    glUseProgram(g_prog);
+    glUniform4f(g_rect, min.x, min.y, max.x, max.y);
+    glUniform4f(g_uv, uv0.x, uv0.y, uv1.x, uv1.y);
+    glUniform2f(g_display_pos, dd->DisplayPos.x, dd->DisplayPos.y);
+    glUniform2f(g_display_size, dd->DisplaySize.x, dd->DisplaySize.y);
+    glUniform1i(g_tex, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glBindVertexArray(g_vao);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    return true;
+}
 
 bool init(std::string& error) {
     g_prog = build_program(shaders::image_opaque_vert, shaders::image_opaque_frag, "image_opaque", error);

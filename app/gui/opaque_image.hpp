@@ -23,5 +23,8 @@ void begin_frame();
 // Queues texture `tex` (every texel opaque) over [min, max) in display pixels, uv0 at min and uv1 at max,
 // at this point of `dl`'s draw order and inside its current clip rectangle.
 void add(ImDrawList* dl, GLuint tex, ImVec2 min, ImVec2 max, ImVec2 uv0 = ImVec2(0, 0), ImVec2 uv1 = ImVec2(1, 1));
+// Draws one now, from inside a draw-list callback (ImGui's viewport over the whole framebuffer, the caller's
+// scissor); leaves blending off and this module's program bound. False if the shader is not there.
+bool draw(GLuint tex, ImVec2 min, ImVec2 max, ImVec2 uv0 = ImVec2(0, 0), ImVec2 uv1 = ImVec2(1, 1));
 
 }  // namespace impactlab::gui::opaque_image

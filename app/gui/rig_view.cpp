@@ -6,6 +6,7 @@
 
 #include "embedded_shaders.hpp"
 #include "gl_util.hpp"
+#include "opaque_image.hpp"
 
 namespace impactlab::gui {
 
@@ -63,6 +64,8 @@ void RigView::draw_shapes(std::size_t first, std::size_t count) {
 
 void RigView::shutdown() {
     if (backdrop_tex_) glDeleteTextures(1, &backdrop_tex_);
+    if (backdrop_img_) glDeleteTextures(1, &backdrop_img_);
+    backdrop_img_ = 0;
     if (backdrop_fbo_) glDeleteFramebuffers(1, &backdrop_fbo_);
     backdrop_tex_ = backdrop_fbo_ = 0;
     backdrop_key_.clear();
@@ -368,15 +371,26 @@ void RigView::render(const ImVec4& clip_rect) {
         glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
         set_common(shapes_prog_);
         draw_shapes(0, static_count_);
+        // Read back into a plain texture: under llvmpipe, sampling a texture that has been a render target
+        // made every frame wait for the renderer (5 ms); an uploaded one does not.
+        std::vector<unsigned char> px(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+        glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+        backdrop_img_ = upload_rgba_texture(backdrop_img_, w, h, px.data());
         glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(prev));
     }
-    glViewport(vx, vy, w, h);
     glEnable(GL_SCISSOR_TEST);
     scissor(0, 0, w, h);
-    // The copy: one unblended image the renderer draws at memory speed.
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, backdrop_fbo_);
-    glBlitFramebuffer(0, 0, w, h, vx, vy, vx + w, vy + h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    // The copy: one unblended plain texture copy, which the renderer draws at memory speed (a blit between
+    // the two formats costs it twice as much). Its rows run bottom-up, as the image was rendered.
+    const ImVec2 size(static_cast<float>(w) / scale.x, static_cast<float>(h) / scale.y);
+    if (!opaque_image::draw(backdrop_img_, at_, ImVec2(at_.x + size.x, at_.y + size.y), ImVec2(0, 1), ImVec2(1, 0))) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, backdrop_fbo_);
+        glBlitFramebuffer(0, 0, w, h, vx, vy, vx + w, vy + h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    }
+    glViewport(vx, vy, w, h);
 
     // The magnets' field lines over it, only in a box round the magnets (they fade out before its edge).
     constexpr double kFieldReach = 0.045;

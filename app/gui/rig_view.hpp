@@ -87,7 +87,7 @@ private:
     Palette pal_{};
     // The backdrop's static part (gradient and plate grid), drawn when its view or palette changes and
     // copied into the image each frame: under a software renderer it was a third of the rig's cost.
-    GLuint backdrop_fbo_ = 0, backdrop_tex_ = 0;
+    GLuint backdrop_fbo_ = 0, backdrop_tex_ = 0, backdrop_img_ = 0;   // drawn into _tex_, shown from _img_
     std::vector<float> backdrop_key_;   // what it was drawn for
     float px_per_m_ = 1000;
     double cx_ = 0, cy_ = 0;
