@@ -12,12 +12,28 @@ mkdir -p "$dir"
 png="$dir/gui_smoke.png"; log="$dir/gui_smoke.log"
 rm -f "$png" "$log"
 LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1280x800x24" \
-    "$gui" --frames 120 --screenshot "$png" --model A1H --omega 18 --speed 4 >"$log" 2>&1
+    "$gui" --frames 120 --screenshot "$png" --state-json "$dir/gui_smoke.json" --switch-model A1G --model A1H --omega 18 --speed 4 >"$log" 2>&1
 rc=$?
 cat "$log"
 if [ $rc -ne 0 ]; then echo "gui_smoke: impactlab-gui exited with $rc"; exit 1; fi
 [ -f "$png" ] || { echo "gui_smoke: no screenshot written"; exit 1; }
 "$check" "$png" 1280 800 || exit 1
+# Every tile must be a real picture of its own (the rig is drawn in the window's pass from a callback, the
+# plots as opaque images: a tile whose drawing went missing would be flat), the rig's a full one. The tiles'
+# rectangles come from --state-json.
+if command -v python3 >/dev/null 2>&1; then
+    regions=$(python3 -c '
+import json, sys
+j = json.load(open(sys.argv[1]))
+for t in j["layout"]["tiles"]:
+    x, y, w, h = (int(round(v)) for v in t["rect"])
+    kind = "--busy" if "rig" in t["panels"] else "--region"   # the rig fills its tile
+    print("%s %d %d %d %d" % (kind, x + 4, y + 24, w - 8, h - 28))
+' "$dir/gui_smoke.json") || { echo "gui_smoke: no tiles in the state JSON"; exit 1; }
+    [ -n "$regions" ] || { echo "gui_smoke: no tiles in the state JSON"; exit 1; }
+    # shellcheck disable=SC2086
+    "$check" "$png" 1280 800 $regions || { echo "gui_smoke: a tile looks blank"; exit 1; }
+fi
 # The simulation must have advanced, and the model switch must have happened.
 t=$(sed -n 's/.*sim_time=\([0-9.]*\).*/\1/p' "$log" | tail -n 1)
 [ -n "$t" ] || { echo "gui_smoke: no sim_time in the output"; exit 1; }
