@@ -164,3 +164,28 @@ TEST_CASE("audit: a wrong cart mass is named as such, alone, with the mass withi
         CHECK(r.validation_rms_after_m < 1.5 * r.sigma_x);
     }
 }
+
+TEST_CASE("audit: x read 3 ms late is a sensor delay, not a phase offset; undelayed data name none") {
+    // A late sensor read as phase_offset + unexplained_phi: at one omega a lag is a phase offset -omega tau, but
+    // across the steps the offset grows with omega, which a constant offset cannot follow. The record here is
+    // made undelayed and x shifted by three samples against t and phi (not by the law being tested).
+    const id::Model a1h = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
+    const id::MeasuredData d = id::synthesize(a1h, steps_9_16(1));
+    id::FitOptions fo;
+    fo.plots = false;
+    const id::FitReport r0 = id::run_fit(d, a1h, fo);
+    CHECK_FALSE(named(r0, "sensor_delay"));
+    CHECK(r0.effects_found.empty());
+    const std::size_t lag = 3;   // samples at 1 kHz
+    id::MeasuredData late = d;
+    late.t.erase(late.t.begin(), late.t.begin() + lag);
+    late.phi.erase(late.phi.begin(), late.phi.begin() + lag);
+    late.line.erase(late.line.begin(), late.line.begin() + lag);
+    late.x.resize(late.t.size());
+    const id::FitReport r = id::run_fit(late, a1h, fo);
+    REQUIRE(r.effects_found.size() == 1);
+    const id::FoundEffect& f = r.effects_found.front();
+    REQUIRE(f.id == "sensor_delay");
+    CHECK(std::abs(f.parameters.front().second - 3e-3) <= 3.0 * f.sigma.front().second);
+    CHECK(r.validation_rms_after_m < 1.5 * r.sigma_x);
+}

@@ -40,19 +40,19 @@ struct Model {
 // (m = 1, no bumper; for the Silverbox benchmark). Throws ParamError.
 Model resolve_fit_model(const std::string& name_or_path, Forcing forcing);
 
-// The effects impactlab fit and synth know: the registry's force laws plus three that change the base
-// model instead of adding a force (bumper_offset, impact_duration, restitution).
+// The effects impactlab fit and synth know: the registry's force laws plus four that change the base
+// model instead of adding a force (bumper_offset, impact_duration, restitution, cart_mass).
 struct EffectInfo {
     std::string id, meaning;
     std::vector<std::string> names, units;
     std::vector<double> defaults;
     bool generic = false;      // unexplained_*: only the last-resort generic stage uses it
-    bool changes_base = false; // bumper_offset, impact_duration, restitution
+    bool changes_base = false; // bumper_offset, impact_duration, restitution, cart_mass
 };
 const std::vector<EffectInfo>& effect_catalogue();
 const EffectInfo* find_catalogue_effect(const std::string& id);
 // Sets effect `id` with its parameter values (missing ones keep their defaults) into the model: a force law
-// is appended to p.effects, a base-changing effect edits p (xI, the impact law). Throws ParamError.
+// is appended to p.effects, a base-changing effect edits p (xI, the impact law, m). Throws ParamError.
 void apply_effect(Model& m, const std::string& id, const std::vector<std::pair<std::string, double>>& values);
 
 struct FitOptions {

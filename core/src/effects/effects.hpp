@@ -18,6 +18,7 @@ const EffectLaw& phase_offset_law();
 const EffectLaw& unbalance_scale_law();
 const EffectLaw& sensor_offset_law();
 const EffectLaw& sensor_gain_law();
+const EffectLaw& sensor_delay_law();
 const EffectLaw& unexplained_x_law();
 const EffectLaw& unexplained_v_law();
 const EffectLaw& unexplained_x_signv_law();

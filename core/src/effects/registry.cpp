@@ -1,6 +1,6 @@
 // The effect registry: one line per named physical effect. A new effect is one file (its force law, how fit
-// looks for it, how it is described) plus one line here. (impactlab fit also knows three effects that change
-// the base model rather than add a force: bumper_offset, impact_duration and restitution; see
+// looks for it, how it is described) plus one line here. (impactlab fit also knows four effects that change
+// the base model rather than add a force: bumper_offset, impact_duration, restitution and cart_mass; see
 // core/src/identify/catalogue.cpp.)
 #include "effects/effects.hpp"
 
@@ -21,6 +21,7 @@ const std::vector<EffectLaw>& effect_laws() {
         effects::unbalance_scale_law(),
         effects::sensor_offset_law(),
         effects::sensor_gain_law(),
+        effects::sensor_delay_law(),
         effects::unexplained_x_law(),
         effects::unexplained_v_law(),
         effects::unexplained_x_signv_law(),

@@ -13,5 +13,6 @@ set(IMPACTLAB_EFFECT_SOURCES
   src/effects/unbalance_scale.cpp
   src/effects/sensor_offset.cpp
   src/effects/sensor_gain.cpp
+  src/effects/sensor_delay.cpp
   src/effects/unexplained.cpp
 )

@@ -15,7 +15,7 @@ std::vector<RecoveryCase> recovery_cases(const std::vector<std::string>& version
         {{"", "phase_offset", "delta", 0.05}, false},    {{"", "unbalance_scale", "s", 0.05}, false},
         {{"", "sensor_offset", "o", 3e-4}, false},       {{"", "sensor_gain", "g", 1.03}, false},
         {{"", "bumper_offset", "dx", 5e-4}, false},      {{"", "restitution", "kappa0", 0.4}, true},
-        {{"", "cart_mass", "dm", -0.2}, false},
+        {{"", "cart_mass", "dm", -0.2}, false},          {{"", "sensor_delay", "tau", 3e-3}, false},
     };
     std::vector<RecoveryCase> out;
     for (const auto& v : versions) {
