@@ -552,7 +552,7 @@ void App::fill_bench_data(int points) {
         m.v = 0.12 * b / 0.4;
         m.t = i;
         sections_.push(m);
-        pc_map_.push({m.x, m.v, i % 3, 0.02, 0.2});
+        pc_map_.push({m.t, m.x, m.v, i % 3, 0.02, 0.2});
     }
     Diagram d;
     d.model = model_name();

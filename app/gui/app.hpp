@@ -186,6 +186,9 @@ private:
     History<SimMsg> traj_{std::size_t{1} << 19};   // 9 min at 1x, 5 s at 100x
     History<SimMsg> sections_{std::size_t{1} << 18};   // every section point of the epoch (CSV, x(t) dots)
     PoincareMap pc_map_;                               // what the Poincare map shows: settled points only
+    PoincareMap replay_map_;                           // replaying: pc_map_ as it stood at the cursor
+    // The map the panels show: the live one, or while replaying the one at the cursor (app_replay.cpp).
+    const PoincareMap& shown_map() const;
     SectionFeeder pc_feed_;
     SimMsg last_{};
     bool have_last_ = false;

@@ -26,6 +26,8 @@ std::string clip_name(const std::string& model) {
 }
 }  // namespace
 
+const PoincareMap& App::shown_map() const { return replay_.active() ? replay_map_ : pc_map_; }
+
 bool App::enter_replay() {
     if (replay_.active()) return true;
     if (!replay_.enter(traj_, paused_)) {
@@ -106,6 +108,7 @@ void App::begin_replay_frame() {
     replay_live_.phi_prev = phi_prev_;
     replay_live_.max_force = frame_max_force_;
     const SimMsg m = traj_[i];
+    replay_map_.replay(pc_map_, m.t);   // the Poincare map as it stood then (fed forward, rebuilt going back)
     last_ = m;
     phi_prev_ = i > 0 ? traj_[i - 1].phi : m.phi;
     frame_max_force_ = m.force;

@@ -10,7 +10,7 @@ BifurcationContext App::bifurcation_context() {
     c.model = model_name();
     c.omega = omega_;
     c.xI = xI_;
-    c.live = &pc_map_.points();   // settled section points only: the transient never reaches the map
+    c.live = &shown_map().points();   // settled section points only (replaying: those of the cursor's instant)
     c.protocol = &bif_protocol_;
     c.steps = &bif_steps_;
     c.overlay = [this](Plot& plot) {

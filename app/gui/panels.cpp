@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -565,9 +566,10 @@ ImU32 impacts_color(int impacts, float alpha) {
 
 void App::draw_poincare() {
     const Palette& pal = palette();
-    const History<MapPoint>& pts = pc_map_.points();
+    const PoincareMap& map = shown_map();   // replaying: as it stood at the cursor
+    const History<MapPoint>& pts = map.points();
     const std::size_t n = pts.size();
-    const PoincareMap::Status status = pc_map_.status();
+    const PoincareMap::Status status = map.status();
     const bool periodic = status == PoincareMap::Status::Periodic;
     // A periodic orbit is a few points: large. A chaotic one is thousands: small enough to show structure.
     const float dot = periodic ? std::max(7.0f, 8.0f * ui_scale_) : std::max(3.0f, 3.5f * ui_scale_);
@@ -585,12 +587,12 @@ void App::draw_poincare() {
     const bool legend = impacts_seen[1] || impacts_seen[2] || impacts_seen[3];
 
     // The label: what the map knows. The period is the settle detector's, never a guess from the transient.
-    char label[128];
-    const unsigned long long seen = pc_map_.seen();
+    char label[160];
+    const unsigned long long seen = map.seen();
     if (seen == 0) std::snprintf(label, sizeof label, "no section yet (one per forcing period)");
     else if (status == PoincareMap::Status::Settling)
         std::snprintf(label, sizeof label, "settling...  %llu period%s, the transient is not drawn", seen, seen == 1 ? "" : "s");
-    else if (periodic) std::snprintf(label, sizeof label, "period %d", pc_map_.period());
+    else if (periodic) std::snprintf(label, sizeof label, "period %d", map.period());
     else std::snprintf(label, sizeof label, "chaos: no period <= 16   %zu points", n);
     static const char* kNames[4] = {"0", "1", "2", "3+"};
     const char* legend_title = "impacts/period";
@@ -605,10 +607,19 @@ void App::draw_poincare() {
     // side by side) stays free of points.
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const double area_w = avail.x - fs * 4.4f, area_h = avail.y - fs * 2.8f;
-    if (ImGui::CalcTextSize(label).x + 12 > area_w) {   // a small tile or a large UI scale: the short words
+    // Replaying, the map is that of the replayed instant, and says so.
+    char when[48] = "";
+    if (replay_.active()) std::snprintf(when, sizeof when, "  (replay, t = %.2f s)", last_.t);
+    const auto too_wide = [&] { return ImGui::CalcTextSize(label).x + ImGui::CalcTextSize(when).x + 12 > area_w; };
+    if (too_wide()) {   // a small tile or a large UI scale: the short words
         if (seen == 0) std::snprintf(label, sizeof label, "no section yet");
         else if (status == PoincareMap::Status::Settling) std::snprintf(label, sizeof label, "settling... %llu", seen);
         else if (!periodic) std::snprintf(label, sizeof label, "chaos  %zu points", n);
+        if (replay_.active() && too_wide()) std::snprintf(when, sizeof when, "  (replay)");
+    }
+    {
+        const std::size_t len = std::strlen(label);
+        std::snprintf(label + len, sizeof label - len, "%s", when);
     }
     const bool two_lines = legend && ImGui::CalcTextSize(label).x + legend_w + 24 > area_w;
     const double edge = ring + 3.0 + 0.06 * std::min(area_w, area_h);
@@ -658,10 +669,10 @@ void App::draw_poincare() {
         const ImVec2 c = plot.to_px(pts.back().x, pts.back().v);
         plot.draw()->AddCircle(c, ring, pal.section_new, 0, 2.0f);
     }
-    if (periodic && n >= static_cast<std::size_t>(pc_map_.period())) {
+    if (periodic && n >= static_cast<std::size_t>(map.period())) {
         // The order of the visits, 1..k along the last cycle: points closer than a dot share one label
         // ("1,4"), so a doubled orbit's close pairs read as pairs, not as single points.
-        const std::size_t k = static_cast<std::size_t>(pc_map_.period());
+        const std::size_t k = static_cast<std::size_t>(map.period());
         std::vector<ImVec2> at(k);
         std::vector<bool> done(k, false);
         for (std::size_t j = 0; j < k; ++j) at[j] = plot.to_px(pts[n - k + j].x, pts[n - k + j].v);

@@ -15,7 +15,8 @@ PoincareMap::PoincareMap(const PoincareConfig& cfg)
     : cfg_(cfg),
       window_(std::max<std::size_t>(3 * static_cast<std::size_t>(cfg.max_period) + 2,
                                     static_cast<std::size_t>(cfg.chaos_after)) + 8),
-      points_(cfg.capacity) {
+      points_(cfg.capacity),
+      inputs_(cfg.capacity) {
     recent_.reserve(window_ + 1);
     update_tolerance();
 }
@@ -23,6 +24,8 @@ PoincareMap::PoincareMap(const PoincareConfig& cfg)
 void PoincareMap::reset() {
     recent_.clear();
     points_.clear();
+    inputs_.clear();
+    replay_of_ = nullptr;
     from_chaos_ = false;
     status_ = Status::Settling;
     period_ = 0;
@@ -83,7 +86,26 @@ void PoincareMap::declare_chaos() {
         points_.push({recent_[i].x, recent_[i].v, recent_[i].impacts});
 }
 
+void PoincareMap::replay(const PoincareMap& live, double t) {
+    const History<MapInput>& in = live.inputs();
+    // The inputs up to t: [0, end).
+    const std::size_t end = in.lower_bound(std::nextafter(t, INFINITY), [](const MapInput& m) { return m.t; });
+    const std::uint64_t end_seq = end < in.size() ? in.seq_of(end) : in.seq_of(0) + in.size();
+    const bool go_on = replay_of_ == &live && replay_generation_ == in.generation() && replay_fed_seq_ <= end_seq &&
+                       (in.empty() || replay_fed_seq_ >= in.seq_of(0));
+    if (!go_on) {
+        const PoincareMap* keep = &live;
+        reset();
+        replay_of_ = keep;
+        replay_generation_ = in.generation();
+        replay_fed_seq_ = in.empty() ? 0 : in.seq_of(0);
+    }
+    for (std::size_t i = static_cast<std::size_t>(replay_fed_seq_ - (in.empty() ? 0 : in.seq_of(0))); i < end; ++i) push(in[i]);
+    replay_fed_seq_ = end_seq;
+}
+
 void PoincareMap::push(const MapInput& in) {
+    inputs_.push(in);
     ++seen_;
     ++unsettled_;
     recent_.push_back(in);
@@ -152,6 +174,7 @@ void SectionFeeder::on_msg(const SimMsg& m, PoincareMap& map) {
             break;
         case MsgKind::Section: {
             MapInput in;
+            in.t = m.t;
             in.x = m.x;
             in.v = m.v;
             in.impacts = std::max(impacts_, onsets_);

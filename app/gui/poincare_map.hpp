@@ -31,6 +31,7 @@ struct PoincareConfig {
 
 // One section point and what happened in the forcing period that ended at it.
 struct MapInput {
+    double t = 0;                 // [s] the section's time
     double x = 0, v = 0;          // [m], [m/s] at phi = 2 pi n
     int impacts = 0;              // impacts on the bumper during the period
     double size_x = 0, size_v = 0;   // the trajectory's extent over that period (the attractor's size)
@@ -63,6 +64,12 @@ public:
     // The recurrence tolerance now in force [m], [m/s] (rel_tol times the attractor's size).
     double tol_x() const { return tol_x_; }
     double tol_v() const { return tol_v_; }
+    // Every input since the last reset(), oldest first (up to the capacity: beyond it the oldest go).
+    const History<MapInput>& inputs() const { return inputs_; }
+    // Replay: makes this map what `live` was once its inputs up to time t [s] had arrived, by feeding them
+    // again (the same decisions, the same points). Moving forward only feeds the new ones; going back starts
+    // over. Exact unless `live` has dropped inputs (more than the capacity since its reset).
+    void replay(const PoincareMap& live, double t);
 
 private:
     void update_tolerance();
@@ -75,6 +82,10 @@ private:
     std::vector<MapInput> recent_;   // the newest points since the last reset, at most window_ of them
     std::size_t window_;
     History<MapPoint> points_;
+    History<MapInput> inputs_;
+    // replay(): what this map was last fed from, and how much of it.
+    const PoincareMap* replay_of_ = nullptr;
+    std::uint64_t replay_generation_ = 0, replay_fed_seq_ = 0;
     Status status_ = Status::Settling;
     int period_ = 0;
     std::uint64_t seen_ = 0;

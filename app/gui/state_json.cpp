@@ -90,14 +90,15 @@ bool App::write_state_json(const std::string& path) {
         j["x_max_step"] = step;
     }
     j["potential_view"] = {potential_y_.cur.lo, potential_y_.cur.hi};   // [J] the potential plot's y range
-    const PoincareMap::Status st = pc_map_.status();
+    const PoincareMap& map = shown_map();   // replaying: the map at the cursor, as the panel shows it
+    const PoincareMap::Status st = map.status();
     j["poincare_status"] = st == PoincareMap::Status::Periodic ? "periodic"
                            : st == PoincareMap::Status::Chaotic ? "chaos" : "settling";
-    j["poincare_period"] = st == PoincareMap::Status::Settling ? json(nullptr) : json(pc_map_.period());
-    j["poincare_seen"] = pc_map_.seen();   // section points since the last change, the transient included
-    j["poincare_tol"] = {pc_map_.tol_x(), pc_map_.tol_v()};
+    j["poincare_period"] = st == PoincareMap::Status::Settling ? json(nullptr) : json(map.period());
+    j["poincare_seen"] = map.seen();   // section points since the last change, the transient included
+    j["poincare_tol"] = {map.tol_x(), map.tol_v()};
     json pts = json::array(), imp = json::array();
-    const History<MapPoint>& h = pc_map_.points();
+    const History<MapPoint>& h = map.points();
     for (std::size_t i = 0; i < h.size(); ++i) {
         pts.push_back({h[i].x, h[i].v});
         imp.push_back(h[i].impacts);

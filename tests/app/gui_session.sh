@@ -109,4 +109,22 @@ if not (h["t_last"] > tc + 0.5 and j["sim_time"] > tc + 0.5 and h["replay_t"] is
     print(f"gui_session: FAIL: the run did not go on from t = {tc}: {h}, sim_time {j['sim_time']}")
     sys.exit(1)
 PY
-echo "gui_session: passed (round trip A1G 12.5 rad/s 2 mm, five bad files refused, a 31-frame clip, replay continued)"
+# 5. The Poincare map while replaying is the map of the replayed instant: the section points it has seen
+#    are those up to the cursor (one a forcing period from t = 0), not the live ones 15 s later.
+gui_run pmap --model A1H --preset 3 --speed 10 --frames 400 --replay-back 15 --state-json "$dir/pmap.json"
+[ $rc -eq 0 ] || { cat "$dir/pmap.log"; fail "the replay run of the map exited with $rc"; }
+python3 - "$dir/pmap.json" <<'PY' || exit 1
+import json, math, sys
+j = json.load(open(sys.argv[1]))
+h = j["history"]
+period = 2 * math.pi / j["omega"]
+if h["replay_t"] is None or h["replay_t"] < 3 or h["t_last"] - h["replay_t"] < 12:
+    print(f"gui_session: FAIL: not replaying 15 s back at t >= 3 s: {h}")
+    sys.exit(1)
+seen, expected = j["poincare_seen"], h["replay_t"] / period
+if abs(seen - expected) > 2:
+    print(f"gui_session: FAIL: replaying at t = {h['replay_t']:.2f} s the map has seen {seen} sections, "
+          f"expected {expected:.1f} (the live map's {h['t_last'] / period:.1f}?)")
+    sys.exit(1)
+PY
+echo "gui_session: passed (round trip A1G 12.5 rad/s 2 mm, five bad files refused, a 31-frame clip, replay continued, the map replayed)"

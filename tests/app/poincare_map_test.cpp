@@ -198,3 +198,65 @@ TEST_CASE("poincare map: on the engine, the presets' periods are read from what 
         }
     }
 }
+
+namespace {
+// What a map shows, to compare two maps with.
+struct MapView {
+    PoincareMap::Status status;
+    int period;
+    std::uint64_t seen;
+    std::vector<MapPoint> points;
+};
+MapView view_of(const PoincareMap& m) {
+    MapView v{m.status(), m.period(), m.seen(), {}};
+    for (std::size_t i = 0; i < m.points().size(); ++i) v.points.push_back(m.points()[i]);
+    return v;
+}
+void check_same(const MapView& a, const MapView& b) {
+    CHECK(a.status == b.status);
+    CHECK(a.period == b.period);
+    CHECK(a.seen == b.seen);
+    REQUIRE(a.points.size() == b.points.size());
+    for (std::size_t i = 0; i < a.points.size(); ++i) {
+        CHECK(a.points[i].x == b.points[i].x);
+        CHECK(a.points[i].v == b.points[i].v);
+        CHECK(a.points[i].impacts == b.points[i].impacts);
+    }
+}
+}  // namespace
+
+TEST_CASE("poincare map replay: at any instant it is the live map as it stood then, forwards and backwards") {
+    // A transient into period 2, then chaos (a new attractor without a reset), one section every 0.35 s.
+    PoincareMap live;
+    std::vector<MapView> then;   // the live map after each input
+    std::vector<double> times;
+    for (int n = 0; n < 300; ++n) {
+        MapInput in = n < 150 ? orbit_point(kP2, n, 0.004, 0.85)
+                              : MapInput{0, -0.010 + 0.004 * std::sin(1.7 * n * n), 0.05 * std::cos(0.9 * n * n), n % 3, 0.012, 0.15};
+        in.t = 0.35 * (n + 1);
+        live.push(in);
+        then.push_back(view_of(live));
+        times.push_back(in.t);
+    }
+    REQUIRE(then[140].status == PoincareMap::Status::Periodic);
+    REQUIRE(live.status() == PoincareMap::Status::Chaotic);
+    PoincareMap replay;
+    // Forwards (fed incrementally), back (rebuilt), and between two sections (the earlier one counts).
+    for (int n : {10, 60, 149, 200, 299, 120, 5, 250}) {
+        CAPTURE(n);
+        replay.replay(live, times[static_cast<std::size_t>(n)] + 0.1);
+        check_same(view_of(replay), then[static_cast<std::size_t>(n)]);
+    }
+    replay.replay(live, 0.1);   // before the first section: an empty map
+    CHECK(replay.seen() == 0);
+    CHECK(replay.points().empty());
+    // The live map starts over (a change of the dynamics): the replay follows the new one.
+    live.reset();
+    for (int n = 0; n < 40; ++n) {
+        MapInput in = orbit_point(kP1, n, 0.002, 0.8);
+        in.t = 200.0 + 0.35 * n;
+        live.push(in);
+    }
+    replay.replay(live, 1e9);
+    check_same(view_of(replay), view_of(live));
+}
