@@ -8,6 +8,7 @@
 #include "common.hpp"
 #include "impactlab/figures.hpp"
 #include "impactlab/forces.hpp"
+#include "impactlab/identify.hpp"
 #include "impactlab/identify_data.hpp"
 #include "impactlab/params_json.hpp"
 #include "impactlab/simulator.hpp"
@@ -48,6 +49,9 @@ int cmd_models(const std::vector<std::string>& argv) {
     for (std::size_t i = 0; i < names.size(); ++i) std::printf("%s%s", names[i].c_str(), i + 1 < names.size() ? " " : "\n");
     std::printf("\nExtra effects (for parameter files and impactlab fit):\n");
     for (const auto& e : effect_laws()) std::printf("  %-22s %s\n", e.id, e.meaning);
+    std::printf("\nEffects that change the base model instead of adding a force (impactlab fit finds them, synth --effect sets them):\n");
+    for (const auto& e : identify::effect_catalogue())
+        if (e.changes_base) std::printf("  %-22s %s\n", e.id.c_str(), e.meaning.c_str());
     std::printf("\nValid ranges (a parameter file outside them is refused, naming the key):\n");
     for (const auto& r : param_ranges())
         std::printf("  %-16s [%g, %g] %s  (%s)\n", r.key, r.lo, r.hi, r.unit, r.why);

@@ -75,7 +75,8 @@ impactlab_cli_test(model_json_ok --rc 0 --csv x.csv "n,x,v" 3 3
                    --write ok.json "{\"base\": \"A1G\", \"name\": \"tilted\", \"xI\": 0.002}"
                    -- poincare --model ok.json --omega 18 --periods 3 --out x.csv)
 impactlab_cli_test(xI_out_of_range --rc 2 --match "'--xI'" -- simulate --xI 0.2 --omega 18 --duration 2 --out x.csv)
-impactlab_cli_test(models_list --rc 0 --match "A1C1" --match "kappa0" --match "constant_force" -- models)
+impactlab_cli_test(models_list --rc 0 --match "A1C1" --match "kappa0" --match "constant_force" --match "cart_mass"
+                   --match "bumper_offset" -- models)
 impactlab_cli_test(models_json --rc 0 --match "\"model\": \"H\"" --match "\"kappa0\"" -- models --json A1H)
 impactlab_cli_test(models_json_unknown --rc 2 --match "--json" --match "Q9" -- models --json Q9)
 
