@@ -142,6 +142,21 @@ void flush_canvas_uploads() {
     list.clear();
 }
 
+bool scissor_to_clip(const ImVec4& c) {
+    const ImDrawData* dd = ImGui::GetDrawData();
+    if (!dd) return false;
+    // Framebuffer pixels, origin at the bottom left.
+    const ImVec2 scale = dd->FramebufferScale;
+    const float fb_h = dd->DisplaySize.y * scale.y;
+    const float x0 = (c.x - dd->DisplayPos.x) * scale.x, y0 = (c.y - dd->DisplayPos.y) * scale.y;
+    const float x1 = (c.z - dd->DisplayPos.x) * scale.x, y1 = (c.w - dd->DisplayPos.y) * scale.y;
+    if (x1 <= x0 || y1 <= y0) return false;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(static_cast<GLint>(x0), static_cast<GLint>(fb_h - y1), static_cast<GLsizei>(x1 - x0),
+              static_cast<GLsizei>(y1 - y0));
+    return true;
+}
+
 std::vector<unsigned char> read_framebuffer_rgb(int w, int h) {
     std::vector<unsigned char> px(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);

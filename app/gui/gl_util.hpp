@@ -4,6 +4,7 @@
 
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <imgui.h>
 
 #include <string>
 #include <vector>
@@ -47,6 +48,10 @@ private:
 
 // Sends every recorded CanvasTexture upload: once a frame, after the UI is built and before it is rendered.
 void flush_canvas_uploads();
+
+// From a draw-list callback: sets and enables the GL scissor to the command's clip rectangle (display
+// pixels of the current draw data, as ImGui's backend does); false, setting nothing, if it is empty.
+bool scissor_to_clip(const ImVec4& clip_rect);
 
 // Reads the current read framebuffer (w x h from the lower left) and writes a PNG (top row first).
 // Returns false and fills `error` on failure.

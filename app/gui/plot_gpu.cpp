@@ -42,17 +42,8 @@ void draw_batch(const ImDrawList*, const ImDrawCmd* cmd) {
     const auto index = static_cast<std::size_t>(reinterpret_cast<std::intptr_t>(cmd->UserCallbackData));
     if (index >= g_batches.size()) return;
     const Batch& b = g_batches[index];
+    if (!scissor_to_clip(cmd->ClipRect)) return;   // the plot's clip rectangle
     const ImDrawData* dd = ImGui::GetDrawData();
-    // Scissor to the plot's clip rectangle (framebuffer pixels, origin at the bottom left).
-    const ImVec2 scale = dd->FramebufferScale;
-    const float fb_h = dd->DisplaySize.y * scale.y;
-    const ImVec4 c = cmd->ClipRect;
-    const float x0 = (c.x - dd->DisplayPos.x) * scale.x, y0 = (c.y - dd->DisplayPos.y) * scale.y;
-    const float x1 = (c.z - dd->DisplayPos.x) * scale.x, y1 = (c.w - dd->DisplayPos.y) * scale.y;
-    if (x1 <= x0 || y1 <= y0) return;
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(static_cast<GLint>(x0), static_cast<GLint>(fb_h - y1), static_cast<GLsizei>(x1 - x0),
-              static_cast<GLsizei>(y1 - y0));
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
