@@ -8,24 +8,13 @@
 #include <vector>
 
 #include "impactlab/identify.hpp"
+#include "fit_cases.hpp"
 
 namespace id = impactlab::identify;
+using id::test::analyse;
+using id::test::short_run;
 
 namespace {
-
-id::SynthOptions steps_9_16(unsigned seed) {
-    id::SynthOptions o;
-    o.duration = 20.0;
-    o.seed = seed;
-    id::steps_profile({9.0, 16.0}, 9.0, 2.0, o.knot_t, o.knot_omega);   // periodic, then chaotic with impacts
-    return o;
-}
-
-id::FitReport analyse(const id::Model& truth, const id::SynthOptions& so, const std::string& model) {
-    id::FitOptions fo;
-    fo.plots = false;
-    return id::run_fit(id::synthesize(truth, so), id::resolve_fit_model(model, id::Forcing::Unbalance), fo);
-}
 
 bool named(const id::FitReport& r, const std::string& effect) {
     return std::any_of(r.effects_found.begin(), r.effects_found.end(), [&](const id::FoundEffect& f) { return f.id == effect; });
@@ -40,7 +29,7 @@ TEST_CASE("audit: two force effects at once are both kept, whichever the validat
     id::Model truth = id::resolve_fit_model("A1G", id::Forcing::Unbalance);
     id::apply_effect(truth, "even_stiffness", {{"k2", 3000.0}});
     id::apply_effect(truth, "phase_offset", {{"delta", 0.05}});
-    const id::FitReport r = analyse(truth, steps_9_16(1), "A1G");
+    const id::FitReport r = analyse(truth, short_run(1), "A1G");
     CHECK(r.effects_found.size() == 2);
     CHECK(named(r, "even_stiffness"));
     CHECK(named(r, "phase_offset"));
@@ -56,7 +45,7 @@ TEST_CASE("audit: a baseline fit never hands back parameters worse than those gi
     id::FitOptions fo;
     fo.plots = false;
     fo.fit_baseline = true;
-    id::SynthOptions so = steps_9_16(1);
+    id::SynthOptions so = short_run(1);
     so.rate = 200.0;
     const id::MeasuredData coarse = id::synthesize(a1h, so);
     const id::FitReport r = id::run_fit(coarse, a1h, fo);
@@ -66,7 +55,7 @@ TEST_CASE("audit: a baseline fit never hands back parameters worse than those gi
     CHECK(r.after.p.k == a1h.p.k);
     CHECK(r.error_after.shooting_rms_1_m <= 1.01 * id::evaluate_model(coarse, a1h, fo).shooting_rms_1_m);
     // A3 data fitted from A1's parameters: the fitted baseline is far better than the one given, and stays.
-    const id::MeasuredData a3 = id::synthesize(id::resolve_fit_model("A3H", id::Forcing::Unbalance), steps_9_16(1));
+    const id::MeasuredData a3 = id::synthesize(id::resolve_fit_model("A3H", id::Forcing::Unbalance), short_run(1));
     const id::FitReport r3 = id::run_fit(a3, a1h, fo);
     CHECK(r3.baseline == "fit");
     CHECK(r3.error_after.shooting_rms_1_m < 0.1 * id::evaluate_model(a3, a1h, fo).shooting_rms_1_m);
@@ -103,7 +92,7 @@ TEST_CASE("audit: an impact-law effect kept is the one validated, refitted again
     // shift the impact stage had fitted against another model, not the one validated; the model handed back
     // simulated three times worse than the validation said (15.9 um against 5.1 um), with a shift that,
     // refitted, was 6 +/- 6 um.
-    id::SynthOptions so = steps_9_16(1);
+    id::SynthOptions so = short_run(1);
     so.duration = 40.0;
     id::steps_profile({9.0, 16.0}, 19.0, 2.0, so.knot_t, so.knot_omega);
     const id::FitReport r = analyse(id::resolve_fit_model("A1G", id::Forcing::Unbalance), so, "A1C");
@@ -129,7 +118,7 @@ TEST_CASE("audit: with a fitted baseline, the effects join the base parameters r
     model.p.xI = 0.05;
     std::vector<id::MeasuredData> runs;
     for (double x0 : {-0.01, 0.01}) {
-        id::SynthOptions so = steps_9_16(x0 < 0 ? 1 : 2);
+        id::SynthOptions so = short_run(x0 < 0 ? 1 : 2);
         so.x0 = x0;
         runs.push_back(id::synthesize(truth, so));
     }
@@ -152,7 +141,7 @@ TEST_CASE("audit: a wrong cart mass is named as such, alone, with the mass withi
         id::Model truth = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
         truth.p.m *= scale;
         const id::Model a1h = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
-        const id::FitReport r = analyse(truth, steps_9_16(1), "A1H");
+        const id::FitReport r = analyse(truth, short_run(1), "A1H");
         REQUIRE(r.effects_found.size() == 1);
         const id::FoundEffect& f = r.effects_found.front();
         REQUIRE(f.id == "cart_mass");
@@ -170,7 +159,7 @@ TEST_CASE("audit: x read 3 ms late is a sensor delay, not a phase offset; undela
     // across the steps the offset grows with omega, which a constant offset cannot follow. The record here is
     // made undelayed and x shifted by three samples against t and phi (not by the law being tested).
     const id::Model a1h = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
-    const id::MeasuredData d = id::synthesize(a1h, steps_9_16(1));
+    const id::MeasuredData d = id::synthesize(a1h, short_run(1));
     id::FitOptions fo;
     fo.plots = false;
     const id::FitReport r0 = id::run_fit(d, a1h, fo);

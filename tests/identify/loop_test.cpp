@@ -15,21 +15,17 @@
 
 #include "impactlab/identify.hpp"
 #include "impactlab/simulator.hpp"
+#include "fit_cases.hpp"
 
 namespace id = impactlab::identify;
+using id::test::analyse;
+using id::test::short_run;
 using impactlab::EffectForce;
 using impactlab::EffectLaw;
 using impactlab::ForceContext;
 
 namespace {
 
-id::SynthOptions short_run(unsigned seed) {
-    id::SynthOptions o;
-    o.duration = 20.0;
-    o.seed = seed;
-    id::steps_profile({9.0, 16.0}, 9.0, 2.0, o.knot_t, o.knot_omega);   // periodic, then chaotic with impacts
-    return o;
-}
 
 id::Model a1h() { return id::resolve_fit_model("A1H", id::Forcing::Unbalance); }
 
@@ -43,12 +39,6 @@ double param(const id::FoundEffect& f, const std::string& name) {
     return 0;
 }
 
-id::FitReport analyse(const id::Model& truth, const id::SynthOptions& so, const std::string& model = "A1H") {
-    const id::MeasuredData d = id::synthesize(truth, so);
-    id::FitOptions fo;
-    fo.plots = false;
-    return id::run_fit(d, id::resolve_fit_model(model, id::Forcing::Unbalance), fo);
-}
 
 struct Case {
     const char* id;
