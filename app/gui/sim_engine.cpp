@@ -30,31 +30,21 @@ public:
     void on_section(const SectionPoint& sp) override {
         publish(MsgKind::Section, sp.t, sp.x, sp.v, sp.regime);
         if (GrazingMonitor::Period g; e_.grazing_.on_section(sp.t, e_.p_.xI, g)) {
-            SimMsg m;
-            m.kind = MsgKind::Grazing;
-            m.t = sp.t;
+            SimMsg m = e_.record(MsgKind::Grazing, sp.t);
             m.x = g.x_max;
             m.v = g.v_impact;
-            m.phi = e_.d_.phi(sp.t);
-            m.omega = e_.d_.omega(sp.t);
             m.force = g.penetration;
             m.energy = g.impacts;
-            m.epoch = e_.epoch_;
             m.regime = sp.regime;
             e_.put(m);
         }
     }
     void on_impact(const ImpactEvent& ev) override {
-        SimMsg m;
-        m.kind = MsgKind::Impact;
-        m.t = ev.t;
+        SimMsg m = e_.record(MsgKind::Impact, ev.t);
         m.x = e_.p_.xI;
         m.v = ev.v_plus;
-        m.phi = e_.d_.phi(ev.t);
-        m.omega = e_.d_.omega(ev.t);
         m.force = ev.v_minus;
         m.energy = ev.duration;
-        m.epoch = e_.epoch_;
         m.regime = Regime::Sticking;
         e_.grazing_.on_impact(ev);
         e_.put(m);
@@ -68,13 +58,9 @@ public:
 private:
     void publish(MsgKind kind, double t, double x, double v, Regime regime) {
         SimEngine& e = e_;
-        SimMsg m;
-        m.kind = kind;
-        m.t = t;
+        SimMsg m = e.record(kind, t);
         m.x = x;
         m.v = v;
-        m.phi = e.d_.phi(t);
-        m.omega = e.d_.omega(t);
         State at = e.s_;   // the impact in progress (regime II) sets the bumper force
         at.t = t;
         at.x = x;
@@ -82,7 +68,6 @@ private:
         at.regime = regime;
         m.force = bumper_force(e.p_, e.d_, at);
         m.energy = mechanical_energy(e.p_, x, v);
-        m.epoch = e.epoch_;
         m.regime = regime;
         ++e.published_;
         e.put(m);
@@ -118,21 +103,26 @@ void SimEngine::restart_grid() {
 
 void SimEngine::emit_now() {
     // The state as it is now, so a change shows at once; the sample grid restarts after it.
-    SimMsg m;
-    m.kind = MsgKind::Sample;
-    m.t = s_.t;
+    SimMsg m = record(MsgKind::Sample, s_.t);
     m.x = s_.x;
     m.v = s_.v;
-    m.phi = d_.phi(s_.t);
-    m.omega = d_.omega(s_.t);
     m.force = bumper_force(p_, d_, s_);
     m.energy = mechanical_energy(p_, s_.x, s_.v);
-    m.epoch = epoch_;
     m.regime = s_.regime;
     ++published_;
     put(m);
     grid_t0_ = s_.t;
     grid_k_ = 1;
+}
+
+SimMsg SimEngine::record(MsgKind kind, double t) const {
+    SimMsg m;
+    m.kind = kind;
+    m.t = t;
+    m.phi = d_.phi(t);
+    m.omega = d_.omega(t);
+    m.epoch = epoch_;
+    return m;
 }
 
 void SimEngine::put(SimMsg& m) {
@@ -337,14 +327,9 @@ void SimEngine::advance_held(double t_end) {
         if (t > t_end) break;
         ++grid_k_;
         if (t < s_.t) continue;
-        SimMsg m;
-        m.kind = MsgKind::Sample;
-        m.t = t;
+        SimMsg m = record(MsgKind::Sample, t);
         m.x = s_.x;
-        m.phi = d_.phi(t);
-        m.omega = d_.omega(t);
         m.energy = mechanical_energy(p_, s_.x, 0.0);
-        m.epoch = epoch_;
         ++published_;
         put(m);
     }

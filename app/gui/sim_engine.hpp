@@ -99,6 +99,7 @@ private:
     // A new drive from now (SetOmega, Ramp): phi continuous, the sections and a stepped period follow it.
     void change_drive(const Drive& d);
     void put(SimMsg& m);   // tags and hands a record to the sink
+    SimMsg record(MsgKind kind, double t) const;   // a record at t: the drive's phi and omega, the epoch
     double move_bumper_toward_target(double t_end);   // one push; returns the sim time it lasts to
     void advance_held(double t_end);                   // time passes with the cart in the hand
     // Sets x, v from now with t and phi going on (clamped to the rail and to the bumper's near side).
