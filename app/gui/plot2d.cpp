@@ -145,21 +145,7 @@ std::vector<PlotBackdrop> take_plot_backdrops() {
     return out;
 }
 
-RasterCanvas* Plot::canvas() {
-    if (!canvas_) {
-        auto& slot = canvases()[id_];
-        if (!slot) slot = std::make_unique<CanvasSlot>();
-        canvas_ = slot.get();
-    }
-    if (!canvas_->canvas.active()) {
-        canvas_->canvas.begin({min_.x, min_.y}, {max_.x, max_.y});
-        // The image goes here in the draw order (under what is drawn later); end() trims it to the pixels
-        // the canvas drew, so an almost empty plot costs the renderer almost nothing.
-        canvas_vtx_ = dl_->VtxBuffer.Size;
-        dl_->AddImage(as_texture_id(canvas_->tex.ensure()), min_, max_);
-    }
-    return &canvas_->canvas;
-}
+RasterCanvas* Plot::canvas() { return &canvas_->canvas; }   // begun by begin() (raster backend only)
 
 Plot::TrailSlot* Plot::trail_slot() {
     auto& slot = trail_canvases()[id_];
@@ -356,27 +342,12 @@ void Plot::zoom_and_pan() {
 }
 
 void Plot::end() {
-    if (canvas_ && canvas_->canvas.active()) {
+    if (canvas_ && canvas_->canvas.active()) {   // shown whole by the opaque image begin() placed
         const RasterCanvas& cv = canvas_->canvas;
         const PixelRect r = canvas_->canvas.finish();
         canvas_->tex.upload(cv.rgba(), cv.width(), cv.height(), r.x0, r.y0, r.x1, r.y1);
-        // An opaque canvas is shown whole by the image begin() placed; a transparent one only where drawn:
-        // move the four corners of the image quad AddImage wrote (ImDrawList::PrimRectUV order: a, b, c, d
-        // clockwise from the top left) onto the drawn rectangle; an empty one collapses to nothing.
-        const float w = static_cast<float>(cv.width()), h = static_cast<float>(cv.height());
-        const float x0 = r.empty() ? 0.0f : static_cast<float>(r.x0), x1 = r.empty() ? 0.0f : static_cast<float>(r.x1 + 1);
-        const float y0 = r.empty() ? 0.0f : static_cast<float>(r.y0), y1 = r.empty() ? 0.0f : static_cast<float>(r.y1 + 1);
-        const ImVec2 o(std::floor(min_.x), std::floor(min_.y));
-        const ImVec2 pos[4] = {{o.x + x0, o.y + y0}, {o.x + x1, o.y + y0}, {o.x + x1, o.y + y1}, {o.x + x0, o.y + y1}};
-        const ImVec2 uv[4] = {{x0 / w, y0 / h}, {x1 / w, y0 / h}, {x1 / w, y1 / h}, {x0 / w, y1 / h}};
-        if (!cv.opaque() && canvas_vtx_ >= 0 && canvas_vtx_ + 4 <= dl_->VtxBuffer.Size)
-            for (int k = 0; k < 4; ++k) {
-                dl_->VtxBuffer[canvas_vtx_ + k].pos = pos[k];
-                dl_->VtxBuffer[canvas_vtx_ + k].uv = uv[k];
-            }
     }
     canvas_ = nullptr;
-    canvas_vtx_ = -1;
     if (zoomed_) {   // over the data: the user should know this view is theirs, and how to leave it
         const char* note = "zoomed: double-click resets";
         const ImVec2 ts = ImGui::CalcTextSize(note);

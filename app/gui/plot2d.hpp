@@ -161,14 +161,13 @@ public:
     };
 
 private:
-    RasterCanvas* canvas();   // the plot's canvas, begun and placed in the draw order on first use
+    RasterCanvas* canvas();   // the plot's canvas (raster backend: begun by begin())
     TrailSlot* trail_slot();
     // The raster backend's plots are one opaque image (backdrop, grid and data composited on the CPU,
     // drawn without blending: opaque_image.hpp), begun by begin(); ImDrawList draws over it.
     bool opaque_ = false;
     PlotMapping mapping() const { return {ax_, bx_, ay_, by_}; }
     CanvasSlot* canvas_ = nullptr;
-    int canvas_vtx_ = -1;     // where the canvas's image quad sits in the draw list (set by end())
     ImGuiID id_ = 0;
     const char* name_ = "";   // the id as given to begin() (session files)
     ImDrawList* dl_ = nullptr;

@@ -1,11 +1,13 @@
 // The raster side of the plotting layer: dense curves and markers are drawn on the CPU into an RGBA image
 // the size of the plot's data area (antialiased by distance to each segment), uploaded as one texture and
-// shown with one ImDrawList image. The cost grows with the pixels touched, not with the primitives, which
-// keeps 100,000-point plots cheap on Mesa's software rasterizer (where every GPU fragment is CPU time).
+// shown as one image. The cost grows with the pixels touched, not with the primitives, which keeps
+// 100,000-point plots cheap on Mesa's software rasterizer (where every GPU fragment is CPU time).
 //
 //   RasterCanvas - redrawn every frame: layers of one colour each (segments and dots combine by maximum
 //                  opacity, so no dark joints), composited "over" in 8-bit straight alpha, only over the
-//                  pixels drawn. Only the rectangle drawn is cleared, uploaded and shown.
+//                  pixels drawn. The plots begin it opaque (backdrop and grid included: the whole area is
+//                  the image, drawn unblended); begun transparent, only the rectangle drawn is cleared,
+//                  uploaded and shown.
 //   TrailCanvas  - a fading path kept between frames: each pixel remembers the sequence number of the
 //                  newest sample that covered it, so a frame draws only the samples added since the last
 //                  one and fades the rest by their age in one pass. A full redraw happens only when the axes

@@ -337,8 +337,9 @@ void RigView::render(const ImVec4& clip_rect) {
     // The backdrop's static part and the static shapes, when what they show has changed (size, zoom,
     // magnification, palette): drawn into their own image, which each frame copies.
     const double plate_x = mag_.wall_x() + kPlateMargin;
-    std::vector<float> key{static_cast<float>(w), static_cast<float>(h), px_per_m_, static_cast<float>(cx_),
-                           static_cast<float>(cy_), static_cast<float>(plate_x)};
+    std::vector<float>& key = key_now_;   // kept between frames: no allocation per frame
+    key.assign({static_cast<float>(w), static_cast<float>(h), px_per_m_, static_cast<float>(cx_), static_cast<float>(cy_),
+                static_cast<float>(plate_x)});
     key.insert(key.end(), pal.bg_top, pal.bg_top + 3);
     key.insert(key.end(), pal.bg_bottom, pal.bg_bottom + 3);
     key.insert(key.end(), pal.rig_grid, pal.rig_grid + 3);

@@ -89,6 +89,7 @@ private:
     // copied into the image each frame: under a software renderer it was a third of the rig's cost.
     GLuint backdrop_fbo_ = 0, backdrop_tex_ = 0, backdrop_img_ = 0;   // drawn into _tex_, shown from _img_
     std::vector<float> backdrop_key_;   // what it was drawn for
+    std::vector<float> key_now_;        // what this frame would draw it for
     float px_per_m_ = 1000;
     double cx_ = 0, cy_ = 0;
     RigMagnify mag_;
