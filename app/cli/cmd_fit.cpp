@@ -168,8 +168,15 @@ int cmd_fit(const std::vector<std::string>& argv) {
         std::printf("validated on %zu held-out windows of %.3g forcing periods (within the predictability horizon): shooting RMS %.3g -> %.3g %s\n",
                     r.validation_windows, r.horizon_periods, r.validation_rms_before_m, r.validation_rms_after_m,
                     r.x_unit == "m" ? "m" : r.x_unit.c_str());
+    if (r.data_horizon_measured && r.data_regular)
+        std::printf("the record is regular: nearby returns stay together for 10 forcing periods (judged over whole periods)\n");
+    else if (r.data_horizon_measured)
+        std::printf("the record's own horizon: nearby returns double their separation in %.3g forcing periods (lambda ~ %.3g 1/s)\n",
+                    r.data_horizon_periods, r.data_lambda);
     const auto& b = r.error_before;
     const auto& e = r.error_after;
+    for (const auto& g : r.gate) std::printf("final gate: %s\n", g.c_str());
+    std::printf("final gate passed: %s\n", r.gate_passed.c_str());
     std::printf("verdict: %s\n", r.verdict.c_str());
     const auto& wa = r.wells_after;
     if (wa.wells.size() == 2 && std::isfinite(wa.hill_x)) {
@@ -187,20 +194,34 @@ int cmd_fit(const std::vector<std::string>& argv) {
     }
     const std::string xu = r.x_unit == "m" ? "[m]" : "[" + r.x_unit + "]";
     const std::string fu = r.force_unit == "N" ? "[N]" : "[force units]";
-    std::printf("%-34s %14s %14s\n", "", "before", "after");
-    std::printf("%-34s %14.5g %14.5g\n", ("residual RMS " + fu).c_str(), b.residual_rms_N, e.residual_rms_N);
-    std::printf("%-34s %14.5g %14.5g\n", ("shooting RMS 1 period " + xu).c_str(), b.shooting_rms_1_m, e.shooting_rms_1_m);
-    std::printf("%-34s %14.5g %14.5g\n", ("shooting RMS 10 periods " + xu).c_str(), b.shooting_rms_10_m, e.shooting_rms_10_m);
-    if (b.impact.impacts)
-        std::printf("%-34s %7.3g/%-6.3g %7.3g/%-6.3g\n", "impact law kappa / dwell [-/ms]", b.impact.kappa_rms,
-                    b.impact.duration_rms_s * 1e3, e.impact.kappa_rms, e.impact.duration_rms_s * 1e3);
-    if (b.diagram_distance_m >= 0)
-        std::printf("%-34s %14.5g %14.5g\n", "diagram distance [m]", b.diagram_distance_m, e.diagram_distance_m);
-    if (b.simulation_rms_m >= 0) std::printf("%-34s %14.5g %14.5g\n", "free-run simulation RMS", b.simulation_rms_m, e.simulation_rms_m);
+    // Columns: the model given, the fitted baseline (when the gate kept one) and the model written.
+    const bool bc = r.baseline_column;
+    const auto& eb = r.error_baseline;
+    if (bc) std::printf("%-38s %14s %14s %14s\n", "", "given", "baseline", "written");
+    else std::printf("%-38s %14s %14s\n", "", "given", "written");
+    auto row = [&](const std::string& name, double vb, double vbase, double va) {
+        if (bc) std::printf("%-38s %14.5g %14.5g %14.5g\n", name.c_str(), vb, vbase, va);
+        else std::printf("%-38s %14.5g %14.5g\n", name.c_str(), vb, va);
+    };
+    row("residual RMS " + fu, b.residual_rms_N, eb.residual_rms_N, e.residual_rms_N);
+    row("shooting RMS 1 period " + xu, b.shooting_rms_1_m, eb.shooting_rms_1_m, e.shooting_rms_1_m);
+    row("shooting RMS 10 periods " + xu, b.shooting_rms_10_m, eb.shooting_rms_10_m, e.shooting_rms_10_m);
+    if (b.shooting_rms_judge_m >= 0 && r.horizon_periods != 1.0 && r.horizon_periods != 10.0) {
+        char name[80];
+        std::snprintf(name, sizeof name, "shooting RMS %.3g periods %s", r.horizon_periods, xu.c_str());
+        row(name, b.shooting_rms_judge_m, eb.shooting_rms_judge_m, e.shooting_rms_judge_m);
+    }
+    if (b.impact.impacts) {
+        row("impact law kappa RMS", b.impact.kappa_rms, eb.impact.kappa_rms, e.impact.kappa_rms);
+        row("impact law dwell RMS [ms]", b.impact.duration_rms_s * 1e3, eb.impact.duration_rms_s * 1e3, e.impact.duration_rms_s * 1e3);
+        row("impact law bumper level offset [m]", b.impact.level_offset_m, eb.impact.level_offset_m, e.impact.level_offset_m);
+    }
+    if (b.diagram_distance_m >= 0) row("diagram distance [m]", b.diagram_distance_m, eb.diagram_distance_m, e.diagram_distance_m);
+    if (b.simulation_rms_m >= 0) row("free-run simulation RMS", b.simulation_rms_m, eb.simulation_rms_m, e.simulation_rms_m);
     if (b.test_simulation_rms_m >= 0)
-        std::printf("%-34s %14.5g %14.5g\n", "free-run simulation RMS (test)", b.test_simulation_rms_m, e.test_simulation_rms_m);
-    if (b.test_shooting_rms_m >= 0)
-        std::printf("%-34s %14.5g %14.5g\n", ("shooting RMS (test) " + xu).c_str(), b.test_shooting_rms_m, e.test_shooting_rms_m);
+        row("free-run simulation RMS (test)", b.test_simulation_rms_m, eb.test_simulation_rms_m, e.test_simulation_rms_m);
+    if (b.test_shooting_rms_m >= 0) row("shooting RMS (test) " + xu, b.test_shooting_rms_m, eb.test_shooting_rms_m, e.test_shooting_rms_m);
+    for (const auto& w : r.gate_within) std::printf("rose within its scatter: %s\n", w.c_str());
     std::printf("report: %s/report.json, report.md (%.2f s)\n", dir.c_str(), r.runtime_s);
     return 0;
 }

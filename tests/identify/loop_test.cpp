@@ -67,7 +67,7 @@ TEST_CASE("loop: every library effect is traced to itself and the error falls fi
         {"tangential_unbalance", {{"scale", 1.0}}, "scale"},
     };
     for (const Case& c : cases) {
-        CAPTURE(c.id);
+        CAPTURE(std::string(c.id));
         id::Model truth = a1h();
         id::apply_effect(truth, c.id, c.values);
         id::SynthOptions so = short_run(7);
@@ -275,7 +275,7 @@ TEST_CASE("duffing forced by u: noise alone yields nothing, the model written re
     CHECK(r.after.p.input_gain == doctest::Approx(2000.0).epsilon(0.05));
     CHECK(r.after.p.k == doctest::Approx(4.0e4).epsilon(0.05));
     CHECK(r.after.p.impact->kind == impactlab::ImpactKind::None);
-    CHECK(r.verdict.find("at its noise floor") != std::string::npos);
+    CHECK_MESSAGE(r.verdict.find("at its noise floor") != std::string::npos, r.verdict);
     // The written model is the whole model: read back, it gives the same simulation error.
     const auto dir = std::filesystem::temp_directory_path() / "impactlab_duffing_report_test";
     std::filesystem::remove_all(dir);
@@ -402,7 +402,7 @@ TEST_CASE("chaotic double well forced by u: the baseline is recovered, stays bis
     CHECK(r.after.p.a[1] == doctest::Approx(1e4).epsilon(0.02));
     CHECK(r.after.p.input_gain == doctest::Approx(0.003).epsilon(0.02));
     CHECK(r.wells_after.wells.size() == 2);
-    CHECK(r.verdict.find("at its noise floor") != std::string::npos);
+    CHECK_MESSAGE(r.verdict.find("at its noise floor") != std::string::npos, r.verdict);
     CHECK(r.horizon_periods > 0);
     // The same record with the input's polarity reversed: the gain comes out negative, nothing else changes.
     id::MeasuredData flipped = d;

@@ -94,6 +94,8 @@ struct ErrorSummary {
     // horizon, initial states fitted): a chaotic test part's free run drifts onto another trajectory whatever
     // the model, so only this says whether the model predicts the test rows better. < 0: no test rows.
     double test_shooting_rms_m = -1;
+    // Shooting over windows as long as the held-out judge's (the judging horizon); < 0: not computed.
+    double shooting_rms_judge_m = -1;
 };
 
 struct FoundEffect {
@@ -153,6 +155,18 @@ struct WellReport {
     std::vector<std::string> run_wells;      // per run of the data: "left", "right" or "both"
 };
 
+// One run's own well, measured from its data (input-forced records): the local force law per unit mass
+// a + c v + k x + k2 x^2 + k3 x^3 - F0 = g u fitted on the run's free-flight samples.
+struct RunWell {
+    std::size_t run = 0;
+    double x0 = 0;                 // the equilibrium in the data's coordinates
+    double omega = 0, somega = 0;  // linear frequency there [rad/s] and its standard error
+    double k2 = 0, sk2 = 0;        // local even term per unit mass (< 0: softer toward +x, the left well)
+    std::string side;              // "left", "right" or "" (no clear even term)
+    double depth = 0;              // by the local law's barrier, per unit mass [x unit^2 / s^2]; NaN: none within reach
+    double barrier = 0;            // distance from x0 to that barrier [x unit]
+};
+
 struct FitReport {
     std::string data_source, model_name, forcing, baseline;
     std::size_t samples = 0, rows_used = 0;
@@ -165,10 +179,19 @@ struct FitReport {
     // held-out validation used.
     std::vector<std::pair<double, double>> horizon_growth;   // (window [forcing periods], RMS [m])
     double horizon_periods = 0;
+    // The record's own predictability, from nearby returns of the measured trajectory (not the model): the
+    // doubling time of their separation [forcing periods] (inf: regular, no doubling in 10 periods) and the
+    // exponent it implies [1/s]; not measured on records too short for it.
+    bool data_horizon_measured = false, data_regular = false;
+    double data_horizon_periods = 0, data_lambda = 0;
     std::size_t validation_windows = 0;
     double validation_rms_before_m = 0, validation_rms_after_m = 0;   // held-out shooting RMS
     std::vector<CandidateScore> candidates;
-    ErrorSummary error_before, error_after;
+    ErrorSummary error_before, error_after;   // the model given and the model written
+    // With a fitted baseline that passed the gate: its errors (the effects were judged against it too).
+    ErrorSummary error_baseline;
+    bool baseline_column = false;
+    std::string baseline_step;
     std::vector<ImpactPoint> impacts;
     ResidualCloud residual;
     Trace trace;
@@ -181,6 +204,17 @@ struct FitReport {
     std::string verdict;   // one sentence on the residual against its noise floor, after the validation
     std::size_t runs = 1;  // records fitted together
     WellReport wells_before, wells_after;
+    // The final gate: each change it undid and why (the model written worse than the model given on a printed
+    // error beyond its scatter), and the step of the fit whose model it passed.
+    std::vector<std::string> gate;
+    // What the final residual depends on: the cross-validated share explained by a smooth function of each
+    // variable alone ("x", "v", "the forcing phase", "time", "the time since an impact", "a constant").
+    std::vector<std::pair<std::string, double>> remainder;
+    // Each run's well measured from the data, and what they say of an asymmetry (empty: not measured).
+    std::vector<RunWell> data_wells;
+    std::string wells_from_data;
+    std::string gate_passed;
+    std::vector<std::string> gate_within;   // printed errors that rose, within their scatter (said beside the table)
 };
 
 // The sensor noise of a uniformly sampled record [its units]: the smaller of the MAD of its 4th differences

@@ -94,26 +94,6 @@ double free_run_rms(const std::vector<double>& fr, const std::vector<double>& x,
     return c ? std::sqrt(s / static_cast<double>(c)) : -1.0;
 }
 
-// Whether an output-error refinement (`refined`) predicts the part of the record its fit did not use better
-// than the equation-error values (`before`), by the shooting error over windows as long as the longer of
-// the two models' predictability horizons, initial states fitted. A long free run of a chaotic record drifts
-// onto another trajectory whatever the model, so the free-run error alone cannot say whether a refinement
-// helped; a record that is predictable for long is judged over long windows, where the equation error's
-// bias at a few samples per period shows.
-bool refinement_predicts_better(const Prep& pr, const Model& refined, const Model& before, double rtol) {
-    const std::size_t fit_end = oe_fit_end(pr, usable_start(pr, 0, pr.n - 2), 30000);
-    const double L = std::max({predictability_horizon(pr, refined, rtol).periods, predictability_horizon(pr, before, rtol).periods, 0.25});
-    std::vector<std::pair<std::size_t, std::size_t>> wins;
-    for (const auto& w : windows(pr, L))
-        if (w.first > fit_end) wins.push_back(w);
-    if (wins.size() < 10) wins = windows(pr, L);
-    auto sse = [&](const Model& m) {
-        double s = 0;
-        for (double e : window_sse(pr, m, wins, true, rtol)) s += std::isfinite(e) ? e : 1e300;
-        return s;
-    };
-    return sse(refined) <= sse(before);
-}
 
 // Levenberg-Marquardt on the free-run simulation error (input-forced data only: there a free run over the
 // record is meaningful, and it weighs the resonance the way the benchmark's simulation error does).
@@ -322,6 +302,18 @@ std::vector<std::pair<std::string, double>> named(const EffectInstance& e) {
     return v;
 }
 
+// The changes a fit made to the model given, in order: each step's model, the effects it holds and its
+// held-out shooting RMS. The final gate walks back from the last step until the model is not worse than the
+// model given on any error the report prints.
+struct ChainStep {
+    std::string what;
+    Model model;
+    std::vector<FoundEffect> found;
+    double held_out_rms_m = -1;
+    bool baseline = false;   // a step of the baseline fit (before any effect)
+};
+using Chain = std::vector<ChainStep>;
+
 double rms_of(const Eigen::VectorXd& R) { return R.size() ? std::sqrt(R.squaredNorm() / static_cast<double>(R.size())) : 0.0; }
 
 // The flat-top shift that puts a model's simulated impacts on the measured ones, from the impacts with
@@ -382,6 +374,32 @@ double t_test_z(const std::vector<double>& d) {
     return std::copysign(f_to_z(t * t, 1.0, n - 1.0), t);
 }
 
+// The window length [forcing periods] of every held-out judgement: the record's own predictability (measured
+// from the data), not the model's, whose error grows from its own faults and would make a periodic record look
+// chaotic. A regular record is judged over whole periods; a chaotic one within the doubling time of nearby
+// returns; windows short enough that there are about 40 of them (the paired test's power). Where the record is
+// too short to measure, `model_horizon` (the model's error growth) decides.
+double judging_periods(const Prep& pr, const std::function<double()>& model_horizon) {
+    const Prep::Predictability& dh = pr.predictability;
+    if (dh.measured && dh.regular) {
+        for (double c : {10.0, 5.0, 2.0})
+            if (windows(pr, c).size() >= 40) return c;
+        return 1.0;
+    }
+    double L = 0.25;
+    if (dh.measured) {
+        for (double c : {5.0, 2.0, 1.0, 0.5})
+            if (c <= dh.periods) {
+                L = c;
+                break;
+            }
+    } else {
+        L = model_horizon();
+    }
+    while (L > 0.25 && L * pr.period >= 32.0 * pr.dt && windows(pr, L).size() < 40) L *= 0.5;
+    return L;
+}
+
 // The record cut for held-out checks: windows within the predictability horizon of `m`, and blocks of
 // about an eighth of the record alternately in fold 0 and fold 1 (rows and windows by fold).
 struct HeldOutSplit {
@@ -396,12 +414,10 @@ struct HeldOutSplit {
 HeldOutSplit held_out_split(const Prep& pr, const Model& m, double rtol) {
     const MeasuredData& data = *pr.data;
     HeldOutSplit s{predictability_horizon(pr, m, rtol), 0, {}, {pr, pr}, {}, data.t.front(), 1};
-    // Within the horizon, windows short enough that there are about 40 of them (the paired test's power).
-    double L = s.hz.periods;
-    while (L > 0.25 && L * pr.period >= 32.0 * pr.dt && windows(pr, L).size() < 40) L *= 0.5;
+    const double L = judging_periods(pr, [&] { return s.hz.periods; });
     s.periods = L;
     if (L > 0) s.wins = windows(pr, L);
-    s.block = std::max((data.t.back() - s.t0) / 8.0, 2.0 * s.hz.periods * pr.period);
+    s.block = std::max((data.t.back() - s.t0) / 8.0, 2.0 * L * pr.period);
     for (std::size_t f = 0; f < 2; ++f) {
         s.fold_pr[f].rows.clear();
         for (std::size_t r : pr.rows)
@@ -461,6 +477,27 @@ bool better_beyond_noise(const Prep& pr, const std::vector<std::pair<std::size_t
     return c.z >= 3.0 && c.sum_cur - c.sum_new > 0.02 * excess && c.gain > 1e-3;
 }
 
+// Whether an output-error refinement (`refined`) predicts the part of the record its fit did not use better
+// than the equation-error values (`before`), by the shooting error over the judging windows (initial states
+// fitted) after the samples the refinement was fitted to. A long free run of a chaotic record drifts onto
+// another trajectory whatever the model, so the free-run error alone cannot say whether a refinement helped;
+// a regular record is judged over long windows, where the equation error's bias at a few samples per period
+// shows. No held-out part, no refinement.
+bool refinement_predicts_better(const Prep& pr, const Model& refined, const Model& before, double rtol) {
+    const std::size_t fit_end = oe_fit_end(pr, usable_start(pr, 0, pr.n - 2), 30000);
+    const double L = judging_periods(pr, [&] {
+        return std::max({predictability_horizon(pr, refined, rtol).periods, predictability_horizon(pr, before, rtol).periods, 0.25});
+    });
+    std::vector<std::pair<std::size_t, std::size_t>> wins;
+    for (const auto& w : windows(pr, L))
+        if (w.first > fit_end) wins.push_back(w);
+    if (wins.size() < 10) return false;   // nothing held out to judge it on
+    const std::vector<double> eb = window_sse(pr, before, wins, true, rtol), er = window_sse(pr, refined, wins, true, rtol);
+    const Compare c = compare_held_out(pr, wins, eb, er);
+    // A refinement of parameters already in the model: a consistent fall on the held-out windows.
+    return c.sum_new < c.sum_cur && c.z >= 2.0;
+}
+
 // Whether the fitted baseline predicts held-out data better than the parameters given (a record forced by
 // the unbalance, whose given model is a physical one): each fold's windows simulated with the base
 // parameters refitted on the other fold's equation error, against the given model, by the same test as an
@@ -508,7 +545,8 @@ bool baseline_predicts_better(const Prep& pr, const Model& given, const Model& f
 // order they were found; each must lower the summed held-out error against the model without it, with a
 // paired z >= 3 over the windows and by at least 2 % of the error above the sensor noise.
 void validate_effects(const Prep& pr, const Model& base, const std::vector<Candidate>& cands, const FitOptions& o,
-                      const std::vector<std::string>& base_names, const SentenceContext& sc, FitReport& rep, Model& after) {
+                      const std::vector<std::string>& base_names, const SentenceContext& sc, FitReport& rep, Model& after,
+                      Chain& chain) {
     // A fitted baseline of a record forced by the unbalance is refitted with the effects (per fold, and on the
     // whole record at the end): base parameters fitted without an effect have absorbed what they could of it
     // (a spring rate bent by a missing even stiffness), and those values beside the effect's make neither
@@ -575,6 +613,7 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
         RejectedEffect rej;
     };
     std::vector<TooSmall> too_small;
+    Chain kept;   // the model after each effect kept, in order
     for (int pass = 0; pass < 3 && !queue.empty(); ++pass) {
         too_small.clear();
         for (std::size_t fi : queue) {
@@ -645,6 +684,9 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
             cur = std::move(cand);
             e_cur = e_new;
             rep.effects_found.push_back(f);
+            kept.push_back({"added " + f.id + " (held-out simulation error " + (c.gain >= 0 ? "lowered" : "raised") + " by " +
+                                std::to_string(100.0 * std::abs(c.gain)).substr(0, 5) + " %)",
+                            cur, rep.effects_found, -1, false});
         }
         // Again only those tried before the last effect kept (the others met the same model).
         queue.clear();
@@ -661,8 +703,19 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
             rep.effects_found.clear();
             cur = base;
             e_cur = e_base;
+            kept.clear();
         }
     }
+    auto total = [&](const std::vector<double>& e) {
+        double s = 0;
+        for (double v : e) s += std::isfinite(v) ? v : 0.0;
+        return samples ? std::sqrt(s / static_cast<double>(samples)) : 0.0;
+    };
+    // Each step's held-out RMS is the final one's share of the path: the per-step sums were overwritten as
+    // effects joined, so the steps before the last carry the value they were kept with.
+    for (auto& k : kept) chain.push_back(std::move(k));
+    if (!chain.empty()) chain.back().held_out_rms_m = total(e_cur);
+    bool refitted = false;
     // The kept force effects were fitted jointly with the rejected ones (and a fitted baseline of a record
     // forced by the unbalance without them): refit them on the whole record (equation error; an input-forced
     // record keeps its output-error values when nothing was dropped).
@@ -675,7 +728,10 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
             Eigen::VectorXd R;
             Eigen::MatrixXd J;
             lm_residual(pr, refit, knobs, 20, R, J);
-            if (unphysical(refit).empty()) cur = refit;
+            if (unphysical(refit).empty()) {
+                cur = refit;
+                refitted = true;
+            }
         }
         for (auto& f : rep.effects_found) {
             for (const auto& e : cur.p.effects)
@@ -687,11 +743,10 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
                 }
         }
     }
-    auto total = [&](const std::vector<double>& e) {
-        double s = 0;
-        for (double v : e) s += std::isfinite(v) ? v : 0.0;
-        return samples ? std::sqrt(s / static_cast<double>(samples)) : 0.0;
-    };
+    if (!rep.effects_found.empty() && refitted) {
+        const double h = chain.empty() ? -1 : chain.back().held_out_rms_m;
+        chain.push_back({"the effects refitted on the whole record", cur, rep.effects_found, h, false});
+    }
     rep.validation_rms_before_m = total(e_base);
     rep.validation_rms_after_m = total(e_cur);
     after = cur;
@@ -702,7 +757,7 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
 // refined on the free-run simulation error when that predicts the held-out part better. Throws ParamError
 // for a fit that leaves the physical range.
 Model fit_baseline_stage(const Prep& pr, const Model& model0, const FitOptions& o, const std::vector<std::string>& base_names,
-                         FitReport& rep) {
+                         FitReport& rep, Model& equation_error_base) {
     Model base = model0;
     Eigen::VectorXd R0;
     Eigen::MatrixXd Jtmp;
@@ -740,6 +795,7 @@ Model fit_baseline_stage(const Prep& pr, const Model& model0, const FitOptions& 
             knobs = base_knobs(base, base_names);
         }
         if (!keeps_wells(base, "equation-error")) base = start;
+        equation_error_base = base;
         // Input-forced data: refine by the simulation error, which the equation error at a few samples per
         // period of the resonance cannot match.
         if (!pr.phi_forced) {
@@ -896,72 +952,114 @@ void impact_law_stage(const Prep& pr, const FitOptions& o, const SentenceContext
     }
 }
 
-// Stages 7 and 8: the errors of the baseline and the final model (equation error R0 for the baseline,
-// multiple shooting, impacts, diagrams, the test rows), the plots' material, and the verdict.
-void errors_stage(const Prep& pr, const Model& model0, const Model& base, const Model& after, const Eigen::VectorXd& R0,
-                  const FitOptions& o, const MeasuredData* test, FitReport& rep) {
+// Stages 7 and 8: the final gate, the errors of the model given and of the model written (the equation
+// error, multiple shooting at 1 and 10 periods and at the judging horizon, impacts, diagrams, free runs, the
+// test rows), the plots' material, and the verdict. The gate walks the chain of changes back from the last
+// until the model is not worse than the model given on any of those errors beyond its scatter; the printed
+// numbers are the very ones it compared, so the report can never show the model written worse.
+void errors_stage(const Prep& pr, const Model& model0, const Chain& chain, const FitOptions& o, const MeasuredData* test,
+                  FitReport& rep, Model& after) {
     const MeasuredData& data = *pr.data;
-    Eigen::VectorXd R1;
-    std::vector<double> pw;
-    residual(pr, after, R1, pw);
-    PredictedImpacts pred_before, pred_after;
-    auto errors = [&](const Model& m, const Eigen::VectorXd& R, ErrorSummary& e, ShootOut& so, PredictedImpacts& pred) {
-        e.residual_rms_N = rms_of(R);
-        so = shooting(pr, m, o);
-        e.shooting_rms_1_m = so.rms1;
-        e.shooting_rms_10_m = so.rms10;
-        pred = predict_impacts(pr, m, o.rtol);
-        e.impact = impact_error(pr, pred);
-        if (!pr.phi_forced) {
-            e.simulation_rms_m = free_run_rms(free_run(pr, m, o.rtol), data.x);
+    std::vector<std::string> tnotes;
+    Prep pt;
+    if (test) pt = prepare(*test, model0, o, tnotes);
+    const Prep* ptp = test ? &pt : nullptr;
+    const double judge = rep.horizon_periods;
+    const PrintedErrors pg = printed_errors(pr, model0, o, judge, ptp);
+    // The baseline the effects are judged against too: the last baseline step not worse than the model given
+    // (a fitted baseline is a change like any other). An effect must not make the model worse than either.
+    std::size_t last_base = 0;
+    while (last_base + 1 < chain.size() && chain[last_base + 1].baseline) ++last_base;
+    std::size_t ref_base = 0;
+    PrintedErrors pb;
+    for (std::size_t j = last_base; j > 0; --j) {
+        pb = printed_errors(pr, chain[j].model, o, judge, ptp);
+        const GateCheck g = gate_check(pg, pb);
+        if (!g.worse) {
+            ref_base = j;
+            break;
         }
+        rep.gate.push_back("undone: " + chain[j].what + ", since against the model given the " + g.why);
+    }
+    std::size_t kept_step = chain.size() - 1;
+    PrintedErrors pa;
+    // Effects fitted on a baseline the gate undid go with it.
+    if (ref_base != last_base && kept_step > last_base) {
+        rep.gate.push_back("undone: every effect, since they were fitted on top of the baseline undone");
+        kept_step = last_base;
+    }
+    for (; kept_step > last_base; --kept_step) {
+        pa = printed_errors(pr, chain[kept_step].model, o, judge, ptp);
+        GateCheck g = gate_check(pg, pa);
+        std::string against = "the model given";
+        if (!g.worse && ref_base > 0) {
+            g = gate_check(pb, pa);
+            against = "the fitted baseline";
+        }
+        if (!g.worse) {
+            rep.gate_within = g.within;
+            if (ref_base > 0)
+                for (const auto& w : gate_check(pg, pa).within) rep.gate_within.push_back(w + " (against the model given)");
+            break;
+        }
+        rep.gate.push_back("undone: " + chain[kept_step].what + ", since against " + against + " the " + g.why);
+    }
+    if (kept_step <= last_base) {
+        kept_step = ref_base;
+        pa = ref_base > 0 ? pb : pg;
+    }
+    if (ref_base > 0) {
+        rep.baseline_column = true;
+        rep.baseline_step = chain[ref_base].what;
+    }
+    const ChainStep& chosen = chain[kept_step];
+    after = chosen.model;
+    // Effects the gate undid are reported as turned down, with the reason.
+    for (const FoundEffect& f : chain.back().found) {
+        const bool kept = std::any_of(chosen.found.begin(), chosen.found.end(), [&](const FoundEffect& c) { return c.id == f.id; });
+        if (!kept)
+            rep.effects_rejected.push_back({f.id, "undone by the final gate: the model with it is worse than the model given (" +
+                                                      (rep.gate.empty() ? std::string("?") : rep.gate.back()) + ")",
+                                            f.validation_gain, f.validation_z, f.parameters});
+    }
+    rep.effects_found = chosen.found;
+    if (kept_step < chain.size() - 1 && chosen.held_out_rms_m >= 0) rep.validation_rms_after_m = chosen.held_out_rms_m;
+    if (kept_step == 0 && rep.baseline == "fit") rep.baseline = "fixed";
+    if (!rep.gate.empty() && kept_step == 0) rep.validation_rms_after_m = rep.validation_rms_before_m;
+    rep.gate_passed = chosen.what;
+
+    auto fill = [&](const PrintedErrors& p, ErrorSummary& e) {
+        e.residual_rms_N = p.value(kErrResidual);
+        e.shooting_rms_1_m = p.value(kErrShoot1);
+        e.shooting_rms_10_m = p.value(kErrShoot10);
+        e.shooting_rms_judge_m = judge == 1.0 ? e.shooting_rms_1_m : judge == 10.0 ? e.shooting_rms_10_m : p.value(kErrShootJudge);
+        e.impact = impact_error(pr, p.pred);
+        if (p.find(kErrDiagram)) {
+            e.diagram_distance_m = diagram_distance(p.diagram_measured, p.diagram, o.omega_bin, e.diagram_bins, &e.diagram_per_bin);
+        }
+        e.simulation_rms_m = p.find(kErrFree) ? p.value(kErrFree) : -1;
+        e.test_simulation_rms_m = p.find(kErrTestFree) ? p.value(kErrTestFree) : -1;
+        e.test_shooting_rms_m = p.find(kErrTestShoot) ? p.value(kErrTestShoot) : -1;
     };
-    ShootOut sb, sa;
-    errors(base, R0, rep.error_before, sb, pred_before);
-    errors(after, R1, rep.error_after, sa, pred_after);
-    if (pr.phi_forced && rep.omega_max - rep.omega_min > 2 * o.omega_bin) {
-        rep.diagram_measured = measured_sections(pr);
-        rep.diagram_before = free_run_sections(pr, base, o.rtol);
-        rep.diagram_after = free_run_sections(pr, after, o.rtol);
-        rep.error_before.diagram_distance_m =
-            diagram_distance(rep.diagram_measured, rep.diagram_before, o.omega_bin, rep.error_before.diagram_bins,
-                             &rep.error_before.diagram_per_bin);
-        rep.error_after.diagram_distance_m =
-            diagram_distance(rep.diagram_measured, rep.diagram_after, o.omega_bin, rep.error_after.diagram_bins,
-                             &rep.error_after.diagram_per_bin);
+    fill(pg, rep.error_before);
+    fill(pa, rep.error_after);
+    if (ref_base > 0) fill(pb, rep.error_baseline);
+    if (!pg.diagram_measured.empty()) {
+        rep.diagram_measured = pg.diagram_measured;
+        rep.diagram_before = pg.diagram;
+        rep.diagram_after = pa.diagram;
     }
-    if (test) {
-        std::vector<std::string> tnotes;
-        const Prep pt = prepare(*test, model0, o, tnotes);
-        for (auto [m, e] : {std::pair<const Model*, ErrorSummary*>{&base, &rep.error_before}, {&after, &rep.error_after}}) {
-            const std::vector<double> fr = free_run(pt, *m, o.rtol);
-            double s = 0;
-            std::size_t c = 0;
-            for (std::size_t i = 0; i < pt.n; ++i)
-                if (std::isfinite(fr[i])) {
-                    s += (fr[i] - test->x[i]) * (fr[i] - test->x[i]);
-                    ++c;
-                }
-            e->test_simulation_rms_m = c ? std::sqrt(s / static_cast<double>(c)) : -1;
-        }
-        const auto wins = windows(pt, rep.horizon_periods > 0 ? rep.horizon_periods : 1.0);
-        for (auto [m, e] : {std::pair<const Model*, ErrorSummary*>{&base, &rep.error_before}, {&after, &rep.error_after}}) {
-            double s = 0;
-            std::size_t c = 0;
-            const std::vector<double> sse = window_sse(pt, *m, wins, o.refine_shooting, o.rtol);
-            for (std::size_t w = 0; w < wins.size(); ++w)
-                if (std::isfinite(sse[w])) {
-                    s += sse[w];
-                    c += wins[w].second - wins[w].first + 1;
-                }
-            e->test_shooting_rms_m = c ? std::sqrt(s / static_cast<double>(c)) : -1;
-        }
-        if (rep.error_after.test_simulation_rms_m > rep.error_before.test_simulation_rms_m &&
-            rep.error_after.test_shooting_rms_m <= rep.error_before.test_shooting_rms_m)
-            rep.notes.push_back("the free run over the test rows ends further from them with the effects found, while the "
-                                "shooting error within the predictability horizon falls: the free run drifts onto another "
-                                "trajectory (a chaotic record), which no model avoids");
-    }
+    if (test && rep.error_after.test_simulation_rms_m > rep.error_before.test_simulation_rms_m &&
+        rep.error_after.test_shooting_rms_m <= rep.error_before.test_shooting_rms_m)
+        rep.notes.push_back("the free run over the test rows ends further from them with the effects found, while the "
+                            "shooting error within the predictability horizon falls: the free run drifts onto another "
+                            "trajectory (a chaotic record), which no model avoids");
+    const Eigen::VectorXd& R0 = pg.R;
+    const Eigen::VectorXd& R1 = pa.R;
+    const ShootOut& sb = pg.so;
+    const PredictedImpacts& pred_before = pg.pred;
+    const PredictedImpacts& pred_after = pa.pred;
+    const Model& base = model0;
 
     // The material for the plots.
     {
@@ -996,21 +1094,42 @@ void errors_stage(const Prep& pr, const Model& model0, const Model& base, const 
                                    a ? apparent_kappa(pred_after.obs[k]) : kNaN, a ? pred_after.obs[k].t_out - pred_after.obs[k].t_in : kNaN});
         }
     }
-    // The verdict says what the numbers say: at the noise floor only when the residual is.
+    // The verdict says what the numbers say: at the noise floor only when the equation error is there and the
+    // shooting error within the judging horizon is at the sensor noise, with nothing left that a smooth function
+    // of one variable explains; otherwise how far off, and what the remainder depends on.
     {
         const double ratio = rep.noise_floor_N > 0 ? rep.error_after.residual_rms_N / rep.noise_floor_N : INFINITY;
-        char buf[400];
-        if (ratio <= 1.5) {
-            std::snprintf(buf, sizeof buf, "the residual (%.3g %s RMS) is at its noise floor (%.3g %s)%s", rep.error_after.residual_rms_N,
-                          rep.force_unit.c_str(), rep.noise_floor_N, rep.force_unit.c_str(),
-                          rep.effects_found.empty() ? ": no missing effect" : " with the effects found");
+        const double shoot = rep.error_after.shooting_rms_judge_m >= 0 ? rep.error_after.shooting_rms_judge_m : rep.error_after.shooting_rms_1_m;
+        const double sratio = pr.sigma_x > 0 ? shoot / pr.sigma_x : INFINITY;
+        rep.remainder = remainder_dependence(pr, R1);
+        std::string depends;
+        // A share counts only where it stands above the noise floor's own: the measured x's noise enters the
+        // equation error through every x term, so at the floor a function of x seems to explain a part of it.
+        for (const auto& [what, share] : rep.remainder)
+            if (share >= 0.05 && share * ratio * ratio >= 0.25) {
+                char b[80];
+                std::snprintf(b, sizeof b, "%s%s (%.0f %%)", depends.empty() ? "" : ", ", what.c_str(), 100.0 * share);
+                depends += b;
+            }
+        // Within the judging horizon a right model's shooting error grows to at most twice the noise (the
+        // horizon is where nearby returns double their separation).
+        const bool at_floor = ratio <= 1.5 && sratio <= 2.0;
+        char buf[700];
+        if (at_floor) {
+            std::snprintf(buf, sizeof buf,
+                          "the residual (%.3g %s RMS) is at its noise floor (%.3g %s) and the shooting error within the judging "
+                          "horizon (%.3g) at the sensor noise (%.3g)%s",
+                          rep.error_after.residual_rms_N, rep.force_unit.c_str(), rep.noise_floor_N, rep.force_unit.c_str(), shoot,
+                          pr.sigma_x, rep.effects_found.empty() ? ": no missing effect" : " with the effects found");
         } else {
             std::snprintf(buf, sizeof buf,
-                          "the residual (%.3g %s RMS) is %.3g times its noise floor (%.3g %s): the model %s misses something that %s",
-                          rep.error_after.residual_rms_N, rep.force_unit.c_str(), ratio, rep.noise_floor_N, rep.force_unit.c_str(),
-                          rep.effects_found.empty() ? "still" : "with the effects found still",
-                          rep.effects_found.empty() ? "no library effect explains in a way that holds on held-out data"
-                                                    : "the library does not name or that does not hold on held-out data");
+                          "the model %s misses something: the residual (%.3g %s RMS) is %.3g times its noise floor (%.3g %s) and the "
+                          "shooting error within the judging horizon %.3g times the sensor noise; %s%s",
+                          rep.effects_found.empty() ? "still" : "with the effects found still", rep.error_after.residual_rms_N,
+                          rep.force_unit.c_str(), ratio, rep.noise_floor_N, rep.force_unit.c_str(), sratio,
+                          depends.empty() ? "no smooth function of x, v, the phase, time or the impacts alone explains what is left"
+                                          : "what is left depends on ",
+                          depends.c_str());
         }
         rep.verdict = buf;
     }
@@ -1212,17 +1331,80 @@ Selection select_effects(const Screen& screen, const Eigen::VectorXd& R0, const 
             if (g && !gen) gen = &e;
             if (!g && !lib) lib = &e;
         }
-        const Eval* pick = lib;
-        if (gen && (!lib || lib->gain_cv < 0.8 * gen->gain_cv)) pick = gen;
-        if (!pick) break;
-        const Group& g = groups[pick->g];
-        cand_used[g.cand] = true;
-        chosen.push_back(pick->g);
-        step_gain.push_back(pick->gain_in);
-        cur.insert(cur.end(), g.cols.begin(), g.cols.end());
+        // Named physics before curve fits: a generic term is chosen only where neither the best library effect
+        // nor the best pair of library effects fitted jointly comes within the scatter of what it explains
+        // (the CV sums' difference against its noise, plus a penalty for each parameter the generic term has
+        // more, and never closer than 2 % of what the generic term explains).
+        std::vector<const Eval*> picks;
+        if (lib) picks = {lib};
+        if (gen) {
+            const double cv_gen = cv_cur * (1.0 - gen->gain_cv);
+            const double sigma2 = cv_gen / static_cast<double>(std::max<Eigen::Index>(1, X.rows()));
+            const double B = std::max(1.0, static_cast<double>(hac_lag));
+            auto tol = [&](std::size_t named_params) {
+                const double dp = static_cast<double>(groups[gen->g].cols.size()) - static_cast<double>(named_params);
+                return std::max(sigma2 * B * (16.0 + 2.0 * std::max(dp, 0.0)), 0.02 * (cv_cur - cv_gen));
+            };
+            const bool lib_close = lib && cv_cur * (1.0 - lib->gain_cv) <= cv_gen + tol(groups[lib->g].cols.size());
+            if (!lib_close) {
+                // Pairs of the strongest library effects, fitted jointly; each must stand out of the noise in the pair.
+                std::vector<const Eval*> top;
+                for (const auto& e : evals)
+                    if (!cands[groups[e.g].cand].generic && e.gain_cv > 0 && top.size() < 8) top.push_back(&e);
+                double best_cv = INFINITY;
+                std::vector<const Eval*> best_pair;
+                double pair_gain_in = 0;
+                for (std::size_t a = 0; a < top.size(); ++a)
+                    for (std::size_t b = a + 1; b < top.size(); ++b) {
+                        const Candidate& ca = cands[groups[top[a]->g].cand];
+                        const Candidate& cb = cands[groups[top[b]->g].cand];
+                        if (generic_chosen && (ca.sensor || cb.sensor)) continue;
+                        std::vector<int> cols = cur, sa, sb;
+                        for (int c : groups[top[a]->g].cols) {
+                            sa.push_back(static_cast<int>(cols.size()));
+                            cols.push_back(c);
+                        }
+                        for (int c : groups[top[b]->g].cols) {
+                            sb.push_back(static_cast<int>(cols.size()));
+                            cols.push_back(c);
+                        }
+                        double cv, in;
+                        cv_sse(folds, cols, cv, in);
+                        if (!(cv < best_cv)) continue;
+                        const std::size_t np = groups[top[a]->g].cols.size() + groups[top[b]->g].cols.size();
+                        if (cv > cv_gen + tol(np)) continue;
+                        if (zscore(cols, sa) < o.z_threshold || zscore(cols, sb) < o.z_threshold) continue;
+                        best_cv = cv;
+                        best_pair = {top[a], top[b]};
+                        pair_gain_in = (in_cur - in) / in_base;
+                    }
+                if (!best_pair.empty()) {
+                    picks = best_pair;
+                    rep.notes.push_back("a pair of named effects, " + cands[groups[best_pair[0]->g].cand].id + " and " +
+                                        cands[groups[best_pair[1]->g].cand].id + ", fitted jointly explains as much as the generic " +
+                                        cands[groups[gen->g].cand].id + ": the named pair is preferred");
+                    // The pair's explained share is split by each one's share alone.
+                    const double ga = std::max(best_pair[0]->gain_in, 1e-12), gb = std::max(best_pair[1]->gain_in, 1e-12);
+                    step_gain.push_back(pair_gain_in * ga / (ga + gb));
+                    step_gain.push_back(pair_gain_in * gb / (ga + gb));
+                } else {
+                    picks = {gen};
+                }
+            }
+        }
+        if (picks.empty()) break;
+        const bool pair = picks.size() == 2;
+        for (const Eval* pick : picks) {
+            const Group& g = groups[pick->g];
+            cand_used[g.cand] = true;
+            chosen.push_back(pick->g);
+            if (!pair) step_gain.push_back(pick->gain_in);
+            cur.insert(cur.end(), g.cols.begin(), g.cols.end());
+            for (auto& cs : rep.candidates)
+                if (cs.id == cands[g.cand].id) cs.selected = true;
+        }
         cv_sse(folds, cur, cv_cur, in_cur);
-        for (auto& cs : rep.candidates)
-            if (cs.id == cands[g.cand].id) cs.selected = true;
+        if (pair) ++round;
     }
 
     return sel;
@@ -1400,7 +1582,7 @@ Model refit_stage(const Prep& pr, const Model& base, const Screen& screen, Selec
 // equation error at a few samples per period cannot), kept only if that predicts the held-out part better.
 void output_error_stage(const Prep& pr, const Model& base, const std::vector<Candidate>& cands,
                         const std::vector<std::string>& base_names, const FitOptions& o, const SentenceContext& sc,
-                        FitReport& rep, Model& after) {
+                        FitReport& rep, Model& after, Chain& chain) {
     if (pr.phi_forced || !o.fit_baseline || rep.effects_found.empty()) return;
     Model refined = after;
     std::vector<Knob> knobs = base_knobs(refined, base_names);
@@ -1420,6 +1602,8 @@ void output_error_stage(const Prep& pr, const Model& base, const std::vector<Can
                 f.parameters = named(e);
                 f.sentence = sentence(f.id, base, f.parameters, f.sigma, sc);
             }
+    chain.push_back({"the effects and the base parameters refitted on the free-run simulation error", after, rep.effects_found,
+                     chain.empty() ? -1 : chain.back().held_out_rms_m, false});
 }
 
 }  // namespace
@@ -1465,6 +1649,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     check_plausible(data, model0, o);
     Prep prep = prepare(data, model0, o, rep.notes);
     prep.progress = progress;
+    prep.predictability = data_horizon(prep);
     const Prep& pr = prep;
     rep.samples = pr.n;
     rep.rows_used = pr.rows.size();
@@ -1474,6 +1659,10 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     rep.window_s = (pr.K.H + 1) * pr.dt;
     rep.period_s = pr.period;
     rep.drive_fit_rms_rad = pr.drive_rms;
+    rep.data_horizon_measured = pr.predictability.measured;
+    rep.data_regular = pr.predictability.regular;
+    rep.data_horizon_periods = pr.predictability.periods;
+    rep.data_lambda = pr.predictability.lambda;
     if (pr.phi_forced) {
         rep.omega_min = *std::min_element(pr.omega.begin(), pr.omega.end());
         rep.omega_max = *std::max_element(pr.omega.begin(), pr.omega.end());
@@ -1485,7 +1674,9 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     // ---- 1. the baseline --------------------------------------------------------------------------------
     std::vector<std::string> base_names =
         o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0) : o.fit_params) : std::vector<std::string>{};
-    Model base = fit_baseline_stage(pr, model0, o, base_names, rep);
+    Model ee_base = model0;
+    Model base = fit_baseline_stage(pr, model0, o, base_names, rep, ee_base);
+    Chain chain{{"the model given", model0, {}, -1, false}};
     // Never a worse model than the one given: on a record forced by the unbalance (the given model is the rig's
     // physical one, not a starting guess) the fitted baseline must predict held-out data better.
     if (o.fit_baseline && pr.phi_forced) {
@@ -1499,10 +1690,15 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             rep.baseline = "fixed";
         }
     }
+    if (o.fit_baseline) {
+        chain.push_back({"the base parameters fitted to the equation error", ee_base, {}, -1, true});
+        if (!pr.phi_forced && rep.notes.size() && rep.notes.back().rfind("baseline refined on the free-run", 0) == 0)
+            chain.push_back({"the base parameters refined on the free-run simulation error", base, {}, -1, true});
+    }
     std::vector<double> pw;
     Eigen::VectorXd R0;
     residual(pr, base, R0, pw);
-    rep.before = base;
+    rep.before = model0;
     const double in0 = R0.squaredNorm();
     rep.noise_floor_N = base.p.m * pr.sigma_x * pr.K.noise_gain / base.sensor_gain();
 
@@ -1537,28 +1733,28 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     enter(FitStage::Validation);
     // ---- 6. validation: an effect stays only if it lowers the short-horizon simulation error on data held
     //         out from its fit, by more than the windows' scatter; the final model must beat the baseline ----
-    validate_effects(pr, base, screen.cands, o, base_names, sc, rep, after);
-    output_error_stage(pr, base, screen.cands, base_names, o, sc, rep, after);
+    validate_effects(pr, base, screen.cands, o, base_names, sc, rep, after, chain);
+    output_error_stage(pr, base, screen.cands, base_names, o, sc, rep, after, chain);
 
+    enter(FitStage::Errors);
+    // ---- 7. the final gate, errors before and after; 8. material for the plots; the verdict ------------------
+    errors_stage(pr, model0, chain, o, test, rep, after);
     std::stable_sort(rep.effects_found.begin(), rep.effects_found.end(),
                      [](const FoundEffect& a, const FoundEffect& b) { return a.explained_fraction > b.explained_fraction; });
     if (!rep.effects_found.empty()) after.p.name = base.p.name + "+" + rep.effects_found.front().id;
     for (std::size_t k = 1; k < rep.effects_found.size(); ++k) after.p.name += "+" + rep.effects_found[k].id;
     rep.after = after;
     rep.runs = pr.run_start.size();
-    rep.wells_before = well_report(base, {}, pr);
+    rep.wells_before = well_report(model0, {}, pr);
+    rep.data_wells = data_wells(pr, hac_lag);
+    rep.wells_from_data = wells_asymmetry(rep.data_wells, rep.x_unit == "m" ? "m" : rep.x_unit);
     rep.wells_after = well_report(after, rep.effects_found, pr);
-
-    enter(FitStage::Errors);
-    // ---- 7. errors before and after; 8. material for the plots; the verdict ----------------------------------
-    errors_stage(pr, model0, base, after, R0, o, test, rep);
     // Never a report whose headline numbers are not numbers: name the first and refuse to hand it over.
     const std::pair<const char*, double> headline[] = {
         {"sensor noise", rep.sigma_x},
         {"noise floor", rep.noise_floor_N},
         {"residual RMS before", rep.error_before.residual_rms_N},
         {"residual RMS after", rep.error_after.residual_rms_N},
-        {"1-period shooting RMS before", rep.error_before.shooting_rms_1_m},
         {"1-period shooting RMS after", rep.error_after.shooting_rms_1_m},
     };
     for (const auto& [what, v] : headline)

@@ -88,6 +88,14 @@ struct Prep {
     std::vector<std::size_t> rows;           // centres of the residual windows used
     std::size_t j_lo = 0, j_hi = 0;          // samples the rows' windows touch [j_lo, j_hi)
     FitProgress* progress = nullptr;         // run_fit's, if any: checked for cancellation per simulation
+    // The record's own predictability (horizon.cpp), measured once by run_fit; not measured: the model's
+    // shooting error growth decides the judging windows.
+    struct Predictability {
+        bool measured = false, regular = false;
+        double periods = 0, lambda = 0;   // separation doubling time [forcing periods] (inf: regular), exponent [1/s]
+        std::size_t pairs = 0;
+        std::vector<std::pair<double, double>> log_separation;   // (periods ahead, mean ln separation)
+    } predictability;
     // Throws FitCancelled if the fit's watcher asked to stop (called between simulations).
     void check_cancel() const {
         if (progress && progress->cancel.load(std::memory_order_relaxed)) throw FitCancelled();
@@ -209,6 +217,23 @@ struct Horizon {
     std::vector<std::pair<double, double>> growth;   // (window length [periods], shooting RMS [m])
 };
 Horizon predictability_horizon(const Prep& pr, const Model& m, double rtol);
+
+// ---- remainder.cpp --------------------------------------------------------------------------------------
+// The share of the residual R (at pr.rows) that smooth functions of each variable alone explain, cross-validated
+// over contiguous blocks, largest first: "a constant", "x", "v", "the forcing phase", "time", "the time since an
+// impact".
+std::vector<std::pair<std::string, double>> remainder_dependence(const Prep& pr, const Eigen::VectorXd& R);
+
+// ---- data_wells.cpp -------------------------------------------------------------------------------------
+// Each run's own well from its data (input-forced records only), and the sentence on the asymmetry they show.
+std::vector<RunWell> data_wells(const Prep& pr, int hac_lag);
+std::string wells_asymmetry(const std::vector<RunWell>& wells, const std::string& x_unit);
+
+// ---- horizon.cpp ----------------------------------------------------------------------------------------
+// The record's predictability from the data alone: nearest returns of the measured trajectory in a delay
+// embedding with the forcing, followed forward (Rosenstein); the doubling time of their mean separation.
+using DataHorizon = Prep::Predictability;
+DataHorizon data_horizon(const Prep& pr);
 // Free run over the whole record from the first usable sample: simulated measurement at every sample
 // (NaN before the start).
 std::vector<double> free_run(const Prep& pr, const Model& m, double rtol);
@@ -218,6 +243,59 @@ std::vector<std::pair<double, double>> measured_sections(const Prep& pr);
 // Mean over omega bins of the 1-D Wasserstein distance between two (omega, x) clouds.
 double diagram_distance(const std::vector<std::pair<double, double>>& a, const std::vector<std::pair<double, double>>& b,
                         double bin, std::size_t& bins, std::vector<std::pair<double, double>>* per_bin = nullptr);
+
+
+// ---- gate.cpp -----------------------------------------------------------------------------------------
+// One error the report prints, as sums over units (blocks of rows or samples, shooting windows, impacts,
+// omega bins) so that two models can be compared unit by unit. num is +inf where a model could not be
+// simulated. Rms: sqrt(sum num / sum den); Mean: sum num / sum den; AbsMedian: the median of num (signed
+// values, compared by magnitude).
+inline constexpr const char* kErrResidual = "residual RMS";
+inline constexpr const char* kErrShoot1 = "shooting RMS, 1 period";
+inline constexpr const char* kErrShoot10 = "shooting RMS, 10 periods";
+inline constexpr const char* kErrShootJudge = "shooting RMS at the judging horizon";
+inline constexpr const char* kErrKappa = "impact law: kappa RMS error";
+inline constexpr const char* kErrDwell = "impact law: dwell RMS error";
+inline constexpr const char* kErrLevel = "impact law: bumper level offset";
+inline constexpr const char* kErrDiagram = "diagram distance";
+inline constexpr const char* kErrFree = "free-run simulation RMS";
+inline constexpr const char* kErrTestFree = "free-run simulation RMS on the test rows";
+inline constexpr const char* kErrTestShoot = "shooting RMS on the test rows";
+struct PrintedError {
+    enum class Kind { Rms, Mean, AbsMedian };
+    std::string name;
+    std::vector<double> num, den;
+    Kind kind = Kind::Rms;
+    std::vector<double> keys;   // the units' omega (diagram bins, paired by omega); empty: paired by position
+    std::vector<double> noise;  // each unit's own sampling noise (a diagram bin's distance), if any
+    double resolution = 0;      // the least change of the value the data resolve (an impact's dwell: the sampling)
+    bool missing_fails = true;  // a unit only the given model has counts against the other (not so for impacts)
+    double value() const;       // NaN when no unit is finite
+};
+// Every error the report prints for one model, with what the plots need of the same runs.
+struct PrintedErrors {
+    std::vector<PrintedError> e;
+    Eigen::VectorXd R;                     // the equation error at pr.rows
+    ShootOut so;                           // 1- and 10-period shooting (windows10 for the x(t) plot)
+    PredictedImpacts pred;
+    std::vector<std::pair<double, double>> diagram, diagram_measured;
+    std::vector<double> free_run;          // input-forced records
+    const PrintedError* find(const std::string& name) const;
+    double value(const char* name) const {
+        const PrintedError* p = find(name);
+        return p ? p->value() : -1.0;
+    }
+};
+PrintedErrors printed_errors(const Prep& pr, const Model& m, const FitOptions& o, double judge_periods, const Prep* test);
+// Whether `cand` is worse than `given` on any printed error: a rise of the printed value beyond z_tol times
+// its scatter over the paired units (two standard errors; visible at four significant digits), or a unit it
+// cannot simulate.
+struct GateCheck {
+    bool worse = false;
+    std::string why;
+    std::vector<std::string> within;   // errors that rose, but within their scatter (said in the report)
+};
+GateCheck gate_check(const PrintedErrors& given, const PrintedErrors& cand, double z_tol = 2.0);
 
 }  // namespace impactlab::identify::detail
 

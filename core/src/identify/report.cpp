@@ -1,4 +1,5 @@
 // The report of impactlab fit: report.json, report.md, model_after.json and the PNG plots.
+#include <functional>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -35,6 +36,7 @@ json errors_json(const ErrorSummary& e) {
     if (e.simulation_rms_m >= 0) j["simulation_rms_m"] = num(e.simulation_rms_m);
     if (e.test_simulation_rms_m >= 0) j["test_simulation_rms_m"] = num(e.test_simulation_rms_m);
     if (e.test_shooting_rms_m >= 0) j["test_shooting_rms_m"] = num(e.test_shooting_rms_m);
+    if (e.shooting_rms_judge_m >= 0) j["shooting_rms_judge_m"] = num(e.shooting_rms_judge_m);
     return j;
 }
 
@@ -237,9 +239,20 @@ std::string markdown(const FitReport& r, bool with_plots) {
           "half of the record its parameters were not fitted to (alternate blocks of about an eighth of the record), "
           "by more than the windows' scatter (paired z >= 3) and by 2 % of the error above the noise. ";
     if (r.horizon_periods > 0) {
-        md << "The windows are " << g3(r.horizon_periods) << " forcing periods long (" << r.validation_windows
-           << " of them): within the record's predictability horizon, where the shooting error of the model has at most "
-              "doubled from the shortest windows'; past it a chaotic record's own instability, not the model, sets the error.\n\n";
+        md << "The windows are " << g3(r.horizon_periods) << " forcing periods long (" << r.validation_windows << " of them). ";
+        if (r.data_horizon_measured && r.data_regular)
+            md << "The record itself is regular: nearby returns of the measured trajectory stay together for 10 forcing periods "
+                  "(no separation doubling), so it is judged over whole periods; a model whose error grows faster is wrong, "
+                  "not unlucky.\n\n";
+        else if (r.data_horizon_measured)
+            md << "The record's own predictability horizon: nearby returns of the measured trajectory (delay embedding with "
+                  "the forcing, Rosenstein's method) double their separation in "
+               << g3(r.data_horizon_periods) << " forcing periods (largest Lyapunov exponent about " << g3(r.data_lambda, "%.3g")
+               << " 1/s); the windows lie within it, where a chaotic record's own instability does not yet set the error.\n\n";
+        else
+            md << "The record is too short to measure its own predictability, so the windows are the longest within which the "
+                  "model's shooting error has at most doubled from the shortest windows'.\n\n";
+        md << "The model's own error growth (the model given or fitted, by window length):\n\n";
         md << "| window [periods] | shooting RMS [" << (r.x_unit == "m" ? "mm" : r.x_unit) << "] |\n|---|---|\n";
         for (const auto& [L, e] : r.horizon_growth) md << "| " << g3(L) << " | " << g3(r.x_unit == "m" ? e * 1e3 : e, "%.4g") << " |\n";
         md << "\nHeld-out shooting RMS: " << g3(r.validation_rms_before_m * (r.x_unit == "m" ? 1e3 : 1), "%.4g") << " before, "
@@ -276,29 +289,56 @@ std::string markdown(const FitReport& r, bool with_plots) {
                             "in both (fit them together: impactlab fit a.csv b.csv).")
            << "\n\n";
     }
-    md << "## Error before and after\n\n| measure | before | after |\n|---|---|---|\n";
-    auto row = [&](const char* name, double b, double a, double scale, const char* f) {
-        md << "| " << name << " | " << g3(b * scale, f) << " | " << g3(a * scale, f) << " |\n";
+    md << "## The final gate\n\nThe model written is compared with the model given on every error below, unit by unit (blocks of "
+          "rows and samples, shooting windows, impacts, omega bins); a change that makes any of them worse beyond its scatter "
+          "is undone, the last change first. ";
+    if (r.gate.empty()) md << "Passed: " << r.gate_passed << ".\n\n";
+    else {
+        md << "It undid:\n\n";
+        for (const auto& g : r.gate) md << "- " << g << "\n";
+        md << "\nThe model written: " << r.gate_passed << ".\n\n";
+    }
+    const bool bc = r.baseline_column;
+    if (bc)
+        md << "## Error of the model given, the fitted baseline (" << r.baseline_step << ") and the model written\n\n"
+           << "| measure | given | baseline | written |\n|---|---|---|---|\n";
+    else
+        md << "## Error before (the model given) and after (the model written)\n\n| measure | before | after |\n|---|---|---|\n";
+    using Get = std::function<double(const ErrorSummary&)>;
+    auto row = [&](const std::string& name, const Get& get, double scale, const char* f) {
+        md << "| " << name << " | " << g3(get(r.error_before) * scale, f) << " | ";
+        if (bc) md << g3(get(r.error_baseline) * scale, f) << " | ";
+        md << g3(get(r.error_after) * scale, f) << " |\n";
     };
     const auto& b = r.error_before;
-    const auto& a = r.error_after;
     const bool metres = r.x_unit == "m";
     const double xs = metres ? 1e3 : 1.0;
     const std::string xu = metres ? "mm" : r.x_unit;
-    row(("residual RMS [" + r.force_unit + "]").c_str(), b.residual_rms_N, a.residual_rms_N, 1, "%.4g");
-    row(("shooting RMS, 1 period [" + xu + "]").c_str(), b.shooting_rms_1_m, a.shooting_rms_1_m, xs, "%.4g");
-    row(("shooting RMS, 10 periods [" + xu + "]").c_str(), b.shooting_rms_10_m, a.shooting_rms_10_m, xs, "%.4g");
+    row("residual RMS [" + r.force_unit + "]", [](const ErrorSummary& e) { return e.residual_rms_N; }, 1, "%.4g");
+    row("shooting RMS, 1 period [" + xu + "]", [](const ErrorSummary& e) { return e.shooting_rms_1_m; }, xs, "%.4g");
+    row("shooting RMS, 10 periods [" + xu + "]", [](const ErrorSummary& e) { return e.shooting_rms_10_m; }, xs, "%.4g");
+    if (b.shooting_rms_judge_m >= 0 && r.horizon_periods != 1.0 && r.horizon_periods != 10.0)
+        row("shooting RMS, " + g3(r.horizon_periods) + " periods (the judging horizon) [" + xu + "]",
+            [](const ErrorSummary& e) { return e.shooting_rms_judge_m; }, xs, "%.4g");
     if (b.impact.impacts > 0) {
-        row("impact law: kappa RMS error", b.impact.kappa_rms, a.impact.kappa_rms, 1, "%.3g");
-        row("impact law: dwell RMS error [ms]", b.impact.duration_rms_s, a.impact.duration_rms_s, 1e3, "%.3g");
-        row("impact law: bumper level offset [mm]", b.impact.level_offset_m, a.impact.level_offset_m, 1e3, "%.3g");
+        row("impact law: kappa RMS error", [](const ErrorSummary& e) { return e.impact.kappa_rms; }, 1, "%.3g");
+        row("impact law: dwell RMS error [ms]", [](const ErrorSummary& e) { return e.impact.duration_rms_s; }, 1e3, "%.3g");
+        row("impact law: bumper level offset [mm]", [](const ErrorSummary& e) { return e.impact.level_offset_m; }, 1e3, "%.3g");
     }
-    if (b.diagram_distance_m >= 0) row("diagram distance (mean per omega bin) [mm]", b.diagram_distance_m, a.diagram_distance_m, 1e3, "%.4g");
-    if (b.simulation_rms_m >= 0) row("free-run simulation RMS (as measured)", b.simulation_rms_m, a.simulation_rms_m, 1, "%.4g");
+    if (b.diagram_distance_m >= 0)
+        row("diagram distance (mean per omega bin) [mm]", [](const ErrorSummary& e) { return e.diagram_distance_m; }, 1e3, "%.4g");
+    if (b.simulation_rms_m >= 0)
+        row("free-run simulation RMS (as measured)", [](const ErrorSummary& e) { return e.simulation_rms_m; }, 1, "%.4g");
     if (b.test_simulation_rms_m >= 0)
-        row("free-run simulation RMS on the test rows (as measured)", b.test_simulation_rms_m, a.test_simulation_rms_m, 1, "%.4g");
+        row("free-run simulation RMS on the test rows (as measured)", [](const ErrorSummary& e) { return e.test_simulation_rms_m; }, 1,
+            "%.4g");
     if (b.test_shooting_rms_m >= 0)
-        row(("shooting RMS on the test rows, validation windows [" + xu + "]").c_str(), b.test_shooting_rms_m, a.test_shooting_rms_m, xs, "%.4g");
+        row("shooting RMS on the test rows, validation windows [" + xu + "]", [](const ErrorSummary& e) { return e.test_shooting_rms_m; },
+            xs, "%.4g");
+    if (!r.gate_within.empty()) {
+        md << "\nRose, but within the scatter of their units (two standard errors), so not counted as worse:\n\n";
+        for (const auto& w : r.gate_within) md << "- " << w << "\n";
+    }
     md << "\n" << b.impact.impacts << " impacts found in the data.\n\n";
     md << "## Candidates (first round: each alone on the baseline residual)\n\n"
           "| id | share of residual (in sample) | cross-validated gain | z | coefficients alone | selected |\n|---|---|---|---|---|---|\n";
@@ -378,9 +418,14 @@ std::string report_json_text(const FitReport& r) {
     }
     j["validation"] = {{"horizon_periods", num(r.horizon_periods)}, {"windows", r.validation_windows},
                        {"rms_before", num(r.validation_rms_before_m)}, {"rms_after", num(r.validation_rms_after_m)}};
+    j["validation"]["data_horizon"] = {{"measured", r.data_horizon_measured}, {"regular", r.data_regular},
+                                       {"doubling_periods", r.data_regular ? json(nullptr) : num(r.data_horizon_periods)},
+                                       {"lambda_per_s", num(r.data_lambda)}};
     j["validation"]["growth"] = json::array();
     for (const auto& [L, e] : r.horizon_growth) j["validation"]["growth"].push_back({{"periods", L}, {"shooting_rms", num(e)}});
     j["verdict"] = r.verdict;
+    j["remainder"] = json::array();
+    for (const auto& [what, share] : r.remainder) j["remainder"].push_back({{"variable", what}, {"share", num(share)}});
     j["runs"] = r.runs;
     auto wells_json = [](const WellReport& w) {
         json o;
@@ -401,12 +446,17 @@ std::string report_json_text(const FitReport& r) {
     j["units"] = {{"x", r.x_unit}, {"force", r.force_unit}};
     j["error_before"] = errors_json(r.error_before);
     j["error_after"] = errors_json(r.error_after);
+    if (r.baseline_column) {
+        j["error_baseline"] = errors_json(r.error_baseline);
+        j["baseline_step"] = r.baseline_step;
+    }
     j["model_before"] = model_json(r.before);
     j["model_after"] = model_json(r.after);
     j["impacts"] = json::array();
     for (const auto& im : r.impacts)
         j["impacts"].push_back({{"t", im.t}, {"v_minus", im.v_minus}, {"v_plus", im.v_plus}, {"dwell_s", im.dwell}, {"level_m", im.level}});
     j["notes"] = r.notes;
+    j["gate"] = {{"undone", r.gate}, {"passed", r.gate_passed}, {"rose_within_scatter", r.gate_within}};
     j["runtime_s"] = r.runtime_s;
     return j.dump(2) + "\n";
 }

@@ -9,6 +9,10 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/catalogue.cpp
   src/identify/shooting.cpp
   src/identify/fit.cpp
+  src/identify/gate.cpp
+  src/identify/horizon.cpp
+  src/identify/remainder.cpp
+  src/identify/data_wells.cpp
   src/identify/report.cpp
   src/identify/synth.cpp
   src/identify/recovery.cpp
