@@ -178,6 +178,11 @@ int cmd_fit(const std::vector<std::string>& argv) {
     for (const auto& g : r.gate) std::printf("final gate: %s\n", g.c_str());
     std::printf("final gate passed: %s\n", r.gate_passed.c_str());
     std::printf("verdict: %s\n", r.verdict.c_str());
+    for (const auto& w : r.data_wells)
+        std::printf("run %zu's own well (from its data): %s, %.4g +/- %.2g Hz, local k2 %.3g +/- %.2g\n", w.run + 1,
+                    w.side.empty() ? "side unclear" : w.side.c_str(), w.omega / (2 * 3.141592653589793), w.somega / (2 * 3.141592653589793),
+                    w.k2, w.sk2);
+    if (!r.wells_from_data.empty()) std::printf("wells from the data: %s\n", r.wells_from_data.c_str());
     const auto& wa = r.wells_after;
     if (wa.wells.size() == 2 && std::isfinite(wa.hill_x)) {
         const double s = r.x_unit == "m" ? 1e3 : 1.0;

@@ -5,4 +5,6 @@ set(IMPACTLAB_IDENTIFY_TEST_SOURCES
   identify/loop_test.cpp
   identify/shared_data_test.cpp
   identify/audit_test.cpp
+  identify/gate_test.cpp
+  identify/parsimony_test.cpp
 )

@@ -614,6 +614,10 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
     };
     std::vector<TooSmall> too_small;
     Chain kept;   // the model after each effect kept, in order
+    // Effects finally turned down for too small a fall (index into found, into effects_rejected).
+    constexpr std::size_t kTaken = static_cast<std::size_t>(-1);
+    std::vector<std::pair<std::size_t, std::size_t>> small_final;
+    auto f_ok_for_pair = [](const FoundEffect& f) { return f.evidence != "impact law" && f.id.rfind("unexplained", 0) != 0; };
     for (int pass = 0; pass < 3 && !queue.empty(); ++pass) {
         too_small.clear();
         for (std::size_t fi : queue) {
@@ -693,8 +697,48 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
         for (const auto& t : too_small)
             if (t.kept_before < rep.effects_found.size()) queue.push_back(t.effect);
         for (auto& t : too_small)
-            if (pass == 2 || t.kept_before == rep.effects_found.size()) rep.effects_rejected.push_back(std::move(t.rej));
+            if (pass == 2 || t.kept_before == rep.effects_found.size()) {
+                if (f_ok_for_pair(found[t.effect])) small_final.push_back({t.effect, rep.effects_rejected.size()});
+                rep.effects_rejected.push_back(std::move(t.rej));
+            }
     }
+    // Two force effects that act together (a resistance stronger in one direction: a constant force and a
+    // Coulomb friction) each look too small alone, since each one's per-fold refit absorbs what it can of
+    // the other. Pairs of them are tried jointly: the pair must pass the same test, and each member must
+    // add beyond the noise to the other alone.
+    for (std::size_t a = 0; a < small_final.size() && !e_cur.empty(); ++a)
+        for (std::size_t b = a + 1; b < small_final.size(); ++b) {
+            FoundEffect& fa = found[small_final[a].first];
+            FoundEffect& fb = found[small_final[b].first];
+            if (small_final[a].second == kTaken || small_final[b].second == kTaken) continue;
+            Model both = cur, only_a = cur, only_b = cur;
+            apply_effect(both, fa.id, fa.parameters);
+            apply_effect(both, fb.id, fb.parameters);
+            apply_effect(only_a, fa.id, fa.parameters);
+            apply_effect(only_b, fb.id, fb.parameters);
+            if (!unphysical(both).empty()) continue;
+            const std::vector<double> e_both = held_out(both);
+            const Compare c = compare(e_cur, e_both);
+            if (!better_beyond_noise(pr, wins, c)) continue;
+            const Compare ca = compare(held_out(only_b), e_both), cb = compare(held_out(only_a), e_both);
+            if (!better_beyond_noise(pr, wins, ca) || !better_beyond_noise(pr, wins, cb)) continue;
+            cur = std::move(both);
+            e_cur = e_both;
+            for (const auto& [fi, ri] : {small_final[a], small_final[b]}) {
+                FoundEffect& f = found[fi];
+                f.validation_gain = c.gain;
+                f.validation_z = c.z;
+                rep.effects_found.push_back(f);
+                rep.effects_rejected[ri].id.clear();   // no longer turned down
+            }
+            small_final[a].second = small_final[b].second = kTaken;
+            kept.push_back({"added " + fa.id + " and " + fb.id + " together (held-out simulation error lowered by " +
+                                std::to_string(100.0 * c.gain).substr(0, 5) + " %)",
+                            cur, rep.effects_found, -1, false});
+        }
+    rep.effects_rejected.erase(std::remove_if(rep.effects_rejected.begin(), rep.effects_rejected.end(),
+                                              [](const RejectedEffect& r) { return r.id.empty(); }),
+                               rep.effects_rejected.end());
     if (!rep.effects_found.empty()) {
         const Compare c = compare(e_base, e_cur);
         if (!(c.sum_new < c.sum_cur)) {   // never a worse model than the baseline

@@ -265,6 +265,20 @@ std::string markdown(const FitReport& r, bool with_plots) {
         for (const auto& f : r.effects_rejected) md << "- **" << f.id << "**: " << f.reason << ".\n";
         md << "\n";
     }
+    if (!r.data_wells.empty()) {
+        const bool m = r.x_unit == "m";
+        md << "## Each run's well, measured from its data\n\nA local force law per unit mass, a + c v + k x + k2 x^2 + k3 x^3 - F0 = "
+              "g u, fitted on each run's free-flight samples (never the model's): its linear frequency, its local even term "
+              "(softer toward the barrier: which well) and, by its barrier, the well's depth.\n\n"
+           << "| run | side | x0 [" << (m ? "mm" : r.x_unit) << "] | frequency [Hz] | k2 per unit mass | depth per unit mass |\n|---|---|---|---|---|---|\n";
+        for (const auto& w : r.data_wells)
+            md << "| " << w.run + 1 << " | " << (w.side.empty() ? "unclear" : w.side) << " | " << g3(w.x0 * (m ? 1e3 : 1.0), "%.4g") << " | "
+               << g3(w.omega / (2 * 3.141592653589793), "%.4g") << " +/- " << g3(w.somega / (2 * 3.141592653589793), "%.2g") << " | "
+               << g3(w.k2, "%.3g") << " +/- " << g3(w.sk2, "%.2g") << " | " << (std::isfinite(w.depth) ? g3(w.depth, "%.3g") : std::string("-"))
+               << " |\n";
+        if (!r.wells_from_data.empty()) md << "\n" << r.wells_from_data << ".\n";
+        md << "\n";
+    }
     const auto& wa = r.wells_after;
     if (wa.wells.size() == 2 && std::isfinite(wa.hill_x)) {
         const double xs_ = r.x_unit == "m" ? 1e3 : 1.0;
@@ -441,6 +455,11 @@ std::string report_json_text(const FitReport& r) {
         o["run_wells"] = w.run_wells;
         return o;
     };
+    j["data_wells"] = json::array();
+    for (const auto& w : r.data_wells)
+        j["data_wells"].push_back({{"run", w.run + 1}, {"side", w.side}, {"x0", num(w.x0)}, {"omega", num(w.omega)}, {"omega_sigma", num(w.somega)},
+                                   {"k2", num(w.k2)}, {"k2_sigma", num(w.sk2)}, {"depth", num(w.depth)}});
+    j["wells_from_data"] = r.wells_from_data;
     j["wells_before"] = wells_json(r.wells_before);
     j["wells_after"] = wells_json(r.wells_after);
     j["units"] = {{"x", r.x_unit}, {"force", r.force_unit}};
