@@ -7,4 +7,5 @@ set(IMPACTLAB_IDENTIFY_TEST_SOURCES
   identify/audit_test.cpp
   identify/gate_test.cpp
   identify/parsimony_test.cpp
+  identify/mismatch_test.cpp
 )

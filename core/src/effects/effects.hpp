@@ -9,6 +9,7 @@ const EffectLaw& constant_force_law();
 const EffectLaw& quadratic_damping_law();
 const EffectLaw& tangential_unbalance_law();
 const EffectLaw& magnet_offset_law();
+const EffectLaw& magnet_drift_law();
 const EffectLaw& even_stiffness_law();
 const EffectLaw& linear_stiffness_law();
 const EffectLaw& viscous_damping_law();

@@ -12,6 +12,7 @@ const std::vector<EffectLaw>& effect_laws() {
         effects::quadratic_damping_law(),
         effects::tangential_unbalance_law(),
         effects::magnet_offset_law(),
+        effects::magnet_drift_law(),
         effects::even_stiffness_law(),
         effects::linear_stiffness_law(),
         effects::viscous_damping_law(),

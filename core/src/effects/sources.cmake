@@ -4,6 +4,7 @@ set(IMPACTLAB_EFFECT_SOURCES
   src/effects/quadratic_damping.cpp
   src/effects/tangential_unbalance.cpp
   src/effects/magnet_offset.cpp
+  src/effects/magnet_drift.cpp
   src/effects/even_stiffness.cpp
   src/effects/linear_stiffness.cpp
   src/effects/viscous_damping.cpp

@@ -16,40 +16,62 @@ std::vector<RunWell> data_wells(const Prep& pr, int hac_lag) {
     if (pr.phi_forced || pr.u.empty()) return out;   // the unbalance's forcing is the model's; only a measured input is data
     const MeasuredData& d = *pr.data;
     const int H = pr.K.H;
-    constexpr int kCols = 7;   // v, x, x^2, x^3, 1, u  (and the averaged acceleration as the target)
+    // The runs' rows, each run centred on its own mean so its polynomial is local and well conditioned.
+    std::vector<std::size_t> runs;
+    std::vector<std::vector<std::size_t>> rows_of;
+    std::vector<double> mean_of;
     for (std::size_t run = 0; run < pr.run_start.size(); ++run) {
         std::vector<std::size_t> rows;
         for (std::size_t i : pr.rows)
             if (pr.run_of(i) == run) rows.push_back(i);
         if (rows.size() < 200) continue;
-        // Centre x on the run's mean so the polynomial is local and well conditioned.
         double xm = 0;
         for (std::size_t i : rows) xm += d.x[i];
-        xm /= static_cast<double>(rows.size());
-        const auto n = static_cast<Eigen::Index>(rows.size());
-        Eigen::MatrixXd X(n, kCols - 1);
-        Eigen::VectorXd y(n);
-        for (Eigen::Index r = 0; r < n; ++r) {
-            const std::size_t c = rows[static_cast<std::size_t>(r)];
+        runs.push_back(run);
+        mean_of.push_back(xm / static_cast<double>(rows.size()));
+        rows_of.push_back(std::move(rows));
+    }
+    if (runs.empty()) return out;
+    // One regression over every run: the damping c and the input's gain g are the rig's, shared (a single-sine
+    // record alone cannot tell its stiffness from its gain); each run has its own local k, k2, k3 and F0.
+    const std::size_t R = runs.size();
+    Eigen::Index n = 0;
+    for (const auto& r : rows_of) n += static_cast<Eigen::Index>(r.size());
+    const Eigen::Index ncol = 2 + 4 * static_cast<Eigen::Index>(R);
+    Eigen::MatrixXd X = Eigen::MatrixXd::Zero(n, ncol);
+    Eigen::VectorXd y(n);
+    Eigen::Index r = 0;
+    for (std::size_t q = 0; q < R; ++q)
+        for (std::size_t c : rows_of[q]) {
             double a = 0, v = 0, x1 = 0, x2 = 0, x3 = 0, u = 0;
             for (int k = 0; k <= 2 * H; ++k) {
                 const std::size_t j = c + static_cast<std::size_t>(k) - static_cast<std::size_t>(H);
-                const double xj = d.x[j] - xm;
-                a += pr.K.w2[static_cast<std::size_t>(k)] * xj;
-                v += pr.K.w1[static_cast<std::size_t>(k)] * xj;
-                x1 += pr.K.w[static_cast<std::size_t>(k)] * xj;
-                x2 += pr.K.w[static_cast<std::size_t>(k)] * xj * xj;
-                x3 += pr.K.w[static_cast<std::size_t>(k)] * xj * xj * xj;
-                u += pr.K.w[static_cast<std::size_t>(k)] * pr.u[j];
+                const double xj = d.x[j] - mean_of[q];
+                const auto kk = static_cast<std::size_t>(k);
+                a += pr.K.w2[kk] * xj;
+                v += pr.K.w1[kk] * xj;
+                x1 += pr.K.w[kk] * xj;
+                x2 += pr.K.w[kk] * xj * xj;
+                x3 += pr.K.w[kk] * xj * xj * xj;
+                u += pr.K.w[kk] * pr.u[j];
             }
             y[r] = a;
-            X.row(r) << -v, -x1, -x2, -x3, 1.0, u;
+            const Eigen::Index b0 = 2 + 4 * static_cast<Eigen::Index>(q);
+            X(r, 0) = -v;
+            X(r, 1) = u;
+            X(r, b0) = -x1;
+            X(r, b0 + 1) = -x2;
+            X(r, b0 + 2) = -x3;
+            X(r, b0 + 3) = 1.0;
+            ++r;
         }
-        const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(y);
-        const Eigen::VectorXd e = y - X * beta;
-        const Eigen::MatrixXd V = hac_cov(X, e, hac_lag);
-        if (!beta.allFinite() || !V.allFinite()) continue;
-        const double k = beta[1], k2 = beta[2], k3 = beta[3], F0 = beta[4];
+    const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(y);
+    const Eigen::VectorXd e = y - X * beta;
+    const Eigen::MatrixXd V = hac_cov(X, e, hac_lag);
+    if (!beta.allFinite() || !V.allFinite()) return out;
+    for (std::size_t q = 0; q < R; ++q) {
+        const Eigen::Index b0 = 2 + 4 * static_cast<Eigen::Index>(q);
+        const double k = beta[b0], k2 = beta[b0 + 1], k3 = beta[b0 + 2], F0 = beta[b0 + 3];
         // The equilibrium near the run's mean: k x + k2 x^2 + k3 x^3 = F0, by Newton from F0/k.
         double x0 = k != 0 ? F0 / k : 0.0;
         for (int it = 0; it < 30; ++it) {
@@ -58,14 +80,14 @@ std::vector<RunWell> data_wells(const Prep& pr, int hac_lag) {
             x0 -= f / df;
         }
         RunWell w;
-        w.run = run;
-        w.x0 = x0 + xm;
+        w.run = runs[q];
+        w.x0 = x0 + mean_of[q];
         const double keff = k + 2 * k2 * x0 + 3 * k3 * x0 * x0, k2eff = k2 + 3 * k3 * x0;
         // Uncertainties by the delta method over (k, k2, k3, F0) through x0.
         Eigen::Vector4d gk, g2;
         gk << 1.0, 2 * x0, 3 * x0 * x0, 0.0;
         g2 << 0.0, 1.0, 3 * x0, 0.0;
-        const Eigen::Matrix4d Vs = V.block(1, 1, 4, 4);
+        const Eigen::Matrix4d Vs = V.block(b0, b0, 4, 4);
         const double sk = std::sqrt(std::max(0.0, gk.dot(Vs * gk))), s2 = std::sqrt(std::max(0.0, g2.dot(Vs * g2)));
         if (!(keff > 0)) continue;   // not a well
         w.omega = std::sqrt(keff);
@@ -75,20 +97,22 @@ std::vector<RunWell> data_wells(const Prep& pr, int hac_lag) {
         // The side: the local law is softer toward the barrier (k2 < 0: barrier at +x, the left well).
         w.side = std::abs(k2eff) > 3.0 * s2 ? (k2eff < 0 ? "left" : "right") : "";
         // The barrier by the local law: the nearest zero of the restoring force toward the softer side, and the
-        // depth per unit mass as the work to reach it. None where the local law does not turn over there.
+        // depth per unit mass as the potential there. Only where the barrier lies within twice the run's reach
+        // of its equilibrium: farther, the local law is extrapolated and says nothing of the depth.
+        double reach = 0;
+        for (std::size_t i : rows_of[q]) reach = std::max(reach, std::abs(d.x[i] - w.x0));
         const double dir = k2eff < 0 ? 1.0 : -1.0;
-        const double span = 10.0 * std::max(pr.x_span, 1e-300);
         double yb = kNaN, prev = 0;
         for (int i = 1; i <= 4000; ++i) {
-            const double yy = dir * span * i / 4000.0, f = keff * yy + k2eff * yy * yy + k3 * yy * yy * yy;
+            const double yy = dir * 2.0 * reach * i / 4000.0, f = keff * yy + k2eff * yy * yy + k3 * yy * yy * yy;
             if (i > 1 && (f > 0) != (prev > 0)) {
                 yb = yy;
                 break;
             }
             prev = f;
         }
+        w.depth = kNaN;
         if (std::isfinite(yb)) {
-            // The potential per unit mass at the barrier: the well's depth.
             w.depth = keff * yb * yb / 2.0 + k2eff * yb * yb * yb / 3.0 + k3 * yb * yb * yb * yb / 4.0;
             w.barrier = std::abs(yb);
             if (!(w.depth > 0)) w.depth = kNaN;
@@ -106,7 +130,7 @@ std::string wells_asymmetry(const std::vector<RunWell>& wells, const std::string
         if (w.side == "right" && (!right || w.somega < right->somega)) right = &w;
     }
     if (wells.size() < 2) return "";
-    char buf[600];
+    char buf[1200];
     if (!left || !right) {
         // Runs all in one well (or with no clear side): compare their frequencies only.
         double lo = INFINITY, hi = -INFINITY, s = 0;
@@ -123,7 +147,9 @@ std::string wells_asymmetry(const std::vector<RunWell>& wells, const std::string
     }
     const double dw = left->omega - right->omega, sw = std::hypot(left->somega, right->somega);
     const double fl = left->omega / (2 * kPi), fr = right->omega / (2 * kPi);
-    const bool differ = std::abs(dw) > 3.0 * sw && std::abs(dw) > 0.03 * std::max(left->omega, right->omega);
+    // Beyond the scatter, and by more than the equation error's bias at one drive frequency can make of mirror-image
+    // wells (a tenth).
+    const bool differ = std::abs(dw) > 3.0 * sw && std::abs(dw) > 0.10 * std::max(left->omega, right->omega);
     if (!differ) {
         std::snprintf(buf, sizeof buf,
                       "no asymmetry: the left and right wells have the same linear frequency within the scatter "
@@ -132,7 +158,7 @@ std::string wells_asymmetry(const std::vector<RunWell>& wells, const std::string
         return buf;
     }
     const bool left_stiffer = dw > 0;
-    std::string depth;
+    std::string depth = "; their depths are not measurable from motion that stays this far from the barrier";
     if (std::isfinite(left->depth) && std::isfinite(right->depth)) {
         char b[200];
         std::snprintf(b, sizeof b, "; by the local force laws' barriers the %s well is deeper (%.3g vs %.3g %s^2/s^2 per unit mass)",

@@ -114,9 +114,11 @@ PrintedErrors printed_errors(const Prep& pr, const Model& m, const FitOptions& o
         for (const ImpactObs& im : pr.impacts) vm += im.v_minus;
         vm = pr.impacts.empty() ? 1.0 : std::max(vm / static_cast<double>(pr.impacts.size()), 1e-9);
         const double ni = std::sqrt(std::max<double>(1.0, static_cast<double>(pr.impacts.size())));
-        dwell.resolution = pr.dt / std::sqrt(12.0) / ni;
+        // A dwell is counted in samples: one impact's dwell one sample longer moves the printed RMS by the
+        // quantum's share. A level below twice the sensor noise is no shift the impact stage would name either.
+        dwell.quantum = pr.dt;
         kap.resolution = std::sqrt(2.0) * pr.sigma_x / pr.dt / vm / ni;
-        level.resolution = pr.sigma_x / ni;
+        level.resolution = 2.0 * pr.sigma_x;
         kap.missing_fails = dwell.missing_fails = level.missing_fails = false;
         if (!dwell.num.empty()) {
             pe.e.push_back(std::move(kap));
@@ -244,14 +246,18 @@ GateCheck gate_check(const PrintedErrors& given, const PrintedErrors& cand, doub
             }
         }
         // Worse: a rise beyond its scatter, and visible at the report's four significant digits.
-        scatter = std::max(scatter, ref.resolution / z_tol);
+        double resolution = ref.resolution;
+        if (ref.quantum > 0 && ref.kind == PrintedError::Kind::Rms)
+            resolution = std::max(resolution, std::sqrt(vr * vr + ref.quantum * ref.quantum / n) - vr);
+        scatter = std::max(scatter, resolution / z_tol);
         if (rise > 1e-3 * std::abs(vr) && rise <= z_tol * scatter) {
-            std::snprintf(buf, sizeof buf, "%s: %.4g -> %.4g, within its scatter (+/- %.2g)", ref.name.c_str(), vr, vc, scatter);
+            std::snprintf(buf, sizeof buf, "%s: %.4g -> %.4g, within its scatter (%.2g standard errors of %.2g)", ref.name.c_str(), vr, vc,
+                          z_tol, scatter);
             g.within.emplace_back(buf);
         }
         if (rise > z_tol * scatter && rise > 1e-3 * std::abs(vr)) {
-            std::snprintf(buf, sizeof buf, "%s rose from %.4g to %.4g (scatter +/- %.2g over %zu units)", ref.name.c_str(), vr, vc,
-                          scatter, d.size());
+            std::snprintf(buf, sizeof buf, "%s rose from %.4g to %.4g (beyond %.2g standard errors of %.2g over %zu units)", ref.name.c_str(),
+                          vr, vc, z_tol, scatter, d.size());
             g.worse = true;
             g.why = buf;
             return g;

@@ -268,7 +268,8 @@ struct PrintedError {
     Kind kind = Kind::Rms;
     std::vector<double> keys;   // the units' omega (diagram bins, paired by omega); empty: paired by position
     std::vector<double> noise;  // each unit's own sampling noise (a diagram bin's distance), if any
-    double resolution = 0;      // the least change of the value the data resolve (an impact's dwell: the sampling)
+    double resolution = 0;      // the least change of the value the data resolve
+    double quantum = 0;         // a unit's own quantum (an impact's dwell: one sample): a one-quantum change of one unit
     bool missing_fails = true;  // a unit only the given model has counts against the other (not so for impacts)
     double value() const;       // NaN when no unit is finite
 };
