@@ -186,14 +186,16 @@ int cmd_fit(const std::vector<std::string>& argv) {
     const auto& wa = r.wells_after;
     if (wa.wells.size() == 2 && std::isfinite(wa.hill_x)) {
         const double s = r.x_unit == "m" ? 1e3 : 1.0;
+        const std::string depth_unit = r.force_unit == "N" ? "J" : "(data units/s)^2 per unit mass";
         for (int k = 0; k < 2; ++k) {
             const auto& w = wa.wells[static_cast<std::size_t>(k)];
-            std::printf("%s well: x = %.4g +/- %.2g %s, depth %.4g +/- %.2g J, omega %.4g +/- %.2g rad/s%s\n", k ? "right" : "left ",
-                        w.x * s, w.sx * s, r.x_unit == "m" ? "mm" : r.x_unit.c_str(), w.depth, w.sdepth, w.omega, w.somega,
-                        w.beyond_bumper ? " (beyond the bumper)" : "");
+            // A Duffing model in the data's units has m = 1: its depths are per unit mass, not joules.
+            std::printf("%s well: x = %.4g +/- %.2g %s, depth %.4g +/- %.2g %s, omega %.4g +/- %.2g rad/s (%.4g Hz)%s\n", k ? "right" : "left ",
+                        w.x * s, w.sx * s, r.x_unit == "m" ? "mm" : r.x_unit.c_str(), w.depth, w.sdepth, depth_unit.c_str(), w.omega,
+                        w.somega, w.omega / (2 * 3.141592653589793), w.beyond_bumper ? " (beyond the bumper)" : "");
         }
-        std::printf("wells, right minus left: depth %.3g +/- %.2g J, omega %.3g +/- %.2g rad/s (%zu run%s:", wa.depth_asym, wa.sdepth_asym,
-                    wa.omega_asym, wa.somega_asym, r.runs, r.runs > 1 ? "s" : "");
+        std::printf("wells, right minus left: depth %.3g +/- %.2g %s, omega %.3g +/- %.2g rad/s (%zu run%s:", wa.depth_asym, wa.sdepth_asym,
+                    depth_unit.c_str(), wa.omega_asym, wa.somega_asym, r.runs, r.runs > 1 ? "s" : "");
         for (const auto& rw : wa.run_wells) std::printf(" %s", rw.c_str());
         std::printf(")\n");
     }

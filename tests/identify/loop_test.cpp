@@ -192,8 +192,17 @@ TEST_CASE("loop: the report holds what scripts read, and the model file loads") 
     const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     for (const char* key : {"\"effects_found\"", "\"explained_fraction\"", "\"parameters\"", "\"sentence\"", "\"error_before\"",
                             "\"error_after\"", "\"residual_rms_N\"", "\"shooting_rms_1_m\"", "\"shooting_rms_10_m\"",
-                            "\"constant_force\""})
+                            "\"constant_force\"", "\"gate\"", "\"passed\"", "\"remainder\"", "\"data_horizon\"",
+                            "\"shooting_rms_judge_m\""})
         CHECK(json.find(key) != std::string::npos);
+    // The markdown says how the gate decided and prints the errors it compared.
+    std::ifstream md_in(dir / "report.md");
+    const std::string md((std::istreambuf_iterator<char>(md_in)), std::istreambuf_iterator<char>());
+    CHECK(md.find("## The final gate") != std::string::npos);
+    CHECK(md.find("Passed: added constant_force") != std::string::npos);
+    CHECK(md.find("the model given") != std::string::npos);
+    CHECK(r.gate.empty());
+    CHECK(r.gate_passed.rfind("added constant_force", 0) == 0);
     const id::Model after = id::resolve_fit_model((dir / "model_after.json").string(), id::Forcing::Unbalance);
     REQUIRE(after.p.effects.size() == 1);
     CHECK(after.p.effects[0].p[0] == doctest::Approx(-0.3).epsilon(0.05));

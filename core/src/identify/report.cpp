@@ -283,7 +283,9 @@ std::string markdown(const FitReport& r, bool with_plots) {
     if (wa.wells.size() == 2 && std::isfinite(wa.hill_x)) {
         const double xs_ = r.x_unit == "m" ? 1e3 : 1.0;
         const std::string xu_ = r.x_unit == "m" ? "mm" : r.x_unit;
-        md << "## The two wells (model after)\n\n| well | x [" << xu_ << "] | depth below the hilltop [J] | linearised omega [rad/s] |\n|---|---|---|---|\n";
+        const std::string du_ = r.force_unit == "N" ? "J" : "(data units/s)^2 per unit mass";
+        md << "## The two wells (model after)\n\n| well | x [" << xu_ << "] | depth below the hilltop [" << du_
+           << "] | linearised omega [rad/s] |\n|---|---|---|---|\n";
         const char* side[2] = {"left", "right"};
         for (int k = 0; k < 2; ++k) {
             const Well& w = wa.wells[static_cast<std::size_t>(k)];
@@ -291,7 +293,7 @@ std::string markdown(const FitReport& r, bool with_plots) {
                << g3(w.sx * xs_, "%.2g") << " | " << g3(w.depth, "%.4g") << " +/- " << g3(w.sdepth, "%.2g") << " | " << g3(w.omega, "%.4g")
                << " +/- " << g3(w.somega, "%.2g") << " |\n";
         }
-        md << "\nRight minus left: depth " << g3(wa.depth_asym, "%.3g") << " +/- " << g3(wa.sdepth_asym, "%.2g") << " J, omega "
+        md << "\nRight minus left: depth " << g3(wa.depth_asym, "%.3g") << " +/- " << g3(wa.sdepth_asym, "%.2g") << " " << du_ << ", omega "
            << g3(wa.omega_asym, "%.3g") << " +/- " << g3(wa.somega_asym, "%.2g") << " rad/s (uncertainties from the effects found; "
            << "the base parameters are taken as given). ";
         std::string visited;
