@@ -16,36 +16,24 @@ namespace {
 
 constexpr double kEps = 1e-6;   // [m/s], the model's friction smoothing
 
-// Cubic B-spline kernel and its derivative at u (support |u| < 2).
-inline void bspline(double u, double& b, double& db) {
-    const double a = std::abs(u);
-    if (a >= 2.0) {
-        b = db = 0.0;
-    } else if (a <= 1.0) {
-        b = 2.0 / 3.0 - u * u + 0.5 * a * a * a;
-        db = -2.0 * u + 1.5 * u * a;
-    } else {
-        const double r = 2.0 - a;
-        b = r * r * r / 6.0;
-        db = -(u > 0 ? 1.0 : -1.0) * 0.5 * r * r;
-    }
-}
-
-// S(s) and dS/ds: 6 uniform B-splines centred at lo - h, lo, ..., hi + h with h = (hi - lo) / 3.
+// S(s) and dS/ds: 6 uniform B-splines centred at lo - h, lo, ..., hi + h with h = (hi - lo) / 3. At any s only
+// the four around its interval are nonzero; they are evaluated in closed form (the fit's inner loop): the
+// uniform cubic B-spline 2/3 - u^2 + |u|^3/2 for |u| <= 1, (2 - |u|)^3/6 for 1 < |u| < 2.
 struct Value { double S, dS; };
 Value spline(const double* p, double s) {
     const double lo = p[0], hi = p[1];
     if (!(hi > lo)) return {0.0, 0.0};
-    const double h = (hi - lo) / 3.0;
+    const double h = (hi - lo) / 3.0, ih = 1.0 / h;
     const bool inside = s > lo && s < hi;
-    const double sc = std::clamp(s, lo, hi);
-    double S = 0.0, dS = 0.0;
-    for (int j = 0; j < 6; ++j) {
-        double b, db;
-        bspline((sc - (lo + (j - 1) * h)) / h, b, db);
-        S += p[2 + j] * b;
-        dS += p[2 + j] * db / h;
-    }
+    const double t = (std::clamp(s, lo, hi) - lo) * ih;   // in [0, 3]
+    const int i = std::min(2, static_cast<int>(t));
+    const double f = t - i, g = 1.0 - f, f2 = f * f, g2 = g * g;
+    // Basis i .. i+3 at u = f + 1, f, f - 1, f - 2 (the kernel above, piece by piece).
+    const double b0 = g2 * g / 6.0, b1 = 2.0 / 3.0 - f2 + 0.5 * f2 * f, b2 = 2.0 / 3.0 - g2 + 0.5 * g2 * g, b3 = f2 * f / 6.0;
+    const double d0 = -0.5 * g2, d1 = -2.0 * f + 1.5 * f2, d2 = 2.0 * g - 1.5 * g2, d3 = 0.5 * f2;
+    const double* c = p + 2 + i;
+    const double S = c[0] * b0 + c[1] * b1 + c[2] * b2 + c[3] * b3;
+    const double dS = (c[0] * d0 + c[1] * d1 + c[2] * d2 + c[3] * d3) * ih;
     return {S, inside ? dS : 0.0};
 }
 
