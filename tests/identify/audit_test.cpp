@@ -178,3 +178,19 @@ TEST_CASE("audit: x read 3 ms late is a sensor delay, not a phase offset; undela
     CHECK(std::abs(f.parameters.front().second - 3e-3) <= 3.0 * f.sigma.front().second);
     CHECK(r.validation_rms_after_m < 1.5 * r.sigma_x);
 }
+
+TEST_CASE("audit: a curved sensor scale (x read as x + s x^2) is not passed off as the noise floor") {
+    // 30 um at 15 mm: a sensor gain absorbs its linear part over a one-sided range and the equation error
+    // reaches its floor, but the shooting error stays well above the sensor noise; the verdict must say so.
+    const id::Model a1h = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
+    id::SynthOptions so = short_run(11);
+    so.duration = 40.0;
+    id::steps_profile({9.0, 16.0}, 19.0, 2.0, so.knot_t, so.knot_omega);
+    id::MeasuredData d = id::synthesize(a1h, so);
+    for (double& x : d.x) x += 0.133 * x * x;
+    id::FitOptions fo;
+    fo.plots = false;
+    const id::FitReport r = id::run_fit(d, a1h, fo);
+    CHECK_MESSAGE(r.verdict.find("at its noise floor") == std::string::npos, r.verdict);
+    CHECK(r.verdict.find("misses something") != std::string::npos);
+}

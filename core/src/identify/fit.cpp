@@ -1143,7 +1143,13 @@ void errors_stage(const Prep& pr, const Model& model0, const Chain& chain, const
     // of one variable explains; otherwise how far off, and what the remainder depends on.
     {
         const double ratio = rep.noise_floor_N > 0 ? rep.error_after.residual_rms_N / rep.noise_floor_N : INFINITY;
-        const double shoot = rep.error_after.shooting_rms_judge_m >= 0 ? rep.error_after.shooting_rms_judge_m : rep.error_after.shooting_rms_1_m;
+        // The shooting error a right model leaves: the sensor noise over one period (its initial state fitted
+        // to the window, it does not drift within one). A record whose returns double their separation within
+        // a period is judged on its shorter windows, where the error may have grown to twice the noise.
+        const Prep::Predictability& dh = pr.predictability;
+        const bool short_horizon = dh.measured && !dh.regular && dh.periods < 1.0 && rep.error_after.shooting_rms_judge_m >= 0;
+        const double shoot = short_horizon ? rep.error_after.shooting_rms_judge_m : rep.error_after.shooting_rms_1_m;
+        const double shoot_limit = short_horizon ? 2.0 : 1.25;
         const double sratio = pr.sigma_x > 0 ? shoot / pr.sigma_x : INFINITY;
         rep.remainder = remainder_dependence(pr, R1);
         std::string depends;
@@ -1155,20 +1161,18 @@ void errors_stage(const Prep& pr, const Model& model0, const Chain& chain, const
                 std::snprintf(b, sizeof b, "%s%s (%.0f %%)", depends.empty() ? "" : ", ", what.c_str(), 100.0 * share);
                 depends += b;
             }
-        // Within the judging horizon a right model's shooting error grows to at most twice the noise (the
-        // horizon is where nearby returns double their separation).
-        const bool at_floor = ratio <= 1.5 && sratio <= 2.0;
+        const bool at_floor = ratio <= 1.5 && sratio <= shoot_limit;
         char buf[700];
         if (at_floor) {
             std::snprintf(buf, sizeof buf,
-                          "the residual (%.3g %s RMS) is at its noise floor (%.3g %s) and the shooting error within the judging "
-                          "horizon (%.3g) at the sensor noise (%.3g)%s",
+                          "the residual (%.3g %s RMS) is at its noise floor (%.3g %s) and the shooting error (%.3g) at the "
+                          "sensor noise (%.3g)%s",
                           rep.error_after.residual_rms_N, rep.force_unit.c_str(), rep.noise_floor_N, rep.force_unit.c_str(), shoot,
                           pr.sigma_x, rep.effects_found.empty() ? ": no missing effect" : " with the effects found");
         } else {
             std::snprintf(buf, sizeof buf,
                           "the model %s misses something: the residual (%.3g %s RMS) is %.3g times its noise floor (%.3g %s) and the "
-                          "shooting error within the judging horizon %.3g times the sensor noise; %s%s",
+                          "shooting error %.3g times the sensor noise; %s%s",
                           rep.effects_found.empty() ? "still" : "with the effects found still", rep.error_after.residual_rms_N,
                           rep.force_unit.c_str(), ratio, rep.noise_floor_N, rep.force_unit.c_str(), sratio,
                           depends.empty() ? "no smooth function of x, v, the phase, time or the impacts alone explains what is left"

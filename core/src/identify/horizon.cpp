@@ -116,21 +116,17 @@ DataHorizon data_horizon(const Prep& pr) {
             h.periods = h.log_separation[k].first;
             break;
         }
-    // The exponent: the slope of the mean log separation up to its doubling (to 10 periods if it never does).
-    const std::size_t kend = std::isfinite(h.periods) ? std::max<std::size_t>(2, static_cast<std::size_t>(std::lround(h.periods * 32.0))) : steps;
-    double sw = 0, st = 0, sy = 0, stt = 0, sty = 0;
-    for (std::size_t k = 0; k <= kend; ++k) {
-        const double t = h.log_separation[k].first * T, y = h.log_separation[k].second;
-        sw += 1;
-        st += t;
-        sy += y;
-        stt += t * t;
-        sty += t * y;
-    }
-    const double den = sw * stt - st * st;
-    h.lambda = den > 0 ? (sw * sty - st * sy) / den : 0.0;
     // Regular (periodic or quasi-periodic within the noise) when the separation never doubles in 10 periods.
     h.regular = !std::isfinite(h.periods);
+    // The exponent: the steepest growth of the mean log separation over a quarter period before its doubling.
+    // Nearest returns of a finite record start far above the noise, where growth is already slower than from
+    // the noise a fitted initial state leaves, so the doubling of their own separation alone would overstate
+    // how long a simulation from the noise stays close: the horizon is the shorter of that and ln 2 / lambda.
+    const std::size_t kend = h.regular ? steps : std::max<std::size_t>(8, static_cast<std::size_t>(std::lround(h.periods * 32.0)));
+    h.lambda = 0;
+    for (std::size_t k = 0; k + 8 <= std::min(kend, steps); ++k)
+        h.lambda = std::max(h.lambda, (h.log_separation[k + 8].second - h.log_separation[k].second) / (0.25 * T));
+    if (!h.regular && h.lambda > 0) h.periods = std::min(h.periods, std::log(2.0) / h.lambda / T);
     return h;
 }
 
