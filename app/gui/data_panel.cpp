@@ -113,8 +113,9 @@ void DataPanel::take(DataJobResult r, const DataPanelContext& ctx) {
             mask_ = all_;
             evals_.clear();
             eval_errors_.clear();
-            // The fit measured its baseline and its final model: the subsets "none" and "all".
-            evals_[0] = report_->error_before;
+            // The fit measured its baseline and its final model: the subsets "none" and "all" (the baseline is
+            // the fitted one where the gate kept it, else the model given).
+            evals_[0] = report_->baseline_column ? report_->error_baseline : report_->error_before;
             evals_[all_] = report_->error_after;
             const auto& tr = report_->trace;
             if (!tr.t.empty()) trace_t_ = {tr.t.front(), tr.t.back()};
@@ -259,9 +260,10 @@ void DataPanel::draw_effects() {
     const auto& r = *report_;
     ImGui::TextUnformatted("Effects found (switch them on and off: the errors below follow)");
     ImGui::Separator();
-    if (r.effects_found.empty()) {
-        ImGui::TextWrapped("No missing effect: the residual is at the level of the noise and the model's own error.");
-    }
+    if (r.effects_found.empty()) ImGui::TextWrapped("No effect passed the held-out test and the final gate.");
+    // What the fit concluded, and what the final gate undid: the same sentences as report.md.
+    ImGui::TextWrapped("Verdict: %s.", r.verdict.c_str());
+    for (const auto& g : r.gate) ImGui::TextWrapped("Final gate: %s.", g.c_str());
     for (std::size_t k = 0; k < r.effects_found.size() && k < kMaxToggleEffects; ++k) {
         const auto& f = r.effects_found[k];
         const std::uint32_t bit = std::uint32_t{1} << k;
@@ -303,7 +305,7 @@ void DataPanel::draw_effects() {
 void DataPanel::draw_errors() {
     const auto& r = *report_;
     ImGui::Spacing();
-    ImGui::TextUnformatted("Error: baseline, the fit's model, your choice");
+    ImGui::TextUnformatted("Error: the model given, the fit's model, your choice");
     ImGui::Separator();
     const auto it = evals_.find(mask_);
     const identify::ErrorSummary* sel = it != evals_.end() ? &it->second : nullptr;

@@ -80,8 +80,10 @@ DataHorizon data_horizon(const Prep& pr) {
     };
     // Reference points spread evenly over the record; each one's nearest neighbour at least two periods away.
     const std::size_t nref = std::min<std::size_t>(300, idx.size() / 4);
-    std::vector<double> ysum(steps + 1, 0.0);
+    std::vector<double> ysum(steps + 1, 0.0), usum(steps + 1, 0.0);
     std::size_t pairs = 0;
+    const bool input = !pr.phi_forced && !pr.u.empty();
+    const double su = input ? std::max(stdev(pr.u, 0, pr.u.size()), 1e-300) : 1.0;
     const double floor_sep = std::max(pr.sigma_x, 1e-12 * sx);
     for (std::size_t r = 0; r < nref; ++r) {
         pr.check_cancel();
@@ -100,10 +102,18 @@ DataHorizon data_horizon(const Prep& pr) {
         // A neighbour that meets another phase of the drive is no neighbour.
         const double df = std::sqrt((f1[i] - f1[jb]) * (f1[i] - f1[jb]) + (f2[i] - f2[jb]) * (f2[i] - f2[jb]) + (f3[i] - f3[jb]) * (f3[i] - f3[jb]));
         if (df > 0.5 * sx) continue;
-        for (std::size_t k = 0; k <= steps; ++k) ysum[k] += std::log(std::max(xsep(i + k * s, jb + k * s), floor_sep));
+        for (std::size_t k = 0; k <= steps; ++k) {
+            ysum[k] += std::log(std::max(xsep(i + k * s, jb + k * s), floor_sep));
+            if (input) usum[k] += std::abs(pr.u[i + k * s] - pr.u[jb + k * s]) / su;
+        }
         ++pairs;
     }
     if (pairs < 20) return h;
+    // A measured input that does not repeat (a multisine, noise) drives two nearby returns apart by itself: their
+    // separation then says nothing of the dynamics, and the horizon is not measurable from the data.
+    if (input)
+        for (std::size_t k = 0; k <= steps; ++k)
+            if (usum[k] / static_cast<double>(pairs) > 0.25) return h;
     h.pairs = pairs;
     for (std::size_t k = 0; k <= steps; ++k) h.log_separation.emplace_back(static_cast<double>(k) / 32.0, ysum[k] / static_cast<double>(pairs));
     // The separation's start: its least over the first quarter period (stable directions shrink first).
