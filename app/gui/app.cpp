@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "gl_util.hpp"
+#include "impactlab/assets.hpp"
 #include "opaque_image.hpp"
 #include "plot2d.hpp"
 #include "plot_gpu.hpp"
@@ -108,7 +109,7 @@ bool App::init(std::string& error) {
     glfwMakeContextCurrent(win_);
     // Window icon (assets/icons; a missing file only costs the icon).
     int iw = 0, ih = 0, in = 0;
-    if (unsigned char* icon = stbi_load(IMPACTLAB_ICON_PATH, &iw, &ih, &in, 4)) {
+    if (unsigned char* icon = stbi_load(asset_path("icons/impactlab-64.png").c_str(), &iw, &ih, &in, 4)) {
         const GLFWimage img{iw, ih, icon};
         glfwSetWindowIcon(win_, 1, &img);
         stbi_image_free(icon);
@@ -214,8 +215,9 @@ void App::rebuild_fonts() {
                                       0x2264, 0x2265, 0x25A0, 0x25CF, 0};
     cfg.GlyphRanges = kRanges;
     const float size = std::round(14.5f * ui_scale_);
-    if (!io.Fonts->AddFontFromFileTTF(IMPACTLAB_FONT_PATH, size, &cfg)) {
-        std::fprintf(stderr, "impactlab-gui: font %s not found, using ImGui's default\n", IMPACTLAB_FONT_PATH);
+    const std::string font = asset_path("fonts/DejaVuSans.ttf");   // share/impactlab when installed
+    if (font.empty() || !io.Fonts->AddFontFromFileTTF(font.c_str(), size, &cfg)) {
+        std::fprintf(stderr, "impactlab-gui: font fonts/DejaVuSans.ttf not found, using ImGui's default\n");
         ImFontConfig d;
         d.SizePixels = 13.0f * ui_scale_;
         io.Fonts->AddFontDefault(&d);
