@@ -624,67 +624,74 @@ int App::run() {
 
     if (opt_.soak > 0) return soak();
 
-    while (!glfwWindowShouldClose(win_)) {
-        frame();
-        if (opt_.frames <= 0) continue;
-        // Headless run: with a diagram requested, the frames are counted once it is done.
-        const bool waiting = bif_panel_.busy() || warming_ ||
-                             (!opt_.data.empty() && data_panel_.busy()) || analysis_.busy();
-        if (waiting) {
-            if (frame_count_ % 600 == 0 && frame_count_ > 0)
-                std::fprintf(stderr, "impactlab-gui: waiting for the bifurcation diagram (%.0f%%)\n", 100 * bif_panel_.progress());
-            continue;
-        }
-        ++counted_frames_;
-        // With --data the fit is for the start model, and --preset or --state-json look at one model: no
-        // switch unless one is asked for.
-        const bool keep_model =
-            !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty() || !opt_.session.empty();
-        if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_preset > 0) {
-            switched_ = true;   // --then-preset: what pressing key N does
-            apply_preset(presets_for(model_name())[static_cast<std::size_t>(opt_.then_preset - 1)]);
-        }
-        if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_xi) {
-            switched_ = true;   // --then-xI: what dragging the x_I slider there does
-            set_xi(opt_.then_xI);
-        }
-        if (!switched_ && counted_frames_ >= opt_.frames / 2 && (!keep_model || !opt_.switch_model.empty())) {
-            switched_ = true;
-            // Switch the model once, live: to --switch-model, or H <-> G with the same stiffness.
-            std::string target = opt_.switch_model;
-            if (target.empty()) {
-                const std::string imp = impact_models()[static_cast<std::size_t>(impact_)].id;
-                target = std::string(stiffness_sets()[static_cast<std::size_t>(stiffness_)].id) + (imp == "H" ? "G" : "H");
-            }
-            const Params p = make_version(target);
-            set_model(index_of_stiffness(p.stiffness_id), index_of_impact(p.impact));
-        }
-        if (counted_frames_ >= opt_.frames) {
-            if (!opt_.clip_out.empty() && !clip_started_) {   // --clip-out: the last seconds, a frame each
-                clip_started_ = true;
-                if (std::string err; !start_clip(opt_.clip_out, opt_.clip_seconds, err)) {
-                    std::fprintf(stderr, "impactlab-gui: error: --clip-out: %s\n", err.c_str());
-                    exit_code_ = 1;
-                }
-                continue;
-            }
-            if (clip_frame_ >= 0) continue;
-            if (opt_.replay_back > 0 && !replay_back_done_) {   // --replay-back: the last frame shows the past
-                replay_back_done_ = true;
-                if (enter_replay()) replay_.seek(replay_.cursor() - opt_.replay_back);
-                if (opt_.replay_continue) {   // then Enter, and 60 more frames of the continued run
-                    replay_request_ = ReplayRequest::Continue;
-                    counted_frames_ -= 60;
-                }
-                continue;
-            }
-            if (!opt_.screenshot.empty()) {
-                screenshot(opt_.screenshot);
-                frame();   // renders once more and reads that frame back
-            }
-            break;
-        }
+    while (!glfwWindowShouldClose(win_) && loop_once()) {}
+    return finish();
+}
+
+bool App::loop_once() {
+    frame();
+    if (opt_.frames <= 0) return true;
+    // Headless run: with a diagram requested, the frames are counted once it is done.
+    const bool waiting = bif_panel_.busy() || warming_ ||
+                         (!opt_.data.empty() && data_panel_.busy()) || analysis_.busy();
+    if (waiting) {
+        if (frame_count_ % 600 == 0 && frame_count_ > 0)
+            std::fprintf(stderr, "impactlab-gui: waiting for the bifurcation diagram (%.0f%%)\n", 100 * bif_panel_.progress());
+        return true;
     }
+    ++counted_frames_;
+    // With --data the fit is for the start model, and --preset or --state-json look at one model: no
+    // switch unless one is asked for.
+    const bool keep_model =
+        !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty() || !opt_.session.empty();
+    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_preset > 0) {
+        switched_ = true;   // --then-preset: what pressing key N does
+        apply_preset(presets_for(model_name())[static_cast<std::size_t>(opt_.then_preset - 1)]);
+    }
+    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_xi) {
+        switched_ = true;   // --then-xI: what dragging the x_I slider there does
+        set_xi(opt_.then_xI);
+    }
+    if (!switched_ && counted_frames_ >= opt_.frames / 2 && (!keep_model || !opt_.switch_model.empty())) {
+        switched_ = true;
+        // Switch the model once, live: to --switch-model, or H <-> G with the same stiffness.
+        std::string target = opt_.switch_model;
+        if (target.empty()) {
+            const std::string imp = impact_models()[static_cast<std::size_t>(impact_)].id;
+            target = std::string(stiffness_sets()[static_cast<std::size_t>(stiffness_)].id) + (imp == "H" ? "G" : "H");
+        }
+        const Params p = make_version(target);
+        set_model(index_of_stiffness(p.stiffness_id), index_of_impact(p.impact));
+    }
+    if (counted_frames_ >= opt_.frames) {
+        if (!opt_.clip_out.empty() && !clip_started_) {   // --clip-out: the last seconds, a frame each
+            clip_started_ = true;
+            if (std::string err; !start_clip(opt_.clip_out, opt_.clip_seconds, err)) {
+                std::fprintf(stderr, "impactlab-gui: error: --clip-out: %s\n", err.c_str());
+                exit_code_ = 1;
+            }
+            return true;
+        }
+        if (clip_frame_ >= 0) return true;
+        if (opt_.replay_back > 0 && !replay_back_done_) {   // --replay-back: the last frame shows the past
+            replay_back_done_ = true;
+            if (enter_replay()) replay_.seek(replay_.cursor() - opt_.replay_back);
+            if (opt_.replay_continue) {   // then Enter, and 60 more frames of the continued run
+                replay_request_ = ReplayRequest::Continue;
+                counted_frames_ -= 60;
+            }
+            return true;
+        }
+        if (!opt_.screenshot.empty()) {
+            screenshot(opt_.screenshot);
+            frame();   // renders once more and reads that frame back
+        }
+        return false;
+    }
+    return true;
+}
+
+int App::finish() {
     const SimStatus st = sim_->status();
     const double t_reached = have_last_ ? last_.t : st.sim_time;
     std::printf("impactlab-gui: frames=%ld model=%s sim_time=%.6f samples=%llu dropped=%llu epoch=%u\n", frame_count_,
