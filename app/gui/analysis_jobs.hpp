@@ -48,7 +48,7 @@ public:
         }
         progress_ = std::make_unique<Progress>();
         running_.store(true, std::memory_order_release);
-        thread_ = std::thread([this, w = std::move(work), prog = progress_.get()] {
+        auto body = [this, w = std::move(work), prog = progress_.get()] {
             std::optional<R> r;
             std::string error;
             try {
@@ -62,7 +62,12 @@ public:
                 error_ = std::move(error);
             }
             running_.store(false, std::memory_order_release);
-        });
+        };
+#ifdef __EMSCRIPTEN__
+        body();   // a browser page has no threads: the job runs here, whole
+#else
+        thread_ = std::thread(std::move(body));
+#endif
     }
     // UI thread. Asks the work to stop; what it returns when cancelled is still handed over.
     void cancel() {

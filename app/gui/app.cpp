@@ -122,7 +122,11 @@ bool App::init(std::string& error) {
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;   // the layout is computed, nothing to remember
     ImGui_ImplGlfw_InitForOpenGL(win_, true);
+#ifdef __EMSCRIPTEN__
+    ImGui_ImplOpenGL3_Init("#version 300 es");   // WebGL2
+#else
     ImGui_ImplOpenGL3_Init("#version 330 core");
+#endif
     imgui_ready_ = true;
 
     if (opt_.ui_scale > 0) ui_scale_ = static_cast<float>(opt_.ui_scale);
@@ -313,6 +317,9 @@ void App::drain_samples() {
     frame_max_force_ = 0;
     const double phi_before = have_last_ ? last_.phi : 0.0;
     const double wall = now_s();
+#ifdef __EMSCRIPTEN__
+    sim_->pump();   // a browser page has no threads: the engine's slice runs here, before the drain
+#endif
     sim_->samples().drain([&](const SimMsg& m) {
         if (m.source != 0) {   // the companion cart: its own track, compared with the cart's samples
             if (companion_mode_ != CompanionMode::Off) companion_.on_msg(m, traj_);

@@ -17,9 +17,13 @@ SimThread::SimThread(const EngineConfig& cfg) : engine_(cfg, &sink_) {
 SimThread::~SimThread() { stop(); }
 
 void SimThread::start() {
+#ifdef __EMSCRIPTEN__
+    begin_pacing();   // no threads in a file:// page: the UI runs a slice per frame (pump)
+#else
     if (thread_.joinable()) return;
     quit_.store(false, std::memory_order_relaxed);
     thread_ = std::thread([this] { run(); });
+#endif
 }
 
 void SimThread::stop() {

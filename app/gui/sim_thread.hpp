@@ -55,6 +55,10 @@ public:
     bool send(const SimCommand& c);
     // UI thread (the samples ring's only consumer) drains this.
     SpscRing<SimMsg>& samples() { return samples_; }
+#ifdef __EMSCRIPTEN__
+    // UI thread, once a frame, in a browser (no threads there): one slice of the loop run() repeats.
+    void pump() { slice(); }
+#endif
     // Any thread.
     SimStatus status() const;
 
