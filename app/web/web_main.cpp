@@ -103,6 +103,7 @@ int main() {
         return 0;
     }
     if (opt.bench_sim) {   // ?bench-sim: the simulation's rate in this browser, printed into #log
+        web_set_text("status", "");
         bench_sim();
         web_mark_done(0);
         return 0;
