@@ -23,6 +23,16 @@
 
 namespace impactlab::gui {
 
+// The threads a job's computation may use: as asked, or 1 in a browser page (no threads there).
+inline int worker_threads(int asked) {
+#ifdef __EMSCRIPTEN__
+    (void)asked;
+    return 1;
+#else
+    return asked;
+#endif
+}
+
 // One computation at a time on its own thread, with progress and cancel through a Progress the work
 // receives; the result (or the exception's message) is handed over once.
 template <class R>

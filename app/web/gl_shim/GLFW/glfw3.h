@@ -6,7 +6,7 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
-// The browser's devicePixelRatio on both axes.
+// 1 on both axes: the canvas is sized in CSS pixels (web_glfw.cpp).
 void glfwGetWindowContentScale(GLFWwindow* window, float* xscale, float* yscale);
 #ifdef __cplusplus
 }
