@@ -8,6 +8,7 @@ packages=(
   libimgui-dev libglfw3-dev libgl-dev libgl1-mesa-dri xvfb xauth
   libopenmpi-dev openmpi-bin
   clang
+  emscripten chromium dpkg-dev python3 desktop-file-utils
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -75,7 +75,7 @@ PlaneData compute_plane(const Params& p, const std::string& model, const PlaneRe
     for (int j = 0; j < req.ny; ++j) todo[static_cast<std::size_t>(j)] = j;
     std::vector<std::vector<ScanPoint>> rows(static_cast<std::size_t>(req.ny));
     // on_row is serialised by scan_rows, so the rows need no lock of their own.
-    scan_rows(p, spec, todo, req.threads, &progress, Tolerances{},
+    scan_rows(p, spec, todo, worker_threads(req.threads), &progress, Tolerances{},
               [&rows](int row, const std::vector<ScanPoint>& pts) { rows[static_cast<std::size_t>(row)] = pts; });
     std::string source = "computed: " + model;
     if (progress.cancel.load(std::memory_order_relaxed)) source += " (cancelled, partial)";
@@ -91,7 +91,7 @@ analysis::BasinSpec basin_request(const Params& p, double omega, int grid, int t
     spec.x_max = x_hi;
     spec.v_min = -0.3;
     spec.v_max = 0.3;
-    spec.threads = threads;
+    spec.threads = worker_threads(threads);
     return spec;
 }
 

@@ -23,6 +23,16 @@
 
 namespace impactlab::gui {
 
+// The threads a job's computation may use: as asked, or 1 in a browser page (no threads there).
+inline int worker_threads(int asked) {
+#ifdef __EMSCRIPTEN__
+    (void)asked;
+    return 1;
+#else
+    return asked;
+#endif
+}
+
 // One computation at a time on its own thread, with progress and cancel through a Progress the work
 // receives; the result (or the exception's message) is handed over once.
 template <class R>
@@ -48,7 +58,7 @@ public:
         }
         progress_ = std::make_unique<Progress>();
         running_.store(true, std::memory_order_release);
-        thread_ = std::thread([this, w = std::move(work), prog = progress_.get()] {
+        auto body = [this, w = std::move(work), prog = progress_.get()] {
             std::optional<R> r;
             std::string error;
             try {
@@ -62,7 +72,12 @@ public:
                 error_ = std::move(error);
             }
             running_.store(false, std::memory_order_release);
-        });
+        };
+#ifdef __EMSCRIPTEN__
+        body();   // a browser page has no threads: the job runs here, whole
+#else
+        thread_ = std::thread(std::move(body));
+#endif
     }
     // UI thread. Asks the work to stop; what it returns when cancelled is still handed over.
     void cancel() {

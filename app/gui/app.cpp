@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "gl_util.hpp"
+#include "impactlab/assets.hpp"
 #include "opaque_image.hpp"
 #include "plot2d.hpp"
 #include "plot_gpu.hpp"
@@ -108,7 +109,7 @@ bool App::init(std::string& error) {
     glfwMakeContextCurrent(win_);
     // Window icon (assets/icons; a missing file only costs the icon).
     int iw = 0, ih = 0, in = 0;
-    if (unsigned char* icon = stbi_load(IMPACTLAB_ICON_PATH, &iw, &ih, &in, 4)) {
+    if (unsigned char* icon = stbi_load(asset_path("icons/impactlab-64.png").c_str(), &iw, &ih, &in, 4)) {
         const GLFWimage img{iw, ih, icon};
         glfwSetWindowIcon(win_, 1, &img);
         stbi_image_free(icon);
@@ -121,7 +122,11 @@ bool App::init(std::string& error) {
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;   // the layout is computed, nothing to remember
     ImGui_ImplGlfw_InitForOpenGL(win_, true);
+#ifdef __EMSCRIPTEN__
+    ImGui_ImplOpenGL3_Init("#version 300 es");   // WebGL2
+#else
     ImGui_ImplOpenGL3_Init("#version 330 core");
+#endif
     imgui_ready_ = true;
 
     if (opt_.ui_scale > 0) ui_scale_ = static_cast<float>(opt_.ui_scale);
@@ -214,8 +219,9 @@ void App::rebuild_fonts() {
                                       0x2264, 0x2265, 0x25A0, 0x25CF, 0};
     cfg.GlyphRanges = kRanges;
     const float size = std::round(14.5f * ui_scale_);
-    if (!io.Fonts->AddFontFromFileTTF(IMPACTLAB_FONT_PATH, size, &cfg)) {
-        std::fprintf(stderr, "impactlab-gui: font %s not found, using ImGui's default\n", IMPACTLAB_FONT_PATH);
+    const std::string font = asset_path("fonts/DejaVuSans.ttf");   // share/impactlab when installed
+    if (font.empty() || !io.Fonts->AddFontFromFileTTF(font.c_str(), size, &cfg)) {
+        std::fprintf(stderr, "impactlab-gui: font fonts/DejaVuSans.ttf not found, using ImGui's default\n");
         ImFontConfig d;
         d.SizePixels = 13.0f * ui_scale_;
         io.Fonts->AddFontDefault(&d);
@@ -311,6 +317,9 @@ void App::drain_samples() {
     frame_max_force_ = 0;
     const double phi_before = have_last_ ? last_.phi : 0.0;
     const double wall = now_s();
+#ifdef __EMSCRIPTEN__
+    sim_->pump();   // a browser page has no threads: the engine's slice runs here, before the drain
+#endif
     sim_->samples().drain([&](const SimMsg& m) {
         if (m.source != 0) {   // the companion cart: its own track, compared with the cart's samples
             if (companion_mode_ != CompanionMode::Off) companion_.on_msg(m, traj_);
@@ -622,67 +631,74 @@ int App::run() {
 
     if (opt_.soak > 0) return soak();
 
-    while (!glfwWindowShouldClose(win_)) {
-        frame();
-        if (opt_.frames <= 0) continue;
-        // Headless run: with a diagram requested, the frames are counted once it is done.
-        const bool waiting = bif_panel_.busy() || warming_ ||
-                             (!opt_.data.empty() && data_panel_.busy()) || analysis_.busy();
-        if (waiting) {
-            if (frame_count_ % 600 == 0 && frame_count_ > 0)
-                std::fprintf(stderr, "impactlab-gui: waiting for the bifurcation diagram (%.0f%%)\n", 100 * bif_panel_.progress());
-            continue;
-        }
-        ++counted_frames_;
-        // With --data the fit is for the start model, and --preset or --state-json look at one model: no
-        // switch unless one is asked for.
-        const bool keep_model =
-            !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty() || !opt_.session.empty();
-        if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_preset > 0) {
-            switched_ = true;   // --then-preset: what pressing key N does
-            apply_preset(presets_for(model_name())[static_cast<std::size_t>(opt_.then_preset - 1)]);
-        }
-        if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_xi) {
-            switched_ = true;   // --then-xI: what dragging the x_I slider there does
-            set_xi(opt_.then_xI);
-        }
-        if (!switched_ && counted_frames_ >= opt_.frames / 2 && (!keep_model || !opt_.switch_model.empty())) {
-            switched_ = true;
-            // Switch the model once, live: to --switch-model, or H <-> G with the same stiffness.
-            std::string target = opt_.switch_model;
-            if (target.empty()) {
-                const std::string imp = impact_models()[static_cast<std::size_t>(impact_)].id;
-                target = std::string(stiffness_sets()[static_cast<std::size_t>(stiffness_)].id) + (imp == "H" ? "G" : "H");
-            }
-            const Params p = make_version(target);
-            set_model(index_of_stiffness(p.stiffness_id), index_of_impact(p.impact));
-        }
-        if (counted_frames_ >= opt_.frames) {
-            if (!opt_.clip_out.empty() && !clip_started_) {   // --clip-out: the last seconds, a frame each
-                clip_started_ = true;
-                if (std::string err; !start_clip(opt_.clip_out, opt_.clip_seconds, err)) {
-                    std::fprintf(stderr, "impactlab-gui: error: --clip-out: %s\n", err.c_str());
-                    exit_code_ = 1;
-                }
-                continue;
-            }
-            if (clip_frame_ >= 0) continue;
-            if (opt_.replay_back > 0 && !replay_back_done_) {   // --replay-back: the last frame shows the past
-                replay_back_done_ = true;
-                if (enter_replay()) replay_.seek(replay_.cursor() - opt_.replay_back);
-                if (opt_.replay_continue) {   // then Enter, and 60 more frames of the continued run
-                    replay_request_ = ReplayRequest::Continue;
-                    counted_frames_ -= 60;
-                }
-                continue;
-            }
-            if (!opt_.screenshot.empty()) {
-                screenshot(opt_.screenshot);
-                frame();   // renders once more and reads that frame back
-            }
-            break;
-        }
+    while (!glfwWindowShouldClose(win_) && loop_once()) {}
+    return finish();
+}
+
+bool App::loop_once() {
+    frame();
+    if (opt_.frames <= 0) return true;
+    // Headless run: with a diagram requested, the frames are counted once it is done.
+    const bool waiting = bif_panel_.busy() || warming_ ||
+                         (!opt_.data.empty() && data_panel_.busy()) || analysis_.busy();
+    if (waiting) {
+        if (frame_count_ % 600 == 0 && frame_count_ > 0)
+            std::fprintf(stderr, "impactlab-gui: waiting for the bifurcation diagram (%.0f%%)\n", 100 * bif_panel_.progress());
+        return true;
     }
+    ++counted_frames_;
+    // With --data the fit is for the start model, and --preset or --state-json look at one model: no
+    // switch unless one is asked for.
+    const bool keep_model =
+        !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty() || !opt_.session.empty();
+    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_preset > 0) {
+        switched_ = true;   // --then-preset: what pressing key N does
+        apply_preset(presets_for(model_name())[static_cast<std::size_t>(opt_.then_preset - 1)]);
+    }
+    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_xi) {
+        switched_ = true;   // --then-xI: what dragging the x_I slider there does
+        set_xi(opt_.then_xI);
+    }
+    if (!switched_ && counted_frames_ >= opt_.frames / 2 && (!keep_model || !opt_.switch_model.empty())) {
+        switched_ = true;
+        // Switch the model once, live: to --switch-model, or H <-> G with the same stiffness.
+        std::string target = opt_.switch_model;
+        if (target.empty()) {
+            const std::string imp = impact_models()[static_cast<std::size_t>(impact_)].id;
+            target = std::string(stiffness_sets()[static_cast<std::size_t>(stiffness_)].id) + (imp == "H" ? "G" : "H");
+        }
+        const Params p = make_version(target);
+        set_model(index_of_stiffness(p.stiffness_id), index_of_impact(p.impact));
+    }
+    if (counted_frames_ >= opt_.frames) {
+        if (!opt_.clip_out.empty() && !clip_started_) {   // --clip-out: the last seconds, a frame each
+            clip_started_ = true;
+            if (std::string err; !start_clip(opt_.clip_out, opt_.clip_seconds, err)) {
+                std::fprintf(stderr, "impactlab-gui: error: --clip-out: %s\n", err.c_str());
+                exit_code_ = 1;
+            }
+            return true;
+        }
+        if (clip_frame_ >= 0) return true;
+        if (opt_.replay_back > 0 && !replay_back_done_) {   // --replay-back: the last frame shows the past
+            replay_back_done_ = true;
+            if (enter_replay()) replay_.seek(replay_.cursor() - opt_.replay_back);
+            if (opt_.replay_continue) {   // then Enter, and 60 more frames of the continued run
+                replay_request_ = ReplayRequest::Continue;
+                counted_frames_ -= 60;
+            }
+            return true;
+        }
+        if (!opt_.screenshot.empty()) {
+            screenshot(opt_.screenshot);
+            frame();   // renders once more and reads that frame back
+        }
+        return false;
+    }
+    return true;
+}
+
+int App::finish() {
     const SimStatus st = sim_->status();
     const double t_reached = have_last_ ? last_.t : st.sim_time;
     std::printf("impactlab-gui: frames=%ld model=%s sim_time=%.6f samples=%llu dropped=%llu epoch=%u\n", frame_count_,

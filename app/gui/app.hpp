@@ -45,6 +45,11 @@ public:
     App& operator=(const App&) = delete;
     // Runs until the window closes (or --frames / --bench-plot is done). Returns the exit code.
     int run();
+    // run()'s frame loop in pieces, for a host that owns the loop (a browser: app/web/web_main.cpp): open()
+    // once, then loop_once() every frame while it returns true (false: --frames are done), then finish().
+    bool open(std::string& error) { return init(error); }
+    bool loop_once();
+    int finish();   // the summary line, --state-json and the other files asked for; the exit code
 
 private:
     // app.cpp: life cycle, frame, input, actions

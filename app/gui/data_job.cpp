@@ -151,7 +151,7 @@ std::uint64_t DataJob::launch(DataJobResult::Kind kind, std::function<void(DataJ
     kind_ = kind;
     started_s_ = clock_s();
     auto done = std::make_shared<std::atomic<bool>>(false);
-    std::thread th([this, id, kind, done, work = std::move(work)] {
+    auto body = [this, id, kind, done, work = std::move(work)] {
         DataJobResult r;
         r.kind = kind;
         r.id = id;
@@ -170,8 +170,12 @@ std::uint64_t DataJob::launch(DataJobResult::Kind kind, std::function<void(DataJ
             }
         }
         done->store(true, std::memory_order_release);
-    });
-    workers_.push_back({std::move(th), std::move(done)});
+    };
+#ifdef __EMSCRIPTEN__
+    body();   // a browser page has no threads: the job runs here, whole
+#else
+    workers_.push_back({std::thread(std::move(body)), std::move(done)});
+#endif
     return id;
 }
 

@@ -10,6 +10,13 @@ namespace impactlab::gui {
 namespace {
 GLuint compile(GLenum type, const char* src, const char* name, std::string& error) {
     const GLuint s = glCreateShader(type);
+#ifdef __EMSCRIPTEN__
+    // WebGL2: the same shaders as GLSL ES 3.00 (they use nothing of 3.30 that ES 3.00 lacks).
+    std::string es(src);
+    if (const std::string desktop = "#version 330 core"; es.compare(0, desktop.size(), desktop) == 0)
+        es.replace(0, desktop.size(), "#version 300 es\nprecision highp float;\nprecision highp int;");
+    src = es.c_str();
+#endif
     glShaderSource(s, 1, &src, nullptr);
     glCompileShader(s);
     GLint ok = 0;

@@ -17,9 +17,13 @@ SimThread::SimThread(const EngineConfig& cfg) : engine_(cfg, &sink_) {
 SimThread::~SimThread() { stop(); }
 
 void SimThread::start() {
+#ifdef __EMSCRIPTEN__
+    begin_pacing();   // no threads in a file:// page: the UI runs a slice per frame (pump)
+#else
     if (thread_.joinable()) return;
     quit_.store(false, std::memory_order_relaxed);
     thread_ = std::thread([this] { run(); });
+#endif
 }
 
 void SimThread::stop() {
@@ -89,79 +93,87 @@ SimStatus SimThread::status() const {
 }
 
 void SimThread::run() {
+    begin_pacing();
+    while (!quit_.load(std::memory_order_relaxed)) {
+        const int nap_us = slice();
+        if (nap_us > 0) std::this_thread::sleep_for(std::chrono::microseconds(nap_us));
+    }
+}
+
+void SimThread::begin_pacing() {
     // Pacing: sim time follows anchor_sim + speed * (wall - anchor_wall). Any command, a pause or a lag
     // re-anchors, so the simulation never tries to catch up on time it could not spend.
-    auto anchor_wall = Clock::now();
-    double anchor_sim = engine_.state().t;
-    double speed = engine_.speed();
+    pace_.anchor_wall = Clock::now();
+    pace_.anchor_sim = engine_.state().t;
+    pace_.speed = engine_.speed();
     // Achieved speed: sim time per wall time over windows of ~0.5 s.
-    auto meter_wall = anchor_wall;
-    double meter_sim = anchor_sim;
-
+    pace_.meter_wall = pace_.anchor_wall;
+    pace_.meter_sim = pace_.anchor_sim;
     engine_.publish_state();   // the UI sees the initial state even when started paused
     sink_.publish();
-    while (!quit_.load(std::memory_order_relaxed)) {
-        bool changed = false;
-        commands_.drain([&](const SimCommand& c) {
-            apply(c);
-            changed = true;
-        });
-        if (changed) sink_.publish();   // a command may publish the new state (reset, model switch)
-        bumper_.store(engine_.params().xI, std::memory_order_relaxed);
-        const auto now = Clock::now();
-        if (changed || engine_.speed() != speed) {
-            speed = engine_.speed();
-            anchor_wall = now;
-            anchor_sim = engine_.state().t;
-        }
-        paused_.store(engine_.paused() && !engine_.stepping(), std::memory_order_relaxed);
+}
 
-        if (engine_.paused() && !engine_.stepping()) {
-            anchor_wall = now;
-            anchor_sim = engine_.state().t;
-            meter_wall = now;
-            meter_sim = anchor_sim;
-            achieved_.store(0.0, std::memory_order_relaxed);
-            std::this_thread::sleep_for(std::chrono::milliseconds(2));
-            continue;
-        }
-
-        const auto deadline = now + std::chrono::milliseconds(kWorkCapMs);
-        double target;
-        if (engine_.stepping()) {
-            target = engine_.step_target();   // as fast as the cap allows
-        } else {
-            target = anchor_sim + speed * std::chrono::duration<double>(now - anchor_wall).count();
-        }
-        const double reached = engine_.advance_to(target, deadline);
-        // Lockstep: the companion covers the same span (no deadline: it costs about what the cart did).
-        if (companion_) companion_->advance_to(reached);
-        sink_.publish();   // the whole slice at once
-        sim_time_.store(reached, std::memory_order_relaxed);
-        bumper_.store(engine_.params().xI, std::memory_order_relaxed);
-        if (std::unique_lock<std::mutex> lock(energy_mutex_, std::try_to_lock); lock.owns_lock())
-            energy_ = engine_.energy();   // a busy UI skips one update, never stalls the simulation
-
-        const auto after = Clock::now();
-        if (!engine_.stepping() && !engine_.paused()) {
-            // More than 100 ms of wall time behind: give the debt up and report the lag.
-            const double behind_s = (target - reached) / speed;
-            const bool lag = behind_s > 0.1;
-            lagging_.store(lag, std::memory_order_relaxed);
-            if (lag) {
-                anchor_wall = after;
-                anchor_sim = reached;
-            }
-        }
-        const double window = std::chrono::duration<double>(after - meter_wall).count();
-        if (window >= 0.5) {
-            achieved_.store((reached - meter_sim) / window, std::memory_order_relaxed);
-            meter_wall = after;
-            meter_sim = reached;
-        }
-        // Caught up: sleep a little (the UI drains at its frame rate; 1 ms keeps the latency low).
-        if (reached >= target) std::this_thread::sleep_for(std::chrono::microseconds(1000));
+int SimThread::slice() {
+    Pacing& p = pace_;
+    bool changed = false;
+    commands_.drain([&](const SimCommand& c) {
+        apply(c);
+        changed = true;
+    });
+    if (changed) sink_.publish();   // a command may publish the new state (reset, model switch)
+    bumper_.store(engine_.params().xI, std::memory_order_relaxed);
+    const auto now = Clock::now();
+    if (changed || engine_.speed() != p.speed) {
+        p.speed = engine_.speed();
+        p.anchor_wall = now;
+        p.anchor_sim = engine_.state().t;
     }
+    paused_.store(engine_.paused() && !engine_.stepping(), std::memory_order_relaxed);
+
+    if (engine_.paused() && !engine_.stepping()) {
+        p.anchor_wall = now;
+        p.anchor_sim = engine_.state().t;
+        p.meter_wall = now;
+        p.meter_sim = p.anchor_sim;
+        achieved_.store(0.0, std::memory_order_relaxed);
+        return 2000;
+    }
+
+    const auto deadline = now + std::chrono::milliseconds(kWorkCapMs);
+    double target;
+    if (engine_.stepping()) {
+        target = engine_.step_target();   // as fast as the cap allows
+    } else {
+        target = p.anchor_sim + p.speed * std::chrono::duration<double>(now - p.anchor_wall).count();
+    }
+    const double reached = engine_.advance_to(target, deadline);
+    // Lockstep: the companion covers the same span (no deadline: it costs about what the cart did).
+    if (companion_) companion_->advance_to(reached);
+    sink_.publish();   // the whole slice at once
+    sim_time_.store(reached, std::memory_order_relaxed);
+    bumper_.store(engine_.params().xI, std::memory_order_relaxed);
+    if (std::unique_lock<std::mutex> lock(energy_mutex_, std::try_to_lock); lock.owns_lock())
+        energy_ = engine_.energy();   // a busy UI skips one update, never stalls the simulation
+
+    const auto after = Clock::now();
+    if (!engine_.stepping() && !engine_.paused()) {
+        // More than 100 ms of wall time behind: give the debt up and report the lag.
+        const double behind_s = (target - reached) / p.speed;
+        const bool lag = behind_s > 0.1;
+        lagging_.store(lag, std::memory_order_relaxed);
+        if (lag) {
+            p.anchor_wall = after;
+            p.anchor_sim = reached;
+        }
+    }
+    const double window = std::chrono::duration<double>(after - p.meter_wall).count();
+    if (window >= 0.5) {
+        achieved_.store((reached - p.meter_sim) / window, std::memory_order_relaxed);
+        p.meter_wall = after;
+        p.meter_sim = reached;
+    }
+    // Caught up: sleep a little (the UI drains at its frame rate; 1 ms keeps the latency low).
+    return reached >= target ? 1000 : 0;
 }
 
 }  // namespace impactlab::gui

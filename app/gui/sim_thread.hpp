@@ -11,6 +11,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -54,6 +55,10 @@ public:
     bool send(const SimCommand& c);
     // UI thread (the samples ring's only consumer) drains this.
     SpscRing<SimMsg>& samples() { return samples_; }
+#ifdef __EMSCRIPTEN__
+    // UI thread, once a frame, in a browser (no threads there): one slice of the loop run() repeats.
+    void pump() { slice(); }
+#endif
     // Any thread.
     SimStatus status() const;
 
@@ -74,6 +79,15 @@ private:
     };
 
     void run();   // sim thread
+    // Sim thread: the pacing's starting point, then one iteration of run()'s loop (commands, then at most
+    // kWorkCapMs of simulation up to where the clock says); returns how long to sleep [us], 0 for not at all.
+    void begin_pacing();
+    int slice();
+    struct Pacing {
+        std::chrono::steady_clock::time_point anchor_wall, meter_wall;
+        double anchor_sim = 0, meter_sim = 0, speed = 1;
+    };
+    Pacing pace_;   // sim thread only
     // Sim thread: a command for the cart, mirrored to the companion (SetCompanion configures it).
     void apply(const SimCommand& c);
     // Sim thread: the companion starts again from the cart's state (the twin kTwinOffset to the right).

@@ -101,7 +101,7 @@ Image render(const Figure& fig);
 void save_png(const Figure& fig, const std::string& path);
 void save_png(const Image& image, const std::string& path);
 
-// Path of the TrueType font in use: $IMPACTLAB_FONT if set, else IMPACTLAB_ASSET_DIR/fonts/DejaVuSans.ttf,
+// Path of the TrueType font in use: $IMPACTLAB_FONT if set, else asset_path("fonts/DejaVuSans.ttf") (assets.hpp),
 // else /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf. Throws std::runtime_error naming every path tried
 // when none can be read.
 const std::string& font_path();

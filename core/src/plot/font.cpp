@@ -12,6 +12,7 @@
 
 #include <stb_truetype.h>   // libstb exports the implementation: no STB_TRUETYPE_IMPLEMENTATION here
 
+#include "impactlab/assets.hpp"
 #include "impactlab/plot.hpp"
 
 namespace impactlab::plot {
@@ -33,9 +34,8 @@ bool read_file(const std::string& path, std::vector<unsigned char>& out) {
 std::unique_ptr<FontFile> load_font() {
     std::vector<std::string> candidates;
     if (const char* env = std::getenv("IMPACTLAB_FONT"); env != nullptr && *env != '\0') candidates.emplace_back(env);
-#ifdef IMPACTLAB_ASSET_DIR
-    candidates.emplace_back(std::string(IMPACTLAB_ASSET_DIR) + "/fonts/DejaVuSans.ttf");
-#endif
+    if (std::string installed = asset_path("fonts/DejaVuSans.ttf"); !installed.empty())   // share/impactlab, or assets/
+        candidates.push_back(std::move(installed));
     candidates.emplace_back("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf");
 
     for (const auto& path : candidates) {

@@ -1,0 +1,47 @@
+#!/bin/sh
+# The browser page in a real browser: build-web/impactlab.html opened from file:// in headless Chromium
+# (WebGL2 on SwiftShader: no GPU, no server), driven in real time over the DevTools pipe (page_run.py).
+#   1. ?model=A1H&preset=2&speed=20&frames=900: after the frames the page writes --state-json's JSON into
+#      #state-json; it must say A1H, period 2 on the Poincare map, simulated time well past zero, exit 0.
+#      The page's screenshot at 1280x800 then must be a real picture (impactlab_png_check).
+#   2. ?bench-sim: the simulation's rate in the page, three passes (printed; the best of A1H's GUI engine
+#      must reach 1000x real time).
+# Exit 77 (CTest's skip code) without the page (bash scripts/web.sh) or chromium (apt-get install chromium).
+# usage: web_test.sh PAGE PNG_CHECK OUT_DIR
+page="$1"; check="$2"; dir="$3"
+here=$(cd "$(dirname "$0")" && pwd)
+if [ ! -f "$page" ]; then echo "web_test: no $page (bash scripts/web.sh builds it): skipped"; exit 77; fi
+browser=""
+for b in chromium chromium-browser google-chrome; do
+    if command -v "$b" >/dev/null 2>&1; then browser="$b"; break; fi
+done
+if [ -z "$browser" ]; then echo "web_test: chromium is not installed (apt-get install chromium): skipped"; exit 77; fi
+command -v python3 >/dev/null 2>&1 || { echo "web_test: python3 is not installed: skipped"; exit 77; }
+rm -rf "$dir"
+mkdir -p "$dir/state" "$dir/bench"
+page=$(cd "$(dirname "$page")" && pwd)/$(basename "$page")
+echo "web_test: $page, $(stat -c %s "$page") bytes"
+
+# 1. The state and the picture after 900 frames.
+python3 "$here/page_run.py" "$browser" "file://$page?model=A1H&preset=2&speed=20&frames=900" "$dir/state" \
+    --screenshot "$dir/page.png" --size 1280x800 || { tail -n 20 "$dir/state/chromium.log"; echo "web_test: the page failed"; exit 1; }
+python3 - "$dir/state/state.json" <<'PY' || exit 1
+import json, sys
+j = json.load(open(sys.argv[1]))
+print("web_test: model %s, sim_time %.1f s, Poincare period %s" % (j["model"], j["sim_time"], j["poincare_period"]))
+errors = []
+if j["model"] != "A1H": errors.append("model %s, not A1H" % j["model"])
+if not j["sim_time"] > 20: errors.append("sim_time %.2f s: the simulation did not advance" % j["sim_time"])
+if j["poincare_period"] != 2: errors.append("Poincare period %s, not 2" % j["poincare_period"])
+if errors: sys.exit("web_test: " + "; ".join(errors))
+PY
+"$check" "$dir/page.png" 1280 800 || { echo "web_test: the page's screenshot is not a real picture"; exit 1; }
+grep '^web:' "$dir/state/log.txt" | sed 's/^/web_test: at 1280x800 under SwiftShader, /'   # the frame rate
+
+# 2. The simulation's rate in the browser.
+python3 "$here/page_run.py" "$browser" "file://$page?bench-sim" "$dir/bench" || { echo "web_test: ?bench-sim failed"; exit 1; }
+cat "$dir/bench/log.txt"
+rate=$(sed -n 's/^simulation A1H.*GUI engine with 1 ms samples \([0-9]*\)x.*/\1/p' "$dir/bench/log.txt" | sort -n | tail -n 1)
+[ -n "$rate" ] || { echo "web_test: no A1H rate in the benchmark's output"; exit 1; }
+[ "$rate" -ge 1000 ] || { echo "web_test: A1H runs at ${rate}x real time in the page at best, below 1000x"; exit 1; }
+echo "web_test: passed (A1H at ${rate}x real time at best)"
