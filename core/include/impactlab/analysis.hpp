@@ -110,6 +110,7 @@ struct BranchPoint {
     Floquet floquet;
     int impacts = 0;
     double max_x = 0;
+    std::vector<Vec2> sections;  // the k section points of the orbit, y first (a period-k diagram draws all k)
 };
 struct Branch {
     int id = 0;
