@@ -646,6 +646,10 @@ int App::run() {
             switched_ = true;   // --then-xI: what dragging the x_I slider there does
             set_xi(opt_.then_xI);
         }
+        if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_w) {
+            switched_ = true;   // --then-omega: what the arrow keys do, live (no reset)
+            set_omega(opt_.then_omega);
+        }
         if (!switched_ && counted_frames_ >= opt_.frames / 2 && (!keep_model || !opt_.switch_model.empty())) {
             switched_ = true;
             // Switch the model once, live: to --switch-model, or H <-> G with the same stiffness.

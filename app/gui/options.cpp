@@ -87,6 +87,7 @@ const char* usage_text() {
            "  --replay-continue  with --replay-back: continue the run from there (Enter), 60 frames more\n"
            "  --then-preset N    apply preset N half-way instead (as pressing key N)\n"
            "  --then-xI X        move the bumper to X [m] half-way instead (as the x_I slider)\n"
+           "  --then-omega W     set omega to W [rad/s] half-way instead (as the arrow keys: live, no reset)\n"
            "  --bench-plot       frames per second with --points points on every plot (needs a display)\n"
            "  --points N         points per plot for --bench-plot (default 100000)\n"
            "  --plot-backend B   how dense curves are drawn: raster (CPU, default), gpu (instanced\n"
@@ -233,6 +234,10 @@ Options parse_options(const std::vector<std::string>& args) {
             o.then_xI = number(a, value(), -0.02, 0.02);
             o.then_xi = true;
         }
+        else if (a == "--then-omega") {
+            o.then_omega = number(a, value(), 0.0, 30.0);
+            o.then_w = true;
+        }
         else if (a == "--switch-model") o.switch_model = version(a, value());
         else if (a == "--bifurcation") {
             const std::string& p = value();
@@ -292,6 +297,7 @@ Options parse_options(const std::vector<std::string>& args) {
     }
     if (o.then_preset > 0 && o.frames == 0) throw OptionsError("--then-preset needs --frames N");
     if (o.then_xi && o.frames == 0) throw OptionsError("--then-xI needs --frames N");
+    if (o.then_w && o.frames == 0) throw OptionsError("--then-omega needs --frames N");
     for (const std::string& h : o.hide)
         if (h == o.maximise) throw OptionsError("--maximise " + h + ": that panel is hidden by --hide");
     if (!o.save_session.empty() && o.frames == 0) throw OptionsError("--save-session needs --frames N");

@@ -35,6 +35,8 @@ struct Options {
     int then_preset = 0;         // with --frames: apply preset N half-way (as key N), instead of the model switch
     bool then_xi = false;        // with --frames: move the bumper to then_xI half-way (as the slider), no model switch
     double then_xI = 0;          // [m]
+    bool then_w = false;         // with --frames: set omega to then_omega half-way (as the arrow keys)
+    double then_omega = 0;       // [rad/s]
     std::string switch_model;    // with --frames: the version switched to half-way ("" = swap G and H)
     std::string bifurcation;     // "", "cf-up", "cf-down", "ef": start computing at launch
     int bif_steps = 300;

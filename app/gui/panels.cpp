@@ -590,6 +590,8 @@ void App::draw_poincare() {
     char label[160];
     const unsigned long long seen = map.seen();
     if (seen == 0) std::snprintf(label, sizeof label, "no section yet (one per forcing period)");
+    else if (map.provisional())
+        std::snprintf(label, sizeof label, "no period yet (provisional)  %zu of %llu points", n, seen);
     else if (status == PoincareMap::Status::Settling)
         std::snprintf(label, sizeof label, "settling...  %llu period%s, the transient is not drawn", seen, seen == 1 ? "" : "s");
     else if (periodic) std::snprintf(label, sizeof label, "period %d", map.period());
@@ -613,6 +615,7 @@ void App::draw_poincare() {
     const auto too_wide = [&] { return ImGui::CalcTextSize(label).x + ImGui::CalcTextSize(when).x + 12 > area_w; };
     if (too_wide()) {   // a small tile or a large UI scale: the short words
         if (seen == 0) std::snprintf(label, sizeof label, "no section yet");
+        else if (map.provisional()) std::snprintf(label, sizeof label, "no period yet  %zu", n);
         else if (status == PoincareMap::Status::Settling) std::snprintf(label, sizeof label, "settling... %llu", seen);
         else if (!periodic) std::snprintf(label, sizeof label, "chaos  %zu points", n);
         if (replay_.active() && too_wide()) std::snprintf(when, sizeof when, "  (replay)");

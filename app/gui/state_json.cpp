@@ -93,7 +93,8 @@ bool App::write_state_json(const std::string& path) {
     const PoincareMap& map = shown_map();   // replaying: the map at the cursor, as the panel shows it
     const PoincareMap::Status st = map.status();
     j["poincare_status"] = st == PoincareMap::Status::Periodic ? "periodic"
-                           : st == PoincareMap::Status::Chaotic ? "chaos" : "settling";
+                           : st == PoincareMap::Status::Chaotic ? "chaos"
+                           : map.provisional()                   ? "provisional" : "settling";
     j["poincare_period"] = st == PoincareMap::Status::Settling ? json(nullptr) : json(map.period());
     j["poincare_seen"] = map.seen();   // section points since the last change, the transient included
     j["poincare_tol"] = {map.tol_x(), map.tol_v()};
