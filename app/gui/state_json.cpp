@@ -105,6 +105,16 @@ bool App::write_state_json(const std::string& path) {
         imp.push_back(h[i].impacts);
     }
     j["poincare_points"] = std::move(pts);
+    if (const auto& ov = analysis_.overlay()) {   // the continued branches' special points, as the hover names them
+        json bif_pts = json::array();
+        for (const analysis::BifPoint& b : ov->points)
+            bif_pts.push_back({{"kind", analysis::bif_kind_name(b.kind)}, {"omega", b.param}, {"x", b.y[0]}, {"v", b.y[1]},
+                               {"period", b.period}, {"precision", b.precision}});
+        j["continuation"] = {{"model", ov->model}, {"omega_lo", ov->omega_lo}, {"omega_hi", ov->omega_hi},
+                             {"cancelled", ov->cancelled}, {"curves", ov->curves.size()}, {"points", std::move(bif_pts)}};
+    } else {
+        j["continuation"] = nullptr;
+    }
     {   // The bifurcation panel: the diagram shown (its omega range, columns done, stale after a switch) and
         // the Lyapunov strip under it.
         const BifurcationState b = bif_panel_.state(bifurcation_context());
