@@ -292,7 +292,8 @@ AnalysisAction AnalysisPanels::draw(const AnalysisContext& c) {
     poll(act);
     live_model_ = c.model;
     live_xI_ = c.xI;
-    if (!ImGui::GetIO().WantTextInput) {
+    // Ctrl+O is Load session: a chord is not also its letter.
+    if (!ImGui::GetIO().WantTextInput && !ImGui::GetIO().KeyCtrl) {
         if (key(GLFW_KEY_O)) {
             if (cont_job_.running()) cont_job_.cancel();
             else start_continuation(c);
@@ -482,9 +483,13 @@ void AnalysisPanels::draw_plane_window(const AnalysisContext& c, AnalysisAction&
             const auto cell = plane_pick(pl, (m.x - a.x) / (b.x - a.x), (b.y - m.y) / (b.y - a.y));
             if (cell) {
                 const double v = vals[static_cast<std::size_t>(cell->j) * pl.nx() + cell->i];
-                ImGui::SetTooltip("%s = %.4g, %s = %.4g\n%s = %.4g\n(click: run there)", pl.x_name.c_str(), cell->x * axis_scale(pl.x_name),
-                                  pl.y_name.c_str(), cell->y * axis_scale(pl.y_name),
-                                  pl.measures[static_cast<std::size_t>(plane_measure_)].c_str(), v);
+                // A period is named as the map's legend names it ("chaos / > 16" for 0), not as a number.
+                const std::string& measure = pl.measures[static_cast<std::size_t>(plane_measure_)];
+                char value[48];
+                if (measure == "period" && std::isfinite(v)) std::snprintf(value, sizeof value, "%s", period_name(static_cast<int>(v)));
+                else std::snprintf(value, sizeof value, "%s = %.4g", measure.c_str(), v);
+                ImGui::SetTooltip("%s = %.4g, %s = %.4g\n%s\n(click: run there)", pl.x_name.c_str(), cell->x * axis_scale(pl.x_name),
+                                  pl.y_name.c_str(), cell->y * axis_scale(pl.y_name), value);
                 if (plot.clicked()) {
                     const PlaneClick click = plane_click(pl, *cell);
                     act.omega = click.omega;

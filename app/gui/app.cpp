@@ -25,6 +25,18 @@ namespace impactlab::gui {
 
 namespace {
 
+// M steps through the bumper laws (C, C1, G, H) and skips "none": a model without a bumper is chosen in the
+// combo, not met by surprise while cycling.
+int next_impact_law(int current) {
+    const auto& laws = impact_models();
+    const int n = static_cast<int>(laws.size());
+    for (int i = 1; i <= n; ++i) {
+        const int j = (current + i) % n;
+        if (laws[static_cast<std::size_t>(j)].kind != ImpactKind::None) return j;
+    }
+    return current;
+}
+
 void glfw_error(int code, const char* text) { std::fprintf(stderr, "impactlab-gui: GLFW error %d: %s\n", code, text); }
 
 int index_of_stiffness(const std::string& id) {
@@ -384,19 +396,19 @@ void App::handle_keys() {
     if (pressed(GLFW_KEY_DOWN, true)) set_xi(xI_ - (shift ? 2e-3 : 5e-4));
     if (pressed(GLFW_KEY_RIGHT_BRACKET, true) || (!ctrl && pressed(GLFW_KEY_KP_ADD, true))) set_speed(speed_ * 2.0);
     if (pressed(GLFW_KEY_LEFT_BRACKET, true) || (!ctrl && pressed(GLFW_KEY_KP_SUBTRACT, true))) set_speed(speed_ / 2.0);
-    if (pressed(GLFW_KEY_M)) set_model(stiffness_, (impact_ + 1) % static_cast<int>(impact_models().size()));
-    if (pressed(GLFW_KEY_K)) set_model((stiffness_ + 1) % static_cast<int>(stiffness_sets().size()), impact_);
+    if (pressed(GLFW_KEY_M) && !ctrl) set_model(stiffness_, next_impact_law(impact_));
+    if (pressed(GLFW_KEY_K) && !ctrl) set_model((stiffness_ + 1) % static_cast<int>(stiffness_sets().size()), impact_);
     if (pressed(GLFW_KEY_C) && !ctrl) clear_poincare();
-    if (pressed(GLFW_KEY_B)) {
+    if (pressed(GLFW_KEY_B) && !ctrl) {
         if (const std::string msg = bif_panel_.toggle(bifurcation_context()); !msg.empty()) toast(msg);
     }
-    if (pressed(GLFW_KEY_T)) {
+    if (pressed(GLFW_KEY_T) && !ctrl) {
         dark_ = !dark_;
         apply_theme(dark_, ui_scale_);
         bif_dirty_ = true;
     }
     if (pressed(GLFW_KEY_F1) || (pressed(GLFW_KEY_SLASH) && shift)) show_help_ = !show_help_;
-    if (pressed(GLFW_KEY_H)) show_help_ = !show_help_;
+    if (pressed(GLFW_KEY_H) && !ctrl) show_help_ = !show_help_;
     if (pressed(GLFW_KEY_F12)) screenshot(screenshot_name());
     if (ctrl && pressed(GLFW_KEY_S)) open_session_window(true);
     if (ctrl && pressed(GLFW_KEY_O)) open_session_window(false);
@@ -636,8 +648,8 @@ int App::run() {
         ++counted_frames_;
         // With --data the fit is for the start model, and --preset or --state-json look at one model: no
         // switch unless one is asked for.
-        const bool keep_model =
-            !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty() || !opt_.session.empty();
+        const bool keep_model = !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty() ||
+                                !opt_.session.empty() || !opt_.save_session.empty();
         if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_preset > 0) {
             switched_ = true;   // --then-preset: what pressing key N does
             apply_preset(presets_for(model_name())[static_cast<std::size_t>(opt_.then_preset - 1)]);

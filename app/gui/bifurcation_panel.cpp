@@ -452,7 +452,7 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         const ImVec2 ts = ImGui::CalcTextSize(hint);
         plot.draw()->AddText(ImVec2(0.5f * (a.x + b.x - ts.x), 0.5f * (a.y + b.y - ts.y)), pal.axis_text, hint);
     }
-    plot.hline(c.xI, pal.bumper, 1.0f, true);
+    if (!c.params || c.params->has_bumper()) plot.hline(c.xI, pal.bumper, 1.0f, true);   // "none": no bumper
     // The running omega: a line, its value (to 0.01 rad/s), and the Poincare map's settled points on it.
     plot.vline(c.omega, pal.cursor, 2.0f);
     if (c.live && !is_stale) {

@@ -354,6 +354,7 @@ void App::draw_rig() {
     st.phi_span = have_last_ ? last_.phi - phi_prev_ : 0.0;
     st.xI = xI_shown_;   // where the simulation has it: it travels to the slider's x_I, pushing the cart
     st.bumper_force = std::max(frame_max_force_, last_.force);
+    st.bumper = params_.has_bumper();
     st.flash = flash_;
     st.magnet_force = -(spring_magnet(params_, last_.x).F - params_.k * last_.x);
     st.spring_force = -params_.k * last_.x;
@@ -438,7 +439,7 @@ void App::draw_rig() {
                     {at(-ruler_end - 0.004, rig::kRulerY + 0.0025), {1, 0.5f}},
                     {at(0.0, rig::kRulerY - 0.004), {0.5f, 0}}});
     // The bumper: under it, right of its face; at a large x_I against the image's right edge, or shorter.
-    {
+    if (params_.has_bumper()) {
         std::snprintf(buf, sizeof buf, "bumper  x_I = %+.1f mm", xI_shown_ * 1e3);
         const ImVec2 q = at(face + 0.004, bumper_low);
         if (!put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}})) {
@@ -519,8 +520,10 @@ void App::draw_phase() {
     ax.y_label = "v [m/s]";
     ax.x_scale = 1e3;
     if (!plot.begin("##phase", ImGui::GetContentRegionAvail(), phase_x_.cur, phase_v_.cur, ax)) return;
-    plot.shade_right_of(xI_shown_, pal.bumper);
-    plot.vline(xI_shown_, pal.bumper, 1.5f, true);
+    if (params_.has_bumper()) {   // impact law "none": no bumper to draw
+        plot.shade_right_of(xI_shown_, pal.bumper);
+        plot.vline(xI_shown_, pal.bumper, 1.5f, true);
+    }
     plot.hline(0.0, pal.grid, 1.0f);
     const History<SimMsg>& ct = companion_.traj();   // the companion over the same stretch of time, under the cart
     const bool comp = companion_mode_ != CompanionMode::Off && companion_.have();
@@ -653,8 +656,10 @@ void App::draw_poincare() {
     ax.y_label = "v [m/s]";
     ax.x_scale = 1e3;
     if (!plot.begin("##poincare", avail, pc_x_.cur, pc_v_.cur, ax)) return;
-    plot.shade_right_of(xI_, pal.bumper);
-    plot.vline(xI_, pal.bumper, 1.5f, true);
+    if (params_.has_bumper()) {   // impact law "none": no bumper to draw
+        plot.shade_right_of(xI_, pal.bumper);
+        plot.vline(xI_, pal.bumper, 1.5f, true);
+    }
 
     // Newest band first over one shared pixel bitmap: a pixel a newer point covers is not drawn again
     // for an older one (100k points cost one pass, not sixteen).
@@ -748,8 +753,10 @@ void App::draw_potential() {
     ax.x_scale = 1e3;
     ax.y_scale = 1e3;
     if (!plot.begin("##potential", avail, xr, yr, ax)) return;
-    plot.shade_right_of(xI_shown_, pal.bumper);
-    plot.vline(xI_shown_, pal.bumper, 1.5f, true);
+    if (params_.has_bumper()) {   // impact law "none": no bumper to draw
+        plot.shade_right_of(xI_shown_, pal.bumper);
+        plot.vline(xI_shown_, pal.bumper, 1.5f, true);
+    }
     plot.path(potential_x_.size(), [&](std::size_t i) { return XY{potential_x_[i], potential_v_[i]}; }, pal.trace2, 2.0f);
     // Total mechanical energy as a level: where it cuts V(x) are the turning points.
     plot.hline(last_.energy, pal.energy, 1.2f, true);
@@ -764,7 +771,7 @@ void App::draw_potential() {
         const double xc = companion_.last().x;
         plot.draw()->AddCircle(plot.to_px(xc, spring_magnet_potential(params_, xc)), 8.0f * ui_scale_, companion_color(1.0f), 0, 2.0f);
     }
-    plot.text(xI_shown_, yr.hi, " bumper", pal.bumper, ImVec2(0, -0.2f));
+    if (params_.has_bumper()) plot.text(xI_shown_, yr.hi, " bumper", pal.bumper, ImVec2(0, -0.2f));
     // A plain click puts the cart at x there, at rest.
     const double mx = plot.x_at(ImGui::GetIO().MousePos.x);
     if (plot.hovered() && !plot.dragging())
@@ -798,7 +805,7 @@ void App::draw_strip() {
     const float sep_w = comp ? std::round(size.x * 0.3f) : 0.0f;
     size.x -= comp ? sep_w + ImGui::GetStyle().ItemSpacing.x : 0.0f;
     if (!plot.begin("##strip", size, {t_from, t_now}, strip_y_.cur, ax)) return;
-    plot.hline(xI_shown_, pal.bumper, 1.5f, true);
+    if (params_.has_bumper()) plot.hline(xI_shown_, pal.bumper, 1.5f, true);
     plot.hline(0.0, pal.grid, 1.0f);
     if (comp) {
         const History<SimMsg>& ct = companion_.traj();
@@ -887,6 +894,8 @@ void App::draw_help() {
             {"K", "next stiffness (A1, A3), live"},
             {"1 .. 4", "presets: period 1, period 2, chaos, periodic window"},
             {"B", "compute (or cancel) the bifurcation diagram"},
+            {"O", "continue the periodic orbits over the diagram's ω range (or cancel)"},
+            {"F2, F3", "parameter plane (ω, x_I), basins of attraction at ω"},
             {"click diagram", "set ω there"},
             {"click phase / well", "start the cart from that (x, v) / that x at rest"},
             {"drag the cart", "hold it at the mouse; let go: from there at rest"},

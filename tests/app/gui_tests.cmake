@@ -36,6 +36,12 @@ if(TARGET impactlab)
   set_tests_properties(gui_continuation PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "gui")
 endif()
 
+# Defects a teacher meets: --save-session keeps --model, bad session numbers and duplicate keys refused.
+add_test(NAME gui_teacher
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_teacher.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_teacher)
+set_tests_properties(gui_teacher PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
+
 # The live omega ramp and the energy bar through --state-json (gui_ramp.sh says what it checks).
 add_test(NAME gui_ramp
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_ramp.sh $<TARGET_FILE:impactlab-gui>

@@ -1,0 +1,29 @@
+#!/bin/sh
+# Defects a teacher meets, through --state-json and saved files, under Xvfb:
+#  1. `--model A1G --omega 12.5 --frames 30 --save-session s.json` saves model A1G (the headless model switch
+#     half-way is for runs that only look, not for one that saves).
+#  2. A session file with 1e999 or a key given twice is refused with a message naming the file, not an abort.
+# Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
+# usage: gui_teacher.sh IMPACTLAB_GUI OUT_DIR
+gui="$1"; dir="$2"
+TEST=gui_teacher
+. "$(dirname "$0")/gui_lib.sh"
+gui_need xvfb-run python3
+mkdir -p "$dir"
+
+rm -f "$dir/s.json"
+gui_exec save --model A1G --omega 12.5 --frames 30 --save-session "$dir/s.json"
+[ $rc -eq 0 ] || { cat "$dir/save.log"; echo "$TEST: --save-session run exited with $rc"; exit 1; }
+python3 -c "import json,sys; m=json.load(open(sys.argv[1]))['model']; sys.exit(0 if m == 'A1G' else print('$TEST: saved model', m) or 1)" "$dir/s.json" || exit 1
+
+for bad in huge dup; do
+    case $bad in
+        huge) printf '{"format": "impactlab-gui session", "omega": 1e999}\n' >"$dir/$bad.json"; want="number is out of range" ;;
+        dup) printf '{"format": "impactlab-gui session", "omega": 9, "omega": 12}\n' >"$dir/$bad.json"; want="key 'omega' appears twice" ;;
+    esac
+    gui_exec "$bad" --session "$dir/$bad.json" --frames 5
+    if [ $rc -ne 2 ] || ! grep -q "$dir/$bad.json: .*$want" "$dir/$bad.log"; then
+        cat "$dir/$bad.log"; echo "$TEST: --session $bad.json: exit $rc, expected 2 with \"$want\""; exit 1
+    fi
+done
+echo "$TEST: passed"
