@@ -296,6 +296,13 @@ void App::layout_and_draw() {
     }
     for (const Tile& t : layout_.tiles) draw_tile(t);
     set_plot_backdrops_by_clear(false);   // floating windows (data panel) draw their own
+    if (nothing_shown()) {
+        // Every panel hidden: a blank window would look broken, so say how to get them back.
+        const char* hint = "Every panel is hidden.  View > Panels shows them again.";
+        const ImVec2 ts = ImGui::CalcTextSize(hint);
+        ImGui::GetBackgroundDrawList()->AddText(ImVec2(area.x + 0.5f * (area.w - ts.x), area.y + 0.5f * (area.h - ts.y)),
+                                                palette().axis_text, hint);
+    }
 
     if (!presenting) {
         ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8.0f * ui_scale_, 3.0f * ui_scale_));
@@ -421,6 +428,7 @@ nlohmann::json App::layout_json() const {
         if (!panel_visible_[static_cast<std::size_t>(i)]) hidden.push_back(panel_key(static_cast<PanelId>(i)));
     j["visible_panels"] = std::move(shown);
     j["hidden_panels"] = std::move(hidden);
+    j["nothing_shown_hint"] = nothing_shown();   // every panel hidden: the window says how to show them
     auto rect = [](const Rect& r) { return json::array({r.x, r.y, r.w, r.h}); };
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     j["viewport"] = json::array({vp->Pos.x, vp->Pos.y, vp->Size.x, vp->Size.y});

@@ -3,6 +3,8 @@
 #  1. `--model A1G --omega 12.5 --frames 30 --save-session s.json` saves model A1G (the headless model switch
 #     half-way is for runs that only look, not for one that saves).
 #  2. A session file with 1e999 or a key given twice is refused with a message naming the file, not an abort.
+#  3. Every panel hidden: the layout reports the hint the window shows (View > Panels), not a blank window;
+#     with one panel shown, no hint.
 # Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
 # usage: gui_teacher.sh IMPACTLAB_GUI OUT_DIR
 gui="$1"; dir="$2"
@@ -26,4 +28,16 @@ for bad in huge dup; do
         cat "$dir/$bad.log"; echo "$TEST: --session $bad.json: exit $rc, expected 2 with \"$want\""; exit 1
     fi
 done
+gui_json hidden --hide controls,rig,phase,poincare,potential,strip,bifurcation --frames 5
+gui_json one --hide controls,rig,phase,poincare,potential,strip --frames 5
+python3 - "$dir" <<'PY' || exit 1
+import json, sys
+d = sys.argv[1]
+hidden = json.load(open(f"{d}/hidden.json"))["layout"]
+one = json.load(open(f"{d}/one.json"))["layout"]
+if hidden["visible_panels"] or hidden["nothing_shown_hint"] is not True:
+    sys.exit(f"gui_teacher: every panel hidden: visible {hidden['visible_panels']}, hint {hidden['nothing_shown_hint']}")
+if one["visible_panels"] != ["bifurcation"] or one["nothing_shown_hint"] is not False:
+    sys.exit(f"gui_teacher: one panel shown: visible {one['visible_panels']}, hint {one['nothing_shown_hint']}")
+PY
 echo "$TEST: passed"
