@@ -179,9 +179,16 @@ bool App::init(std::string& error) {
     if (!opt_.ghost.empty()) ghost_impact_ = index_of_impact(make_version(opt_.ghost).impact);
     if (opt_.twin) set_companion(CompanionMode::Twin);
     else if (!opt_.ghost.empty()) set_companion(CompanionMode::Ghost);
-    if (!opt_.session.empty() && !load_session_file(opt_.session)) {   // checked before the window opened
-        error = session_error_;
-        return false;
+    if (!opt_.session.empty() && !load_session_file(opt_.session)) {
+        if (opt_.frames > 0) {   // headless: checked before the window opened already
+            error = session_error_;
+            return false;
+        }
+        // By hand: the window opens on the Load session dialog, which shows what is wrong with the file.
+        const std::string why = session_error_;
+        open_session_window(false);
+        session_error_ = why;
+        std::snprintf(session_path_, sizeof session_path_, "%s", opt_.session.c_str());
     }
     if (!opt_.bifurcation.empty()) start_bifurcation();
     if (opt_.ramp_to >= 0) start_ramp(opt_.ramp_to, opt_.ramp_rate);

@@ -326,7 +326,10 @@ void check_writable(const std::string& flag, const std::string& path) {
 }  // namespace
 
 void check_files(const Options& o) {
-    if (!o.data.empty()) {
+    // Started by hand (from an icon, say), a bad --data or --session is shown in the window, which opens
+    // anyway; a headless run (--frames, --soak) still stops here with exit code 2.
+    const bool interactive = o.frames == 0 && o.soak <= 0 && !o.bench_plot;
+    if (!o.data.empty() && !interactive) {
         std::error_code ec;
         if (std::filesystem::is_directory(o.data, ec)) throw OptionsError("--data: '" + o.data + "' is a directory");
         std::ifstream f(o.data, std::ios::binary);
@@ -335,7 +338,7 @@ void check_files(const Options& o) {
     if (!o.screenshot.empty()) check_writable("--screenshot", o.screenshot);
     if (!o.state_json.empty()) check_writable("--state-json", o.state_json);
     if (!o.save_session.empty()) check_writable("--save-session", o.save_session);
-    if (!o.session.empty()) {
+    if (!o.session.empty() && !interactive) {
         try {
             load_session(o.session, Session{});
         } catch (const SessionError& e) {

@@ -3,14 +3,16 @@
 #  1. `--model A1G --omega 12.5 --frames 30 --save-session s.json` saves model A1G (the headless model switch
 #     half-way is for runs that only look, not for one that saves).
 #  2. A session file with 1e999 or a key given twice is refused with a message naming the file, not an abort.
-#  3. Every panel hidden: the layout reports the hint the window shows (View > Panels), not a blank window;
+#  3. Started by hand (no --frames) with a bad --session or --data, the window opens anyway (still running
+#     when `timeout` stops it) and shows the session's error; headless (--frames) the run stops with exit 2.
+#  4. Every panel hidden: the layout reports the hint the window shows (View > Panels), not a blank window;
 #     with one panel shown, no hint.
 # Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
 # usage: gui_teacher.sh IMPACTLAB_GUI OUT_DIR
 gui="$1"; dir="$2"
 TEST=gui_teacher
 . "$(dirname "$0")/gui_lib.sh"
-gui_need xvfb-run python3
+gui_need xvfb-run python3 timeout
 mkdir -p "$dir"
 
 rm -f "$dir/s.json"
@@ -28,6 +30,17 @@ for bad in huge dup; do
         cat "$dir/$bad.log"; echo "$TEST: --session $bad.json: exit $rc, expected 2 with \"$want\""; exit 1
     fi
 done
+by_hand() {   # by_hand NAME ARGS...: no --frames, stopped by timeout after 6 s; $rc 124 if it was still running
+    name="$1"; shift
+    LIBGL_ALWAYS_SOFTWARE=1 timeout 6 xvfb-run -a -s "-screen 0 1280x800x24" "$gui" "$@" >"$dir/$name.log" 2>&1
+    rc=$?
+    [ $rc -eq 124 ] || { cat "$dir/$name.log"; echo "$TEST: $name: exit $rc before the timeout, expected a window"; exit 1; }
+}
+by_hand by_hand_session --session "$dir/huge.json"
+grep -q "session not loaded: .*number is out of range" "$dir/by_hand_session.log" ||
+    { cat "$dir/by_hand_session.log"; echo "$TEST: by hand with a bad --session: the error is not shown"; exit 1; }
+by_hand by_hand_data --data "$dir/nonexistent.csv"
+
 gui_json hidden --hide controls,rig,phase,poincare,potential,strip,bifurcation --frames 5
 gui_json one --hide controls,rig,phase,poincare,potential,strip --frames 5
 python3 - "$dir" <<'PY' || exit 1
