@@ -481,10 +481,14 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
     }
     {
         char buf[48];
-        std::snprintf(buf, sizeof buf, "ω = %.2f", c.omega);
-        const ImVec2 p = plot.to_px(c.omega, vy.hi);
+        // Beyond the diagram's omega range (30 rad/s over 0..25) the line is off the plot: the label says
+        // where it is, at the edge it lies beyond, inside the plot.
+        const bool beyond_hi = c.omega > vx.hi, beyond_lo = c.omega < vx.lo;
+        std::snprintf(buf, sizeof buf, beyond_hi ? "ω = %.2f >>" : beyond_lo ? "<< ω = %.2f" : "ω = %.2f", c.omega);
+        ImVec2 p = plot.to_px(std::clamp(c.omega, vx.lo, vx.hi), vy.hi);
+        p.x = std::clamp(p.x, a.x, b.x);
         // The label sits right of the line, or left of it near the right edge, so it is never cut off.
-        const bool left = p.x + ImGui::CalcTextSize(buf).x + 12 > b.x;
+        const bool left = beyond_hi || (!beyond_lo && p.x + ImGui::CalcTextSize(buf).x + 12 > b.x);
         plate_text(plot.draw(), ImVec2(left ? p.x - 5 : p.x + 5, p.y + 3), buf, pal.title_text, ImVec2(left ? 1.0f : 0.0f, 0));
     }
     if (is_stale) {

@@ -161,14 +161,18 @@ void App::draw_controls_run() {
     tooltip("Speed of the unbalance (Left/Right: -/+0.1, with Shift: 1). Drag it from 9 to 13 to watch the "
             "period-doubling cascade.");
     if (ImGui::Button("-1")) set_omega(omega_ - 1);
-    ImGui::SameLine();
+    same_line_or_wrap(button_width("-.1"));
     if (ImGui::Button("-.1")) set_omega(omega_ - 0.1);
-    ImGui::SameLine();
+    same_line_or_wrap(button_width("+.1"));
     if (ImGui::Button("+.1")) set_omega(omega_ + 0.1);
-    ImGui::SameLine();
+    same_line_or_wrap(button_width("+1"));
     if (ImGui::Button("+1")) set_omega(omega_ + 1);
-    ImGui::SameLine();
-    if (omega_ > 0) ImGui::TextDisabled(layout_.controls_narrow ? "%.2f s" : "T = %.3f s", kTwoPi / omega_);
+    if (omega_ > 0) {
+        char period[32];
+        std::snprintf(period, sizeof period, layout_.controls_narrow ? "%.2f s" : "T = %.3f s", kTwoPi / omega_);
+        same_line_or_wrap(ImGui::CalcTextSize(period).x);
+        ImGui::TextDisabled("%s", period);
+    }
     draw_ramp_controls();
     float xi_mm = static_cast<float>(xI_ * 1e3);
     ImGui::SetNextItemWidth(-1);
