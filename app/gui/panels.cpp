@@ -634,10 +634,22 @@ void App::draw_poincare() {
     const bool two_lines = legend && ImGui::CalcTextSize(label).x + legend_w + 24 > area_w;
     const double edge = ring + 3.0 + 0.06 * std::min(area_w, area_h);
     const double label_band = (two_lines ? 2.1 : 1.0) * fs + 10.0;
-    if (n == 0) {
+    if (n == 0 && phase_x_.init) {
         // Settling: an empty map in the phase portrait's view.
         pc_x_ = phase_x_;
         pc_v_ = phase_v_;
+        pc_fit_generation_ = ~std::uint64_t{0};
+    } else if (n == 0) {
+        // The phase portrait is not drawn (presentation mode): the trail's own extent, not an unset 0..1 m.
+        double xl = last_.x, xh = last_.x, vl = last_.v, vh = last_.v;
+        for (std::size_t i = trail_first(); i < traj_.size(); ++i) {
+            xl = std::min(xl, traj_[i].x);
+            xh = std::max(xh, traj_[i].x);
+            vl = std::min(vl, traj_[i].v);
+            vh = std::max(vh, traj_[i].v);
+        }
+        pc_x_.snap({xl, xh}, 0.08, 0.004);
+        pc_v_.snap({vl, vh}, 0.08, 0.04);
         pc_fit_generation_ = ~std::uint64_t{0};
     } else {
         const auto xe = pc_x_extent_.update(pts, 0, [](const MapPoint& m) { return m.x; });
