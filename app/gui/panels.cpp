@@ -402,6 +402,17 @@ void App::draw_rig() {
         }
         return false;
     };
+    // The ruler and the end walls are no place for a label either: their boxes are taken first.
+    const auto reserve = [&](double x0, double y0, double x1, double y1) {
+        const ImVec2 a = at(x0, y0), b = at(x1, y1);
+        labels.reserve({std::min(a.x, b.x), std::min(a.y, b.y), std::abs(b.x - a.x), std::abs(b.y - a.y)});
+    };
+    {
+        const double wall_x = mag.wall_x(), ruler = 0.025 * mag.gain;
+        reserve(-ruler, rig::kRulerY - 0.001, ruler, rig::kRulerY + 0.0052);   // the ticks (numbers sit above)
+        reserve(wall_x - 0.003, -0.065, wall_x + 0.013, 0.045);
+        reserve(-wall_x - 0.013, -0.065, -wall_x + 0.003, 0.045);
+    }
     const float edge = fs * 0.6f;
     // Regime badge (a compliant bumper has no regimes II/III: contact is free flight with F_I > 0).
     // The same words as the status bar, from the same sample (contact_label.hpp).
@@ -445,10 +456,10 @@ void App::draw_rig() {
     // The bumper: under it, right of its face; at a large x_I against the image's right edge, or shorter.
     if (params_.has_bumper()) {
         std::snprintf(buf, sizeof buf, "bumper  x_I = %+.1f mm", xI_shown_ * 1e3);
-        const ImVec2 q = at(face + 0.004, bumper_low);
-        if (!put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}})) {
+        const ImVec2 q = at(face + 0.004, bumper_low), q_left = at(face - 0.004, bumper_low);
+        if (!put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}, {q_left, {1, 0}}})) {
             std::snprintf(buf, sizeof buf, "x_I = %+.1f mm", xI_shown_ * 1e3);
-            put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}});
+            put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}, {q_left, {1, 0}}});
         }
     }
     // Legend: scale bar (the rig's size; the displacement is magnified on top of it) and the forcing.
