@@ -309,7 +309,8 @@ void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toa
     tooltip("CF: the number of ω levels over the range (a box dragged on the diagram keeps it: finer columns).");
     ImGui::EndDisabled();
     // The omega range: typed, or dragged on the diagram with the right mouse button.
-    same_line_if(fs * 9.6f);
+    // The two fields and the "0-25" button stay on one line: the button is not cut to "0-2".
+    same_line_if(fs * 9.6f + button_width("0-25") + fs * 0.2f);
     bool edited = false;
     ImGui::SetNextItemWidth(fs * 4.6f);
     edited |= ImGui::InputDouble("##wlo", &lo_edit_, 0, 0, "%.2f");
