@@ -2,6 +2,9 @@
 // functions for folds (det(M - I)), period doublings (det(M + I)), Neimark-Sacker (det M - 1 with complex
 // multipliers) and grazing (the largest x of the orbit reaching xI, or the smallest impact speed reaching 0),
 // each located by bisection along the arclength; at a period doubling the period-2k branch is switched onto.
+// A sign change counts only as the multiplier crossing it names (real through +1 or -1, a complex pair through
+// the unit circle, at a finite rate, clear of a grazing); a doubling or Neimark-Sacker is then re-located on
+// the orbit found again at a tighter tolerance.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
