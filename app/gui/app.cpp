@@ -449,6 +449,16 @@ void App::frame() {
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
+    if (!opt_.press.empty() && (frame_count_ == 3 || frame_count_ == 4)) {
+        // --press: down at frame 3, up at frame 4, as the GLFW backend's key callback sets them.
+        ImGuiIO& io = ImGui::GetIO();
+        const bool ctrl = opt_.press.rfind("ctrl+", 0) == 0;
+        const int key = GLFW_KEY_A + (opt_.press.back() - 'a');
+        const bool down = frame_count_ == 3;
+        io.KeysDown[key] = down;
+        io.KeysDown[GLFW_KEY_LEFT_CONTROL] = down && ctrl;
+        io.KeyCtrl = down && ctrl;
+    }
     ImGui::NewFrame();
     plot_gpu::begin_frame();
     opaque_image::begin_frame();

@@ -74,6 +74,7 @@ const char* usage_text() {
            "                     the simulated time reached and exit (with --bifurcation or --warmup:\n"
            "                     counted once the diagram is done and the warm-up is over)\n"
            "  --screenshot FILE  PNG written after --frames\n"
+           "  --press [ctrl+]K   press key K (a-z), with Ctrl if asked, at frame 3 (tests of the shortcuts)\n"
            "  --state-json FILE  JSON written after --frames: model, omega, xI, sim_time, fps, and the Poincare\n"
            "                     map as shown: poincare_period (k, 0 for chaos, null while settling) and\n"
            "                     poincare_points [[x, v], ...] [m, m/s]. With --preset, --state-json or --data\n"
@@ -272,6 +273,12 @@ Options parse_options(const std::vector<std::string>& args) {
             o.set_x = number(a, sv.substr(0, c), -0.05, 0.05);
             o.set_v = number(a, sv.substr(c + 1), -2.0, 2.0);
             o.set_state = true;
+        }
+        else if (a == "--press") {
+            o.press = value();
+            const std::string key = o.press.rfind("ctrl+", 0) == 0 ? o.press.substr(5) : o.press;
+            if (key.size() != 1 || key[0] < 'a' || key[0] > 'z')
+                throw OptionsError("--press: '" + o.press + "' is not a letter a-z, with or without ctrl+");
         }
         else if (a == "--soak") o.soak = number(a, value(), 1.0, 86400.0);
         else if (a == "--bench-plot") o.bench_plot = true;

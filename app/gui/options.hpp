@@ -70,6 +70,7 @@ struct Options {
     // The companion cart (issues 9, 11) and the mouse's state, as scripts set them.
     bool twin = false;           // --twin: a second cart 1 um to the right, the same model
     std::string ghost;           // --ghost M: a second cart from the same state under M's impact law
+    std::string press;           // --press [ctrl+]KEY: that key pressed at frame 3 (headless tests of the keys)
     bool set_state = false;      // --set-state X,V: at the first frame, as a click in the phase portrait
     double set_x = 0, set_v = 0; // [m], [m/s]
 };

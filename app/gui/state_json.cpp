@@ -105,6 +105,7 @@ bool App::write_state_json(const std::string& path) {
         imp.push_back(h[i].impacts);
     }
     j["poincare_points"] = std::move(pts);
+    j["session_window"] = session_window_ ? json(session_saving_ ? "save" : "load") : json(nullptr);
     if (const auto& ov = analysis_.overlay()) {   // the continued branches' special points, as the hover names them
         json bif_pts = json::array();
         for (const analysis::BifPoint& b : ov->points)

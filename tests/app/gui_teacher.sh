@@ -5,7 +5,9 @@
 #  2. A session file with 1e999 or a key given twice is refused with a message naming the file, not an abort.
 #  3. Started by hand (no --frames) with a bad --session or --data, the window opens anyway (still running
 #     when `timeout` stops it) and shows the session's error; headless (--frames) the run stops with exit 2.
-#  4. Every panel hidden: the layout reports the hint the window shows (View > Panels), not a blank window;
+#  4. Keys (--press): Ctrl+O opens Load session and starts no continuation; O alone starts one (so the
+#     check can fail); M from H goes to C, past "none".
+#  5. Every panel hidden: the layout reports the hint the window shows (View > Panels), not a blank window;
 #     with one panel shown, no hint.
 # Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
 # usage: gui_teacher.sh IMPACTLAB_GUI OUT_DIR
@@ -40,6 +42,24 @@ by_hand by_hand_session --session "$dir/huge.json"
 grep -q "session not loaded: .*number is out of range" "$dir/by_hand_session.log" ||
     { cat "$dir/by_hand_session.log"; echo "$TEST: by hand with a bad --session: the error is not shown"; exit 1; }
 by_hand by_hand_data --data "$dir/nonexistent.csv"
+
+gui_json press_ctrl_o --model A1G --press ctrl+o --frames 10
+gui_json press_o --model A1G --press o --frames 10
+gui_json press_m --model A1H --press m --frames 10
+python3 - "$dir" <<'PY' || exit 1
+import json, sys
+d = sys.argv[1]
+def load(n):
+    return json.load(open(f"{d}/{n}.json"))
+j = load("press_ctrl_o")
+if j["session_window"] != "load" or j["continuation"] is not None:
+    sys.exit(f"gui_teacher: Ctrl+O: session window {j['session_window']}, continuation {j['continuation'] is not None}")
+j = load("press_o")
+if j["session_window"] is not None or j["continuation"] is None or not j["continuation"]["points"]:
+    sys.exit(f"gui_teacher: O: session window {j['session_window']}, no continuation computed")
+if load("press_m")["model"] != "A1C":
+    sys.exit(f"gui_teacher: M from A1H gave {load('press_m')['model']}, expected A1C (none is skipped)")
+PY
 
 gui_json hidden --hide controls,rig,phase,poincare,potential,strip,bifurcation --frames 5
 gui_json one --hide controls,rig,phase,poincare,potential,strip --frames 5
