@@ -20,6 +20,12 @@ namespace {
 
 // Every analysis command takes the model flags: its help ends with them.
 bool wants_help(const std::vector<std::string>& args, const char* text) { return show_help_if_asked(args, text, kModelHelp); }
+// orbit and continue default to analysis_tol's 1e-10, not the shared help's 1e-8: their help says so.
+bool wants_help_tight(const std::vector<std::string>& args, const char* text) {
+    if (!show_help_if_asked(args, text, kModelHelp)) return false;
+    std::printf("  (--rtol: default 1e-10 here: Newton and the monodromy need the map smooth far below the orbit tolerance)\n");
+    return true;
+}
 
 // The analysis needs a tighter integrator than a sweep: --rtol given wins, else 1e-10.
 Tolerances analysis_tol(const Args& a) {
@@ -69,7 +75,7 @@ std::string fmt_mu(const std::complex<double>& m) {
 }  // namespace
 
 int cmd_orbit(const std::vector<std::string>& argv) {
-    if (wants_help(argv, "usage: impactlab orbit --model A1C --omega 10 --period 1 [--from x,v] --out orbit.csv [--png orbit.png]\n\n"
+    if (wants_help_tight(argv, "usage: impactlab orbit --model A1C --omega 10 --period 1 [--from x,v] --out orbit.csv [--png orbit.png]\n\n"
                          "Finds a period-k orbit as a fixed point of the k-th Poincare map (phi = 2 pi i) by Newton, with the\n"
                          "monodromy from the variational equations and the impact law's saltation matrices. Writes the orbit\n"
                          "t,x,v,phi over k periods; prints its section point, period, Floquet multipliers and stability.\n"
@@ -145,7 +151,7 @@ int cmd_orbit(const std::vector<std::string>& argv) {
 }
 
 int cmd_continue(const std::vector<std::string>& argv) {
-    if (wants_help(argv, "usage: impactlab continue --model A1C --omega-min 5 --omega-max 25 --out DIR [--png FILE]\n\n"
+    if (wants_help_tight(argv, "usage: impactlab continue --model A1C --omega-min 5 --omega-max 25 --out DIR [--png FILE]\n\n"
                          "Pseudo-arclength continuation of periodic orbits (stable and unstable) with folds, period doublings\n"
                          "(the period-2k branch switched onto), Neimark-Sacker and grazing located to 1e-7 in the parameter.\n"
                          "Writes DIR/branches.csv (branch,omega,x,v,period,stable; x, v at the section phi = 0) and\n"
@@ -231,7 +237,7 @@ int cmd_continue(const std::vector<std::string>& argv) {
         fig.title = p.name + ": continued periodic orbits (x at phi = 0)";
         plot::Panel pan;
         pan.xlabel = std::string(pname) + (spec.param == analysis::ContParam::Omega ? " [rad/s]" : "");
-        pan.ylabel = "x [m]";
+        pan.ylabel = "x [mm]";
         const plot::Color colors[] = {{31, 119, 180, 255}, {255, 127, 14, 255}, {44, 160, 44, 255}, {148, 103, 189, 255}};
         for (int per : {1, 2, 4, 8, 16, 32}) {
             plot::Series st{plot::Series::Kind::Line, {}, {}, colors[std::min(3, static_cast<int>(std::log2(per)))], 2.0f,
@@ -239,16 +245,19 @@ int cmd_continue(const std::vector<std::string>& argv) {
             plot::Series un{plot::Series::Kind::Points, {}, {}, st.color, 0.8f, "period " + std::to_string(per) + " unstable"};
             for (const auto& b : r.branches) {
                 if (b.period != per) continue;
-                // Each of the k section points of an orbit is a point of the diagram, as in a sweep.
-                for (std::size_t i = 0; i < b.points.size(); ++i) {
-                    const auto& q = b.points[i];
-                    (q.stable ? st : un).x.push_back(q.param);
-                    (q.stable ? st : un).y.push_back(q.y[0]);
-                    (q.stable ? un : st).x.push_back(NAN);
-                    (q.stable ? un : st).y.push_back(NAN);
+                // Each of the k section points of an orbit is a point of the diagram, as in a sweep: one
+                // curve per section point.
+                for (std::size_t c = 0; c < static_cast<std::size_t>(per); ++c) {
+                    for (const auto& q : b.points) {
+                        if (c >= q.sections.size()) continue;
+                        (q.stable ? st : un).x.push_back(q.param);
+                        (q.stable ? st : un).y.push_back(1e3 * q.sections[c][0]);
+                        (q.stable ? un : st).x.push_back(NAN);
+                        (q.stable ? un : st).y.push_back(NAN);
+                    }
+                    st.x.push_back(NAN);
+                    st.y.push_back(NAN);
                 }
-                st.x.push_back(NAN);
-                st.y.push_back(NAN);
             }
             if (!st.x.empty() && std::any_of(st.x.begin(), st.x.end(), [](double v) { return std::isfinite(v); }))
                 pan.series.push_back(st);
@@ -263,7 +272,7 @@ int cmd_continue(const std::vector<std::string>& argv) {
             for (const auto& q : r.points)
                 if (q.kind == k) {
                     s.x.push_back(q.param);
-                    s.y.push_back(q.y[0]);
+                    s.y.push_back(1e3 * q.y[0]);
                 }
             if (!s.x.empty()) pan.series.push_back(s);
         }

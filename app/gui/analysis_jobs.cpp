@@ -26,9 +26,7 @@ ContinuationOverlay compute_continuation(const Params& p, double omega_lo, doubl
     out.omega_hi = spec.hi;
     out.points = r.points;
     out.cancelled = r.cancelled;
-    // A branch stores one section point per orbit; the other k - 1 of a period-k orbit are one map away
-    // (at the sweep's tolerance: a curve needs pixels, not digits).
-    const Tolerances tol = analysis::analysis_tolerances(1e-8);
+    // Each branch point carries its orbit's k section points: a period-k branch draws k curves.
     for (const analysis::Branch& b : r.branches) {
         const int k = std::max(b.period, 1);
         std::vector<BranchCurve> curves(static_cast<std::size_t>(k));
@@ -37,23 +35,9 @@ ContinuationOverlay compute_continuation(const Params& p, double omega_lo, doubl
             c.period = k;
         }
         for (const analysis::BranchPoint& q : b.points) {
-            if (progress.cancel.load(std::memory_order_relaxed)) {
-                out.cancelled = true;
-                break;
-            }
-            std::vector<double> xs{q.y[0]};
-            if (k > 1) {
-                try {
-                    const analysis::MapResult m = analysis::poincare_map(p, q.param, q.y, k, false, tol);
-                    for (int i = 0; i + 1 < k && i < static_cast<int>(m.sections.size()); ++i) xs.push_back(m.sections[static_cast<std::size_t>(i)][0]);
-                } catch (const std::exception&) {
-                    // A stalled map (an orbit deep in chatter): that point draws only the section it has.
-                }
-            }
-            for (std::size_t i = 0; i < curves.size(); ++i) {
-                if (i >= xs.size()) continue;
+            for (std::size_t i = 0; i < curves.size() && i < q.sections.size(); ++i) {
                 curves[i].omega.push_back(q.param);
-                curves[i].x.push_back(xs[i]);
+                curves[i].x.push_back(q.sections[i][0]);
                 curves[i].stable.push_back(q.stable ? 1 : 0);
             }
         }

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -291,7 +292,8 @@ AnalysisAction AnalysisPanels::draw(const AnalysisContext& c) {
     poll(act);
     live_model_ = c.model;
     live_xI_ = c.xI;
-    if (!ImGui::GetIO().WantTextInput) {
+    // Ctrl+O is Load session: a chord is not also its letter.
+    if (!ImGui::GetIO().WantTextInput && !ImGui::GetIO().KeyCtrl) {
         if (key(GLFW_KEY_O)) {
             if (cont_job_.running()) cont_job_.cancel();
             else start_continuation(c);
@@ -346,28 +348,44 @@ void AnalysisPanels::overlay_diagram(Plot& plot) const {
         }
     }
     if (near)
-        ImGui::SetTooltip("%s at ω = %.4f rad/s\nperiod %d, x = %.3f mm, v = %.1f mm/s\n(located to %.0e rad/s)",
-                          bif_label(near->kind), near->param, near->period, 1e3 * near->y[0], 1e3 * near->y[1], near->precision);
-    // Legend (top right): the line styles, and the symbols of the kinds found.
-    const char* items[] = {"stable", "unstable", "fold", "period doubling", "Neimark-Sacker", "grazing"};
-    bool found[6] = {true, true, false, false, false, false};
-    for (const analysis::BifPoint& q : overlay_->points) found[2 + static_cast<int>(q.kind)] = true;
+        ImGui::SetTooltip("%s at ω = %.7g rad/s (± %.0e)\nperiod %d, x = %.3f mm, v = %.1f mm/s",
+                          bif_label(near->kind), near->param, near->precision, near->period, 1e3 * near->y[0], 1e3 * near->y[1]);
+    // Legend (top right): the line styles (in a neutral colour: the colour is the period), a colour per
+    // period shown, and the symbols of the kinds found.
+    struct Row {
+        std::string text;
+        int style;   // 0 solid, 1 dashed, 2 a period's colour, 3 a marker
+        int arg;     // the period, or the kind
+    };
+    std::vector<Row> rows{{"stable", 0, 0}, {"unstable", 1, 0}};
+    for (int k = 1; k <= 64; k *= 2)
+        for (const BranchCurve& cv : overlay_->curves)
+            if (cv.period == k) {
+                rows.push_back({"period " + std::to_string(k), 2, k});
+                break;
+            }
+    static const char* kKinds[] = {"fold", "period doubling", "Neimark-Sacker", "grazing"};
+    for (int kind = 0; kind < 4; ++kind)
+        for (const analysis::BifPoint& q : overlay_->points)
+            if (static_cast<int>(q.kind) == kind) {
+                rows.push_back({kKinds[kind], 3, kind});
+                break;
+            }
     const float lh = ImGui::GetTextLineHeight();
     float w = 0;
-    int rows = 0;
-    for (int i = 0; i < 6; ++i)
-        if (found[i]) w = std::max(w, ImGui::CalcTextSize(items[i]).x), ++rows;
+    for (const Row& r : rows) w = std::max(w, ImGui::CalcTextSize(r.text.c_str()).x);
     const float x0 = b.x - w - 34 * s - 6, y0 = a.y + 6;
     const ImU32 bg = palette().dark ? IM_COL32(10, 12, 16, 190) : IM_COL32(255, 255, 255, 200);
-    dl->AddRectFilled(ImVec2(x0 - 4, y0 - 2), ImVec2(b.x - 4, y0 + static_cast<float>(rows) * lh + 2), bg, 3.0f);
+    dl->AddRectFilled(ImVec2(x0 - 4, y0 - 2), ImVec2(b.x - 4, y0 + static_cast<float>(rows.size()) * lh + 2), bg, 3.0f);
     float y = y0 + 0.5f * lh;
-    for (int i = 0; i < 6; ++i) {
-        if (!found[i]) continue;
+    const ImU32 neutral = palette().axis_text;
+    for (const Row& r : rows) {
         const ImVec2 l0(x0 + 2, y), l1(x0 + 24 * s, y);
-        if (i == 0) dl->AddLine(l0, l1, branch_color(1), 2.0f * s);
-        else if (i == 1) draw_branch(dl, {l0, l1}, {1}, branch_color(1), 2.0f * s);
-        else bif_marker(dl, ImVec2(x0 + 13 * s, y), static_cast<analysis::BifKind>(i - 2), 4.5f * s);
-        dl->AddText(ImVec2(x0 + 30 * s, y - 0.5f * lh), palette().axis_text, items[i]);
+        if (r.style == 0) dl->AddLine(l0, l1, neutral, 2.0f * s);
+        else if (r.style == 1) draw_branch(dl, {l0, l1}, {1}, neutral, 2.0f * s);
+        else if (r.style == 2) dl->AddLine(l0, l1, branch_color(r.arg), 3.0f * s);
+        else bif_marker(dl, ImVec2(x0 + 13 * s, y), static_cast<analysis::BifKind>(r.arg), 4.5f * s);
+        dl->AddText(ImVec2(x0 + 30 * s, y - 0.5f * lh), neutral, r.text.c_str());
         y += lh;
     }
 }
@@ -465,9 +483,13 @@ void AnalysisPanels::draw_plane_window(const AnalysisContext& c, AnalysisAction&
             const auto cell = plane_pick(pl, (m.x - a.x) / (b.x - a.x), (b.y - m.y) / (b.y - a.y));
             if (cell) {
                 const double v = vals[static_cast<std::size_t>(cell->j) * pl.nx() + cell->i];
-                ImGui::SetTooltip("%s = %.4g, %s = %.4g\n%s = %.4g\n(click: run there)", pl.x_name.c_str(), cell->x * axis_scale(pl.x_name),
-                                  pl.y_name.c_str(), cell->y * axis_scale(pl.y_name),
-                                  pl.measures[static_cast<std::size_t>(plane_measure_)].c_str(), v);
+                // A period is named as the map's legend names it ("chaos / > 16" for 0), not as a number.
+                const std::string& measure = pl.measures[static_cast<std::size_t>(plane_measure_)];
+                char value[48];
+                if (measure == "period" && std::isfinite(v)) std::snprintf(value, sizeof value, "%s", period_name(static_cast<int>(v)));
+                else std::snprintf(value, sizeof value, "%s = %.4g", measure.c_str(), v);
+                ImGui::SetTooltip("%s = %.4g, %s = %.4g\n%s\n(click: run there)", pl.x_name.c_str(), cell->x * axis_scale(pl.x_name),
+                                  pl.y_name.c_str(), cell->y * axis_scale(pl.y_name), value);
                 if (plot.clicked()) {
                     const PlaneClick click = plane_click(pl, *cell);
                     act.omega = click.omega;

@@ -58,6 +58,8 @@ public:
     void overlay_diagram(Plot& plot) const;
     // Before the GL context goes.
     void release_gl();
+    // The continued branches shown over the diagram (--state-json reports their special points).
+    const std::optional<ContinuationOverlay>& overlay() const { return overlay_; }
 
 private:
     void poll(AnalysisAction& act);

@@ -26,6 +26,18 @@ namespace impactlab::gui {
 
 namespace {
 
+// M steps through the bumper laws (C, C1, G, H) and skips "none": a model without a bumper is chosen in the
+// combo, not met by surprise while cycling.
+int next_impact_law(int current) {
+    const auto& laws = impact_models();
+    const int n = static_cast<int>(laws.size());
+    for (int i = 1; i <= n; ++i) {
+        const int j = (current + i) % n;
+        if (laws[static_cast<std::size_t>(j)].kind != ImpactKind::None) return j;
+    }
+    return current;
+}
+
 void glfw_error(int code, const char* text) { std::fprintf(stderr, "impactlab-gui: GLFW error %d: %s\n", code, text); }
 
 int index_of_stiffness(const std::string& id) {
@@ -172,9 +184,16 @@ bool App::init(std::string& error) {
     if (!opt_.ghost.empty()) ghost_impact_ = index_of_impact(make_version(opt_.ghost).impact);
     if (opt_.twin) set_companion(CompanionMode::Twin);
     else if (!opt_.ghost.empty()) set_companion(CompanionMode::Ghost);
-    if (!opt_.session.empty() && !load_session_file(opt_.session)) {   // checked before the window opened
-        error = session_error_;
-        return false;
+    if (!opt_.session.empty() && !load_session_file(opt_.session)) {
+        if (opt_.frames > 0) {   // headless: checked before the window opened already
+            error = session_error_;
+            return false;
+        }
+        // By hand: the window opens on the Load session dialog, which shows what is wrong with the file.
+        const std::string why = session_error_;
+        open_session_window(false);
+        session_error_ = why;
+        std::snprintf(session_path_, sizeof session_path_, "%s", opt_.session.c_str());
     }
     if (!opt_.bifurcation.empty()) start_bifurcation();
     if (opt_.ramp_to >= 0) start_ramp(opt_.ramp_to, opt_.ramp_rate);
@@ -393,19 +412,19 @@ void App::handle_keys() {
     if (pressed(GLFW_KEY_DOWN, true)) set_xi(xI_ - (shift ? 2e-3 : 5e-4));
     if (pressed(GLFW_KEY_RIGHT_BRACKET, true) || (!ctrl && pressed(GLFW_KEY_KP_ADD, true))) set_speed(speed_ * 2.0);
     if (pressed(GLFW_KEY_LEFT_BRACKET, true) || (!ctrl && pressed(GLFW_KEY_KP_SUBTRACT, true))) set_speed(speed_ / 2.0);
-    if (pressed(GLFW_KEY_M)) set_model(stiffness_, (impact_ + 1) % static_cast<int>(impact_models().size()));
-    if (pressed(GLFW_KEY_K)) set_model((stiffness_ + 1) % static_cast<int>(stiffness_sets().size()), impact_);
+    if (pressed(GLFW_KEY_M) && !ctrl) set_model(stiffness_, next_impact_law(impact_));
+    if (pressed(GLFW_KEY_K) && !ctrl) set_model((stiffness_ + 1) % static_cast<int>(stiffness_sets().size()), impact_);
     if (pressed(GLFW_KEY_C) && !ctrl) clear_poincare();
-    if (pressed(GLFW_KEY_B)) {
+    if (pressed(GLFW_KEY_B) && !ctrl) {
         if (const std::string msg = bif_panel_.toggle(bifurcation_context()); !msg.empty()) toast(msg);
     }
-    if (pressed(GLFW_KEY_T)) {
+    if (pressed(GLFW_KEY_T) && !ctrl) {
         dark_ = !dark_;
         apply_theme(dark_, ui_scale_);
         bif_dirty_ = true;
     }
     if (pressed(GLFW_KEY_F1) || (pressed(GLFW_KEY_SLASH) && shift)) show_help_ = !show_help_;
-    if (pressed(GLFW_KEY_H)) show_help_ = !show_help_;
+    if (pressed(GLFW_KEY_H) && !ctrl) show_help_ = !show_help_;
     if (pressed(GLFW_KEY_F12)) screenshot(screenshot_name());
     if (ctrl && pressed(GLFW_KEY_S)) open_session_window(true);
     if (ctrl && pressed(GLFW_KEY_O)) open_session_window(false);
@@ -439,6 +458,16 @@ void App::frame() {
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
+    if (!opt_.press.empty() && (frame_count_ == 3 || frame_count_ == 4)) {
+        // --press: down at frame 3, up at frame 4, as the GLFW backend's key callback sets them.
+        ImGuiIO& io = ImGui::GetIO();
+        const bool ctrl = opt_.press.rfind("ctrl+", 0) == 0;
+        const int key = GLFW_KEY_A + (opt_.press.back() - 'a');
+        const bool down = frame_count_ == 3;
+        io.KeysDown[key] = down;
+        io.KeysDown[GLFW_KEY_LEFT_CONTROL] = down && ctrl;
+        io.KeyCtrl = down && ctrl;
+    }
     ImGui::NewFrame();
     plot_gpu::begin_frame();
     opaque_image::begin_frame();
@@ -649,8 +678,8 @@ bool App::loop_once() {
     ++counted_frames_;
     // With --data the fit is for the start model, and --preset or --state-json look at one model: no
     // switch unless one is asked for.
-    const bool keep_model =
-        !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty() || !opt_.session.empty();
+    const bool keep_model = !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty() || !opt_.session.empty() ||
+                            !opt_.save_session.empty();
     if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_preset > 0) {
         switched_ = true;   // --then-preset: what pressing key N does
         apply_preset(presets_for(model_name())[static_cast<std::size_t>(opt_.then_preset - 1)]);
@@ -658,6 +687,10 @@ bool App::loop_once() {
     if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_xi) {
         switched_ = true;   // --then-xI: what dragging the x_I slider there does
         set_xi(opt_.then_xI);
+    }
+    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_w) {
+        switched_ = true;   // --then-omega: what the arrow keys do, live (no reset)
+        set_omega(opt_.then_omega);
     }
     if (!switched_ && counted_frames_ >= opt_.frames / 2 && (!keep_model || !opt_.switch_model.empty())) {
         switched_ = true;

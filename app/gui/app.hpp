@@ -86,6 +86,7 @@ private:
 
     // panels.cpp: one function per window
     void layout_and_draw();
+    bool nothing_shown() const { return layout_.controls.empty() && layout_.tiles.empty() && layout_.bar.empty(); }
     void draw_menu();
     void draw_controls();         // tiles.cpp: the three groups below, stacked or as tabs
     void draw_controls_run();     // model, forcing and bumper, run, presets

@@ -309,7 +309,8 @@ void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toa
     tooltip("CF: the number of ω levels over the range (a box dragged on the diagram keeps it: finer columns).");
     ImGui::EndDisabled();
     // The omega range: typed, or dragged on the diagram with the right mouse button.
-    same_line_if(fs * 9.6f);
+    // The two fields and the "0-25" button stay on one line: the button is not cut to "0-2".
+    same_line_if(fs * 9.6f + button_width("0-25") + fs * 0.2f);
     bool edited = false;
     ImGui::SetNextItemWidth(fs * 4.6f);
     edited |= ImGui::InputDouble("##wlo", &lo_edit_, 0, 0, "%.2f");
@@ -452,7 +453,7 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         const ImVec2 ts = ImGui::CalcTextSize(hint);
         plot.draw()->AddText(ImVec2(0.5f * (a.x + b.x - ts.x), 0.5f * (a.y + b.y - ts.y)), pal.axis_text, hint);
     }
-    plot.hline(c.xI, pal.bumper, 1.0f, true);
+    if (!c.params || c.params->has_bumper()) plot.hline(c.xI, pal.bumper, 1.0f, true);   // "none": no bumper
     // The running omega: a line, its value (to 0.01 rad/s), and the Poincare map's settled points on it.
     plot.vline(c.omega, pal.cursor, 2.0f);
     if (c.live && !is_stale) {
@@ -481,10 +482,14 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
     }
     {
         char buf[48];
-        std::snprintf(buf, sizeof buf, "ω = %.2f", c.omega);
-        const ImVec2 p = plot.to_px(c.omega, vy.hi);
+        // Beyond the diagram's omega range (30 rad/s over 0..25) the line is off the plot: the label says
+        // where it is, at the edge it lies beyond, inside the plot.
+        const bool beyond_hi = c.omega > vx.hi, beyond_lo = c.omega < vx.lo;
+        std::snprintf(buf, sizeof buf, beyond_hi ? "ω = %.2f >>" : beyond_lo ? "<< ω = %.2f" : "ω = %.2f", c.omega);
+        ImVec2 p = plot.to_px(std::clamp(c.omega, vx.lo, vx.hi), vy.hi);
+        p.x = std::clamp(p.x, a.x, b.x);
         // The label sits right of the line, or left of it near the right edge, so it is never cut off.
-        const bool left = p.x + ImGui::CalcTextSize(buf).x + 12 > b.x;
+        const bool left = beyond_hi || (!beyond_lo && p.x + ImGui::CalcTextSize(buf).x + 12 > b.x);
         plate_text(plot.draw(), ImVec2(left ? p.x - 5 : p.x + 5, p.y + 3), buf, pal.title_text, ImVec2(left ? 1.0f : 0.0f, 0));
     }
     if (is_stale) {

@@ -76,6 +76,9 @@ public:
     explicit LabelPlacer(Rect bounds) : bounds_(bounds) {}
     // True (and the box is kept) when `box` fits inside the bounds and overlaps no kept box.
     bool place(const Rect& box);
+    // Marks a box taken without placing anything there (a drawn part no label may cover), even one that
+    // reaches beyond the bounds.
+    void reserve(const Rect& box) { placed_.push_back(box); }
     // Tries the candidates in order; the index of the one placed, or -1.
     int place_first(const std::vector<Rect>& candidates);
     const std::vector<Rect>& placed() const { return placed_; }

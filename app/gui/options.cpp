@@ -74,6 +74,7 @@ const char* usage_text() {
            "                     the simulated time reached and exit (with --bifurcation or --warmup:\n"
            "                     counted once the diagram is done and the warm-up is over)\n"
            "  --screenshot FILE  PNG written after --frames\n"
+           "  --press [ctrl+]K   press key K (a-z), with Ctrl if asked, at frame 3 (tests of the shortcuts)\n"
            "  --state-json FILE  JSON written after --frames: model, omega, xI, sim_time, fps, and the Poincare\n"
            "                     map as shown: poincare_period (k, 0 for chaos, null while settling) and\n"
            "                     poincare_points [[x, v], ...] [m, m/s]. With --preset, --state-json or --data\n"
@@ -87,6 +88,7 @@ const char* usage_text() {
            "  --replay-continue  with --replay-back: continue the run from there (Enter), 60 frames more\n"
            "  --then-preset N    apply preset N half-way instead (as pressing key N)\n"
            "  --then-xI X        move the bumper to X [m] half-way instead (as the x_I slider)\n"
+           "  --then-omega W     set omega to W [rad/s] half-way instead (as the arrow keys: live, no reset)\n"
            "  --bench-plot       frames per second with --points points on every plot (needs a display)\n"
            "  --points N         points per plot for --bench-plot (default 100000)\n"
            "  --plot-backend B   how dense curves are drawn: raster (CPU, default), gpu (instanced\n"
@@ -233,6 +235,10 @@ Options parse_options(const std::vector<std::string>& args) {
             o.then_xI = number(a, value(), -0.02, 0.02);
             o.then_xi = true;
         }
+        else if (a == "--then-omega") {
+            o.then_omega = number(a, value(), 0.0, 30.0);
+            o.then_w = true;
+        }
         else if (a == "--switch-model") o.switch_model = version(a, value());
         else if (a == "--bifurcation") {
             const std::string& p = value();
@@ -268,6 +274,12 @@ Options parse_options(const std::vector<std::string>& args) {
             o.set_v = number(a, sv.substr(c + 1), -2.0, 2.0);
             o.set_state = true;
         }
+        else if (a == "--press") {
+            o.press = value();
+            const std::string key = o.press.rfind("ctrl+", 0) == 0 ? o.press.substr(5) : o.press;
+            if (key.size() != 1 || key[0] < 'a' || key[0] > 'z')
+                throw OptionsError("--press: '" + o.press + "' is not a letter a-z, with or without ctrl+");
+        }
         else if (a == "--soak") o.soak = number(a, value(), 1.0, 86400.0);
         else if (a == "--bench-plot") o.bench_plot = true;
         else if (a == "--bench-ring") o.bench_ring = true;
@@ -292,6 +304,7 @@ Options parse_options(const std::vector<std::string>& args) {
     }
     if (o.then_preset > 0 && o.frames == 0) throw OptionsError("--then-preset needs --frames N");
     if (o.then_xi && o.frames == 0) throw OptionsError("--then-xI needs --frames N");
+    if (o.then_w && o.frames == 0) throw OptionsError("--then-omega needs --frames N");
     for (const std::string& h : o.hide)
         if (h == o.maximise) throw OptionsError("--maximise " + h + ": that panel is hidden by --hide");
     if (!o.save_session.empty() && o.frames == 0) throw OptionsError("--save-session needs --frames N");
@@ -320,7 +333,10 @@ void check_writable(const std::string& flag, const std::string& path) {
 }  // namespace
 
 void check_files(const Options& o) {
-    if (!o.data.empty()) {
+    // Started by hand (from an icon, say), a bad --data or --session is shown in the window, which opens
+    // anyway; a headless run (--frames, --soak) still stops here with exit code 2.
+    const bool interactive = o.frames == 0 && o.soak <= 0 && !o.bench_plot;
+    if (!o.data.empty() && !interactive) {
         std::error_code ec;
         if (std::filesystem::is_directory(o.data, ec)) throw OptionsError("--data: '" + o.data + "' is a directory");
         std::ifstream f(o.data, std::ios::binary);
@@ -329,7 +345,7 @@ void check_files(const Options& o) {
     if (!o.screenshot.empty()) check_writable("--screenshot", o.screenshot);
     if (!o.state_json.empty()) check_writable("--state-json", o.state_json);
     if (!o.save_session.empty()) check_writable("--save-session", o.save_session);
-    if (!o.session.empty()) {
+    if (!o.session.empty() && !interactive) {
         try {
             load_session(o.session, Session{});
         } catch (const SessionError& e) {

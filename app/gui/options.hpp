@@ -35,6 +35,8 @@ struct Options {
     int then_preset = 0;         // with --frames: apply preset N half-way (as key N), instead of the model switch
     bool then_xi = false;        // with --frames: move the bumper to then_xI half-way (as the slider), no model switch
     double then_xI = 0;          // [m]
+    bool then_w = false;         // with --frames: set omega to then_omega half-way (as the arrow keys)
+    double then_omega = 0;       // [rad/s]
     std::string switch_model;    // with --frames: the version switched to half-way ("" = swap G and H)
     std::string bifurcation;     // "", "cf-up", "cf-down", "ef": start computing at launch
     int bif_steps = 300;
@@ -68,6 +70,7 @@ struct Options {
     // The companion cart (issues 9, 11) and the mouse's state, as scripts set them.
     bool twin = false;           // --twin: a second cart 1 um to the right, the same model
     std::string ghost;           // --ghost M: a second cart from the same state under M's impact law
+    std::string press;           // --press [ctrl+]KEY: that key pressed at frame 3 (headless tests of the keys)
     bool set_state = false;      // --set-state X,V: at the first frame, as a click in the phase portrait
     double set_x = 0, set_v = 0; // [m], [m/s]
 };

@@ -161,14 +161,18 @@ void App::draw_controls_run() {
     tooltip("Speed of the unbalance (Left/Right: -/+0.1, with Shift: 1). Drag it from 9 to 13 to watch the "
             "period-doubling cascade.");
     if (ImGui::Button("-1")) set_omega(omega_ - 1);
-    ImGui::SameLine();
+    same_line_or_wrap(button_width("-.1"));
     if (ImGui::Button("-.1")) set_omega(omega_ - 0.1);
-    ImGui::SameLine();
+    same_line_or_wrap(button_width("+.1"));
     if (ImGui::Button("+.1")) set_omega(omega_ + 0.1);
-    ImGui::SameLine();
+    same_line_or_wrap(button_width("+1"));
     if (ImGui::Button("+1")) set_omega(omega_ + 1);
-    ImGui::SameLine();
-    if (omega_ > 0) ImGui::TextDisabled(layout_.controls_narrow ? "%.2f s" : "T = %.3f s", kTwoPi / omega_);
+    if (omega_ > 0) {
+        char period[32];
+        std::snprintf(period, sizeof period, layout_.controls_narrow ? "%.2f s" : "T = %.3f s", kTwoPi / omega_);
+        same_line_or_wrap(ImGui::CalcTextSize(period).x);
+        ImGui::TextDisabled("%s", period);
+    }
     draw_ramp_controls();
     float xi_mm = static_cast<float>(xI_ * 1e3);
     ImGui::SetNextItemWidth(-1);
@@ -354,6 +358,7 @@ void App::draw_rig() {
     st.phi_span = have_last_ ? last_.phi - phi_prev_ : 0.0;
     st.xI = xI_shown_;   // where the simulation has it: it travels to the slider's x_I, pushing the cart
     st.bumper_force = std::max(frame_max_force_, last_.force);
+    st.bumper = params_.has_bumper();
     st.flash = flash_;
     st.magnet_force = -(spring_magnet(params_, last_.x).F - params_.k * last_.x);
     st.spring_force = -params_.k * last_.x;
@@ -397,6 +402,17 @@ void App::draw_rig() {
         }
         return false;
     };
+    // The ruler and the end walls are no place for a label either: their boxes are taken first.
+    const auto reserve = [&](double x0, double y0, double x1, double y1) {
+        const ImVec2 a = at(x0, y0), b = at(x1, y1);
+        labels.reserve({std::min(a.x, b.x), std::min(a.y, b.y), std::abs(b.x - a.x), std::abs(b.y - a.y)});
+    };
+    {
+        const double wall_x = mag.wall_x(), ruler = 0.025 * mag.gain;
+        reserve(-ruler, rig::kRulerY - 0.001, ruler, rig::kRulerY + 0.0052);   // the ticks (numbers sit above)
+        reserve(wall_x - 0.003, -0.065, wall_x + 0.013, 0.045);
+        reserve(-wall_x - 0.013, -0.065, -wall_x + 0.003, 0.045);
+    }
     const float edge = fs * 0.6f;
     // Regime badge (a compliant bumper has no regimes II/III: contact is free flight with F_I > 0).
     // The same words as the status bar, from the same sample (contact_label.hpp).
@@ -438,12 +454,12 @@ void App::draw_rig() {
                     {at(-ruler_end - 0.004, rig::kRulerY + 0.0025), {1, 0.5f}},
                     {at(0.0, rig::kRulerY - 0.004), {0.5f, 0}}});
     // The bumper: under it, right of its face; at a large x_I against the image's right edge, or shorter.
-    {
+    if (params_.has_bumper()) {
         std::snprintf(buf, sizeof buf, "bumper  x_I = %+.1f mm", xI_shown_ * 1e3);
-        const ImVec2 q = at(face + 0.004, bumper_low);
-        if (!put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}})) {
+        const ImVec2 q = at(face + 0.004, bumper_low), q_left = at(face - 0.004, bumper_low);
+        if (!put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}, {q_left, {1, 0}}})) {
             std::snprintf(buf, sizeof buf, "x_I = %+.1f mm", xI_shown_ * 1e3);
-            put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}});
+            put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}, {q_left, {1, 0}}});
         }
     }
     // Legend: scale bar (the rig's size; the displacement is magnified on top of it) and the forcing.
@@ -519,8 +535,10 @@ void App::draw_phase() {
     ax.y_label = "v [m/s]";
     ax.x_scale = 1e3;
     if (!plot.begin("##phase", ImGui::GetContentRegionAvail(), phase_x_.cur, phase_v_.cur, ax)) return;
-    plot.shade_right_of(xI_shown_, pal.bumper);
-    plot.vline(xI_shown_, pal.bumper, 1.5f, true);
+    if (params_.has_bumper()) {   // impact law "none": no bumper to draw
+        plot.shade_right_of(xI_shown_, pal.bumper);
+        plot.vline(xI_shown_, pal.bumper, 1.5f, true);
+    }
     plot.hline(0.0, pal.grid, 1.0f);
     const History<SimMsg>& ct = companion_.traj();   // the companion over the same stretch of time, under the cart
     const bool comp = companion_mode_ != CompanionMode::Off && companion_.have();
@@ -590,6 +608,8 @@ void App::draw_poincare() {
     char label[160];
     const unsigned long long seen = map.seen();
     if (seen == 0) std::snprintf(label, sizeof label, "no section yet (one per forcing period)");
+    else if (map.provisional())
+        std::snprintf(label, sizeof label, "no period yet (provisional)  %zu of %llu points", n, seen);
     else if (status == PoincareMap::Status::Settling)
         std::snprintf(label, sizeof label, "settling...  %llu period%s, the transient is not drawn", seen, seen == 1 ? "" : "s");
     else if (periodic) std::snprintf(label, sizeof label, "period %d", map.period());
@@ -613,6 +633,7 @@ void App::draw_poincare() {
     const auto too_wide = [&] { return ImGui::CalcTextSize(label).x + ImGui::CalcTextSize(when).x + 12 > area_w; };
     if (too_wide()) {   // a small tile or a large UI scale: the short words
         if (seen == 0) std::snprintf(label, sizeof label, "no section yet");
+        else if (map.provisional()) std::snprintf(label, sizeof label, "no period yet  %zu", n);
         else if (status == PoincareMap::Status::Settling) std::snprintf(label, sizeof label, "settling... %llu", seen);
         else if (!periodic) std::snprintf(label, sizeof label, "chaos  %zu points", n);
         if (replay_.active() && too_wide()) std::snprintf(when, sizeof when, "  (replay)");
@@ -624,10 +645,22 @@ void App::draw_poincare() {
     const bool two_lines = legend && ImGui::CalcTextSize(label).x + legend_w + 24 > area_w;
     const double edge = ring + 3.0 + 0.06 * std::min(area_w, area_h);
     const double label_band = (two_lines ? 2.1 : 1.0) * fs + 10.0;
-    if (n == 0) {
+    if (n == 0 && phase_x_.init) {
         // Settling: an empty map in the phase portrait's view.
         pc_x_ = phase_x_;
         pc_v_ = phase_v_;
+        pc_fit_generation_ = ~std::uint64_t{0};
+    } else if (n == 0) {
+        // The phase portrait is not drawn (presentation mode): the trail's own extent, not an unset 0..1 m.
+        double xl = last_.x, xh = last_.x, vl = last_.v, vh = last_.v;
+        for (std::size_t i = trail_first(); i < traj_.size(); ++i) {
+            xl = std::min(xl, traj_[i].x);
+            xh = std::max(xh, traj_[i].x);
+            vl = std::min(vl, traj_[i].v);
+            vh = std::max(vh, traj_[i].v);
+        }
+        pc_x_.snap({xl, xh}, 0.08, 0.004);
+        pc_v_.snap({vl, vh}, 0.08, 0.04);
         pc_fit_generation_ = ~std::uint64_t{0};
     } else {
         const auto xe = pc_x_extent_.update(pts, 0, [](const MapPoint& m) { return m.x; });
@@ -650,8 +683,10 @@ void App::draw_poincare() {
     ax.y_label = "v [m/s]";
     ax.x_scale = 1e3;
     if (!plot.begin("##poincare", avail, pc_x_.cur, pc_v_.cur, ax)) return;
-    plot.shade_right_of(xI_, pal.bumper);
-    plot.vline(xI_, pal.bumper, 1.5f, true);
+    if (params_.has_bumper()) {   // impact law "none": no bumper to draw
+        plot.shade_right_of(xI_, pal.bumper);
+        plot.vline(xI_, pal.bumper, 1.5f, true);
+    }
 
     // Newest band first over one shared pixel bitmap: a pixel a newer point covers is not drawn again
     // for an older one (100k points cost one pass, not sixteen).
@@ -745,8 +780,10 @@ void App::draw_potential() {
     ax.x_scale = 1e3;
     ax.y_scale = 1e3;
     if (!plot.begin("##potential", avail, xr, yr, ax)) return;
-    plot.shade_right_of(xI_shown_, pal.bumper);
-    plot.vline(xI_shown_, pal.bumper, 1.5f, true);
+    if (params_.has_bumper()) {   // impact law "none": no bumper to draw
+        plot.shade_right_of(xI_shown_, pal.bumper);
+        plot.vline(xI_shown_, pal.bumper, 1.5f, true);
+    }
     plot.path(potential_x_.size(), [&](std::size_t i) { return XY{potential_x_[i], potential_v_[i]}; }, pal.trace2, 2.0f);
     // Total mechanical energy as a level: where it cuts V(x) are the turning points.
     plot.hline(last_.energy, pal.energy, 1.2f, true);
@@ -761,7 +798,7 @@ void App::draw_potential() {
         const double xc = companion_.last().x;
         plot.draw()->AddCircle(plot.to_px(xc, spring_magnet_potential(params_, xc)), 8.0f * ui_scale_, companion_color(1.0f), 0, 2.0f);
     }
-    plot.text(xI_shown_, yr.hi, " bumper", pal.bumper, ImVec2(0, -0.2f));
+    if (params_.has_bumper()) plot.text(xI_shown_, yr.hi, " bumper", pal.bumper, ImVec2(0, -0.2f));
     // A plain click puts the cart at x there, at rest.
     const double mx = plot.x_at(ImGui::GetIO().MousePos.x);
     if (plot.hovered() && !plot.dragging())
@@ -795,7 +832,7 @@ void App::draw_strip() {
     const float sep_w = comp ? std::round(size.x * 0.3f) : 0.0f;
     size.x -= comp ? sep_w + ImGui::GetStyle().ItemSpacing.x : 0.0f;
     if (!plot.begin("##strip", size, {t_from, t_now}, strip_y_.cur, ax)) return;
-    plot.hline(xI_shown_, pal.bumper, 1.5f, true);
+    if (params_.has_bumper()) plot.hline(xI_shown_, pal.bumper, 1.5f, true);
     plot.hline(0.0, pal.grid, 1.0f);
     if (comp) {
         const History<SimMsg>& ct = companion_.traj();
@@ -884,6 +921,8 @@ void App::draw_help() {
             {"K", "next stiffness (A1, A3), live"},
             {"1 .. 4", "presets: period 1, period 2, chaos, periodic window"},
             {"B", "compute (or cancel) the bifurcation diagram"},
+            {"O", "continue the periodic orbits over the diagram's ω range (or cancel)"},
+            {"F2, F3", "parameter plane (ω, x_I), basins of attraction at ω"},
             {"click diagram", "set ω there"},
             {"click phase / well", "start the cart from that (x, v) / that x at rest"},
             {"drag the cart", "hold it at the mouse; let go: from there at rest"},

@@ -51,10 +51,11 @@ bool PoincareMap::recurs(std::size_t i, std::size_t k, double factor) const {
     return std::abs(a.x - b.x) <= factor * tol_x_ && std::abs(a.v - b.v) <= factor * tol_v_;
 }
 
-int PoincareMap::find_period(std::size_t at_least) const {
+int PoincareMap::find_period(std::size_t at_least, int below, bool divisors) const {
     const std::size_t n = recent_.size();
     // The smallest k wins: a period-2 orbit also recurs after 4 periods.
-    for (std::size_t k = 1; k <= static_cast<std::size_t>(cfg_.max_period); ++k) {
+    for (std::size_t k = 1; k < static_cast<std::size_t>(below); ++k) {
+        if (divisors && static_cast<std::size_t>(below) % k != 0) continue;
         const std::size_t r = std::max(confirmations(k), at_least);
         if (n < r + k) break;   // larger k need even more points
         bool all = true;
@@ -62,6 +63,46 @@ int PoincareMap::find_period(std::size_t at_least) const {
         if (all) return static_cast<int>(k);
     }
     return 0;
+}
+
+double PoincareMap::gap(std::size_t i, std::size_t d) const {
+    const MapInput& a = recent_[i];
+    const MapInput& b = recent_[i - d];
+    return std::max(std::abs(a.x - b.x) / tol_x_, std::abs(a.v - b.v) / tol_v_);
+}
+
+bool PoincareMap::dying_alternation(int period) const {
+    // Over the trailing stretch where P^k recurs (loosely), the d-difference (d | k) of a transient converging
+    // to period d shrinks geometrically to 0, that of a period-k orbit levels off at the orbit's own spread.
+    // Which one: Aitken's extrapolation of the d-difference from three samples along the stretch.
+    const auto k = static_cast<std::size_t>(period);
+    const std::size_t n = recent_.size();
+    std::size_t first = n;
+    while (first > k && recurs(first - 1, k, cfg_.break_factor)) --first;
+    // Samples over the newer half of the stretch, whole cycles apart: the older half still holds the faster
+    // modes and the nonlinear start, which make an early decay look as if it levelled off.
+    const std::size_t m = (n - first) / (4 * k) * k;
+    for (std::size_t d = 1; d < k; ++d) {
+        if (k % d != 0 || first < d) continue;
+        if (m == 0) return true;   // too short a stretch to tell: wait (four cycles)
+        const auto spread = [&](std::size_t end) {   // the largest d-difference over the cycle ending at end
+            double g = 0;
+            for (std::size_t j = 0; j < k; ++j) g = std::max(g, gap(end - j, d));
+            return g;
+        };
+        const double ea = spread(n - 1 - 2 * m), eb = spread(n - 1 - m), ec = spread(n - 1);
+        const double d1 = eb - ea, d2 = ec - eb;
+        if (d2 > -0.05) continue;                     // not shrinking (by more than noise)
+        const double rho = d1 < 0 ? d2 / d1 : 0;      // the shrink per m periods
+        if (rho > 0 && rho < 1) {
+            // Heads for 0 (period d), or at least far below where it is: a period-k orbit that has
+            // recurred to within the tolerance is close to its own spread already.
+            if (ec + d2 * rho / (1 - rho) < std::max(1.0, 0.5 * ec)) return true;
+            continue;   // levels off: period k
+        }
+        if (ec < cfg_.dying_ratio * ea) return true;
+    }
+    return false;
 }
 
 void PoincareMap::settle_on(int k) {
@@ -80,7 +121,7 @@ void PoincareMap::declare_chaos() {
     status_ = Status::Chaotic;
     period_ = 0;
     from_chaos_ = false;
-    points_.clear();
+    if (!points_.empty()) return;   // the provisional points go on (no jump of the view)
     const std::size_t keep = std::min(recent_.size(), static_cast<std::size_t>(cfg_.chaos_after) / 2);
     for (std::size_t i = recent_.size() - keep; i < recent_.size(); ++i)
         points_.push({recent_[i].x, recent_[i].v, recent_[i].impacts});
@@ -120,6 +161,8 @@ void PoincareMap::push(const MapInput& in) {
             points_.push({in.x, in.v, in.impacts});
             const std::size_t keep = k * static_cast<std::size_t>(std::max(cfg_.periodic_cycles, 1));
             if (points_.size() > keep) points_.drop_oldest(points_.size() - keep);
+            // The alternation of a negative multiplier has died out: the orbit's period is a divisor of k.
+            if (const int d = k > 1 ? find_period(0, period_, true) : 0; d > 0) settle_on(d);
             return;
         }
         if (from_chaos_) {
@@ -137,13 +180,28 @@ void PoincareMap::push(const MapInput& in) {
     // Out of chaos, a cycle must hold for half of chaos_after periods: chaotic orbits linger near their
     // unstable cycles for a few periods (intermittency), a settled orbit recurs for ever.
     const bool chaotic = status_ == Status::Chaotic;
-    if (const int k = find_period(chaotic ? static_cast<std::size_t>(cfg_.chaos_after) / 2 : 0); k > 0) {
-        settle_on(k);
-        from_chaos_ = chaotic;
+    bool converging = false;
+    if (const int k = find_period(chaotic ? static_cast<std::size_t>(cfg_.chaos_after) / 2 : 0, cfg_.max_period + 1, false);
+        k > 0) {
+        if (!dying_alternation(k)) {
+            settle_on(k);
+            from_chaos_ = chaotic;
+            return;
+        }
+        converging = true;   // recurring, so not chaos: the period is not yet known
+    }
+    if (status_ == Status::Chaotic) {
+        points_.push({in.x, in.v, in.impacts});
         return;
     }
-    if (status_ == Status::Chaotic) points_.push({in.x, in.v, in.impacts});
-    else if (unsettled_ >= static_cast<std::uint64_t>(cfg_.chaos_after)) declare_chaos();
+    if (!points_.empty()) points_.push({in.x, in.v, in.impacts});
+    else if (unsettled_ >= static_cast<std::uint64_t>(cfg_.provisional_after)) {
+        // Provisional: the newer half of the undecided points, the older half taken for the transient.
+        const std::size_t keep = std::min(recent_.size(), static_cast<std::size_t>(unsettled_ / 2));
+        for (std::size_t i = recent_.size() - keep; i < recent_.size(); ++i)
+            points_.push({recent_[i].x, recent_[i].v, recent_[i].impacts});
+    }
+    if (!converging && unsettled_ >= static_cast<std::uint64_t>(cfg_.chaos_after)) declare_chaos();
 }
 
 void SectionFeeder::reset() {

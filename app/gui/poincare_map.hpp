@@ -1,11 +1,14 @@
 // The Poincare map as the visualiser shows it: a settle detector over the incoming section points. After
 // every change of the dynamics (reset()) all points are transient; the map decides the period k (1..N)
 // once the newest points recur after k periods within a tolerance relative to the attractor's size, or
-// "chaos" once enough points show no recurrence, and keeps only the points from then on (the transient
-// never reaches the display). A periodic orbit that breaks (a drift, a slow transient that had looked
-// settled) sends it back to settling; one found after chaos had been said must hold longer, and sends it
-// back to chaos when it breaks. GL-free; UI thread only (the app feeds it from its drain of the
-// sample ring).
+// "chaos" once enough points show no recurrence, and keeps only the points from then on. A periodic orbit
+// that breaks (a drift, a slow transient that had looked settled) sends it back to settling; one found
+// after chaos had been said must hold longer, and sends it back to chaos when it breaks.
+// A period k is re-checked against every new point: a period-1 orbit with a negative multiplier
+// approaches it alternating, and P^2 recurs long before P does, so a k whose divisor d recurs later
+// becomes d; and k is not said while the d-differences are still shrinking (the alternation dying out).
+// While undecided for provisional_after points the newer half is shown as provisional (no period said).
+// GL-free; UI thread only (the app feeds it from its drain of the sample ring).
 #pragma once
 
 #include <cstddef>
@@ -22,6 +25,8 @@ struct PoincareConfig {
     double rel_tol = 1e-3;        // recurrence: |dx| / size_x and |dv| / size_v both below this
     double break_factor = 10;     // a settled orbit breaks when a point misses by break_factor * rel_tol
     int chaos_after = 64;         // section points without any recurrence before "chaos" is said
+    int provisional_after = 16;   // undecided points before the newer half is shown (no period said)
+    double dying_ratio = 0.5;     // d-differences shrunk below this fraction over a stretch: a transient
     int periodic_cycles = 4;      // a periodic orbit shows its last few cycles: where it is, not where it
                                   // was while it converged (a slow approach would smear each point)
     double min_size_x = 1e-3;     // [m]   floors of the attractor's size (a cart at rest has size 0)
@@ -53,12 +58,14 @@ public:
     void push(const MapInput& in);
 
     Status status() const { return status_; }
+    // Settling, but showing the newest undecided points (the transient has had provisional_after periods).
+    bool provisional() const { return status_ == Status::Settling && !points_.empty(); }
     // The period k while Periodic; 0 while Chaotic; -1 while settling.
     int period() const { return status_ == Status::Periodic ? period_ : status_ == Status::Chaotic ? 0 : -1; }
     // Section points received since the last reset() (transient included).
     std::uint64_t seen() const { return seen_; }
     // The settled points, oldest first: a periodic orbit's last periodic_cycles * k, a chaotic orbit's all
-    // since the decision (up to the capacity); empty while settling. Its generation() changes whenever the map
+    // since the decision (up to the capacity); while settling, empty or the provisional points. Its generation() changes whenever the map
     // starts over (a reset, a new period or chaos decided), which is when an auto-fit should snap.
     const History<MapPoint>& points() const { return points_; }
     // The recurrence tolerance now in force [m], [m/s] (rel_tol times the attractor's size).
@@ -74,7 +81,11 @@ public:
 private:
     void update_tolerance();
     bool recurs(std::size_t i, std::size_t k, double factor) const;   // recent_[i] vs recent_[i - k]
-    int find_period(std::size_t at_least) const;   // recurrences needed at least (beyond 2k + 2)
+    // The smallest period below `below` (that divides it, when `divisors`) recurring over its confirmations
+    // and at least `at_least` points; 0 if none.
+    int find_period(std::size_t at_least, int below, bool divisors) const;
+    double gap(std::size_t i, std::size_t d) const;   // recent_[i] vs recent_[i - d] in tolerances
+    bool dying_alternation(int k) const;
     void settle_on(int k);
     void declare_chaos();
 

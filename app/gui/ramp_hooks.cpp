@@ -46,11 +46,11 @@ void App::draw_ramp_controls() {
     tooltip("Moves ω slowly to the target while the rig runs (the paper's EF protocol, live): the section\n"
                  "points it passes are drawn over the bifurcation diagram, which grows as you watch.\n"
                  "Any other change of ω, a preset or Reset stops it.");
-    ImGui::SameLine();
+    same_line_or_wrap(fs * 4.2f);
     ImGui::SetNextItemWidth(fs * 4.2f);
     ImGui::DragFloat("##ramp_to", &ramp_target_, 0.05f, 0.0f, static_cast<float>(kMaxOmega), "to %.1f");
     ramp_target_ = std::clamp(ramp_target_, 0.0f, static_cast<float>(kMaxOmega));
-    ImGui::SameLine();
+    same_line_or_wrap(ImGui::CalcTextSize("0.050 rad/s²").x + 2.0f * ImGui::GetStyle().FramePadding.x);
     ImGui::SetNextItemWidth(-1);
     ImGui::DragFloat("##ramp_rate", &ramp_rate_, 0.001f, static_cast<float>(kMinRampRate),
                      static_cast<float>(kMaxRampRate), "%.3f rad/s²", ImGuiSliderFlags_Logarithmic);

@@ -186,25 +186,27 @@ void RigView::build(const RigState& st, const Palette& pal) {
     static_count_ = shapes_.size();
 
     // Bumper: a block on a threaded rod from the right end, rubber face at the contact plane xI + half cart.
-    const double face = mag_.bumper_face(st.xI);
-    const double F = std::max(0.0, st.bumper_force);
-    const double heat = std::clamp(std::max(st.flash, std::log10(1.0 + F) / 2.2), 0.0, 1.0);   // 1 at ~160 N
-    capsule(face + kBumperLen, kBumperY, wall_in, kBumperY, 0.0028, kBrass, 1, 1);
-    for (int i = 0; i < 2; ++i) {   // lock nuts
-        const double nx = face + kBumperLen + 0.006 + 0.006 * i;
-        box(nx, kBumperY, 0.0022, 0.0052, 0.0006, pal.rail, 1, 1, 0.0004, kDark);
+    if (st.bumper) {
+        const double face = mag_.bumper_face(st.xI);
+        const double F = std::max(0.0, st.bumper_force);
+        const double heat = std::clamp(std::max(st.flash, std::log10(1.0 + F) / 2.2), 0.0, 1.0);   // 1 at ~160 N
+        capsule(face + kBumperLen, kBumperY, wall_in, kBumperY, 0.0028, kBrass, 1, 1);
+        for (int i = 0; i < 2; ++i) {   // lock nuts
+            const double nx = face + kBumperLen + 0.006 + 0.006 * i;
+            box(nx, kBumperY, 0.0022, 0.0052, 0.0006, pal.rail, 1, 1, 0.0004, kDark);
+        }
+        box(face + 0.5 * kBumperLen + 0.002, kBumperY, 0.5 * kBumperLen - 0.002, kBumperHalfH, 0.0015, pal.bumper_body, 1, 1,
+            0.0006, kDark);
+        float pad[3];
+        mix3(kRubber, pal.hot, static_cast<float>(heat), pad);
+        if (heat > 0.02) {
+            float glow[3];
+            mix3(pal.hot, kWhite, static_cast<float>(0.4 * heat), glow);
+            box(face + 0.002, kBumperY, 0.002, kBumperHalfH, 0.0012, glow, static_cast<float>(std::min(1.0, 0.35 + heat)), 3, 0,
+                nullptr, 0.005 + 0.016 * heat);
+        }
+        box(face + 0.002, kBumperY, 0.002, kBumperHalfH, 0.0012, pad, 1, 0, 0.0005, kDark);
     }
-    box(face + 0.5 * kBumperLen + 0.002, kBumperY, 0.5 * kBumperLen - 0.002, kBumperHalfH, 0.0015, pal.bumper_body, 1, 1,
-        0.0006, kDark);
-    float pad[3];
-    mix3(kRubber, pal.hot, static_cast<float>(heat), pad);
-    if (heat > 0.02) {
-        float glow[3];
-        mix3(pal.hot, kWhite, static_cast<float>(0.4 * heat), glow);
-        box(face + 0.002, kBumperY, 0.002, kBumperHalfH, 0.0012, glow, static_cast<float>(std::min(1.0, 0.35 + heat)), 3, 0,
-            nullptr, 0.005 + 0.016 * heat);
-    }
-    box(face + 0.002, kBumperY, 0.002, kBumperHalfH, 0.0012, pad, 1, 0, 0.0005, kDark);
 
     // Springs from the end blocks to the cart's ends.
     spring(-wall_in, x - kCartHalfW, kSpringY, pal);

@@ -22,6 +22,7 @@ struct RigState {
     double phi = 0;               // unbalance angle [rad]
     double phi_span = 0;          // how far phi turned since the last frame [rad] (motion blur)
     double xI = 0;                // bumper [m]
+    bool bumper = true;           // false for the impact law "none": no bumper drawn
     double bumper_force = 0;      // [N]
     double flash = 0;             // 0..1: recent impact
     double magnet_force = 0;      // force of the magnets on the cart, along x [N]

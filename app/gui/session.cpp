@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <initializer_list>
+#include <set>
 #include <sstream>
 
 #include "impactlab/atomic_file.hpp"
@@ -273,8 +274,22 @@ Session session_from_json(const json& j, const Session& base, const std::string&
 
 Session parse_session(const std::string& text, const Session& base, const std::string& file) {
     json j;
+    // A key given twice in one object would silently keep one of them: refused, naming it.
+    std::vector<std::set<std::string>> keys;
+    std::string duplicate;
+    const json::parser_callback_t no_duplicates = [&](int, json::parse_event_t ev, json& parsed) {
+        if (ev == json::parse_event_t::object_start) keys.emplace_back();
+        else if (ev == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+        else if (ev == json::parse_event_t::key && !keys.empty() && !keys.back().insert(parsed.get<std::string>()).second &&
+                 duplicate.empty())
+            duplicate = parsed.get<std::string>();
+        return true;
+    };
     try {
-        j = json::parse(text);
+        j = json::parse(text, no_duplicates);
+    } catch (const json::out_of_range& e) {
+        // A number beyond a double (1e999): nlohmann reports it as out_of_range, not as a parse error.
+        throw SessionError(file + ": a number is out of range (" + std::string(e.what()) + ")");
     } catch (const json::parse_error& e) {
         // The line and column of the byte where parsing stopped (e.byte is 1-based).
         std::size_t line = 1, col = 1;
@@ -292,6 +307,7 @@ Session parse_session(const std::string& text, const Session& base, const std::s
         throw SessionError(file + ": line " + std::to_string(line) + ", column " + std::to_string(col) +
                            ": not valid JSON (" + what + ")");
     }
+    if (!duplicate.empty()) throw SessionError(file + ": key '" + duplicate + "' appears twice in one object");
     return session_from_json(j, base, file);
 }
 

@@ -93,7 +93,8 @@ bool App::write_state_json(const std::string& path) {
     const PoincareMap& map = shown_map();   // replaying: the map at the cursor, as the panel shows it
     const PoincareMap::Status st = map.status();
     j["poincare_status"] = st == PoincareMap::Status::Periodic ? "periodic"
-                           : st == PoincareMap::Status::Chaotic ? "chaos" : "settling";
+                           : st == PoincareMap::Status::Chaotic ? "chaos"
+                           : map.provisional()                   ? "provisional" : "settling";
     j["poincare_period"] = st == PoincareMap::Status::Settling ? json(nullptr) : json(map.period());
     j["poincare_seen"] = map.seen();   // section points since the last change, the transient included
     j["poincare_tol"] = {map.tol_x(), map.tol_v()};
@@ -104,6 +105,17 @@ bool App::write_state_json(const std::string& path) {
         imp.push_back(h[i].impacts);
     }
     j["poincare_points"] = std::move(pts);
+    j["session_window"] = session_window_ ? json(session_saving_ ? "save" : "load") : json(nullptr);
+    if (const auto& ov = analysis_.overlay()) {   // the continued branches' special points, as the hover names them
+        json bif_pts = json::array();
+        for (const analysis::BifPoint& b : ov->points)
+            bif_pts.push_back({{"kind", analysis::bif_kind_name(b.kind)}, {"omega", b.param}, {"x", b.y[0]}, {"v", b.y[1]},
+                               {"period", b.period}, {"precision", b.precision}});
+        j["continuation"] = {{"model", ov->model}, {"omega_lo", ov->omega_lo}, {"omega_hi", ov->omega_hi},
+                             {"cancelled", ov->cancelled}, {"curves", ov->curves.size()}, {"points", std::move(bif_pts)}};
+    } else {
+        j["continuation"] = nullptr;
+    }
     {   // The bifurcation panel: the diagram shown (its omega range, columns done, stale after a switch) and
         // the Lyapunov strip under it.
         const BifurcationState b = bif_panel_.state(bifurcation_context());

@@ -79,6 +79,9 @@ const Palette& apply_theme(bool dark, float ui_scale) {
     s.ChildRounding = 3.0f;
     s.FrameRounding = 3.0f;
     s.GrabRounding = 3.0f;
+    // A slider's value is its text ("ω = 12.00 rad/s"): a thin, translucent grab lets it be read through.
+    s.GrabMinSize = 5.0f;
+    s.Colors[ImGuiCol_SliderGrab].w = 0.55f;
     s.PopupRounding = 3.0f;
     s.WindowPadding = ImVec2(8, 7);
     s.FramePadding = ImVec2(6, 3);

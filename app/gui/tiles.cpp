@@ -15,6 +15,7 @@
 #include "app.hpp"
 #include "plot2d.hpp"
 #include "theme.hpp"
+#include "widgets.hpp"
 
 namespace impactlab::gui {
 
@@ -296,6 +297,13 @@ void App::layout_and_draw() {
     }
     for (const Tile& t : layout_.tiles) draw_tile(t);
     set_plot_backdrops_by_clear(false);   // floating windows (data panel) draw their own
+    if (nothing_shown()) {
+        // Every panel hidden: a blank window would look broken, so say how to get them back.
+        const char* hint = "Every panel is hidden.  View > Panels shows them again.";
+        const ImVec2 ts = ImGui::CalcTextSize(hint);
+        ImGui::GetBackgroundDrawList()->AddText(ImVec2(area.x + 0.5f * (area.w - ts.x), area.y + 0.5f * (area.h - ts.y)),
+                                                palette().axis_text, hint);
+    }
 
     if (!presenting) {
         ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8.0f * ui_scale_, 3.0f * ui_scale_));
@@ -334,11 +342,19 @@ void App::draw_presentation_bar() {
     if (layout_.bar_lines == 1) ImGui::SameLine(0, 2.0f * sp);
     // Line 2 (or the second half): presets, magnification, the plot, exit.
     const auto list = presets_for(model_name());
+    const char* exit_label = "Exit (P)";
+    const float exit_w = button_width(exit_label);
+    // The presets' full names when the row holds them beside the magnification, the plot picker and Exit;
+    // their numbers alone otherwise (a projector's 1024 px at UI scale 2), named in their tooltips.
+    float full_w = 7.5f * fs + 5.0f * fs + exit_w + 3.0f * sp;
+    for (std::size_t i = 0; i < list.size(); ++i) full_w += button_width((std::to_string(i + 1) + " " + list[i].label).c_str()) + sp;
+    const bool short_presets = full_w > ImGui::GetContentRegionAvail().x;
     for (std::size_t i = 0; i < list.size(); ++i) {
         char label[64];
-        std::snprintf(label, sizeof label, "%zu %s###p_preset%zu", i + 1, list[i].label, i);
+        if (short_presets) std::snprintf(label, sizeof label, "%zu###p_preset%zu", i + 1, i);
+        else std::snprintf(label, sizeof label, "%zu %s###p_preset%zu", i + 1, list[i].label, i);
         if (ImGui::Button(label)) apply_preset(list[i]);
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("key %zu: %s", i + 1, list[i].note);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("key %zu, %s: %s", i + 1, list[i].label, list[i].note);
         ImGui::SameLine();
     }
     float g = static_cast<float>(magnification());
@@ -346,8 +362,6 @@ void App::draw_presentation_bar() {
     if (ImGui::SliderFloat("##p_magnify", &g, 1.0f, 10.0f, "disp. ×%.1f")) set_magnification(g);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("the rig's displacement magnification (the drawing only)");
     ImGui::SameLine();
-    const char* exit_label = "Exit (P)";
-    const float exit_w = ImGui::CalcTextSize(exit_label).x + 2.0f * ImGui::GetStyle().FramePadding.x;
     const float combo_w = std::max(5.0f * fs, ImGui::GetContentRegionAvail().x - exit_w - sp);
     ImGui::SetNextItemWidth(std::min(combo_w, 9.0f * fs));
     if (ImGui::BeginCombo("##p_plot", tab_label(featured_).c_str())) {
@@ -421,6 +435,7 @@ nlohmann::json App::layout_json() const {
         if (!panel_visible_[static_cast<std::size_t>(i)]) hidden.push_back(panel_key(static_cast<PanelId>(i)));
     j["visible_panels"] = std::move(shown);
     j["hidden_panels"] = std::move(hidden);
+    j["nothing_shown_hint"] = nothing_shown();   // every panel hidden: the window says how to show them
     auto rect = [](const Rect& r) { return json::array({r.x, r.y, r.w, r.h}); };
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     j["viewport"] = json::array({vp->Pos.x, vp->Pos.y, vp->Size.x, vp->Size.y});

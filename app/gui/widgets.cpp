@@ -15,6 +15,15 @@ void tooltip(const char* text) {
     ImGui::EndTooltip();
 }
 
+void same_line_or_wrap(float next_w) {
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + next_w <= right) ImGui::SameLine();
+}
+
+float button_width(const char* label) {
+    return ImGui::CalcTextSize(label, nullptr, true).x + 2.0f * ImGui::GetStyle().FramePadding.x;
+}
+
 void plate_text(ImDrawList* dl, ImVec2 p, const char* text, ImU32 col, ImVec2 align) {
     const ImVec2 ts = ImGui::CalcTextSize(text);
     const ImVec2 a(std::round(p.x - ts.x * align.x), std::round(p.y - ts.y * align.y));

@@ -7,6 +7,11 @@ namespace impactlab::gui {
 
 // The last item's hover text, wrapped at about 24 em.
 void tooltip(const char* text);
+// The next item on the same line if `next_w` pixels still fit in the window's content region, else on the
+// next line: a row of buttons wraps instead of running off a narrow panel (a large UI scale).
+void same_line_or_wrap(float next_w);
+// The width of a button labelled `label` (its text and frame padding) [px].
+float button_width(const char* label);
 
 // A text on a dark (or light) plate that keeps it readable over plots and the rig; align as ImGui's (0:
 // left/top, 1: right/bottom of the text at p).

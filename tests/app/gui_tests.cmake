@@ -21,6 +21,27 @@ add_test(NAME gui_poincare
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_poincare)
 set_tests_properties(gui_poincare PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
 
+# The Poincare map's period label on both sides of the first period doubling, from rest and after a live
+# omega change (gui_doubling.sh says what it checks).
+add_test(NAME gui_doubling
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_doubling.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_doubling)
+set_tests_properties(gui_doubling PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 400 LABELS "gui")
+
+# The GUI's continued branches are the CLI's: the same special points through --state-json and points.csv.
+if(TARGET impactlab)
+  add_test(NAME gui_continuation
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_continuation.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_continuation)
+  set_tests_properties(gui_continuation PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "gui")
+endif()
+
+# Defects a teacher meets: --save-session keeps --model, bad session numbers and duplicate keys refused.
+add_test(NAME gui_teacher
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_teacher.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_teacher)
+set_tests_properties(gui_teacher PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
+
 # The live omega ramp and the energy bar through --state-json (gui_ramp.sh says what it checks).
 add_test(NAME gui_ramp
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_ramp.sh $<TARGET_FILE:impactlab-gui>

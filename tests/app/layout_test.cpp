@@ -212,6 +212,10 @@ TEST_CASE("label placer: no label overprints another or leaves the drawing") {
         for (std::size_t j = i + 1; j < lp.placed().size(); ++j) CHECK_FALSE(overlaps(lp.placed()[i], lp.placed()[j]));
     // Touching edges are no overlap.
     CHECK_FALSE(overlaps({0, 0, 10, 10}, {10, 0, 10, 10}));
+    // A reserved box (the rig's end wall, reaching past the right edge) takes its room without a label.
+    lp.reserve({380, 0, 40, 200});
+    CHECK_FALSE(lp.place({300, 150, 90, 20}));   // would cover the wall
+    CHECK(lp.place({280, 150, 90, 20}));         // clear of it
 }
 
 TEST_CASE("rig magnification: a contact stays a contact, the walls make room for the travel") {

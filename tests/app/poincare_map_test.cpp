@@ -64,7 +64,7 @@ TEST_CASE("poincare map: periods 1, 2, 3 behind a transient are found, and no tr
             if (settled_at < 0 && map.period() > 0) settled_at = n;
             if (settled_at < 0) {
                 CHECK(map.period() == -1);   // "settling..." until the period is known
-                CHECK(map.points().empty());
+                CHECK((map.points().empty() || map.provisional()));   // at most the provisional points
             }
         }
         CHECK(map.status() == PoincareMap::Status::Periodic);
@@ -101,22 +101,26 @@ TEST_CASE("poincare map: chaos is said after enough points without recurrence, a
     for (int n = 0; n < cfg.chaos_after - 1; ++n) {
         map.push(henon());
         CHECK(map.period() == -1);
+        // Blank only until the transient has had provisional_after periods; then shown, no period said.
+        CHECK(map.provisional() == (n + 1 >= cfg.provisional_after));
     }
     map.push(henon());
     CHECK(map.status() == PoincareMap::Status::Chaotic);
     CHECK(map.period() == 0);
-    // The older half of the undecided points was transient; the map goes on from the newer half.
-    CHECK(map.points().size() == static_cast<std::size_t>(cfg.chaos_after / 2));
+    // The provisional points go on: shown from provisional_after points on, the older half of those
+    // taken for the transient.
+    const auto shown = static_cast<std::size_t>(cfg.chaos_after - cfg.provisional_after / 2);
+    CHECK(map.points().size() == shown);
     for (int n = 0; n < 100; ++n) map.push(henon());
     CHECK(map.period() == 0);
-    CHECK(map.points().size() == static_cast<std::size_t>(cfg.chaos_after / 2 + 100));
+    CHECK(map.points().size() == shown + 100);
     // Intermittency: a laminar phase of 12 periods at a fixed point (an unstable cycle the orbit lingers
     // near) is not taken for a period, and nothing of the chaotic map is lost.
     for (int n = 0; n < 12; ++n) map.push(orbit_point(kP1, 0, 0.0, 0.5));
     CHECK(map.period() == 0);
     for (int n = 0; n < 20; ++n) map.push(henon());
     CHECK(map.period() == 0);
-    CHECK(map.points().size() == static_cast<std::size_t>(cfg.chaos_after / 2 + 132));
+    CHECK(map.points().size() == shown + 132);
     // A long chaotic transient that ends on a period-2 orbit: the chaotic points leave the map.
     for (int n = 0; n < 60; ++n) map.push(orbit_point(kP2, n, 0.002, 0.5));
     CHECK(map.period() == 2);
@@ -149,6 +153,35 @@ TEST_CASE("poincare map: a reset starts over; a cycle that breaks goes back to s
     drift.push(in);
     CHECK(drift.period() == -1);
     CHECK(drift.points().empty());
+}
+
+TEST_CASE("poincare map: a period-1 orbit approached alternating (a negative multiplier) is period 1, never 2") {
+    // x_n = c + a mu^n: P^2 recurs (by 1 - mu^2) long before P does (by 1 - mu); the map must not call the
+    // alternation period 2, and says period 1 once it has died out.
+    for (double mu : {-0.55, -0.9, -0.97, -0.99}) {
+        CAPTURE(mu);
+        PoincareMap map;
+        int said_one = -1;
+        for (int n = 0; n < 2000; ++n) {
+            const double d = 0.004 * std::pow(mu, n);
+            map.push({0, -0.0149 + d, -0.0376 - 3 * d, 0, 0.012, 0.15});
+            CHECK(map.period() != 2);
+            if (said_one < 0 && map.period() == 1) said_one = n;
+        }
+        CHECK(map.period() == 1);
+        CHECK(said_one > 0);
+    }
+}
+
+TEST_CASE("poincare map: a small period-2 orbit near its doubling, approached slowly, is period 2") {
+    // Just past a doubling the two points are close (here 40 tolerances apart) and the approach slow.
+    PoincareMap map;
+    for (int n = 0; n < 600; ++n) {
+        const double side = n % 2 ? 1.0 : -1.0;
+        const double d = 0.003 * std::pow(0.97, n);
+        map.push({0, -0.0149 + side * 2.4e-4 + d, -0.0376, 0, 0.012, 0.15});
+    }
+    CHECK(map.period() == 2);
 }
 
 TEST_CASE("poincare map: on the engine, the presets' periods are read from what the app receives") {
@@ -195,6 +228,57 @@ TEST_CASE("poincare map: on the engine, the presets' periods are read from what 
             for (int i = 0; i < pr.period; ++i) centres.push_back({map.points()[static_cast<std::size_t>(i)].x,
                                                                    map.points()[static_cast<std::size_t>(i)].v});
             CHECK(worst_miss(map, centres) < 2.0);
+        }
+    }
+}
+
+TEST_CASE("poincare map: on the engine across the first doubling (10.8613 rad/s), the label agrees with the multipliers") {
+    // Below the doubling the period-1 orbit's multiplier is negative (A1H at 10.3: -0.55; nearer -1 at 10.8)
+    // and the cart approaches it alternating: period 1, never 2. Above it, period 2. Each run from rest in
+    // the left well, and again after a live omega change from the other side (no reset, as the arrow keys).
+    struct FeedSink final : MsgSink {
+        PoincareMap* map;
+        SectionFeeder feeder;
+        void put(const SimMsg& m) override { feeder.on_msg(m, *map); }
+    };
+    struct Case {
+        const char* model;
+        double omega;
+        int period;
+    };
+    for (const Case c : {Case{"A1H", 10.8, 1}, Case{"A1H", 10.3, 1}, Case{"A1H", 11.2, 2}, Case{"A1H", 12.0, 2},
+                         Case{"A1G", 10.5, 1}, Case{"A1G", 10.7, 1}, Case{"A1G", 10.8, 1}, Case{"A1G", 11.2, 2},
+                         Case{"A1G", 12.0, 2}}) {
+        for (const bool live_change : {false, true}) {
+            CAPTURE(c.model);
+            CAPTURE(c.omega);
+            CAPTURE(live_change);
+            PoincareMap map;
+            FeedSink sink;
+            sink.map = &map;
+            EngineConfig cfg;
+            cfg.model = c.model;
+            cfg.omega = live_change ? (c.period == 1 ? 11.6 : 10.3) : c.omega;
+            cfg.speed = 100;
+            SimEngine engine(cfg, &sink);
+            if (live_change) {
+                engine.advance_to(200 * 2 * std::numbers::pi / cfg.omega);
+                engine.apply(SimCommand::omega(c.omega));
+                map.reset();   // as the app does on the new epoch
+                sink.feeder.reset();
+            }
+            const double period_s = 2 * std::numbers::pi / c.omega;
+            const double t0 = engine.state().t;
+            int wrong = 0, told = -1;
+            for (int n = 1; n <= 800; ++n) {
+                engine.advance_to(t0 + n * period_s + 1e-9);
+                if (map.period() > 0 && map.period() != c.period) ++wrong;
+                if (told < 0 && map.period() == c.period) told = n;
+            }
+            CHECK(wrong == 0);   // never the other period, not even for a while
+            CHECK(map.period() == c.period);
+            MESSAGE(std::string(c.model) << " " << c.omega << std::string(live_change ? " (live change)" : "") << ": period " << c.period
+                            << " told after " << told << " forcing periods");
         }
     }
 }

@@ -127,6 +127,11 @@ TEST_CASE("session: bad files are refused naming the file, the key or line, and 
     // Not JSON: the line and column where the parser stopped.
     CHECK(has(error_of("{\n  \"format\": \"impactlab-gui session\",\n  \"omega\": 9,,\n}"), "s.json: line 3, column 14: not valid JSON"));
     CHECK(has(error_of(""), "s.json: line 1"));
+    // A number beyond a double is refused, not an abort; a key given twice is refused, naming it (also nested).
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "omega": 1e999})"), "s.json: a number is out of range"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "omega": 9, "omega": 12})"), "s.json: key 'omega' appears twice"));
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "state": {"x": 0, "x": 0.01}})"), "key 'x' appears twice"));
+    CHECK(error_of(R"({"format": "impactlab-gui session", "state": {"x": 0}, "view": {"x": 1}})").find("twice") == std::string::npos);
     CHECK_THROWS_WITH_AS(load_session("/nonexistent/session.json", Session{}),
                          doctest::Contains("/nonexistent/session.json: cannot read it"), SessionError);
     CHECK(error_of(session_text(sample())).empty());

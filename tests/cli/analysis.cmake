@@ -10,6 +10,10 @@ endforeach()
 impactlab_cli_test(orbit_period1 --rc 0 --match "Floquet multipliers" --match "stable: yes"
                    --csv orbit.csv "t,x,v,phi" 600 700
                    -- orbit --model A1C --omega 10 --out orbit.csv)
+# The help states the analysis default rtol (1e-10), and a looser --rtol still converges (Newton asks only
+# for what the integrator can give).
+impactlab_cli_test(help_continue_rtol --rc 0 --match "default 1e-10 here" -- continue --help)
+impactlab_cli_test(orbit_rtol_loose --rc 0 --match "Floquet multipliers" -- orbit --model A1C --omega 10.5 --rtol 1e-8 --out orbit.csv)
 impactlab_cli_test(orbit_missing_omega --rc 2 --match "'--omega'" -- orbit --model A1C --out orbit.csv)
 impactlab_cli_test(orbit_bad_from --rc 2 --match "'--from'" -- orbit --model A1C --omega 10 --from 1 --out o.csv)
 impactlab_cli_test(continue_short --rc 0 --match "period_doubling +omega = 10.86"

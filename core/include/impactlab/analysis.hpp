@@ -110,6 +110,7 @@ struct BranchPoint {
     Floquet floquet;
     int impacts = 0;
     double max_x = 0;
+    std::vector<Vec2> sections;  // the k section points of the orbit, y first (a period-k diagram draws all k)
 };
 struct Branch {
     int id = 0;
@@ -124,7 +125,8 @@ struct BifPoint {
     Vec2 y = Vec2::Zero();
     int period = 1;
     int branch = 0;
-    double precision = 0;        // width of the final bracket in the parameter
+    double precision = 0;        // uncertainty of param: the final bracket or, if larger, how far a crossing
+                                 // still moves between the integrator at rtol/10 and rtol/100
 };
 
 struct ContinuationSpec {

@@ -2,6 +2,9 @@
 // functions for folds (det(M - I)), period doublings (det(M + I)), Neimark-Sacker (det M - 1 with complex
 // multipliers) and grazing (the largest x of the orbit reaching xI, or the smallest impact speed reaching 0),
 // each located by bisection along the arclength; at a period doubling the period-2k branch is switched onto.
+// A sign change counts only as the multiplier crossing it names (real through +1 or -1, a complex pair through
+// the unit circle, at a finite rate, clear of a grazing); a doubling or Neimark-Sacker is then re-located on
+// the orbit found again at a tighter tolerance.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
@@ -38,8 +41,17 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
-constexpr double kResidualTol = 1e-9;   // scaled |P^k(y) - y| of a converged point
+constexpr double kResidualTol = 1e-9;   // scaled |P^k(y) - y| of a converged point (at rtol <= 1e-10)
 constexpr int kMaxCorrector = 10;
+// A crossing multiplier must lie this close to +1, -1 or the unit circle at both ends of its bracket.
+constexpr double kNearCrossing = 0.5;
+// |d mu / ds| (scaled arclength) above this is a jump, not a crossing (a smooth one is O(1..100)).
+constexpr double kSteepCrossing = 1e4;
+// Penetration of a compliant bumper below which an orbit is still grazing it [m] (C: a force under 0.3 N).
+constexpr double kGrazingLayer = 1e-6;
+// A step whose multipliers move more than this is retried shorter: it may have jumped onto another
+// segment of the branch (across a fold onto the impacting orbit) and a crossing would go unseen.
+constexpr double kMaxMultiplierStep = 0.3;
 
 // A converged point of a branch and what the test functions need.
 struct Sol {
@@ -54,6 +66,8 @@ public:
     Continuer(const Params& p, const ContinuationSpec& spec, Progress* progress)
         : base_(p), work_(p), spec_(spec), progress_(progress) {
         q_scale_ = spec.param == ContParam::Omega ? 1.0 : spec.param == ContParam::XI ? 1e-3 : 1e-3;
+        // The map is known only to about rtol: a corrector asked for less than that never converges.
+        res_tol_ = std::max(kResidualTol, 10 * spec.sim.rtol);
     }
 
     ContinuationResult run();
@@ -107,7 +121,7 @@ private:
             J(0, 2) = (rq.y[0] - r.y[0]) / kXScale / dq;
             J(1, 2) = (rq.y[1] - r.y[1]) / kVScale / dq;
             const double h = n.dot(u - u_pred);
-            if (G.cwiseAbs().maxCoeff() < kResidualTol && std::abs(h) < 1e-9) {
+            if (G.cwiseAbs().maxCoeff() < res_tol_ && std::abs(h) < 1e-9) {
                 out.u = u;
                 out.r = std::move(r);
                 out.J = J;
@@ -158,6 +172,42 @@ private:
         const double tr = M.trace(), det = M.determinant();
         return 0.25 * tr * tr - det < 0;
     }
+    // The multiplier a kind is about: the real one nearest +1 (fold) or -1 (period doubling), the modulus
+    // of a complex pair (Neimark-Sacker, which crosses |mu| = 1). NaN when the multipliers are not of that
+    // sort (complex for a fold or a doubling, real for Neimark-Sacker).
+    static double crossing_multiplier(BifKind kind, const Mat2& M) {
+        const Floquet f = floquet(M);
+        if (kind == BifKind::NeimarkSacker) return complex_pair(M) ? std::abs(f.mu[0]) : NAN;
+        if (complex_pair(M)) return NAN;
+        const double c = kind == BifKind::Fold ? 1.0 : -1.0;
+        const double a = f.mu[0].real(), b = f.mu[1].real();
+        return std::abs(a - c) < std::abs(b - c) ? a : b;
+    }
+    // The crossing multiplier of the orbit at parameter q near y, found with the integrator's rtol scaled by
+    // `factor`: the orbit moves with the integrator's error too, and the multiplier is steep in it (A1C at
+    // the first doubling: 3e3 per metre of x). NaN if that run stalls or does not converge.
+    double crossing_at(BifKind kind, double q, const Vec2& y, int k, double factor) {
+        OrbitOptions oo;
+        oo.period = k;
+        oo.sim = spec_.sim;
+        oo.sim.rtol = std::max(oo.sim.rtol * factor, 1e-13);
+        oo.max_iterations = 8;
+        const double omega = apply(q);
+        ++evaluations_;
+        try {
+            const Orbit o = find_orbit(work_, omega, y, oo);
+            return o.converged && scaled_norm(o.y - y) < 1e-2 ? crossing_multiplier(kind, o.M) : NAN;
+        } catch (const std::exception&) {
+            return NAN;
+        }
+    }
+    // The largest change of a multiplier between two points (matched the closer way round).
+    static double multiplier_change(const Mat2& A, const Mat2& B) {
+        const Floquet a = floquet(A), b = floquet(B);
+        const double same = std::max(std::abs(a.mu[0] - b.mu[0]), std::abs(a.mu[1] - b.mu[1]));
+        const double swapped = std::max(std::abs(a.mu[0] - b.mu[1]), std::abs(a.mu[1] - b.mu[0]));
+        return std::min(same, swapped);
+    }
 
     BranchPoint point_of(const Sol& s, int k) const {
         BranchPoint b;
@@ -168,6 +218,8 @@ private:
         b.stable = b.floquet.stable;
         b.impacts = s.r.impacts;
         b.max_x = s.r.max_x;
+        b.sections.push_back(b.y);
+        for (std::size_t i = 0; i + 1 < s.r.sections.size(); ++i) b.sections.push_back(s.r.sections[i]);
         return b;
     }
 
@@ -215,6 +267,7 @@ private:
     ContinuationSpec spec_;
     Progress* progress_;
     double q_scale_ = 1;
+    double res_tol_ = kResidualTol;
     std::uint64_t evaluations_ = 0;
     ContinuationResult result_;
     std::deque<Job> jobs_;
@@ -281,7 +334,42 @@ void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, con
     }
     if (rigid_law) work_.impact = rigid_law;
     const Sol& best = std::abs(f_lo) < std::abs(f_hi) ? lo : hi;
-    BifPoint bp{kind, q_of(best.u), y_of(best.u), k, branch, std::abs(q_of(hi.u) - q_of(lo.u))};
+    double precision = std::abs(q_of(hi.u) - q_of(lo.u)), shift = 0;
+    if (kind != BifKind::Grazing) {
+        // A fold, a doubling or a Neimark-Sacker is a multiplier crossing +1, -1 or the unit circle: it
+        // must be of that sort on both sides of the bracket, near the value it crosses, and change at a
+        // finite rate along the arclength. A sign change of the test function without that is a jump (a
+        // grazing's: the impacting orbit's multiplier runs from +1 to -22 within 1e-5 rad/s of it), not a
+        // bifurcation of that kind.
+        const double c = kind == BifKind::Fold ? 1.0 : -1.0;
+        const double target = kind == BifKind::NeimarkSacker ? 1.0 : c;
+        const double m_lo = crossing_multiplier(kind, lo.r.M), m_hi = crossing_multiplier(kind, hi.r.M);
+        if (!std::isfinite(m_lo) || !std::isfinite(m_hi)) return;
+        if (std::abs(m_lo - target) > kNearCrossing || std::abs(m_hi - target) > kNearCrossing) return;
+        const double ds_bracket = std::max((hi.u - lo.u).norm(), 1e-300);
+        if (std::abs(m_hi - m_lo) / ds_bracket > kSteepCrossing) return;
+        // Inside a compliant bumper's grazing layer the crossing is the grazing's, however smooth it looks
+        // there (A3C's period 2 at 12.8999, 1e-4 past its grazing: mu = -1.005 with 0.22 um of penetration).
+        if (work_.has_bumper() && !work_.rigid() && best.r.max_x > work_.xI && best.r.max_x - work_.xI < kGrazingLayer) return;
+        // The bracket is only as good as the monodromy: at rtol 1e-10 the multiplier of A1C near its first
+        // doubling jitters by 5e-5 from one omega to the next (the step sequence changes), so a bracket of
+        // 1e-7 may sit 6e-5 from the crossing. The orbit is found again at rtol / 100, where the multiplier is
+        // smooth, the crossing moved there by a secant, and its error bounded by how far the multiplier
+        // still moves from rtol / 10. A fold needs no move: its parameter is stationary in the multiplier.
+        if (kind != BifKind::Fold) {
+            const double q0 = q_of(best.u), dq = 1e-3 * q_scale_ * (q_of(hi.u) > q_of(lo.u) ? 1 : -1);
+            const double m0 = crossing_at(kind, q0, y_of(best.u), k, 0.01);
+            const double m1 = crossing_at(kind, q0 + dq, y_of(best.u), k, 0.01);
+            const double m_mid = crossing_at(kind, q0, y_of(best.u), k, 0.1);
+            if (std::isfinite(m0) && std::isfinite(m1) && std::isfinite(m_mid) && m1 != m0) {
+                const double slope = (m1 - m0) / dq;   // d mu / d q at rtol / 100
+                shift = -(m0 - target) / slope;
+                if (std::abs(shift) > 1e-3 * q_scale_) shift = 0;   // not a smooth crossing there: the bracket stands
+                else precision = std::max(std::abs(m0 - m_mid) / std::abs(slope), std::abs(shift) * 0.1);
+            }
+        }
+    }
+    BifPoint bp{kind, q_of(best.u) + shift, y_of(best.u), k, branch, precision};
     result_.points.push_back(bp);
     if (kind != BifKind::PeriodDoubling || 2 * k > spec_.max_period) return;
     // Switch onto the period-2k branch: it leaves the period-k orbit along the eigenvector of mu = -1.
@@ -318,6 +406,7 @@ void Continuer::follow(const Job& job, Branch& br) {
             pts.push_back(point_of(cur, k));
         }
         bool first = !job.both_ways;
+        bool clipped = false;
         while (true) {
             if (cancelled()) {
                 end = "cancelled";
@@ -369,6 +458,25 @@ void Continuer::follow(const Job& job, Branch& br) {
                 const double g0 = test(BifKind::Grazing, cur), g1 = test(BifKind::Grazing, next);
                 if (g1 < 0 && g1 > g0 && ds > std::max(4 * std::abs(g1), 20 * spec_.ds_min)) {
                     ds = std::max(2 * std::abs(g1), 10 * spec_.ds_min);
+                    continue;
+                }
+            }
+            // A corrector that wandered far from the predictor, or multipliers that moved a lot in one step:
+            // the step may have left the branch's segment (the stable period 2 of A1C at 12.78 once landed
+            // on the impacting orbit at 12.96, past the fold, with a multiplier of -13). Shorter, down to
+            // a crawl: a true jump (a grazing) is then crossed in steps that bracket it.
+            if (!first && ds > 16 * spec_.ds_min &&
+                ((next.u - (cur.u + ds * t)).norm() > 0.5 * ds || multiplier_change(cur.r.M, next.r.M) > kMaxMultiplierStep)) {
+                ds *= 0.5;
+                continue;
+            }
+            // A step past the end of the range: once, shorten it to end there, so that the branch reaches
+            // the range's end rather than stopping up to ds_max short of it.
+            if (const double qn = q_of(next.u); (qn < lo || qn > hi) && !clipped) {
+                clipped = true;
+                const double frac = ((qn > hi ? hi : lo) - q_of(cur.u)) / (qn - q_of(cur.u));
+                if (frac > 0 && frac < 1 && frac * ds > spec_.ds_min) {
+                    ds *= 0.999 * frac;
                     continue;
                 }
             }
@@ -435,12 +543,15 @@ ContinuationResult Continuer::run() {
             break;
         }
         // A period doubling that an earlier period-2k branch already reached (the far end of a bubble).
+        // Any of a period-k orbit's k section points may be where the switch lands (the same orbit, another
+        // phase): each is compared.
         bool known = false;
         for (const auto& b : result_.branches)
             if (b.period == job.period)
                 for (const auto& pt : b.points)
-                    if (std::abs(pt.param / q_scale_ - job.u[2]) < 0.3 &&
-                        scaled_norm(pt.y - y_of(job.u)) < 0.3) known = true;
+                    if (std::abs(pt.param / q_scale_ - job.u[2]) < 0.3)
+                        for (const Vec2& sp : pt.sections)
+                            if (scaled_norm(sp - y_of(job.u)) < 0.3) known = true;
         if (known) continue;
         Branch br;
         br.id = static_cast<int>(result_.branches.size());

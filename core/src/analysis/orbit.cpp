@@ -91,7 +91,10 @@ Orbit find_orbit(const Params& p, double omega, const Vec2& guess, const OrbitOp
     Vec2 y = guess;
     MapResult r = poincare_map(p, omega, y, opt.period, true, opt.sim);
     double res = scaled_norm(r.y - y);
-    for (o.iterations = 0; o.iterations < opt.max_iterations && res > opt.tol; ++o.iterations) {
+    // The map is known only to about the integrator's tolerance: a residual below that is noise, and a
+    // Newton asked for it stalls (rtol 1e-8 stops near 3e-9).
+    const double tol = std::max(opt.tol, 10 * opt.sim.rtol);
+    for (o.iterations = 0; o.iterations < opt.max_iterations && res > tol; ++o.iterations) {
         const Mat2 J = r.M - Mat2::Identity();
         if (!std::isfinite(J.determinant()) || std::abs(J.determinant()) < 1e-300) {
             o.message = "the map's derivative minus I is singular (a multiplier at +1)";
@@ -126,7 +129,7 @@ Orbit find_orbit(const Params& p, double omega, const Vec2& guess, const OrbitOp
     o.max_x = r.max_x;
     o.min_impact_speed = r.min_impact_speed;
     o.sections = r.sections;
-    o.converged = res <= opt.tol && std::isfinite(res);
+    o.converged = res <= tol && std::isfinite(res);
     if (!o.converged && o.message.empty()) o.message = "no convergence in " + std::to_string(opt.max_iterations) + " iterations";
     return o;
 }
