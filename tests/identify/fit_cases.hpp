@@ -1,6 +1,7 @@
 // What the loop tests share: the short synthetic record they analyse and the analysis itself.
 #pragma once
 
+#include <algorithm>
 #include <string>
 
 #include "impactlab/identify.hpp"
@@ -21,6 +22,11 @@ inline FitReport analyse(const Model& truth, const SynthOptions& so, const std::
     FitOptions fo;
     fo.plots = false;
     return run_fit(synthesize(truth, so), resolve_fit_model(model, Forcing::Unbalance), fo);
+}
+
+// Whether the fit named `effect` among the effects it kept.
+inline bool named(const FitReport& r, const std::string& effect) {
+    return std::any_of(r.effects_found.begin(), r.effects_found.end(), [&](const FoundEffect& f) { return f.id == effect; });
 }
 
 }  // namespace impactlab::identify::test

@@ -11,13 +11,11 @@
 
 namespace id = impactlab::identify;
 using id::test::analyse;
+using id::test::named;
 using id::test::short_run;
 
 namespace {
 
-bool named(const id::FitReport& r, const std::string& effect) {
-    return std::any_of(r.effects_found.begin(), r.effects_found.end(), [&](const id::FoundEffect& f) { return f.id == effect; });
-}
 bool generic(const id::FitReport& r) {
     return std::any_of(r.effects_found.begin(), r.effects_found.end(),
                        [&](const id::FoundEffect& f) { return f.id.rfind("unexplained", 0) == 0; });

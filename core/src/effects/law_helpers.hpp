@@ -47,4 +47,25 @@ inline std::string pm(double v, double s, double scale = 1.0) {
     return buf;
 }
 
+// The magnets' law F_mag(x) = (a1 x + a3 x^3) / (1 + b2 x^2 + b4 x^4) and its slope, with (a1, a3, b2, b4) in
+// p[1..4]: the effects that act through the model's own magnets (magnet_offset, magnet_drift) carry a copy.
+struct MagnetForce { double F, dF; };
+inline MagnetForce magnet_law(const double* p, double x) {
+    const double x2 = x * x;
+    const double num = x * (p[1] + p[2] * x2), dnum = p[1] + 3.0 * p[2] * x2;
+    const double den = 1.0 + x2 * (p[3] + p[4] * x2), dden = x * (2.0 * p[3] + 4.0 * p[4] * x2);
+    return {num / den, (dnum * den - num * dden) / (den * den)};
+}
+// Copies the model's magnetic law into p[1..4] (an EffectAdaptFn), and starts p[0] at its null value 0.
+inline void adapt_magnets(double* p, const Params& m) {
+    p[1] = m.a[0];
+    p[2] = m.a[1];
+    p[3] = m.b[0];
+    p[4] = m.b[1];
+}
+inline void start_magnets(double* p, const EffectStartContext& c) {
+    p[0] = 0.0;
+    adapt_magnets(p, *c.model);
+}
+
 }  // namespace impactlab::effects

@@ -9,29 +9,9 @@
 
 namespace impactlab::effects {
 namespace {
-struct Mag { double F, dF; };
-Mag magnet(const double* p, double x) {
-    const double x2 = x * x;
-    const double num = x * (p[1] + p[2] * x2), dnum = p[1] + 3.0 * p[2] * x2;
-    const double den = 1.0 + x2 * (p[3] + p[4] * x2), dden = x * (2.0 * p[3] + 4.0 * p[4] * x2);
-    return {num / den, (dnum * den - num * dden) / (den * den)};
-}
-
 EffectForce force(const double* p, const ForceContext& c) {
-    const Mag shifted = magnet(p, c.x - p[0]), nominal = magnet(p, c.x);
+    const MagnetForce shifted = magnet_law(p, c.x - p[0]), nominal = magnet_law(p, c.x);
     return {-(shifted.F - nominal.F), -(shifted.dF - nominal.dF), 0.0, 0.0};
-}
-
-// The magnetic law it shifts is the model's own.
-void adapt(double* p, const Params& m) {
-    p[1] = m.a[0];
-    p[2] = m.a[1];
-    p[3] = m.b[0];
-    p[4] = m.b[1];
-}
-void start(double* p, const EffectStartContext& c) {
-    p[0] = 0.0;
-    adapt(p, *c.model);
 }
 
 std::string describe(const double* p, const double* s, const EffectReportContext& c) {
@@ -50,8 +30,8 @@ const EffectLaw& magnet_offset_law() {
                     {0.0, -1763.5, 0.0, 4907.6, 0.0}, force};
         l.fit = hint({0}, {1e-5});
         l.fit.needs = FitNeeds::Magnets;
-        l.start = start;
-        l.adapt = adapt;
+        l.start = start_magnets;   // the magnetic law is the model's own
+        l.adapt = adapt_magnets;
         l.describe = describe;
         return l;
     }();
