@@ -1,4 +1,5 @@
 #include "impactlab/params_json.hpp"
+#include "impactlab/input_file.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -248,13 +249,13 @@ Params params_from_json_text(const std::string& text, const std::string& src) {
 }
 
 Params load_params(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw ParamError(path + ": a directory, not a parameter file");
-    std::ifstream in(path);
-    if (!in) throw ParamError(path + ": cannot open the parameter file");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return params_from_json_text(ss.str(), path);
+    std::string text;
+    try {
+        text = read_input_file(path);
+    } catch (const InputFileError& e) {
+        throw ParamError(e.path + ": not a parameter file: " + e.reason);
+    }
+    return params_from_json_text(text, path);
 }
 
 std::string params_to_json_text(const Params& p) {

@@ -70,6 +70,9 @@ std::string gunzip(std::string_view bytes, const std::string& source, std::size_
             z.zs.avail_in = take;
             in_left -= take;
         }
+        // Grown by hand: a doubling string would reach twice the cap just as the cap is reached.
+        if (out.capacity() < produced + kChunk)
+            out.reserve(std::min(std::max(2 * out.capacity(), produced + kChunk), max_bytes + kChunk));
         out.resize(produced + kChunk);
         z.zs.next_out = reinterpret_cast<Bytef*>(&out[produced]);
         z.zs.avail_out = static_cast<uInt>(kChunk);
