@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "impactlab/input_file.hpp"
 #include "impactlab/scan.hpp"
 
 #ifdef IMPACTLAB_HAVE_MPI
@@ -141,10 +142,15 @@ int cmd_scan(const std::vector<std::string>& argv) {
             out.emplace(out_path, "--out");
             if (!png.empty()) check_writable(png, "--png");
             std::vector<bool> done(static_cast<std::size_t>(spec.y.n), false);
-            const std::string header = scan_log_header(p, spec);
+            const std::string header = scan_log_header(p, spec, tol);
             std::size_t resumed = 0;
             if (a.has("--resume") && std::filesystem::exists(log_path)) {
-                std::ifstream in(log_path);
+                std::istringstream in;
+                try {
+                    in.str(read_input_file(log_path));
+                } catch (const InputFileError& e) {
+                    throw UsageError(std::string("scan: --resume: ") + e.what());
+                }
                 try {
                     for (auto& [row, pts] : read_scan_log(in, header, spec)) {
                         if (!done[static_cast<std::size_t>(row)]) ++resumed;
