@@ -107,6 +107,7 @@ int cmd_scan(const std::vector<std::string>& argv) {
             throw UsageError(std::string("scan: --y: ") + e.what());
         }
         if (spec.x.param == spec.y.param) throw UsageError("scan: --x and --y vary the same parameter");
+        check_rows("scan", static_cast<double>(spec.x.n) * spec.y.n, "--x N x --y N");
         try {
             spec.measures = parse_scan_measures(a.str("--measure", "period"));
         } catch (const ScanError& e) {
