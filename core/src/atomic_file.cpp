@@ -23,9 +23,12 @@ struct Slot {
     char name[kNameMax];
 };
 Slot g_slots[kSlots];
+// Names are kept only once the handlers are in place: a program without them (the GUI, whose clip writer
+// renames its staging folder itself) never fills the slots.
+std::atomic<bool> g_handling{false};
 
 void remember(const std::string& partial) {
-    if (partial.size() >= kNameMax) return;
+    if (!g_handling.load(std::memory_order_acquire) || partial.size() >= kNameMax) return;
     for (Slot& s : g_slots) {
         int expected = 0;
         if (!s.state.compare_exchange_strong(expected, 1, std::memory_order_acquire)) continue;
@@ -80,6 +83,7 @@ void discard_partial(const std::string& partial) {
 }
 
 void remove_partials_on_signal() {
+    g_handling.store(true, std::memory_order_release);
     struct sigaction sa {};
     sa.sa_handler = remove_partials_and_reraise;
     sigemptyset(&sa.sa_mask);

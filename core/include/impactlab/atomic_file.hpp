@@ -6,8 +6,8 @@
 
 namespace impactlab {
 
-// ".NAME.partial-PID" in the directory of `path` (the PID keeps two processes' partial files apart). The name
-// is remembered until commit_partial or discard_partial, so that remove_partials_on_signal can remove it.
+// ".NAME.partial-PID" in the directory of `path` (the PID keeps two processes' partial files apart). Once
+// remove_partials_on_signal was called, the name is remembered until commit_partial or discard_partial.
 std::string partial_path(const std::string& path);
 // Renames `partial` over `path`; if that fails, removes `partial` and throws std::runtime_error naming `path`.
 void commit_partial(const std::string& partial, const std::string& path);
