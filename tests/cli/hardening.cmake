@@ -44,6 +44,10 @@ impactlab_cli_test(model_directory --rc 2 --match "m\\.json: not a parameter fil
 impactlab_cli_test(input_fifo --rc 2 --match "--input: u\\.csv: is a named pipe" --fifo u.csv
                    -- simulate --model A1H --input u.csv --out o.csv)
 
+# --- scan --resume: the log's header and rows are checked ---------------------------------------------------
+add_test(NAME cli.scan_resume COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/scan_resume.sh $<TARGET_FILE:impactlab>)
+set_tests_properties(cli.scan_resume PROPERTIES LABELS cli TIMEOUT 300)
+
 # --- parameters that pass their ranges but overflow ----------------------------------------------------------
 impactlab_cli_test(model_b_overflow --rc 2 --match "b\\.json: key 'b': makes the denominator of F_SA overflow"
                    --write b.json "{\"base\": \"A3C\", \"b\": [1e308, 0, 0, 0]}"
