@@ -95,7 +95,7 @@ int cmd_orbit(const std::vector<std::string>& argv) {
     opt.sim = tol;
     Vec2 guess = a.has("--from") ? parse_pair(a, "--from", "orbit")
                                  : analysis::settle(p, omega, Vec2(analysis::left_well(p), 0.0), 200, tol);
-    check_start(p, guess[0], "orbit", "--from");
+    if (a.has("--from")) check_start(p, guess[0], "orbit", "--from");
     const analysis::Orbit o = analysis::find_orbit(p, omega, guess, opt);
     if (!o.converged) {
         std::fprintf(stderr, "orbit: no period-%d orbit found from (%g, %g): %s (residual %.3g)\n", k, guess[0], guess[1],

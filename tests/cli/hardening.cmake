@@ -75,6 +75,10 @@ impactlab_cli_test(simulate_start_beyond_bumper --rc 2 --match "--x0: x = 0.01 m
                    --unchanged s.csv --write s.csv "old" -- simulate --model A1G --x0 0.01 --omega 10 --duration 1 --out s.csv)
 impactlab_cli_test(basins_range_beyond_bumper --rc 2 --match "basins: --x-range \\(its upper end\\): x = 0.03 m lies beyond"
                    -- basins --model A1G --omega 13 --grid 4 --x-range -0.03:0.03 --out b.csv)
+impactlab_cli_test(orbit_start_beyond_bumper --rc 2 --match "orbit: --from: x = 0.01 m lies beyond the bumper" --absent o.csv
+                   -- orbit --model A1G --omega 10 --from 0.01,0 --out o.csv)
+impactlab_cli_test(lyapunov_start_beyond_bumper --rc 2 --match "lyapunov: --x0: x = 0.01 m lies beyond the bumper"
+                   -- lyapunov --model A1G --omega 16 --x0 0.01)
 impactlab_cli_test(simulate_start_in_compliant_bumper --rc 0 --csv s.csv "t,x,v,phi,regime" 10 11
                    -- simulate --model A1C --x0 0.0001 --omega 10 --duration 0.1 --dt 0.01 --out s.csv)
 
