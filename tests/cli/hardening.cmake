@@ -37,6 +37,10 @@ impactlab_cli_test(fit_proc_mem --rc 2 --match "/proc/self/mem: cannot read it" 
                    -- fit /proc/self/mem --model A1H --report r)
 impactlab_cli_test(fit_huge --rc 2 --match "s\\.csv: 2 GiB, more than the 1 GiB an input may hold" --sparse s.csv 2G
                    -- fit s.csv --model A1H --report r)
+if(NOT IMPACTLAB_SANITIZE)
+  add_test(NAME cli.gzip_bomb COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/gzip_bomb.sh $<TARGET_FILE:impactlab>)
+  set_tests_properties(cli.gzip_bomb PROPERTIES LABELS cli TIMEOUT 120)
+endif()
 impactlab_cli_test(model_fifo --rc 2 --match "m\\.json: not a parameter file: is a named pipe" --fifo m.json
                    -- simulate --model m.json --omega 10 --duration 1 --out o.csv)
 impactlab_cli_test(model_directory --rc 2 --match "m\\.json: not a parameter file: is a directory" --mkdir m.json
