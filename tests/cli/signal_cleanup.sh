@@ -53,6 +53,9 @@ run poincare TERM p.csv '.p.csv.partial-*' poincare --omega 18 --periods 1000000
 run bifurcation INT d.csv '.d.csv.partial-*' bifurcation --steps 100000 --record 400 --out d.csv
 run continue TERM c/branches.csv '.points.csv.partial-*' continue --model A1C --omega-min 5 --omega-max 25 --max-period 64 --out c
 run basins TERM b.csv '.b.csv.partial-*' basins --omega 13 --grid 4000 --threads 1 --out b.csv
+run lyapunov_sweep TERM l.csv '.l.csv.partial-*' lyapunov --sweep up --steps 100000 --out l.csv
+run orbit INT o.csv '.o.csv.partial-*' orbit --model A1C --omega 0.05 --period 64 --out o.csv
+run synth TERM y.csv '.y.csv.partial-*' synth --duration 1e5 --rate 100 --out y.csv
 run scan TERM s.csv '+s.csv.tiles' scan --x omega:5:20:400 --y xI:-0.01:0.01:400 --threads 1 --out s.csv
 # The scan's tile log stays for --resume.
 [[ -s $WORK/run/s.csv.tiles ]] || { echo "FAIL: scan: the tile log s.csv.tiles is gone"; status=1; }
