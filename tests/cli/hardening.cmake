@@ -103,3 +103,11 @@ string(ASCII 27 _esc)
 string(ASCII 7 _bel)
 impactlab_cli_test(unknown_command_escaped --rc 2 --match "unknown command 'x\\\\x1bc\\\\x07'" -- "x${_esc}c${_bel}")
 
+# --- sanitizers ---------------------------------------------------------------------------------------------------
+# Under AddressSanitizer, LeakSanitizer must not count Open MPI's allocations (mpirun in cli.scan_identity)
+# against the project: tests/lsan.supp names the library's frames only. Those libraries have no frame
+# pointers, so the fast unwinder would see one frame and no library to match: unwind fully instead.
+if(IMPACTLAB_SANITIZE STREQUAL "address" AND TEST cli.scan_identity)
+  set_tests_properties(cli.scan_identity PROPERTIES ENVIRONMENT
+    "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_LIST_DIR}/../lsan.supp:print_suppressions=0:fast_unwind_on_malloc=0")
+endif()
