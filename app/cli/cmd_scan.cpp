@@ -247,8 +247,8 @@ int cmd_scan(const std::vector<std::string>& argv) {
     }
 #endif
     write_scan_csv(spec, rows, *out);
+    if (!png.empty()) save_scan_png(spec, rows, p.name, png);   // first: a PNG that fails leaves the old CSV
     out->commit();
-    if (!png.empty()) save_scan_png(spec, rows, p.name, png);
     log.close();
     std::filesystem::remove(log_path);   // complete: nothing to resume
     std::fprintf(stderr, "scan %s: %d x %d points (%zu rows computed, %d %s) -> %s%s%s\n", p.name.c_str(), spec.x.n,

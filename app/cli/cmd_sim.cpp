@@ -199,8 +199,7 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
             d = run_cf_sweep(p, spec, &progress, tolerances_from(a));
         }
     }
-    write_diagram_csv(d, out);
-    out.commit();
+    write_diagram_csv(d, out);   // renamed into place when the command succeeds, the PNG included
     std::fprintf(stderr, "%s %s: %zu points, %.0f s simulated, %llu steps -> %s\n", p.name.c_str(), d.protocol.c_str(),
                  d.points.size(), d.simulated_seconds, static_cast<unsigned long long>(d.steps), out_path.c_str());
     if (sweep != "ramp") {
