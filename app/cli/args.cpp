@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 
 namespace impactlab::cli {
@@ -39,6 +40,16 @@ Args::Args(const std::string& command, const std::vector<std::string>& argv, con
             throw UsageError(command_ + ": unknown option '" + flag + "' (see: impactlab " + command_ + " --help)");
         }
     }
+    if (takes_files)   // the same record twice would count as two runs of the rig
+        for (std::size_t i = 0; i < positional_.size(); ++i)
+            for (std::size_t j = 0; j < i; ++j) {
+                std::error_code ec;
+                const bool same = positional_[i] == positional_[j] ||
+                                  std::filesystem::equivalent(positional_[i], positional_[j], ec);
+                if (same)
+                    throw UsageError(command_ + ": '" + positional_[i] + "' is given twice" +
+                                     (positional_[i] == positional_[j] ? "" : " (as '" + positional_[j] + "')"));
+            }
     if (!takes_files && !positional_.empty())
         throw UsageError(command_ + ": unexpected argument '" + positional_[0] + "' (options start with --; see: impactlab " +
                          command_ + " --help)");

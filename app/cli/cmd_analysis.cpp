@@ -92,6 +92,7 @@ int cmd_orbit(const std::vector<std::string>& argv) {
     const double omega = a.num("--omega", 0, 1e-2, 1000.0);
     const int k = a.integer("--period", 1, 1, 64);
     const double dt = a.num("--dt", 1e-3, 1e-7, 1.0);
+    check_rows("orbit", kTwoPi * k / omega / dt, "--period x 2 pi / --omega / --dt");
     const std::string out_path = a.required("--out");
     auto out = open_out(out_path);
     const Tolerances tol = analysis_tol(a);
@@ -100,6 +101,7 @@ int cmd_orbit(const std::vector<std::string>& argv) {
     opt.sim = tol;
     Vec2 guess = a.has("--from") ? parse_pair(a, "--from", "orbit")
                                  : analysis::settle(p, omega, Vec2(analysis::left_well(p), 0.0), 200, tol);
+    if (a.has("--from")) check_start(p, guess[0], "orbit", "--from");
     const analysis::Orbit o = analysis::find_orbit(p, omega, guess, opt);
     if (!o.converged) {
         std::fprintf(stderr, "orbit: no period-%d orbit found from (%g, %g): %s (residual %.3g)\n", k, guess[0], guess[1],
@@ -175,12 +177,16 @@ int cmd_continue(const std::vector<std::string>& argv) {
     analysis::ContinuationSpec spec;
     const std::string param = a.str("--param", "omega");
     if (param == "omega") {
+        for (const char* f : {"--omega", "--min", "--max"})
+            if (a.has(f)) throw UsageError(std::string("continue: ") + f + " belongs to --param xI or m0e (for omega: --omega-min, --omega-max)");
         spec.param = analysis::ContParam::Omega;
         spec.lo = a.num("--omega-min", 5.0, 0.05, 1000.0);
         spec.hi = a.num("--omega-max", 25.0, 0.05, 1000.0);
         if (spec.hi <= spec.lo) throw UsageError("continue: --omega-max is not above --omega-min");
         spec.start = a.num("--omega-start", spec.lo, spec.lo, spec.hi);
     } else if (param == "xI" || param == "m0e") {
+        for (const char* f : {"--omega-min", "--omega-max", "--omega-start"})
+            if (a.has(f)) throw UsageError("continue: " + std::string(f) + " belongs to --param omega (for " + param + ": --min, --max)");
         spec.param = param == "xI" ? analysis::ContParam::XI : analysis::ContParam::M0e;
         if (!a.has("--omega")) throw UsageError("continue: --param " + param + " needs '--omega'");
         spec.omega = a.num("--omega", 10.0, 1e-2, 1000.0);
@@ -192,7 +198,10 @@ int cmd_continue(const std::vector<std::string>& argv) {
     } else {
         throw UsageError("continue: option '--param': '" + param + "' is not one of omega, xI, m0e");
     }
-    if (a.has("--from")) spec.guess = parse_pair(a, "--from", "continue");
+    if (a.has("--from")) {
+        spec.guess = parse_pair(a, "--from", "continue");
+        check_start(p, spec.guess[0], "continue", "--from");
+    }
     spec.period = a.integer("--period", 1, 1, 64);
     spec.max_period = a.integer("--max-period", 8, 1, 256);
     spec.sim = analysis_tol(a);
@@ -218,6 +227,11 @@ int cmd_continue(const std::vector<std::string>& argv) {
     for (const auto& q : r.points)
         pt << analysis::bif_kind_name(q.kind) << ',' << q.param << ',' << q.y[0] << ',' << q.y[1] << ',' << q.period << '\n';
     if (!br || !pt) throw std::runtime_error(dir + ": write failed");
+    // No orbit at all: say so, and print no branch listing that looks like a result.
+    if (r.branches.size() == 1 && r.branches[0].points.empty()) {
+        std::fprintf(stderr, "continue: no period-%d orbit to continue: %s\n", spec.period, r.branches[0].end.c_str());
+        return 1;
+    }
     std::fprintf(stderr, "%s: %zu branches, %zu bifurcation points, %llu map evaluations, %.2f s -> %s\n", p.name.c_str(),
                  r.branches.size(), r.points.size(), static_cast<unsigned long long>(r.map_evaluations), r.seconds, dir.c_str());
     for (const auto& b : r.branches)
@@ -226,10 +240,6 @@ int cmd_continue(const std::vector<std::string>& argv) {
     for (const auto& q : r.points)
         std::printf("%-16s %s = %.9g (+- %.1g), period %d, x = %.6g m, v = %.6g m/s\n", analysis::bif_kind_name(q.kind), pname,
                     q.param, q.precision, q.period, q.y[0], q.y[1]);
-    if (r.branches.size() == 1 && r.branches[0].points.empty()) {
-        std::fprintf(stderr, "continue: %s\n", r.branches[0].end.c_str());
-        return 1;
-    }
     if (a.has("--png")) {
         plot::Figure fig;
         fig.width = 1200;
@@ -307,6 +317,8 @@ int cmd_lyapunov(const std::vector<std::string>& argv) {
     if (a.has("--sweep")) {
         const std::string sw = a.str("--sweep", "up");
         if (sw != "up" && sw != "down") throw UsageError("lyapunov: option '--sweep': '" + sw + "' is not one of up, down");
+        for (const char* f : {"--omega", "--periods", "--x0", "--v0", "--check"})
+            if (a.has(f)) throw UsageError(std::string("lyapunov: ") + f + " is for one omega, not with --sweep");
         CfSpec spec;
         spec.steps = a.integer("--steps", spec.steps, 1, 100000);
         spec.omega_min = a.num("--omega-min", 25.0 / spec.steps, 1e-3, 1000.0);
@@ -349,11 +361,14 @@ int cmd_lyapunov(const std::vector<std::string>& argv) {
     }
     if (!a.has("--omega")) throw UsageError("lyapunov: missing required option '--omega' (or '--sweep')");
     if (a.has("--out") || a.has("--png")) throw UsageError("lyapunov: '--out' and '--png' go with '--sweep'");
+    for (const char* f : {"--omega-min", "--omega-max", "--steps", "--record"})
+        if (a.has(f)) throw UsageError(std::string("lyapunov: ") + f + " goes with '--sweep'");
     const double omega = a.num("--omega", 0, 1e-2, 1000.0);
     const int periods = a.integer("--periods", 500, 1, 100000000);
     const int transient = a.integer("--transient", 100, 0, 100000000);
     State s;
     s.x = a.num("--x0", analysis::left_well(p), -0.1, 0.1);
+    check_start(p, s.x, "lyapunov", "--x0");
     s.v = a.num("--v0", 0.0, -10.0, 10.0);
     const State s0 = s;
     Progress progress;
@@ -405,6 +420,7 @@ int cmd_basins(const std::vector<std::string>& argv) {
     const double x_hi = p.has_bumper() ? std::min(p.xI, 0.03) : 0.03;
     std::tie(spec.x_min, spec.x_max) = parse_range(a, "--x-range", "basins", -1.0, 1.0, {std::min(-0.03, x_hi - 0.03), x_hi});
     std::tie(spec.v_min, spec.v_max) = parse_range(a, "--v-range", "basins", -100.0, 100.0, {-0.3, 0.3});
+    check_start(p, spec.x_max, "basins", "--x-range (its upper end)");
     spec.transient = a.integer("--transient", spec.transient, 0, 1000000);
     spec.periods = a.integer("--periods", spec.periods, 1, 1000000);
     spec.max_period = a.integer("--max-period", spec.max_period, 1, 256);

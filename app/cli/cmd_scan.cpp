@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "impactlab/input_file.hpp"
 #include "impactlab/scan.hpp"
 
 #ifdef IMPACTLAB_HAVE_MPI
@@ -106,6 +107,7 @@ int cmd_scan(const std::vector<std::string>& argv) {
             throw UsageError(std::string("scan: --y: ") + e.what());
         }
         if (spec.x.param == spec.y.param) throw UsageError("scan: --x and --y vary the same parameter");
+        check_rows("scan", static_cast<double>(spec.x.n) * spec.y.n, "--x N x --y N");
         try {
             spec.measures = parse_scan_measures(a.str("--measure", "period"));
         } catch (const ScanError& e) {
@@ -141,10 +143,15 @@ int cmd_scan(const std::vector<std::string>& argv) {
             out.emplace(out_path, "--out");
             if (!png.empty()) check_writable(png, "--png");
             std::vector<bool> done(static_cast<std::size_t>(spec.y.n), false);
-            const std::string header = scan_log_header(p, spec);
+            const std::string header = scan_log_header(p, spec, tol);
             std::size_t resumed = 0;
             if (a.has("--resume") && std::filesystem::exists(log_path)) {
-                std::ifstream in(log_path);
+                std::istringstream in;
+                try {
+                    in.str(read_input_file(log_path));
+                } catch (const InputFileError& e) {
+                    throw UsageError(std::string("scan: --resume: ") + e.what());
+                }
                 try {
                     for (auto& [row, pts] : read_scan_log(in, header, spec)) {
                         if (!done[static_cast<std::size_t>(row)]) ++resumed;
@@ -240,8 +247,8 @@ int cmd_scan(const std::vector<std::string>& argv) {
     }
 #endif
     write_scan_csv(spec, rows, *out);
+    if (!png.empty()) save_scan_png(spec, rows, p.name, png);   // first: a PNG that fails leaves the old CSV
     out->commit();
-    if (!png.empty()) save_scan_png(spec, rows, p.name, png);
     log.close();
     std::filesystem::remove(log_path);   // complete: nothing to resume
     std::fprintf(stderr, "scan %s: %d x %d points (%zu rows computed, %d %s) -> %s%s%s\n", p.name.c_str(), spec.x.n,

@@ -90,6 +90,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     if (!a.has("--duration") && !input) throw UsageError("simulate: missing required option '--duration'");
     const double duration = a.num("--duration", input ? in_dt * static_cast<double>(rec->size() - 1) : 0.0, 1e-6, 1e6);
     const double dt = a.num("--dt", input ? in_dt : 1e-3, 1e-7, 1e3);
+    check_rows("simulate", duration / dt, "--duration / --dt");
     auto out = open_out(a.required("--out"));
     Simulator sim(tolerances_from(a));
     Drive drive(omega);
@@ -97,6 +98,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     State s;
     s.x = a.num("--x0", 0.0, -0.1, 0.1);
     s.v = a.num("--v0", 0.0, -10.0, 10.0);
+    check_start(p, s.x, "simulate", "--x0");
     Simulator::make_consistent(p, drive, s);
     out << (input ? "t,x,v,u,regime\n" : "t,x,v,phi,regime\n");
     UniformSampler sampler(drive, dt, 0.0, [&](const Sample& smp) {
@@ -139,6 +141,7 @@ int cmd_poincare(const std::vector<std::string>& argv) {
     State s;
     s.x = a.num("--x0", 0.0, -0.1, 0.1);
     s.v = a.num("--v0", 0.0, -10.0, 10.0);
+    check_start(p, s.x, "poincare", "--x0");
     Progress progress;
     ProgressBar bar("poincare " + p.name, progress);
     const auto pts = poincare_section(p, omega, periods, transient, s, tolerances_from(a), &progress);
@@ -180,6 +183,8 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
             EfSpec spec;
             spec.omega_max = a.num("--omega-max", spec.omega_max, 0.01, 1000.0);
             spec.t_ramp = a.num("--ramp-time", spec.t_ramp, 1.0, 1e6);
+            // One point per forcing period: the phase of a linear ramp is omega_max t_ramp / 2.
+            check_rows("bifurcation", spec.omega_max * spec.t_ramp / (2 * kTwoPi), "--omega-max x --ramp-time / 4 pi");
             d = run_ef_ramp(p, spec, &progress, tolerances_from(a));
         } else {
             CfSpec spec;
@@ -189,18 +194,28 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
             if (spec.omega_max < spec.omega_min) throw UsageError("bifurcation: --omega-max is below --omega-min");
             spec.transient = a.integer("--transient", spec.transient, 0, 1000000);
             spec.record = a.integer("--record", spec.record, 1, 1000000);
+            check_rows("bifurcation", static_cast<double>(spec.steps) * spec.record, "--steps x --record");
             spec.direction = sweep == "up" ? SweepDirection::Up : SweepDirection::Down;
             d = run_cf_sweep(p, spec, &progress, tolerances_from(a));
         }
     }
-    write_diagram_csv(d, out);
-    out.commit();
+    write_diagram_csv(d, out);   // renamed into place when the command succeeds, the PNG included
     std::fprintf(stderr, "%s %s: %zu points, %.0f s simulated, %llu steps -> %s\n", p.name.c_str(), d.protocol.c_str(),
                  d.points.size(), d.simulated_seconds, static_cast<unsigned long long>(d.steps), out_path.c_str());
     if (sweep != "ramp") {
         const Transitions tr = find_transitions(d);
-        std::fprintf(stderr, "transitions (omega, rad/s): leaves x~0 %.3g, period 2 %.4g, chaos %.4g..%.4g, period 1 again %.4g",
-                     tr.jump, tr.period_doubling, tr.chaos_start, tr.chaos_end, tr.period1_return);
+        // A transition the sweep did not meet is NaN: say "none" rather than print "nan".
+        const auto at = [](double w, const char* fmt) {
+            if (std::isnan(w)) return std::string("none");
+            char buf[32];
+            std::snprintf(buf, sizeof buf, fmt, w);
+            return std::string(buf);
+        };
+        std::string chaos = "none";
+        if (!std::isnan(tr.chaos_start)) chaos = at(tr.chaos_start, "%.4g") + ".." + at(tr.chaos_end, "%.4g");
+        std::fprintf(stderr, "transitions (omega, rad/s): leaves x~0 %s, period 2 %s, chaos %s, period 1 again %s",
+                     at(tr.jump, "%.3g").c_str(), at(tr.period_doubling, "%.4g").c_str(), chaos.c_str(),
+                     at(tr.period1_return, "%.4g").c_str());
         for (const auto& w : tr.windows) std::fprintf(stderr, ", window %.4g..%.4g", w.first, w.second);
         std::fprintf(stderr, "\n");
     }

@@ -158,6 +158,7 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
     o.quantum = a.num("--quantum", 1e-6, 0.0, 1.0);
     o.phi_counts = a.integer("--phi-counts", 4096, 0, 1 << 30);
     o.x0 = a.num("--x0", -0.01, -0.1, 0.1);
+    if (a.has("--x0")) check_start(model.p, o.x0, "synth", "--x0");
     o.v0 = a.num("--v0", 0.0, -10.0, 10.0);
     o.seed = static_cast<unsigned>(a.integer("--seed", 1, 0, 1 << 30));
     o.rtol = a.num("--rtol", 1e-10, 1e-13, 1e-3);

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "impactlab/atomic_file.hpp"
+#include "impactlab/input_file.hpp"
 #include "impactlab/params_json.hpp"
 
 namespace impactlab::cli {
@@ -37,6 +38,7 @@ Params model_from(const Args& a, const std::string& fallback) {
     }
     if (a.has("--m0e")) p.m0e = a.num("--m0e", p.m0e, 0.0, 10.0);
     validate(p, name);
+    p.name = printable(p.name, 80);   // printed in every summary: a file's name may be long or hold escapes
     return p;
 }
 
@@ -78,6 +80,7 @@ void check_not_input(const std::string& path, const std::string& flag) {
 
 void check_writable(const std::string& path, const std::string& flag) {
     namespace fs = std::filesystem;
+    if (path.empty()) throw UsageError(flag + ": an empty file name");
     check_not_input(path, flag);
     std::error_code ec;
     if (fs::is_directory(path, ec)) throw UsageError(flag + ": '" + path + "' is a directory, not a file name");
@@ -109,12 +112,17 @@ void check_report_dir(const std::string& dir) {
 }
 
 OutputFile::OutputFile(const std::string& path, const std::string& flag, std::ios::openmode mode)
-    : path_(path), tmp_(partial_path(path)), uncaught_(std::uncaught_exceptions()) {
+    : path_(path), uncaught_(std::uncaught_exceptions()) {
+    if (path.empty()) throw UsageError(flag + ": an empty file name");
     check_not_input(path, flag);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw UsageError(flag + ": '" + path + "' is a directory, not a file name");
+    tmp_ = partial_path(path);
     open(tmp_, mode);
-    if (!is_open()) throw UsageError(flag + ": cannot write '" + path + "' (its directory is missing or not writable)");
+    if (!is_open()) {
+        discard_partial(tmp_);
+        throw UsageError(flag + ": cannot write '" + path + "' (its directory is missing or not writable)");
+    }
 }
 
 OutputFile::OutputFile(OutputFile&& o) noexcept
@@ -135,25 +143,71 @@ void OutputFile::commit() {
     commit_partial(tmp_, path_);
 }
 
+namespace {
+// Outputs whose scope ended without an exception, closed, waiting for the command's exit status.
+struct PendingOutput {
+    std::string tmp, path;
+    bool written;
+};
+std::vector<PendingOutput>& pending_outputs() {
+    static std::vector<PendingOutput> list;
+    return list;
+}
+}  // namespace
+
 OutputFile::~OutputFile() {
     if (done_) return;
-    if (std::uncaught_exceptions() > uncaught_) {   // the command failed: leave the old file as it was
-        done_ = true;
-        close();
-        discard_partial(tmp_);
-        return;
+    done_ = true;
+    const bool failed = std::uncaught_exceptions() > uncaught_;
+    if (!failed) flush();
+    const bool written = static_cast<bool>(*this);
+    close();
+    if (failed) discard_partial(tmp_);   // the command failed: leave the old file as it was
+    else pending_outputs().push_back({tmp_, path_, written});
+}
+
+bool finish_outputs(bool success) {
+    bool ok = true;
+    for (const PendingOutput& o : pending_outputs()) {
+        if (!success || !o.written) {
+            discard_partial(o.tmp);
+            if (success) {
+                std::fprintf(stderr, "impactlab: error: %s: write failed (disk full?)\n", o.path.c_str());
+                ok = false;
+            }
+            continue;
+        }
+        try {
+            commit_partial(o.tmp, o.path);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "impactlab: error: %s\n", e.what());
+            ok = false;
+        }
     }
-    try {
-        commit();
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "impactlab: error: %s\n", e.what());
-    }
+    pending_outputs().clear();
+    return ok;
 }
 
 OutputFile open_out(const std::string& path, const std::string& flag) {
     OutputFile out(path, flag);
     out.precision(10);
     return out;
+}
+
+void check_start(const Params& p, double x, const std::string& command, const std::string& flag) {
+    if (!p.has_bumper() || !p.rigid() || x <= p.xI) return;
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "%s: %s: x = %.6g m lies beyond the bumper at xI = %.6g m (%s); start at x <= xI",
+                  command.c_str(), flag.c_str(), x, p.xI, p.name.substr(0, 60).c_str());
+    throw UsageError(buf);
+}
+
+void check_rows(const std::string& command, double rows, const std::string& flags) {
+    if (rows <= kMaxRows) return;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s: %s asks for %.3g output rows, more than the %.0e an output may have", command.c_str(),
+                  flags.c_str(), rows, kMaxRows);
+    throw UsageError(std::string(buf) + ": change one of them");
 }
 
 std::vector<std::string> split_list(const std::string& s) {

@@ -42,8 +42,9 @@ void check_writable(const std::string& path, const std::string& flag);
 void check_report_dir(const std::string& dir);
 
 // An output written whole or not at all: the text goes to a hidden file beside PATH and is renamed over PATH
-// when the command succeeds (commit(), or the end of its scope without an exception in flight); a failed run
-// leaves an old PATH as it was and nothing behind. Opening it checks that PATH is writable and no input.
+// by commit(), or, at the end of its scope, once the command has returned 0 (finish_outputs). A command that
+// throws or returns non-zero leaves an old PATH as it was and nothing behind. Opening it checks that PATH is
+// writable and no input.
 class OutputFile : public std::ofstream {
 public:
     OutputFile(const std::string& path, const std::string& flag, std::ios::openmode mode = std::ios::out);
@@ -59,8 +60,19 @@ private:
     int uncaught_ = 0;
     bool done_ = false;
 };
+// main(), after a command: with `success`, renames into place every OutputFile that went out of scope
+// uncommitted (false, and a message on stderr, if one cannot be); else removes their partial files.
+bool finish_outputs(bool success);
 // Opens an OutputFile for CSV (10 significant digits) or throws UsageError naming it.
 OutputFile open_out(const std::string& path, const std::string& flag = "--out");
+// Throws UsageError when a start x (given by `flag`) lies beyond a rigid bumper, where the simulator would move
+// it onto the bumper unasked (a compliant bumper may be pressed, so any x is a start there).
+void check_start(const Params& p, double x, const std::string& command, const std::string& flag);
+// The most rows an output may have (synth's cap too): a CSV of a few GB, which some commands hold in memory.
+inline constexpr double kMaxRows = 5e7;
+// Throws UsageError unless `rows` <= kMaxRows, naming `flags`, the flags whose values multiply to it
+// ("--duration / --dt"), so that the message says what to change.
+void check_rows(const std::string& command, double rows, const std::string& flags);
 // "a,b,,c" -> {a, b, c}.
 std::vector<std::string> split_list(const std::string& s);
 

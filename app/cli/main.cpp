@@ -6,6 +6,9 @@
 
 #include "args.hpp"
 #include "commands.hpp"
+#include "common.hpp"
+#include "impactlab/atomic_file.hpp"
+#include "impactlab/input_file.hpp"
 #include "impactlab/params.hpp"
 
 namespace impactlab::cli {
@@ -32,6 +35,11 @@ const std::vector<Command>& commands() {
 }  // namespace impactlab::cli
 
 namespace {
+// A message may quote an input (a name, a token): printed cut and with its control characters escaped.
+void report(const std::exception& e) {
+    std::fprintf(stderr, "impactlab: error: %s\n", impactlab::printable(e.what()).c_str());
+}
+
 void usage() {
     std::printf("impactlab: simulator of a forced impact oscillator with a double-well magnetic stiffness\n\n"
                 "usage: impactlab COMMAND [options]   (impactlab COMMAND --help for its options)\n\ncommands:\n");
@@ -51,21 +59,25 @@ int main(int argc, char** argv) {
         return 0;
     }
     const std::vector<std::string> rest(argv + 2, argv + argc);
+    impactlab::remove_partials_on_signal();
     for (const auto& c : commands()) {
         if (name != c.name) continue;
+        int rc = 1;
         try {
-            return c.run(rest);
+            rc = c.run(rest);
         } catch (const UsageError& e) {
-            std::fprintf(stderr, "impactlab: error: %s\n", e.what());
-            return 2;
+            report(e);
+            rc = 2;
         } catch (const impactlab::ParamError& e) {
-            std::fprintf(stderr, "impactlab: error: %s\n", e.what());
-            return 2;
+            report(e);
+            rc = 2;
         } catch (const std::exception& e) {
-            std::fprintf(stderr, "impactlab: error: %s\n", e.what());
-            return 1;
+            report(e);
+            rc = 1;
         }
+        // An output is renamed into place only now, and only if the command succeeded.
+        return finish_outputs(rc == 0) ? rc : 1;
     }
-    std::fprintf(stderr, "impactlab: error: unknown command '%s' (see impactlab --help)\n", name.c_str());
+    std::fprintf(stderr, "impactlab: error: unknown command '%s' (see impactlab --help)\n", impactlab::printable(name, 100).c_str());
     return 2;
 }

@@ -1,5 +1,6 @@
 #include "options.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <tuple>
 #include <utility>
 
+#include "impactlab/input_file.hpp"
 #include "impactlab/params.hpp"
 #include "layout.hpp"
 #include "presets.hpp"
@@ -178,6 +180,11 @@ Options parse_options(const std::vector<std::string>& args) {
             if (i + 1 >= args.size()) throw OptionsError(a + ": missing value");
             return args[++i];
         };
+        // A file flag given twice would silently drop one of the files.
+        static const char* const once[] = {"--session", "--save-session", "--data", "--plane", "--screenshot", "--state-json", "--clip-out"};
+        for (const char* f : once)
+            if (a == f && std::find(args.begin(), args.begin() + static_cast<std::ptrdiff_t>(i), a) != args.begin() + static_cast<std::ptrdiff_t>(i))
+                throw OptionsError(a + ": given twice");
         if (a == "--help" || a == "-h") o.help = true;
         else if (a == "--model") o.model = version(a, value());
         else if (a == "--omega") o.omega = number(a, value(), 0.0, 30.0);
@@ -337,10 +344,11 @@ void check_files(const Options& o) {
     // anyway; a headless run (--frames, --soak) still stops here with exit code 2.
     const bool interactive = o.frames == 0 && o.soak <= 0 && !o.bench_plot;
     if (!o.data.empty() && !interactive) {
-        std::error_code ec;
-        if (std::filesystem::is_directory(o.data, ec)) throw OptionsError("--data: '" + o.data + "' is a directory");
-        std::ifstream f(o.data, std::ios::binary);
-        if (!f) throw OptionsError("--data: cannot read '" + o.data + "' (no such file, or no permission)");
+        try {
+            check_input_file(o.data);
+        } catch (const InputFileError& e) {
+            throw OptionsError("--data: cannot read '" + o.data + "': " + e.reason);
+        }
     }
     if (!o.screenshot.empty()) check_writable("--screenshot", o.screenshot);
     if (!o.state_json.empty()) check_writable("--state-json", o.state_json);

@@ -5,7 +5,10 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <sstream>
 #include <string_view>
+
+#include "impactlab/input_file.hpp"
 
 namespace impactlab::gui {
 
@@ -44,8 +47,12 @@ int PlaneData::measure_index(const std::string& name) const {
 }
 
 PlaneData load_plane_csv(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) fail(path, 0, "cannot read the file");
+    std::istringstream in;
+    try {
+        in.str(read_input_file(path));
+    } catch (const InputFileError& e) {
+        throw PlaneError(e.what());
+    }
     std::string line;
     std::size_t lineno = 0;
     // Header.

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "impactlab/atomic_file.hpp"
+#include "impactlab/input_file.hpp"
 #include "impactlab/params.hpp"
 #include "layout.hpp"
 
@@ -264,8 +265,11 @@ Session session_from_json(const json& j, const Session& base, const std::string&
         else if (!d->is_string()) top.fail("data", std::string("expected a file name or null, got ") + d->type_name());
         else {
             const std::string path = d->get<std::string>();
-            if (!path.empty() && !std::ifstream(path, std::ios::binary))
-                top.fail("data", "cannot read '" + path + "' (no such file, or no permission)");
+            if (!path.empty()) try {
+                    check_input_file(path);
+                } catch (const InputFileError& e) {
+                    top.fail("data", "cannot read '" + printable(path, 200) + "': " + e.reason);
+                }
             s.data = path;
         }
     }
@@ -312,12 +316,13 @@ Session parse_session(const std::string& text, const Session& base, const std::s
 }
 
 Session load_session(const std::string& path, const Session& base) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw SessionError(path + ": cannot read it (no such file, or no permission)");
-    std::ostringstream text;
-    text << f.rdbuf();
-    if (f.bad()) throw SessionError(path + ": cannot read it");
-    return parse_session(text.str(), base, path);
+    std::string text;
+    try {
+        text = read_input_file(path);
+    } catch (const InputFileError& e) {
+        throw SessionError(e.what());
+    }
+    return parse_session(text, base, path);
 }
 
 std::string session_text(const Session& s) { return session_to_json(s).dump(2) + "\n"; }

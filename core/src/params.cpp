@@ -165,8 +165,16 @@ void validate(const Params& p, const std::string& src) {
         const double den = 1.0 + x2 * (p.b[0] + x2 * (p.b[1] + x2 * (p.b[2] + x2 * p.b[3])));
         if (!(den > 0)) fail(src, "b", "makes the denominator of F_SA vanish on |x| <= 0.1 m at x = " +
                                           std::to_string(x), den);
+        // Its square enters the slope the integrator needs: an overflow there is a NaN slope, a stalled run.
+        if (!std::isfinite(den * den))
+            fail(src, "b", "makes the denominator of F_SA overflow on |x| <= 0.1 m at x = " + std::to_string(x), den);
     }
     bounded_force(src, "a", [&](double x, double, double, double) { return spring_magnet(p, x).F; });
+    for (int i = 0; i <= 1000; ++i) {
+        const double x = -kRailHalfTravel + 2e-4 * i, slope = spring_magnet(p, x).dF;
+        if (!std::isfinite(slope))
+            fail(src, "a", "makes the slope of F_SA overflow on |x| <= 0.1 m at x = " + std::to_string(x), slope);
+    }
     if (!p.impact) throw ParamError(src + ": no impact model");
     const std::string ik = std::string("impact.");
     for (std::size_t i = 0; i < kMaxLawParams && p.impact->names[i]; ++i) in_range(src, ik + p.impact->names[i], p.ip[i]);

@@ -1,4 +1,5 @@
 #include "impactlab/params_json.hpp"
+#include "impactlab/input_file.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -140,10 +141,17 @@ Params params_from_json_text(const std::string& text, const std::string& src) {
     json j;
     try {
         j = json::parse(text);
-    } catch (const json::exception&) {
+    } catch (const json::exception& e) {
         // Parse again with a SAX pass to learn where: line, column and the key being read.
         KeyPathSax where;
         json::sax_parse(text, &where);
+        // The SAX pass stops at a duplicate key before it reaches the syntax error: report that first.
+        if (!where.duplicate.empty()) fail(src, "key '" + where.duplicate + "' appears twice (JSON would keep the last silently)");
+        if (where.what.empty()) {   // the SAX pass saw no error: take the parser's own position
+            const auto* pe = dynamic_cast<const json::parse_error*>(&e);
+            where.byte = pe ? pe->byte : 0;
+            where.what = e.what();
+        }
         std::string msg = line_and_column(text, where.byte) + ": ";
         if (where.what.find("number overflow") != std::string::npos)
             msg += "key '" + where.path + "': the number is out of range (not finite)";
@@ -248,13 +256,13 @@ Params params_from_json_text(const std::string& text, const std::string& src) {
 }
 
 Params load_params(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw ParamError(path + ": a directory, not a parameter file");
-    std::ifstream in(path);
-    if (!in) throw ParamError(path + ": cannot open the parameter file");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return params_from_json_text(ss.str(), path);
+    std::string text;
+    try {
+        text = read_input_file(path);
+    } catch (const InputFileError& e) {
+        throw ParamError(e.path + ": not a parameter file: " + e.reason);
+    }
+    return params_from_json_text(text, path);
 }
 
 std::string params_to_json_text(const Params& p) {

@@ -78,7 +78,7 @@ TEST_CASE("a scan CSV written by the core reads back as the same plane") {
 
 TEST_CASE("a bad plane CSV names the file and the line") {
     const std::string head = "omega,xI,period\n";
-    CHECK(load_error("/nonexistent/plane.csv") == "/nonexistent/plane.csv:0: cannot read the file");
+    CHECK(load_error("/nonexistent/plane.csv") == "/nonexistent/plane.csv: cannot read it (No such file or directory)");
     const std::string empty = temp_file("empty.csv", "");
     CHECK(load_error(empty).rfind(empty + ":0: empty file", 0) == 0);
     const std::string bad_head = temp_file("head.csv", "x,y,period\n1,2,3\n");

@@ -23,6 +23,7 @@ set(IMPACTLAB_APP_TEST_SOURCES
   app/energy_bar_test.cpp
   app/omega_ramp_test.cpp
   app/layout_test.cpp
+  app/input_files_test.cpp
   ../app/gui/sim_engine.cpp
   ../app/gui/sim_thread.cpp
   ../app/gui/history.cpp

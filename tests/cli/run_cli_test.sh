@@ -7,6 +7,9 @@
 #   --rc N | --rc nonzero       expected exit status (required)
 #   --match REGEX               stdout+stderr must match this extended regex (repeatable)
 #   --no-match REGEX            ... must not match it (repeatable)
+#   --mkdir DIR                 create the directory DIR in the scratch directory first (repeatable)
+#   --fifo FILE                 create a named pipe FILE first (repeatable; nothing ever writes to it)
+#   --sparse FILE SIZE          create FILE of SIZE (truncate's syntax: 2G) holding no data blocks
 #   --write FILE TEXT           create FILE in the scratch directory before the run (repeatable)
 #   --csv FILE HEADER MIN MAX   FILE must exist, start with the line HEADER and have MIN..MAX data rows
 #                               of comma-separated finite numbers with as many fields as HEADER
@@ -32,6 +35,9 @@ EXPECT_RC=""
 MATCH=()
 NOMATCH=()
 WRITES=()
+MKDIRS=()
+FIFOS=()
+SPARSE=()
 CSVS=()
 ABSENT=()
 UNCHANGED=()
@@ -41,6 +47,9 @@ while [[ $# -gt 0 && $1 != "--" ]]; do
     --match) MATCH+=("$2"); shift 2 ;;
     --no-match) NOMATCH+=("$2"); shift 2 ;;
     --write) WRITES+=("$2" "$3"); shift 3 ;;
+    --mkdir) MKDIRS+=("$2"); shift 2 ;;
+    --fifo) FIFOS+=("$2"); shift 2 ;;
+    --sparse) SPARSE+=("$2" "$3"); shift 3 ;;
     --csv) CSVS+=("$2" "$3" "$4" "$5"); shift 5 ;;
     --absent) ABSENT+=("$2"); shift 2 ;;
     --unchanged) UNCHANGED+=("$2"); shift 2 ;;
@@ -55,11 +64,14 @@ ARGS=("$@")
 
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/impactlab_cli_test.XXXXXX")
 trap 'rm -rf "$WORK"' EXIT
+for d in "${MKDIRS[@]+"${MKDIRS[@]}"}"; do mkdir -p "$WORK/$d"; done
+for f in "${FIFOS[@]+"${FIFOS[@]}"}"; do mkfifo "$WORK/$f"; done
+for ((i = 0; i < ${#SPARSE[@]}; i += 2)); do truncate -s "${SPARSE[i + 1]}" "$WORK/${SPARSE[i]}"; done
 for ((i = 0; i < ${#WRITES[@]}; i += 2)); do
   printf '%s\n' "${WRITES[i + 1]}" >"$WORK/${WRITES[i]}"
 done
 for f in "${UNCHANGED[@]+"${UNCHANGED[@]}"}"; do
-  cp "$WORK/$f" "$WORK/.orig_$(basename "$f")"
+  cp "$WORK/$f" "$WORK/.orig_${f//\//_}"
 done
 
 cd "$WORK" || exit 2
@@ -84,7 +96,7 @@ for f in "${ABSENT[@]+"${ABSENT[@]}"}"; do
   [[ ! -e $WORK/$f ]] || fail "$f exists"
 done
 for f in "${UNCHANGED[@]+"${UNCHANGED[@]}"}"; do
-  cmp -s "$WORK/$f" "$WORK/.orig_$(basename "$f")" || fail "$f was changed"
+  cmp -s "$WORK/$f" "$WORK/.orig_${f//\//_}" || fail "$f was changed"
 done
 if [[ ${#UNCHANGED[@]} -gt 0 ]] && find "$WORK" -name '*.partial*' | grep -q .; then fail "a partial file was left behind"; fi
 

@@ -357,5 +357,5 @@ TEST_CASE("JSON: a directory given as a parameter file is named as such (not bas
     }
     std::filesystem::remove(dir);
     CAPTURE(msg);
-    CHECK(contains(msg, "a directory, not a parameter file"));
+    CHECK(contains(msg, "not a parameter file: is a directory"));
 }

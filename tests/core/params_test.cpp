@@ -155,6 +155,22 @@ TEST_CASE("validate names the source and the key of every bad value") {
     CHECK(contains(error_of([&] { validate(none, "src"); }), "impact"));
 }
 
+TEST_CASE("validate: values inside their ranges that overflow the force law are refused, naming the key") {
+    // A3's b = 1e308: the denominator is finite and positive, but its square (in the slope) is not, and
+    // the run would stall on x = NaN.
+    Params p = make_version("A3C");
+    p.b[0] = 1e308;
+    CHECK(error_of([&] { validate(p, "b.json"); }).find("b.json: key 'b': makes the denominator of F_SA overflow") == 0);
+    p = make_version("A3C");
+    p.b[3] = 1e300;
+    CHECK(error_of([&] { validate(p, "b.json"); }).find("key 'b'") != std::string::npos);
+    // Huge a: a force beyond any rig, or a slope that overflows.
+    p = make_version("A3C");
+    p.a[3] = 1e308;
+    CHECK(error_of([&] { validate(p, "a.json"); }).find("key 'a'") != std::string::npos);
+    CHECK(error_of([&] { validate(make_version("A3C"), "ok"); }).empty());
+}
+
 TEST_CASE("impact parameters by name; unknown names are refused") {
     Params p = make_version("A1G");
     set_impact_param(p, "kappa0", 0.5);

@@ -92,7 +92,7 @@ TEST_CASE("scan: the tile log round-trips exactly; a torn row is dropped; anothe
     spec.x.n = 2;
     const Params p = make_version("A1H");
     const std::vector<ScanPoint> row{{1, NAN, 0.5, -0.0123456789012345, 1e-300}, {0, -2.5, 3, -1.0 / 3.0, 2.0 / 3.0}};
-    const std::string header = scan_log_header(p, spec);
+    const std::string header = scan_log_header(p, spec, {});
     std::stringstream log;
     log << header << '\n' << scan_log_line(1, row) << '\n';
     const std::string torn = scan_log_line(2, row);
@@ -110,7 +110,81 @@ TEST_CASE("scan: the tile log round-trips exactly; a torn row is dropped; anothe
     other.record = 71;
     std::stringstream again;
     again << header << '\n';
-    CHECK_THROWS_AS(read_scan_log(again, scan_log_header(p, other), other), ScanError);
+    CHECK_THROWS_AS(read_scan_log(again, scan_log_header(p, other, {}), other), ScanError);
+}
+
+TEST_CASE("scan: the log header changes with every model parameter and tolerance that shapes the result") {
+    const ScanSpec spec = small_plane();
+    const Params p = make_version("A1H");
+    const std::string h = scan_log_header(p, spec, {});
+    Params stiffer = p;
+    stiffer.k *= 1.5;   // a parameter file that kept the name "A1H"
+    CHECK(scan_log_header(stiffer, spec, {}) != h);
+    Params damped = p;
+    damped.c *= 1.0 + 1e-15;
+    CHECK(scan_log_header(damped, spec, {}) != h);
+    Tolerances tol;
+    tol.rtol = 1e-9;
+    CHECK(scan_log_header(p, spec, tol) != h);
+    Tolerances budget;
+    budget.max_step_rate *= 2;
+    CHECK(scan_log_header(p, spec, budget) != h);
+    CHECK(scan_log_header(make_version("A1H"), spec, {}) == h);
+    // A name with control characters stays on one line.
+    Params odd = p;
+    odd.name = "A1H\n\x1b[31mred";
+    CHECK(scan_log_header(odd, spec, {}).find_first_of("\n\x1b") == std::string::npos);
+}
+
+TEST_CASE("scan: a tile log is read strictly, naming the line") {
+    ScanSpec spec = small_plane();
+    spec.x.n = 2;
+    const Params p = make_version("A1H");
+    const std::string header = scan_log_header(p, spec, {});
+    const std::vector<ScanPoint> row{{1, NAN, 0.5, -0.01, 0.01}, {2, NAN, 1, -0.02, 0.02}};
+    const std::string good = scan_log_line(0, row);
+    const auto read = [&](const std::string& body) {
+        std::stringstream log(header + "\n" + body);
+        return read_scan_log(log, header, spec);
+    };
+    const auto refused = [&](const std::string& body, const char* what) {
+        std::string msg;
+        try {
+            read(body);
+        } catch (const ScanError& e) {
+            msg = e.what();
+        }
+        INFO(body);
+        CHECK(msg.find(what) != std::string::npos);
+    };
+    CHECK(read(good + "\n").size() == 1u);
+    // A token the log never writes: a word read as 0 (chaos), 1e999 read as inf, decimal text.
+    std::string word = good;
+    word.replace(word.find("0x1p+0"), 6, "abc");
+    refused(word + "\n" + good + "\n", "line 2: 'abc' is not a number");
+    std::string huge = good;
+    huge.replace(huge.find("0x1p+0"), 6, "1e999");
+    refused(huge + "\n" + good + "\n", "'1e999' is not a number");
+    std::string half = good;
+    half.replace(half.find("0x1p+0"), 6, "0x1.8p+0");   // period 1.5
+    refused(half + "\n", "period 0x1.8p+0 is not one a scan gives");
+    refused("row 7 " + good.substr(6) + "\n", "'row 7' is not 'row N' with N in [0, 2]");
+    refused("col 0 " + good.substr(6) + "\n", "is not 'row N'");
+    refused(good.substr(0, good.size() - 4) + " 0x0p+0 end\n", "more fields");
+    // A broken line before the last is no torn write.
+    refused(good.substr(0, 20) + "\n" + scan_log_line(1, row) + "\n", "line 2: not a complete row");
+    // The same row twice: the same values are harmless, other values are a contradiction.
+    CHECK(read(good + "\n" + good + "\n").size() == 1u);
+    std::vector<ScanPoint> other = row;
+    other[1].impacts = 2;
+    refused(good + "\n" + scan_log_line(0, other) + "\n", "line 3: row 0 appears again with other values (first on line 2)");
+}
+
+TEST_CASE("scan: the last grid value is HI itself, inside the range the axis was checked in") {
+    const ScanAxis a = parse_scan_axis("xI:-0.1:0.1:7");
+    CHECK(a.at(6) == 0.1);
+    CHECK(a.at(0) == -0.1);
+    CHECK(a.at(3) == doctest::Approx(0.0));
 }
 
 TEST_CASE("scan: axes and measures are checked, naming the problem") {

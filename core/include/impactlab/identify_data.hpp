@@ -57,7 +57,8 @@ MeasuredData parse_measured(std::string_view text, const std::string& source, co
 // "A:B" (Python-style, either side may be empty) into a row range; throws DataError.
 void parse_row_range(const std::string& spec, long& begin, long& end);
 
-// The bytes of a file, decompressed if it is gzip; throws DataError("PATH: ...").
+// The bytes of a file, decompressed if it is gzip; throws DataError("PATH: ..."), also for what is no regular
+// file (a directory, FIFO, device) and for more than kMaxInputBytes on disk or decompressed (input_file.hpp).
 std::string read_data_file(const std::string& path);
 bool is_gzip(std::string_view bytes);
 // Decompresses gzip (one member or several concatenated) with zlib; refuses corrupt or truncated data and,

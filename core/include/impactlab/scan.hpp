@@ -25,7 +25,8 @@ struct ScanAxis {
     ScanParam param = ScanParam::Omega;
     double lo = 0, hi = 0;   // [rad/s], [m] or [kg m]
     int n = 1;               // points, lo and hi included
-    double at(int i) const { return n == 1 ? lo : lo + (hi - lo) * i / (n - 1); }
+    // The last value is HI itself: lo + (hi - lo) may round past it, out of the range the axis was checked in.
+    double at(int i) const { return n == 1 ? lo : i == n - 1 ? hi : lo + (hi - lo) * i / (n - 1); }
     const char* name() const;
 };
 // "omega:0:25:400", "xI:-0.01:0.01:300", "m0e:0.01:0.05:50"; throws ScanError naming the problem.
@@ -67,11 +68,14 @@ void scan_rows(const Params& p, const ScanSpec& spec, const std::vector<int>& to
 // with the first axis fastest; numbers printed to round-trip exactly.
 void write_scan_csv(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, std::ostream& out);
 
-// The tile log of a scan: a header naming the model and the spec, then one line per finished row with its
-// values in hexadecimal floating point (exact). A resumed scan reads it back; a torn last line is ignored.
-std::string scan_log_header(const Params& p, const ScanSpec& spec);
+// The tile log of a scan: a header with everything that shapes the result (the spec, the integrator's
+// tolerances and a fingerprint of every model parameter, effects included), then one line per finished row
+// with its values in hexadecimal floating point (exact). A resumed scan reads it back.
+std::string scan_log_header(const Params& p, const ScanSpec& spec, const Tolerances& tol);
 std::string scan_log_line(int row, const std::vector<ScanPoint>& points);
-// Rows read from a log; throws ScanError if the header belongs to another scan.
+// Rows read from a log, each once. Throws ScanError if the header belongs to another scan, or naming the line
+// if a row is malformed (a token that is no number as the log writes them, a value no scan gives) or appears
+// twice with different values; only a torn last line (a killed write) is dropped.
 std::vector<std::pair<int, std::vector<ScanPoint>>> read_scan_log(std::istream& in, const std::string& header,
                                                                   const ScanSpec& spec);
 

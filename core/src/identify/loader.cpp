@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "impactlab/identify_data.hpp"
+#include "impactlab/input_file.hpp"
 
 namespace impactlab::identify {
 
@@ -72,11 +73,13 @@ void parse_row_range(const std::string& spec, long& begin, long& end) {
 }
 
 std::string read_data_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw DataError(path + ": cannot open the data file");
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw DataError(path + ": read error");
-    return is_gzip(bytes) ? gunzip(bytes, path) : bytes;
+    std::string bytes;
+    try {
+        bytes = read_input_file(path, kMaxInputBytes);
+    } catch (const InputFileError& e) {
+        throw DataError(e.what());
+    }
+    return is_gzip(bytes) ? gunzip(bytes, path, kMaxInputBytes) : bytes;
 }
 
 MeasuredData load_measured(const std::string& path, const LoadOptions& options) {

@@ -1,6 +1,9 @@
 #include "impactlab/scan.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +15,7 @@
 #include <thread>
 
 #include "impactlab/analysis.hpp"
+#include "impactlab/params_json.hpp"
 
 namespace impactlab {
 
@@ -246,14 +250,49 @@ void write_scan_csv(const ScanSpec& spec, const std::vector<std::vector<ScanPoin
         }
 }
 
-std::string scan_log_header(const Params& p, const ScanSpec& spec) {
+namespace {
+
+// FNV-1a, 64 bits: a fingerprint of the model's parameters in the log header (not a defence against forgery).
+std::uint64_t fnv1a(const std::string& text) {
+    std::uint64_t h = 14695981039346656037ull;
+    for (const unsigned char c : text) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+// A log token as scan_log_line writes it: a hexadecimal float, or inf / nan; nothing else (no "1e999", no word).
+bool log_number(const std::string& tok, double& v) {
+    const std::string body = !tok.empty() && tok[0] == '-' ? tok.substr(1) : tok;
+    if (body == "inf" || body == "nan") {
+        v = std::strtod(tok.c_str(), nullptr);
+        return true;
+    }
+    if (body.size() < 3 || body[0] != '0' || body[1] != 'x') return false;
+    errno = 0;
+    char* end = nullptr;
+    v = std::strtod(tok.c_str(), &end);
+    return end == tok.c_str() + tok.size() && errno == 0 && std::isfinite(v);
+}
+
+}  // namespace
+
+std::string scan_log_header(const Params& p, const ScanSpec& spec, const Tolerances& tol) {
+    std::string name = p.name.substr(0, 64);   // for the reader; the fingerprint is what is compared
+    for (char& c : name)
+        if (static_cast<unsigned char>(c) <= ' ' || c == 127) c = '_';
+    char fp[32];
+    std::snprintf(fp, sizeof fp, "%016llx", static_cast<unsigned long long>(fnv1a(params_to_json_text(p))));
     std::ostringstream h;
     h.precision(17);
-    h << "# impactlab scan log v1 model=" << p.name << " x=" << spec.x.name() << ':' << spec.x.lo << ':' << spec.x.hi << ':'
-      << spec.x.n << " y=" << spec.y.name() << ':' << spec.y.lo << ':' << spec.y.hi << ':' << spec.y.n
+    h << "# impactlab scan log v2 model=" << name << " params=" << fp << " x=" << spec.x.name() << ':' << spec.x.lo << ':'
+      << spec.x.hi << ':' << spec.x.n << " y=" << spec.y.name() << ':' << spec.y.lo << ':' << spec.y.hi << ':' << spec.y.n
       << " omega=" << spec.omega << " xI=" << p.xI << " m0e=" << p.m0e << " transient=" << spec.transient
       << " record=" << spec.record << " start=" << (spec.start == ScanStart::Continue ? "continue" : "fresh")
-      << " lyapunov=" << spec.measures.lyapunov;
+      << " lyapunov=" << spec.measures.lyapunov << " rtol=" << tol.rtol << " x_scale=" << tol.x_scale
+      << " v_scale=" << tol.v_scale << " h_max=" << tol.h_max << " h_min=" << tol.h_min
+      << " max_step_rate=" << tol.max_step_rate << " max_wall_s=" << tol.max_wall_s;
     return h.str();
 }
 
@@ -273,30 +312,67 @@ std::vector<std::pair<int, std::vector<ScanPoint>>> read_scan_log(std::istream& 
     std::string line;
     if (!std::getline(in, line)) return {};
     if (line != header)
-        throw ScanError("the tile log belongs to another scan (its header: '" + line + "'); remove it or drop --resume");
+        throw ScanError("the tile log belongs to another scan (its header: '" + line.substr(0, 400) +
+                        "'); remove it or drop --resume");
     std::vector<std::pair<int, std::vector<ScanPoint>>> rows;
+    std::vector<long> seen_at(static_cast<std::size_t>(spec.y.n), 0);   // the line each row was read from
     const std::size_t nx = static_cast<std::size_t>(spec.x.n);
-    while (std::getline(in, line)) {
+    long lineno = 1;
+    std::string next;
+    bool more = static_cast<bool>(std::getline(in, next));
+    while (more) {
+        line = std::move(next);
+        ++lineno;
+        more = static_cast<bool>(std::getline(in, next));
+        const auto bad = [&](const std::string& what) {
+            return ScanError("line " + std::to_string(lineno) + ": " + what);
+        };
         std::istringstream ls(line);
-        std::string word, tail;
-        int row = -1;
-        if (!(ls >> word >> row) || word != "row" || row < 0 || row >= spec.y.n) continue;
-        std::vector<ScanPoint> pts(nx);
-        bool ok = true;
-        for (std::size_t i = 0; i < nx && ok; ++i) {
-            double v[5];
-            for (double& x : v) {
-                std::string tok;
-                if (!(ls >> tok)) {
-                    ok = false;
-                    break;
-                }
-                x = std::strtod(tok.c_str(), nullptr);
-            }
-            if (ok) pts[i] = {v[0], v[1], v[2], v[3], v[4]};
+        std::vector<std::string> tok;
+        for (std::string t; ls >> t;) tok.push_back(t);
+        const std::size_t want = 3 + 5 * nx;   // "row", N, the values, "end"
+        if (tok.size() < want || tok.back() != "end") {
+            if (!more) break;   // a row killed while being written: computed again
+            throw bad("not a complete row (expected 'row N', " + std::to_string(5 * nx) + " values and 'end')");
         }
-        // A row killed while being written lacks its "end": it is computed again.
-        if (ok && (ls >> tail) && tail == "end") rows.emplace_back(row, std::move(pts));
+        if (tok.size() != want) throw bad("more fields than a row of " + std::to_string(nx) + " points has");
+        char* end = nullptr;
+        errno = 0;
+        const long row = std::strtol(tok[1].c_str(), &end, 10);
+        if (tok[0] != "row" || end != tok[1].c_str() + tok[1].size() || errno != 0 || row < 0 || row >= spec.y.n)
+            throw bad("'" + tok[0].substr(0, 40) + " " + tok[1].substr(0, 40) + "' is not 'row N' with N in [0, " +
+                      std::to_string(spec.y.n - 1) + "]");
+        std::vector<ScanPoint> pts(nx);
+        for (std::size_t i = 0; i < nx; ++i) {
+            double v[5];
+            for (int k = 0; k < 5; ++k) {
+                const std::string& t = tok[2 + 5 * i + static_cast<std::size_t>(k)];
+                if (!log_number(t, v[k]))
+                    throw bad("'" + t.substr(0, 40) + "' is not a number as the log writes them (hexadecimal)");
+            }
+            // What no scan gives: a period that is no whole number of sections in [0, 16] (0 = chaos), a negative
+            // or unbounded impact rate.
+            if (!(v[0] >= 0 && v[0] <= 16 && v[0] == std::floor(v[0])))
+                throw bad("point " + std::to_string(i) + ": period " + tok[2 + 5 * i] + " is not one a scan gives");
+            if (!(v[2] >= 0 && std::isfinite(v[2])))
+                throw bad("point " + std::to_string(i) + ": impacts " + tok[4 + 5 * i] + " is not one a scan gives");
+            pts[i] = {v[0], v[1], v[2], v[3], v[4]};
+        }
+        long& first = seen_at[static_cast<std::size_t>(row)];
+        if (first > 0) {
+            const auto same = [&](const std::vector<ScanPoint>& a) {
+                for (std::size_t i = 0; i < nx; ++i)
+                    if (std::memcmp(&a[i], &pts[i], sizeof(ScanPoint)) != 0) return false;
+                return true;
+            };
+            for (const auto& [r, old] : rows)
+                if (r == row && !same(old))
+                    throw bad("row " + std::to_string(row) + " appears again with other values (first on line " +
+                              std::to_string(first) + ")");
+            continue;
+        }
+        first = lineno;
+        rows.emplace_back(static_cast<int>(row), std::move(pts));
     }
     return rows;
 }
