@@ -11,6 +11,8 @@ if ! command -v xvfb-run >/dev/null 2>&1; then
     exit 77
 fi
 mkdir -p "$dir"
+TEST=gui_analysis
+. "$(dirname "$0")/gui_lib.sh"
 plane="$dir/plane.csv"; bad="$dir/bad_plane.csv"; png="$dir/gui_analysis.png"; log="$dir/gui_analysis.log"
 rm -f "$png" "$log"
 # A 4 x 3 (omega, xI) plane as impactlab scan writes it: x fastest.
@@ -23,10 +25,8 @@ rm -f "$png" "$log"
         done
     done
 } >"$plane"
-LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1280x800x24" \
-    "$gui" --model A1G --omega 13 --plane "$plane" --continuation --basins --frames 20 --switch-model A1G \
+xvfb_rc "$dir/run.rc" "$gui" --model A1G --omega 13 --plane "$plane" --continuation --basins --frames 20 --switch-model A1G \
     --screenshot "$png" >"$log" 2>&1
-rc=$?
 cat "$log"
 [ $rc -eq 0 ] || { echo "gui_analysis: impactlab-gui exited with $rc"; exit 1; }
 [ -f "$png" ] || { echo "gui_analysis: no screenshot written"; exit 1; }
@@ -37,9 +37,7 @@ grep -q "basins at omega = 13.000: [1-9][0-9]* attractors" "$log" || { echo "gui
 
 # Line 4 of this file is short of a field.
 printf 'omega,xI,period\n8,0,1\n10,0,1\n12,0\n' >"$bad"
-LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1280x800x24" \
-    "$gui" --model A1G --plane "$bad" --frames 5 --switch-model A1G >"$log" 2>&1
-rc=$?
+xvfb_rc "$dir/bad.rc" "$gui" --model A1G --plane "$bad" --frames 5 --switch-model A1G >"$log" 2>&1
 cat "$log"
 [ $rc -eq 1 ] || { echo "gui_analysis: a bad plane file gave exit code $rc, not 1"; exit 1; }
 grep -q "$bad:4: expected 3 fields" "$log" || { echo "gui_analysis: the error does not name $bad:4"; exit 1; }

@@ -15,8 +15,19 @@ gui_need() {
 # (default 1280x800) screen; its output in $dir/NAME.log, its exit status in $rc.
 gui_exec() {
     name="$1"; shift
-    LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 ${GUI_SCREEN:-1280x800}x24" "$gui" "$@" >"$dir/$name.log" 2>&1
+    xvfb_rc "$dir/$name.rc" "$gui" "$@" >"$dir/$name.log" 2>&1
+}
+
+# xvfb_rc RCFILE PROGRAM ARGS...: PROGRAM under Xvfb; its own exit status in $rc. xvfb-run's clean-up of its
+# temporary folder can fail after the program has ended (exit 5, "problem while cleaning up temporary
+# directory", a race seen when the program exits within a few frames): the program's status is what counts.
+xvfb_rc() {
+    xvfb_rcfile="$1"; shift
+    rm -f "$xvfb_rcfile"
+    LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 ${GUI_SCREEN:-1280x800}x24" \
+        sh -c 'f="$1"; shift; "$@"; echo $? >"$f"' sh "$xvfb_rcfile" "$@"
     rc=$?
+    if [ -s "$xvfb_rcfile" ]; then rc=$(cat "$xvfb_rcfile"); fi
 }
 
 # gui_json NAME ARGS...: as gui_exec, with --state-json $dir/NAME.json; fails the test on a non-zero exit.

@@ -12,6 +12,7 @@
 #include "../../app/gui/options.hpp"
 #include "../../app/gui/plane_data.hpp"
 #include "../../app/gui/session.hpp"
+#include "impactlab/identify_data.hpp"
 
 using namespace impactlab::gui;
 namespace fs = std::filesystem;
@@ -72,6 +73,7 @@ TEST_CASE("gui inputs: --session of a directory, a FIFO or a device; a session w
 TEST_CASE("gui inputs: --data of a FIFO or a device is refused before the window opens; file flags only once") {
     const Scratch s;
     Options o;
+    o.frames = 5;   // headless: checked before any window (by hand the window opens and the data panel says it)
     o.data = s.fifo("d.csv");
     CHECK(error_of<OptionsError>([&] { check_files(o); }) == "--data: cannot read '" + o.data + "': is a named pipe (FIFO), not a regular file");
     o.data = "/dev/zero";
@@ -79,4 +81,10 @@ TEST_CASE("gui inputs: --data of a FIFO or a device is refused before the window
     CHECK(error_of<OptionsError>([&] { parse_options({"--session", "a.json", "--session", "b.json"}); }) == "--session: given twice");
     CHECK(error_of<OptionsError>([&] { parse_options({"--data", "a.csv", "--paused", "--data", "b.csv"}); }) == "--data: given twice");
     CHECK(error_of<OptionsError>([&] { parse_options({"--plane", "a.csv", "--plane", "a.csv"}); }) == "--plane: given twice");
+    // Started by hand the same FIFO is no error here: the data panel's loader refuses it (read_data_file
+    // checks the kind first), so nothing blocks on it.
+    o.frames = 0;
+    o.data = s.fifo("d2.csv");
+    CHECK_NOTHROW(check_files(o));
+    CHECK_THROWS_WITH_AS(impactlab::identify::read_data_file(o.data), doctest::Contains("named pipe"), impactlab::identify::DataError);
 }
