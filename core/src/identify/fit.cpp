@@ -849,9 +849,10 @@ Model fit_baseline_stage(const Prep& pr, const Model& model0, const FitOptions& 
             if (!keeps_wells(base, "output-error")) {
                 base = ee;
             } else if (!refinement_predicts_better(pr, base, ee, o.rtol)) {
-                // A chaotic record's free run: the refinement fitted drift, not the rig.
-                rep.notes.push_back("the output-error refinement of the baseline predicts the held-out part worse within the "
-                                    "predictability horizon (a chaotic record?); the equation-error baseline is kept");
+                // A chaotic record's free run, or a fit of what the held-out tail does not show: not the rig.
+                rep.notes.push_back("the output-error refinement of the baseline does not predict the tail of the record it was not "
+                                    "fitted to better (a consistent fall over the judging windows, paired z >= 2); the "
+                                    "equation-error baseline is kept");
                 base = ee;
             } else {
                 rep.notes.push_back("baseline refined on the free-run simulation error (output error)");
@@ -1637,8 +1638,8 @@ void output_error_stage(const Prep& pr, const Model& base, const std::vector<Can
     for (const Knob& k : found_effect_knobs(refined, base, cands)) knobs.push_back(k);
     lm_simulation(pr, refined, knobs, 20, o.rtol);
     if (!unphysical(refined).empty() || !refinement_predicts_better(pr, refined, after, o.rtol)) {
-        rep.notes.push_back("the output-error refit of the effects predicts the held-out part worse within the "
-                            "predictability horizon; their equation-error values are kept");
+        rep.notes.push_back("the output-error refit of the effects does not predict the tail of the record it was not fitted "
+                            "to better (paired z >= 2 over the judging windows); their equation-error values are kept");
         return;
     }
     after = refined;
