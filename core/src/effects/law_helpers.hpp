@@ -67,5 +67,18 @@ inline void start_magnets(double* p, const EffectStartContext& c) {
     p[0] = 0.0;
     adapt_magnets(p, *c.model);
 }
+// The registry row of an effect acting through the model's magnets: its own parameter p[0] (`name`, `unit`,
+// fitted alone from 0), then the copied magnetic law (a1, a3, b2, b4; defaults A1's).
+inline EffectLaw magnet_effect_law(const char* id, const char* meaning, const char* name, const char* unit, EffectForceFn force,
+                                   EffectDescribeFn describe) {
+    EffectLaw l{id, meaning, {name, "a1", "a3", "b2", "b4", nullptr}, {unit, "N/m", "N/m^3", "1/m^2", "1/m^4", nullptr},
+                {0.0, -1763.5, 0.0, 4907.6, 0.0}, force};
+    l.fit = hint({0}, {1e-5});
+    l.fit.needs = FitNeeds::Magnets;
+    l.start = start_magnets;
+    l.adapt = adapt_magnets;
+    l.describe = describe;
+    return l;
+}
 
 }  // namespace impactlab::effects

@@ -23,17 +23,9 @@ std::string describe(const double* p, const double* s, const EffectReportContext
 }  // namespace
 
 const EffectLaw& magnet_drift_law() {
-    static const EffectLaw law = [] {
-        EffectLaw l{"magnet_drift", "the magnets' force drifts over the record: F_mag scales by 1 + r t",
-                    {"r", "a1", "a3", "b2", "b4", nullptr}, {"1/s", "N/m", "N/m^3", "1/m^2", "1/m^4", nullptr},
-                    {0.0, -1763.5, 0.0, 4907.6, 0.0}, force};
-        l.fit = hint({0}, {1e-5});
-        l.fit.needs = FitNeeds::Magnets;
-        l.start = start_magnets;   // the magnetic law is the model's own
-        l.adapt = adapt_magnets;
-        l.describe = describe;
-        return l;
-    }();
+    static const EffectLaw law =
+        magnet_effect_law("magnet_drift", "the magnets' force drifts over the record: F_mag scales by 1 + r t",
+                          "r", "1/s", force, describe);
     return law;
 }
 }  // namespace impactlab::effects

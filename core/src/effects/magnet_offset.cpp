@@ -24,17 +24,9 @@ std::string describe(const double* p, const double* s, const EffectReportContext
 }  // namespace
 
 const EffectLaw& magnet_offset_law() {
-    static const EffectLaw law = [] {
-        EffectLaw l{"magnet_offset", "the fixed magnet sits d off x = 0 (misaligned magnets): F_mag acts at x - d",
-                    {"d", "a1", "a3", "b2", "b4", nullptr}, {"m", "N/m", "N/m^3", "1/m^2", "1/m^4", nullptr},
-                    {0.0, -1763.5, 0.0, 4907.6, 0.0}, force};
-        l.fit = hint({0}, {1e-5});
-        l.fit.needs = FitNeeds::Magnets;
-        l.start = start_magnets;   // the magnetic law is the model's own
-        l.adapt = adapt_magnets;
-        l.describe = describe;
-        return l;
-    }();
+    static const EffectLaw law =
+        magnet_effect_law("magnet_offset", "the fixed magnet sits d off x = 0 (misaligned magnets): F_mag acts at x - d",
+                          "d", "m", force, describe);
     return law;
 }
 }  // namespace impactlab::effects
