@@ -15,7 +15,6 @@ std::vector<RunWell> data_wells(const Prep& pr, int hac_lag) {
     std::vector<RunWell> out;
     if (pr.phi_forced || pr.u.empty()) return out;   // the unbalance's forcing is the model's; only a measured input is data
     const MeasuredData& d = *pr.data;
-    const int H = pr.K.H;
     // The runs' rows, each run centred on its own mean so its polynomial is local and well conditioned.
     std::vector<std::size_t> runs;
     std::vector<std::vector<std::size_t>> rows_of;
@@ -40,28 +39,28 @@ std::vector<RunWell> data_wells(const Prep& pr, int hac_lag) {
     const Eigen::Index ncol = 2 + 4 * static_cast<Eigen::Index>(R);
     Eigen::MatrixXd X = Eigen::MatrixXd::Zero(n, ncol);
     Eigen::VectorXd y(n);
+    // The weak form: the kernel's averages of each run's centred x, x^2, x^3 and of u (a row's window never
+    // reaches across a run's start).
+    std::vector<double> xc(pr.n), x2(pr.n), x3(pr.n);
+    for (std::size_t i = 0; i < pr.n; ++i) {
+        const std::size_t run = pr.run_of(i);
+        const auto q = static_cast<std::size_t>(std::find(runs.begin(), runs.end(), run) - runs.begin());
+        xc[i] = d.x[i] - (q < R ? mean_of[q] : 0.0);
+        x2[i] = xc[i] * xc[i];
+        x3[i] = x2[i] * xc[i];
+    }
+    const std::vector<double> fa = apply_fir(xc, pr.K.w2), fv = apply_fir(xc, pr.K.w1), f1 = apply_fir(xc, pr.K.w),
+                              f2 = apply_fir(x2, pr.K.w), f3 = apply_fir(x3, pr.K.w), fu = apply_fir(pr.u, pr.K.w);
     Eigen::Index r = 0;
     for (std::size_t q = 0; q < R; ++q)
         for (std::size_t c : rows_of[q]) {
-            double a = 0, v = 0, x1 = 0, x2 = 0, x3 = 0, u = 0;
-            for (int k = 0; k <= 2 * H; ++k) {
-                const std::size_t j = c + static_cast<std::size_t>(k) - static_cast<std::size_t>(H);
-                const double xj = d.x[j] - mean_of[q];
-                const auto kk = static_cast<std::size_t>(k);
-                a += pr.K.w2[kk] * xj;
-                v += pr.K.w1[kk] * xj;
-                x1 += pr.K.w[kk] * xj;
-                x2 += pr.K.w[kk] * xj * xj;
-                x3 += pr.K.w[kk] * xj * xj * xj;
-                u += pr.K.w[kk] * pr.u[j];
-            }
-            y[r] = a;
+            y[r] = fa[c];
             const Eigen::Index b0 = 2 + 4 * static_cast<Eigen::Index>(q);
-            X(r, 0) = -v;
-            X(r, 1) = u;
-            X(r, b0) = -x1;
-            X(r, b0 + 1) = -x2;
-            X(r, b0 + 2) = -x3;
+            X(r, 0) = -fv[c];
+            X(r, 1) = fu[c];
+            X(r, b0) = -f1[c];
+            X(r, b0 + 1) = -f2[c];
+            X(r, b0 + 2) = -f3[c];
             X(r, b0 + 3) = 1.0;
             ++r;
         }

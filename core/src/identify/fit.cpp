@@ -613,7 +613,19 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
         RejectedEffect rej;
     };
     std::vector<TooSmall> too_small;
-    Chain kept;   // the model after each effect kept, in order
+    // The held-out shooting RMS of a model's windows (their SSE summed).
+    auto total = [&](const std::vector<double>& e) {
+        double s = 0;
+        for (double v : e) s += std::isfinite(v) ? v : 0.0;
+        return samples ? std::sqrt(s / static_cast<double>(samples)) : 0.0;
+    };
+    Chain kept;   // the model after each effect kept, in order, with its held-out RMS
+    // A kept step's name in the chain, with the held-out fall that kept it.
+    auto step_name = [](const std::string& what, const Compare& c) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, " (held-out simulation error %s by %.2f %%)", c.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(c.gain));
+        return what + buf;
+    };
     // Effects finally turned down for too small a fall (index into found, into effects_rejected).
     constexpr std::size_t kTaken = static_cast<std::size_t>(-1);
     std::vector<std::pair<std::size_t, std::size_t>> small_final;
@@ -688,9 +700,7 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
             cur = std::move(cand);
             e_cur = e_new;
             rep.effects_found.push_back(f);
-            kept.push_back({"added " + f.id + " (held-out simulation error " + (c.gain >= 0 ? "lowered" : "raised") + " by " +
-                                std::to_string(100.0 * std::abs(c.gain)).substr(0, 5) + " %)",
-                            cur, rep.effects_found, -1, false});
+            kept.push_back({step_name("added " + f.id, c), cur, rep.effects_found, total(e_cur), false});
         }
         // Again only those tried before the last effect kept (the others met the same model).
         queue.clear();
@@ -732,9 +742,7 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
                 rep.effects_rejected[ri].id.clear();   // no longer turned down
             }
             small_final[a].second = small_final[b].second = kTaken;
-            kept.push_back({"added " + fa.id + " and " + fb.id + " together (held-out simulation error lowered by " +
-                                std::to_string(100.0 * c.gain).substr(0, 5) + " %)",
-                            cur, rep.effects_found, -1, false});
+            kept.push_back({step_name("added " + fa.id + " and " + fb.id + " together", c), cur, rep.effects_found, total(e_cur), false});
         }
     rep.effects_rejected.erase(std::remove_if(rep.effects_rejected.begin(), rep.effects_rejected.end(),
                                               [](const RejectedEffect& r) { return r.id.empty(); }),
@@ -750,15 +758,7 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
             kept.clear();
         }
     }
-    auto total = [&](const std::vector<double>& e) {
-        double s = 0;
-        for (double v : e) s += std::isfinite(v) ? v : 0.0;
-        return samples ? std::sqrt(s / static_cast<double>(samples)) : 0.0;
-    };
-    // Each step's held-out RMS is the final one's share of the path: the per-step sums were overwritten as
-    // effects joined, so the steps before the last carry the value they were kept with.
     for (auto& k : kept) chain.push_back(std::move(k));
-    if (!chain.empty()) chain.back().held_out_rms_m = total(e_cur);
     bool refitted = false;
     // The kept force effects were fitted jointly with the rejected ones (and a fitted baseline of a record
     // forced by the unbalance without them): refit them on the whole record (equation error; an input-forced
@@ -1068,9 +1068,10 @@ void errors_stage(const Prep& pr, const Model& model0, const Chain& chain, const
                                             f.validation_gain, f.validation_z, f.parameters});
     }
     rep.effects_found = chosen.found;
-    if (kept_step < chain.size() - 1 && chosen.held_out_rms_m >= 0) rep.validation_rms_after_m = chosen.held_out_rms_m;
+    // The held-out RMS of the model written: the baseline's where no effect stays, else its step's.
+    if (kept_step <= last_base) rep.validation_rms_after_m = rep.validation_rms_before_m;
+    else if (chosen.held_out_rms_m >= 0) rep.validation_rms_after_m = chosen.held_out_rms_m;
     if (kept_step == 0 && rep.baseline == "fit") rep.baseline = "fixed";
-    if (!rep.gate.empty() && kept_step == 0) rep.validation_rms_after_m = rep.validation_rms_before_m;
     rep.gate_passed = chosen.what;
 
     auto fill = [&](const PrintedErrors& p, ErrorSummary& e) {
@@ -1079,8 +1080,11 @@ void errors_stage(const Prep& pr, const Model& model0, const Chain& chain, const
         e.shooting_rms_10_m = p.value(kErrShoot10);
         e.shooting_rms_judge_m = judge == 1.0 ? e.shooting_rms_1_m : judge == 10.0 ? e.shooting_rms_10_m : p.value(kErrShootJudge);
         e.impact = impact_error(pr, p.pred);
-        if (p.find(kErrDiagram)) {
-            e.diagram_distance_m = diagram_distance(p.diagram_measured, p.diagram, o.omega_bin, e.diagram_bins, &e.diagram_per_bin);
+        if (const PrintedError* d = p.find(kErrDiagram)) {   // its units are the omega bins
+            e.diagram_bins = d->num.size();
+            e.diagram_per_bin.clear();
+            for (std::size_t k = 0; k < d->num.size(); ++k) e.diagram_per_bin.emplace_back(d->keys[k], d->num[k]);
+            e.diagram_distance_m = d->num.empty() ? -1.0 : d->value();
         }
         e.simulation_rms_m = p.find(kErrFree) ? p.value(kErrFree) : -1;
         e.test_simulation_rms_m = p.find(kErrTestFree) ? p.value(kErrTestFree) : -1;
@@ -1101,7 +1105,6 @@ void errors_stage(const Prep& pr, const Model& model0, const Chain& chain, const
                             "trajectory (a chaotic record), which no model avoids");
     const Eigen::VectorXd& R0 = pg.R;
     const Eigen::VectorXd& R1 = pa.R;
-    const ShootOut& sb = pg.so;
     const PredictedImpacts& pred_before = pg.pred;
     const PredictedImpacts& pred_after = pa.pred;
     const Model& base = model0;
@@ -1117,19 +1120,21 @@ void errors_stage(const Prep& pr, const Model& model0, const Chain& chain, const
             rep.residual.before.push_back(R0[static_cast<Eigen::Index>(r)]);
             rep.residual.after.push_back(R1[static_cast<Eigen::Index>(r)]);
         }
-        if (!sb.windows10.empty()) {
-            const auto worst = std::max_element(sb.windows10.begin(), sb.windows10.end(),
-                                                [](const auto& a, const auto& b) { return a.second < b.second; });
-            for (const auto& [a, b] : windows(pr, 10))
-                if (a == worst->first) {
-                    rep.trace.before = simulate_window(pr, base, a, b, o.refine_shooting, o.rtol);
-                    rep.trace.after = simulate_window(pr, after, a, b, o.refine_shooting, o.rtol);
-                    for (std::size_t i = a; i <= b; ++i) {
-                        rep.trace.t.push_back(data.t[i]);
-                        rep.trace.measured.push_back(data.x[i]);
-                    }
-                    break;
-                }
+        // The given model's worst 10-period window (the gate's own units: one per window of windows(pr, 10)).
+        const PrintedError* s10 = pg.find(kErrShoot10);
+        const auto wins10 = windows(pr, 10);
+        std::size_t worst = wins10.size();
+        for (std::size_t w = 0; s10 && w < wins10.size() && w < s10->num.size(); ++w)
+            if (std::isfinite(s10->num[w]) && (worst == wins10.size() || s10->num[w] / s10->den[w] > s10->num[worst] / s10->den[worst]))
+                worst = w;
+        if (worst < wins10.size()) {
+            const auto [a, b] = wins10[worst];
+            rep.trace.before = simulate_window(pr, base, a, b, o.refine_shooting, o.rtol);
+            rep.trace.after = simulate_window(pr, after, a, b, o.refine_shooting, o.rtol);
+            for (std::size_t i = a; i <= b; ++i) {
+                rep.trace.t.push_back(data.t[i]);
+                rep.trace.measured.push_back(data.x[i]);
+            }
         }
         for (std::size_t k = 0; k < pr.impacts.size(); ++k) {
             const ImpactObs& im = pr.impacts[k];

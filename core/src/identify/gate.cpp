@@ -84,7 +84,6 @@ PrintedErrors printed_errors(const Prep& pr, const Model& m, const FitOptions& o
     pe.e.push_back(squares_by_block(kErrResidual, static_cast<std::size_t>(pe.R.size()),
                                     [&](std::size_t i) { return pe.R[static_cast<Eigen::Index>(i)]; }));
     pr.check_cancel();
-    pe.so = shooting(pr, m, o);
     pe.e.push_back(shooting_error(kErrShoot1, pr, m, 1.0, o));
     pe.e.push_back(shooting_error(kErrShoot10, pr, m, 10.0, o));
     if (judge_periods > 0 && judge_periods != 1.0 && judge_periods != 10.0)
@@ -156,9 +155,9 @@ PrintedErrors printed_errors(const Prep& pr, const Model& m, const FitOptions& o
             pe.e.push_back(std::move(d));
         }
     } else {
-        pe.free_run = free_run(pr, m, o.rtol);
+        const std::vector<double> fr = free_run(pr, m, o.rtol);
         const MeasuredData& data = *pr.data;
-        pe.e.push_back(squares_by_block(kErrFree, pr.n, [&](std::size_t i) { return pe.free_run[i] - data.x[i]; }));
+        pe.e.push_back(squares_by_block(kErrFree, pr.n, [&](std::size_t i) { return fr[i] - data.x[i]; }));
     }
     if (test) {
         pr.check_cancel();

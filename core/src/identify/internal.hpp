@@ -277,10 +277,8 @@ struct PrintedError {
 struct PrintedErrors {
     std::vector<PrintedError> e;
     Eigen::VectorXd R;                     // the equation error at pr.rows
-    ShootOut so;                           // 1- and 10-period shooting (windows10 for the x(t) plot)
     PredictedImpacts pred;
     std::vector<std::pair<double, double>> diagram, diagram_measured;
-    std::vector<double> free_run;          // input-forced records
     const PrintedError* find(const std::string& name) const;
     double value(const char* name) const {
         const PrintedError* p = find(name);
