@@ -9,12 +9,12 @@ gui="$1"; dir="$2"
 command -v xvfb-run >/dev/null 2>&1 || { echo "gui_diagram: xvfb-run is not installed: skipped"; exit 77; }
 command -v python3 >/dev/null 2>&1 || { echo "gui_diagram: python3 is not installed: skipped"; exit 77; }
 mkdir -p "$dir"
+TEST=gui_diagram
+. "$(dirname "$0")/gui_lib.sh"
 run() {   # run NAME ARGS...: the GUI headless at 1280x800, its state JSON in $dir/NAME.json
     name="$1"; shift
     rm -f "$dir/$name.json"
-    LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1280x800x24" "$gui" --size 1280x800 "$@" \
-        --state-json "$dir/$name.json" >"$dir/$name.log" 2>&1
-    rc=$?
+    xvfb_rc "$dir/$name.rc" "$gui" --size 1280x800 "$@" --state-json "$dir/$name.json" >"$dir/$name.log" 2>&1
     cat "$dir/$name.log"
     [ $rc -eq 0 ] || { echo "gui_diagram: $name: impactlab-gui exited with $rc"; exit 1; }
 }

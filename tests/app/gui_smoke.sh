@@ -11,9 +11,10 @@ fi
 mkdir -p "$dir"
 png="$dir/gui_smoke.png"; log="$dir/gui_smoke.log"
 rm -f "$png" "$log"
-LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1280x800x24" \
-    "$gui" --frames 120 --screenshot "$png" --state-json "$dir/gui_smoke.json" --switch-model A1G --model A1H --omega 18 --speed 4 >"$log" 2>&1
-rc=$?
+TEST=gui_smoke
+. "$(dirname "$0")/gui_lib.sh"
+xvfb_rc "$dir/gui_smoke.rc" "$gui" --frames 120 --screenshot "$png" --state-json "$dir/gui_smoke.json" --switch-model A1G --model A1H \
+    --omega 18 --speed 4 >"$log" 2>&1
 cat "$log"
 if [ $rc -ne 0 ]; then echo "gui_smoke: impactlab-gui exited with $rc"; exit 1; fi
 [ -f "$png" ] || { echo "gui_smoke: no screenshot written"; exit 1; }
