@@ -8,4 +8,5 @@ set(IMPACTLAB_IDENTIFY_TEST_SOURCES
   identify/gate_test.cpp
   identify/parsimony_test.cpp
   identify/mismatch_test.cpp
+  identify/stops_test.cpp
 )

@@ -31,9 +31,14 @@ struct Model {
     Params p;               // p.input_gain: the force per unit of u; impact model "none": no bumper
     Forcing forcing = Forcing::Unbalance;
     bool bumper() const { return p.has_bumper(); }
-    // The measurement map x_measured = sensor_gain * x + sensor_offset, from the sensor_* effects.
+    // The measurement map x_measured = sensor_gain * c(x) + sensor_offset, from the sensor_* effects; c is
+    // the identity unless a curved sensor effect bends the scale.
     double sensor_gain() const;
     double sensor_offset() const;
+    bool sensor_curved() const;
+    double measure(double x) const;         // what the sensor reads at the true position x
+    double true_x(double x_measured) const; // its inverse
+    double measure_slope(double x) const;   // d x_measured / dx at the true position x
 };
 
 // A version name ("A1H"), a parameter file (*.json), or "duffing": m y'' + d y' + k y + k3 y^3 = gain u

@@ -91,6 +91,7 @@ struct EffectFitHint {
     bool positive = false;                        // the first linear parameter must come out > 0
     bool generic = false;                         // a last-resort smooth force named by its variable
     bool test_first_only = false;                 // significance of the first parameter alone (no null shape)
+    bool from_reversals = false;                  // proposed from velocity reversals in the data, never screened
 };
 
 struct Params;
@@ -110,7 +111,7 @@ struct EffectStartContext {
     double x_lo = 0, x_hi = 0, v_lo = 0, v_hi = 0, start = 0;
 };
 using EffectStartFn = void (*)(double* p, const EffectStartContext& c);
-// A sensor effect: what the sensor reads for the true position x (affine in x).
+// A sensor effect: what the sensor reads for the true position x (affine in x, unless the law is `curved`).
 using EffectMeasureFn = double (*)(const double* p, double x);
 // Copies into p what an effect shares with the model it is added to (magnet_offset: the magnetic law).
 using EffectAdaptFn = void (*)(double* p, const Params& model);
@@ -129,6 +130,7 @@ struct EffectLaw {
     EffectDescribeFn describe = nullptr;
     EffectStartFn start = nullptr;                  // null: free parameters from 0, the others from defaults
     EffectMeasureFn measure = nullptr;              // Sensor only
+    bool curved = false;                            // Sensor only: a curve, read before the gains and offsets
     EffectAdaptFn adapt = nullptr;                  // null: nothing shared with the model
 };
 

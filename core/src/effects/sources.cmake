@@ -10,10 +10,12 @@ set(IMPACTLAB_EFFECT_SOURCES
   src/effects/viscous_damping.cpp
   src/effects/coulomb_friction.cpp
   src/effects/stribeck_friction.cpp
+  src/effects/end_stop.cpp
   src/effects/phase_offset.cpp
   src/effects/unbalance_scale.cpp
   src/effects/sensor_offset.cpp
   src/effects/sensor_gain.cpp
+  src/effects/sensor_curvature.cpp
   src/effects/sensor_delay.cpp
   src/effects/unexplained.cpp
 )

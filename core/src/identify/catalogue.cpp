@@ -13,19 +13,52 @@
 
 namespace impactlab::identify {
 
-// The sensor effects' affine maps combined as x_measured = g x + o: gains multiply, offsets add (an offset
-// is a zero error of the reading, whatever the gain).
+namespace {
+bool curved_sensor(const EffectInstance& e) { return e.law->kind == EffectKind::Sensor && e.law->measure && e.law->curved; }
+bool affine_sensor(const EffectInstance& e) { return e.law->kind == EffectKind::Sensor && e.law->measure && !e.law->curved; }
+// The curved sensors' maps, in the order they were added (the identity without any).
+double curve(const Params& p, double x) {
+    for (const auto& e : p.effects)
+        if (curved_sensor(e)) x = e.law->measure(e.p.data(), x);
+    return x;
+}
+}  // namespace
+
+// The sensor effects' affine maps combined as x_measured = g c(x) + o: gains multiply, offsets add (an offset
+// is a zero error of the reading, whatever the gain); a curved scale c acts on the true position first.
 double Model::sensor_gain() const {
     double g = 1.0;
     for (const auto& e : p.effects)
-        if (e.law->kind == EffectKind::Sensor && e.law->measure) g *= e.law->measure(e.p.data(), 1.0) - e.law->measure(e.p.data(), 0.0);
+        if (affine_sensor(e)) g *= e.law->measure(e.p.data(), 1.0) - e.law->measure(e.p.data(), 0.0);
     return g;
 }
 double Model::sensor_offset() const {
     double o = 0.0;
     for (const auto& e : p.effects)
-        if (e.law->kind == EffectKind::Sensor && e.law->measure) o += e.law->measure(e.p.data(), 0.0);
+        if (affine_sensor(e)) o += e.law->measure(e.p.data(), 0.0);
     return o;
+}
+bool Model::sensor_curved() const { return std::any_of(p.effects.begin(), p.effects.end(), curved_sensor); }
+double Model::measure(double x) const { return sensor_gain() * curve(p, x) + sensor_offset(); }
+double Model::measure_slope(double x) const {
+    if (!sensor_curved()) return sensor_gain();
+    const double h = 1e-7 * (1.0 + std::abs(x));
+    return sensor_gain() * (curve(p, x + h) - curve(p, x - h)) / (2.0 * h);
+}
+double Model::true_x(double xm) const {
+    const double y = (xm - sensor_offset()) / sensor_gain();
+    if (!sensor_curved()) return y;
+    // Newton on c(x) = y from x = y: a sensor's curve is a small bend of the identity.
+    double x = y;
+    for (int it = 0; it < 8; ++it) {
+        const double h = 1e-7 * (1.0 + std::abs(x));
+        const double f = curve(p, x) - y, d = (curve(p, x + h) - curve(p, x - h)) / (2.0 * h);
+        if (!(std::abs(d) > 1e-12)) break;
+        const double step = f / d;
+        x -= step;
+        if (std::abs(step) < 1e-15 * (1.0 + std::abs(x))) break;
+    }
+    return x;
 }
 
 Model resolve_fit_model(const std::string& name, Forcing forcing) {
@@ -228,13 +261,12 @@ EffectInstance start_instance(const Candidate& c, const Model& m, const Prep& pr
     if (c.law && c.law->start) {
         // What the law may take its shape from: the model, and the data's ranges in true coordinates.
         const MeasuredData& d = *pr.data;
-        const double g = m.sensor_gain(), o = m.sensor_offset();
         std::vector<double> xs, vs;
         xs.reserve(pr.rows.size());
         vs.reserve(pr.rows.size());
         for (std::size_t r : pr.rows) {
-            xs.push_back((d.x[r] - o) / g);
-            vs.push_back(pr.vs[r] / g);
+            xs.push_back(m.true_x(d.x[r]));
+            vs.push_back(pr.vs[r] / m.measure_slope(xs.back()));
         }
         EffectStartContext ctx{&m.p, quantile(xs, 0.005), quantile(xs, 0.995), quantile(vs, 0.005), quantile(vs, 0.995), start};
         c.law->start(e.p.data(), ctx);

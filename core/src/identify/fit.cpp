@@ -593,6 +593,11 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
         impacts_in[f].assign(pr.impacts.size(), 0);
         for (std::size_t k = 0; k < pr.impacts.size(); ++k) impacts_in[f][k] = fold_of(pr.impacts[k].i_first) == static_cast<int>(f);
     }
+    std::array<std::vector<char>, 2> strays_in;
+    for (std::size_t f = 0; f < 2; ++f) {
+        strays_in[f].assign(pr.stray.size(), 0);
+        for (std::size_t k = 0; k < pr.stray.size(); ++k) strays_in[f][k] = fold_of(pr.stray[k].i_first) == static_cast<int>(f);
+    }
     std::size_t samples = 0;
     for (const auto& [a, b] : wins) samples += b - a + 1;
     auto compare = [&](const std::vector<double>& cur, const std::vector<double>& cand) { return compare_held_out(pr, wins, cur, cand); };
@@ -661,6 +666,18 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
                     too_small.push_back({fi, rep.effects_found.size(), std::move(rej)});
                     continue;
                 }
+            } else if (f.evidence == "stray impacts") {
+                // Refitted against the model it joins, as an impact law is.
+                double se = 0;
+                const auto values = end_stop_values(pr, cur, {}, o.rtol, &se);
+                if (!values.empty()) {
+                    f.parameters = values;
+                    f.sigma.front().second = se;
+                }
+                f.sentence = sentence(f.id, cur, f.parameters, f.sigma, sc) + "; seen in " + std::to_string(pr.stray.size()) +
+                             " reversals the model cannot make";
+                rej.parameters = f.parameters;
+                apply_effect(cand, f.id, f.parameters);
             } else {
                 apply_effect(cand, f.id, f.parameters);
             }
@@ -681,6 +698,16 @@ void validate_effects(const Prep& pr, const Model& base, const std::vector<Candi
                     if (std::count(use.begin(), use.end(), 1) < 3) per_fold[ff] = cand;
                     else if (f.id == "bumper_offset") fit_bumper_shift(pr, per_fold[ff], use, o.rtol, 0.05 * pr.sigma_x);
                     else apply_effect(per_fold[ff], f.id, refit_impact_law(pr, cur, f, use));
+                }
+                e_new = held_out_folds(per_fold);
+            } else if (f.evidence == "stray impacts") {
+                // The stop fitted to the other fold's reversals, for each fold in turn.
+                std::array<Model, 2> per_fold{cand, cand};
+                for (std::size_t ff = 0; ff < 2; ++ff) {
+                    const auto values = end_stop_values(pr, cur, strays_in[1 - ff], o.rtol);
+                    if (values.empty()) continue;   // too few there: the whole record's values stand
+                    per_fold[ff] = cur;
+                    apply_effect(per_fold[ff], f.id, values);
                 }
                 e_new = held_out_folds(per_fold);
             } else {
@@ -1784,6 +1811,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     enter(FitStage::ImpactLaw);
     // ---- 5. the impact law: bumper position, impact duration, restitution ----------------------------------
     impact_law_stage(pr, o, sc, after, rep);
+    end_stop_stage(pr, o, sc, after, rep);
     enter(FitStage::Validation);
     // ---- 6. validation: an effect stays only if it lowers the short-horizon simulation error on data held
     //         out from its fit, by more than the windows' scatter; the final model must beat the baseline ----

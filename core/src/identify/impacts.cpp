@@ -258,7 +258,6 @@ PredictedImpacts predict_impacts(const Prep& pr, const Model& m, double rtol) {
     // The window starts where the smoothed state is clear of the impact (the S-G half-width and a margin)
     // and ends with enough flight after it for the detector's fits.
     const std::size_t lead = static_cast<std::size_t>(pr.Hv) + 3 * kFitSide, tail = 3 * kFitSide;
-    const double g = m.sensor_gain(), o = m.sensor_offset();
     constexpr int kRealisations = 2;   // noise draws averaged per impact
     for (std::size_t k = 0; k < ni; ++k) {
         const ImpactObs& im = pr.impacts[k];
@@ -278,7 +277,7 @@ PredictedImpacts predict_impacts(const Prep& pr, const Model& m, double rtol) {
         for (int r = 0; r < kRealisations; ++r) {
             std::vector<double> xw(sim.size());
             for (std::size_t j = 0; j < sim.size(); ++j) xw[j] = sim[j] + noise(rng);
-            const std::vector<ImpactObs> seen = find_impacts(tw, xw, pr.sigma_x, g * m.p.xI + o);
+            const std::vector<ImpactObs> seen = find_impacts(tw, xw, pr.sigma_x, m.measure(m.p.xI));
             // The simulated impact nearest the measured one (within 10 samples).
             const ImpactObs* best = nullptr;
             for (const auto& s : seen)

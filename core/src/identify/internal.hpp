@@ -84,6 +84,10 @@ struct Prep {
     Kernel K;
     int Hv = 0;
     std::vector<ImpactObs> impacts;
+    // Reversals at the end of the travel the model has no stop at (stops.cpp): side -1 the lower end, +1 the
+    // upper one (a model without a bumper), 0 none. Levels in measured x.
+    std::vector<ImpactObs> stray;
+    int stray_side = 0;
     std::vector<char> zone;                  // 1: the sample lies in or next to an impact
     std::vector<std::size_t> rows;           // centres of the residual windows used
     std::size_t j_lo = 0, j_hi = 0;          // samples the rows' windows touch [j_lo, j_hi)
@@ -128,6 +132,10 @@ struct PredictedImpacts {
     std::vector<char> ok;
 };
 PredictedImpacts predict_impacts(const Prep& pr, const Model& m, double rtol);
+
+// ---- stops.cpp -----------------------------------------------------------------------------------------
+// Finds pr.stray (at least three reversals clustered at one end of the travel) and zones them out.
+void find_stray_impacts(const MeasuredData& d, const Model& m, Prep& pr);
 
 // Weak-form residual at prep.rows [N]; `pointwise` is scratch.
 void residual(const Prep& pr, const Model& m, Eigen::VectorXd& R, std::vector<double>& pointwise);
@@ -327,6 +335,14 @@ struct SentenceContext {
 };
 std::string sentence(const std::string& id, const Model& before, const std::vector<std::pair<std::string, double>>& values,
                      const std::vector<std::pair<std::string, double>>& sigma, const SentenceContext& ctx);
+// An end stop proposed from pr.stray (position from the reversals' level, restitution from their speeds),
+// appended to rep.effects_found for the held-out validation; nothing when the model has one already.
+void end_stop_stage(const Prep& pr, const FitOptions& o, const SentenceContext& sc, const Model& after, FitReport& rep);
+// The end stop's parameters (xS, kS, cS, side) from the reversals with use[k] set (all when empty): first
+// estimates from their level, dwell and restitution, then refined on the simulation error of short windows
+// around them. Empty when fewer than three are used. sigma_xS, if given: xS's standard error.
+std::vector<std::pair<std::string, double>> end_stop_values(const Prep& pr, const Model& m, const std::vector<char>& use, double rtol,
+                                                            double* sigma_xS = nullptr);
 
 // Base parameters that `fit` mode estimates: name and address in the model.
 struct BaseParam {

@@ -146,7 +146,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
             const std::size_t a = pr.run_start[r], b = pr.run_last(a) + 1;
             const std::vector<double> t(d.t.begin() + static_cast<long>(a), d.t.begin() + static_cast<long>(b));
             const std::vector<double> x(d.x.begin() + static_cast<long>(a), d.x.begin() + static_cast<long>(b));
-            for (ImpactObs im : find_impacts(t, x, pr.sigma_x, m.sensor_gain() * m.p.xI + m.sensor_offset())) {
+            for (ImpactObs im : find_impacts(t, x, pr.sigma_x, m.measure(m.p.xI))) {
                 im.i_first += a;
                 im.i_last += a;
                 pr.impacts.push_back(im);
@@ -160,6 +160,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
             for (std::size_t j = a; j <= b; ++j) pr.zone[j] = 1;
         }
     }
+    find_stray_impacts(d, m, pr);
     // Rows: window centres whose kernel (and the velocity estimates under it) stay clear of every impact,
     // and that do not linger at v = 0: there the sign of the estimated velocity, and so the dry friction
     // force, is unknown (a cart at rest or creeping).
@@ -173,7 +174,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
         for (const auto& im : pr.impacts) lev.push_back(im.level);
         // The lower of the measured flat tops and the model's own bumper: past the latter the model's
         // contact force acts, and a bumper or sensor that is off would fill the residual with it.
-        const double model_level = m.sensor_gain() * m.p.xI + m.sensor_offset();
+        const double model_level = m.measure(m.p.xI);
         const double level = lev.size() >= 3 ? std::min(median(lev), model_level) : model_level;
         const double near = 8.0 * pr.sigma_x + 2e-6;
         for (std::size_t i = 0; i < n; ++i)
@@ -187,7 +188,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     if (m.p.T > 0) {
         for (std::size_t i = 0; i + 1 < n; ++i) {
             if (!(pr.vs[i] * pr.vs[i + 1] <= 0) || !std::isfinite(pr.vs[i])) continue;
-            const double x = (d.x[i] - m.sensor_offset()) / m.sensor_gain();
+            const double x = m.true_x(d.x[i]);
             double F = -spring_magnet(m.p, x).F;
             if (pr.phi_forced) F += unbalance_force(m.p, pr.phi[i], pr.omega[i]);
             else F += m.p.input_gain * pr.u[i];
@@ -218,13 +219,32 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     return pr;
 }
 
+namespace {
+// The true positions and speeds of the samples the rows' windows touch, through a curved sensor's inverse
+// (an affine map is applied in place, as a scale on the weak form).
+void true_states(const Prep& pr, const Model& m, std::vector<double>& xt, std::vector<double>& vt) {
+    xt.assign(pr.n, 0.0);
+    vt.assign(pr.n, 0.0);
+    for (std::size_t j = pr.j_lo; j < pr.j_hi; ++j) {
+        xt[j] = m.true_x(pr.data->x[j]);
+        vt[j] = pr.vs[j] / m.measure_slope(xt[j]);
+    }
+}
+}  // namespace
+
 void residual(const Prep& pr, const Model& m, Eigen::VectorXd& R, std::vector<double>& pw) {
     const MeasuredData& d = *pr.data;
     const double g = m.sensor_gain(), o = m.sensor_offset(), ig = 1.0 / g;
     pw.resize(pr.n);
     const bool input = !pr.phi_forced;
+    // A curved sensor: the weak form's acceleration comes from the true positions, not a scaled reading.
+    const bool curved = m.sensor_curved();
+    std::vector<double> xt, vt;
+    if (curved) true_states(pr, m, xt, vt);
+    const std::vector<double>& xa = curved ? xt : d.x;
+    const double scale = curved ? 1.0 : ig;
     for (std::size_t j = pr.j_lo; j < pr.j_hi; ++j) {
-        const double x = (d.x[j] - o) * ig, v = pr.vs[j] * ig;
+        const double x = curved ? xt[j] : (d.x[j] - o) * ig, v = curved ? vt[j] : pr.vs[j] * ig;
         const ForceTerms f = force_terms(m.p, d.t[j], x, v, pr.phi[j], pr.omega[j], pr.alpha[j]);
         double val = -f.net();
         if (input) val -= m.p.input_gain * pr.u[j];
@@ -237,10 +257,10 @@ void residual(const Prep& pr, const Model& m, Eigen::VectorXd& R, std::vector<do
         const std::size_t a = pr.rows[r] - static_cast<std::size_t>(H);
         double acc = 0, frc = 0;
         for (std::size_t k = 0; k < len; ++k) {
-            acc += pr.K.w2[k] * d.x[a + k];
+            acc += pr.K.w2[k] * xa[a + k];
             frc += pr.K.w[k] * pw[a + k];
         }
-        R[static_cast<Eigen::Index>(r)] = m.p.m * acc * ig + frc;
+        R[static_cast<Eigen::Index>(r)] = m.p.m * acc * scale + frc;
     }
 }
 
@@ -252,8 +272,12 @@ void effect_column(const Prep& pr, const Model& m, const EffectInstance& e, int 
     auto plus = e.p, minus = e.p;
     plus[static_cast<std::size_t>(k)] += h;
     minus[static_cast<std::size_t>(k)] -= h;
+    const bool curved = m.sensor_curved();
+    std::vector<double> xt, vt;
+    if (curved) true_states(pr, m, xt, vt);
     for (std::size_t j = pr.j_lo; j < pr.j_hi; ++j) {
-        const ForceContext c{d.t[j], (d.x[j] - o) * ig, pr.vs[j] * ig, pr.phi[j], pr.omega[j], pr.alpha[j], m.p.m0e, m.p.xI};
+        const double x = curved ? xt[j] : (d.x[j] - o) * ig, v = curved ? vt[j] : pr.vs[j] * ig;
+        const ForceContext c{d.t[j], x, v, pr.phi[j], pr.omega[j], pr.alpha[j], m.p.m0e, m.p.xI};
         pw[j] = (e.law->force(plus.data(), c).F - e.law->force(minus.data(), c).F) / (2 * h);
     }
     const int H = pr.K.H;

@@ -57,10 +57,11 @@ void run(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, double 
 
 double sse(const Prep& pr, const Model& m, std::size_t i0, const std::vector<double>& sim, std::vector<double>* e) {
     const double g = m.sensor_gain(), o = m.sensor_offset();
+    const bool curved = m.sensor_curved();
     double s = 0;
     if (e) e->resize(sim.size());
     for (std::size_t k = 0; k < sim.size(); ++k) {
-        const double r = g * sim[k] + o - pr.data->x[i0 + k];
+        const double r = (curved ? m.measure(sim[k]) : g * sim[k] + o) - pr.data->x[i0 + k];
         s += r * r;
         if (e) (*e)[k] = r;
     }
@@ -80,7 +81,8 @@ std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t 
     std::vector<double> best;
     if (i1 <= i0) return best;
     const double g = m.sensor_gain(), o = m.sensor_offset();
-    double x = (pr.xs[i0] - o) / g, v = pr.vs[i0] / g;
+    const bool curved = m.sensor_curved();
+    double x = m.true_x(pr.xs[i0]), v = pr.vs[i0] / m.measure_slope(x);
     run(pr, m, i0, i1, x, v, rtol, best);
     // The refinement fits the initial state to samples [i0, refine_end] only.
     const std::size_t nfit = std::min(i1, refine_end) - i0 + 1;
@@ -99,7 +101,8 @@ std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t 
             Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
             Eigen::Vector2d b = Eigen::Vector2d::Zero();
             for (std::size_t k = 0; k < std::min(nfit, best.size()); ++k) {
-                const double jx = g * (sx[k] - best[k]) / dx, jv = g * (sv[k] - best[k]) / dv;
+                const double gk = curved ? m.measure_slope(best[k]) : g;
+                const double jx = gk * (sx[k] - best[k]) / dx, jv = gk * (sv[k] - best[k]) / dv;
                 if (!std::isfinite(jx) || !std::isfinite(jv)) continue;
                 A(0, 0) += jx * jx;
                 A(0, 1) += jx * jv;
@@ -126,7 +129,7 @@ std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t 
             v = nv;
         }
     }
-    for (double& s : best) s = g * s + o;
+    for (double& s : best) s = curved ? m.measure(s) : g * s + o;
     return best;
 }
 
@@ -274,8 +277,8 @@ std::vector<std::pair<double, double>> free_run_sections(const Prep& pr, const M
         Simulator sim(tol);
         State s;
         s.t = d.t[a];
-        s.x = (pr.xs[a] - o) / g;
-        s.v = pr.vs[a] / g;
+        s.x = m.true_x(pr.xs[a]);
+        s.v = pr.vs[a] / m.measure_slope(s.x);
         Simulator::make_consistent(m.p, drive, s);
         const std::size_t before = out.size();
         Sections obs(drive, out);
@@ -284,7 +287,7 @@ std::vector<std::pair<double, double>> free_run_sections(const Prep& pr, const M
         } catch (const SimulationStalled&) {
             // the sections up to the stall are what this model gives
         }
-        for (std::size_t k = before; k < out.size(); ++k) out[k].second = g * out[k].second + o;
+        for (std::size_t k = before; k < out.size(); ++k) out[k].second = m.sensor_curved() ? m.measure(out[k].second) : g * out[k].second + o;
     }
     return out;
 }

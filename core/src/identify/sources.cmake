@@ -4,6 +4,7 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/loader.cpp
   src/identify/signal.cpp
   src/identify/impacts.cpp
+  src/identify/stops.cpp
   src/identify/stats.cpp
   src/identify/residual.cpp
   src/identify/catalogue.cpp

@@ -64,7 +64,7 @@ MeasuredData synthesize(const Model& m, const SynthOptions& o) {
     for (std::size_t k = 0; k < n; ++k) {
         const double tk = static_cast<double>(k) / o.rate;
         sim.advance(m.p, drive, s, tk);
-        double x = g * s.x + off + o.noise * noise(rng);
+        double x = (m.sensor_curved() ? m.measure(s.x) : g * s.x + off) + o.noise * noise(rng);
         if (o.quantum > 0) x = std::round(x / o.quantum) * o.quantum;
         double phi = drive.phi(tk);
         if (phi_q > 0) phi = std::round(phi / phi_q) * phi_q;

@@ -84,8 +84,7 @@ WellReport well_report(const Model& m, const std::vector<FoundEffect>& found, co
     WellReport w;
     const MeasuredData& d = *pr.data;
     const auto [xmin_it, xmax_it] = std::minmax_element(d.x.begin(), d.x.end());
-    const double g = m.sensor_gain(), o = m.sensor_offset();
-    const double a = (*xmin_it - o) / g, b = (*xmax_it - o) / g, span = std::max(b - a, 1e-9);
+    const double a = m.true_x(*xmin_it), b = m.true_x(*xmax_it), span = std::max(b - a, 1e-9);
     const double lo = a - 0.5 * span, hi = b + 0.5 * span;
     const Shape s0 = shape(m, lo, hi);
     if (s0.wells.empty()) return w;
@@ -148,7 +147,7 @@ WellReport well_report(const Model& m, const std::vector<FoundEffect>& found, co
             continue;
         }
         std::size_t left = 0, right = 0;
-        for (std::size_t i = first; i <= last; ++i) ((d.x[i] - o) / g < s0.hill ? left : right)++;
+        for (std::size_t i = first; i <= last; ++i) (m.true_x(d.x[i]) < s0.hill ? left : right)++;
         const double n = static_cast<double>(last - first + 1);
         w.run_wells.push_back(left > 0.95 * n ? "left" : right > 0.95 * n ? "right" : "both");
     }
