@@ -55,7 +55,7 @@ TEST_CASE("audit: a baseline fit never hands back parameters worse than those gi
     // A3 data fitted from A1's parameters: the fitted baseline is far better than the one given, and stays.
     const id::MeasuredData a3 = id::synthesize(id::resolve_fit_model("A3H", id::Forcing::Unbalance), short_run(1));
     const id::FitReport r3 = id::run_fit(a3, a1h, fo);
-    CHECK(r3.baseline == "fit");
+    CHECK(r3.baseline == id::Baseline::Fit);
     CHECK(r3.error_after.shooting_rms_1_m < 0.1 * id::evaluate_model(a3, a1h, fo).shooting_rms_1_m);
 }
 
@@ -97,7 +97,7 @@ TEST_CASE("audit: an impact-law effect kept is the one validated, refitted again
     REQUIRE_FALSE(r.effects_found.empty());
     for (const auto& f : r.effects_found) {
         CAPTURE(f.id);
-        CHECK(f.evidence == "impact law");
+        CHECK(f.evidence == id::Evidence::ImpactLaw);
         if (f.id == "bumper_offset") CHECK(std::abs(f.parameters.front().second) >= 5.0 * f.sigma.front().second);
     }
     CHECK(r.error_after.shooting_rms_1_m < 0.5 * r.error_before.shooting_rms_1_m);
