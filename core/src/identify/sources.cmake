@@ -7,6 +7,7 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/stats.cpp
   src/identify/residual.cpp
   src/identify/catalogue.cpp
+  src/identify/base_effects.cpp
   src/identify/shooting.cpp
   src/identify/fit/run_fit.cpp
   src/identify/fit/baseline.cpp
