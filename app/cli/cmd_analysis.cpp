@@ -1,4 +1,4 @@
-// Commands beyond the sweep (issue 9): orbit, continue, lyapunov, basins. Thin over core/analysis.
+// Commands beyond the sweep: orbit, continue, lyapunov, basins. Thin over core/analysis.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

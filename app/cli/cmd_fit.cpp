@@ -154,12 +154,12 @@ int cmd_fit(const std::vector<std::string>& argv) {
     }
     identify::write_report(r, dir, o.plots);
 
-    if (r.x_unit == "m")
+    if (r.metres())
         std::printf("%s: %zu samples, model %s (%s), sensor noise %.3g um\n", path.c_str(), r.samples, r.before.p.name.c_str(),
-                    r.baseline.c_str(), r.sigma_x * 1e6);
+                    identify::baseline_name(r.baseline), r.sigma_x * 1e6);
     else
         std::printf("%s: %zu samples, model %s (%s), sensor noise %.3g (%s)\n", path.c_str(), r.samples, r.before.p.name.c_str(),
-                    r.baseline.c_str(), r.sigma_x, r.x_unit.c_str());
+                    identify::baseline_name(r.baseline), r.sigma_x, r.x_unit());
     if (r.effects_found.empty()) std::printf("effects found: none\n");
     for (const auto& f : r.effects_found)
         std::printf("effect %-22s explains %5.1f %%  z = %6.1f  %s\n", f.id.c_str(), 100 * f.explained_fraction, f.z, f.sentence.c_str());
@@ -167,7 +167,7 @@ int cmd_fit(const std::vector<std::string>& argv) {
     if (r.horizon_periods > 0)
         std::printf("validated on %zu held-out windows of %.3g forcing periods (within the predictability horizon): shooting RMS %.3g -> %.3g %s\n",
                     r.validation_windows, r.horizon_periods, r.validation_rms_before_m, r.validation_rms_after_m,
-                    r.x_unit == "m" ? "m" : r.x_unit.c_str());
+                    r.x_unit());
     if (r.data_horizon_measured && r.data_regular)
         std::printf("the record is regular: nearby returns stay together for 10 forcing periods (judged over whole periods)\n");
     else if (r.data_horizon_measured)
@@ -185,13 +185,13 @@ int cmd_fit(const std::vector<std::string>& argv) {
     if (!r.wells_from_data.empty()) std::printf("wells from the data: %s\n", r.wells_from_data.c_str());
     const auto& wa = r.wells_after;
     if (wa.wells.size() == 2 && std::isfinite(wa.hill_x)) {
-        const double s = r.x_unit == "m" ? 1e3 : 1.0;
-        const std::string depth_unit = r.force_unit == "N" ? "J" : "(data units/s)^2 per unit mass";
+        const double s = r.metres() ? 1e3 : 1.0;
+        const std::string depth_unit = r.metres() ? "J" : "(data units/s)^2 per unit mass";
         for (int k = 0; k < 2; ++k) {
             const auto& w = wa.wells[static_cast<std::size_t>(k)];
             // A Duffing model in the data's units has m = 1: its depths are per unit mass, not joules.
             std::printf("%s well: x = %.4g +/- %.2g %s, depth %.4g +/- %.2g %s, omega %.4g +/- %.2g rad/s (%.4g Hz)%s\n", k ? "right" : "left ",
-                        w.x * s, w.sx * s, r.x_unit == "m" ? "mm" : r.x_unit.c_str(), w.depth, w.sdepth, depth_unit.c_str(), w.omega,
+                        w.x * s, w.sx * s, r.metres() ? "mm" : r.x_unit(), w.depth, w.sdepth, depth_unit.c_str(), w.omega,
                         w.somega, w.omega / (2 * 3.141592653589793), w.beyond_bumper ? " (beyond the bumper)" : "");
         }
         std::printf("wells, right minus left: depth %.3g +/- %.2g %s, omega %.3g +/- %.2g rad/s (%zu run%s:", wa.depth_asym, wa.sdepth_asym,
@@ -199,8 +199,8 @@ int cmd_fit(const std::vector<std::string>& argv) {
         for (const auto& rw : wa.run_wells) std::printf(" %s", rw.c_str());
         std::printf(")\n");
     }
-    const std::string xu = r.x_unit == "m" ? "[m]" : "[" + r.x_unit + "]";
-    const std::string fu = r.force_unit == "N" ? "[N]" : "[force units]";
+    const std::string xu = std::string("[") + r.x_unit() + "]";
+    const std::string fu = r.metres() ? "[N]" : "[force units]";
     // Columns: the model given, the fitted baseline (when the gate kept one) and the model written.
     const bool bc = r.baseline_column;
     const auto& eb = r.error_baseline;

@@ -110,7 +110,7 @@ private:
     void rig_mouse(ImVec2 image_min, float fbs);        // drag the cart (left button): hold, then let go at v = 0
     void plot_click(ClickDelay& delay, bool hovered, bool clicked, double x, double v);
     static ImU32 companion_color(float alpha);          // the companion's colour in every plot
-    // app_replay.cpp: replay of the recent past and clip export (issue 11)
+    // app_replay.cpp: replay of the recent past and clip export
     bool enter_replay();                                // pauses the simulation; false if nothing is recorded
     void leave_replay();                                // back to live (the simulation as it was before)
     void continue_from_replay();                        // the run restarts from the replayed instant
@@ -126,7 +126,7 @@ private:
     void draw_clip_window();
     bool start_clip(const std::string& dir, double seconds, std::string& error);
     void capture_clip_frame(int fw, int fh);            // frame(), after rendering: one frame of the clip
-    // app_session.cpp: session files (issue 11)
+    // app_session.cpp: session files
     Session current_session() const;
     void apply_session(const Session& s);
     bool save_session_file(const std::string& path);
@@ -139,7 +139,7 @@ private:
     void apply_analysis(const AnalysisAction& a);       // analysis_hooks.cpp: a click's commands
     BifurcationContext bifurcation_context();           // bifurcation_hooks.cpp
     std::size_t trail_first() const;   // the first sample of the phase portrait's trail
-    // tiles.cpp: the layout (layout.hpp) drawn: tiles, tabs, hide and maximise, presentation mode (issue 11)
+    // tiles.cpp: the layout (layout.hpp) drawn: tiles, tabs, hide and maximise, presentation mode
     void draw_tile(const Tile& tile);
     void draw_panel(PanelId p);
     void draw_presentation_bar();
@@ -166,7 +166,7 @@ private:
     float ramp_target_ = 25.0f, ramp_rate_ = 0.05f;   // its inputs [rad/s], [rad/s per s]
     double energy_floor_ = 0;          // [J] the well's floor V_min of params_ (the energy bar's zero)
     std::string energy_floor_for_;     // the version it was computed for
-    LiveLyapunov lyapunov_live_;       // lambda_max at the running omega (issue 9)
+    LiveLyapunov lyapunov_live_;       // lambda_max at the running omega
     CompanionTrack companion_;         // the twin or the ghost (source 1 records)
     CompanionMode companion_mode_ = CompanionMode::Off;
     int ghost_impact_ = 2;             // the ghost's impact law, an index into impact_models()

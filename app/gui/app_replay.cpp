@@ -1,4 +1,4 @@
-// Replay and clip export (issue 11, "Record and replay"): the App's side of replay.hpp and clip_writer.hpp.
+// Replay and clip export: the App's side of replay.hpp and clip_writer.hpp.
 // While replaying, the simulation is paused and every panel draws traj_, sections_ and last_ as they were at
 // the cursor: begin_replay_frame() rewinds the histories to it (History::rewind_to keeps indices and
 // sequence numbers, so the incremental plots stay valid) and end_replay_frame() gives the live ones back,

@@ -1,4 +1,4 @@
-// Session files (issue 11): the App's side of session.hpp. current_session() gathers what the window shows;
+// Session files: the App's side of session.hpp. current_session() gathers what the window shows;
 // apply_session() sets it through the same actions as the controls (commands to the simulation thread) and
 // restarts the run from the saved state. A file is validated whole before anything changes. UI thread only.
 #include <GLFW/glfw3.h>

@@ -1,4 +1,4 @@
-// The bifurcation diagram's view (issue 11 defect 4, issue 9's Lyapunov curve): the density image of the
+// The bifurcation diagram's view, with the Lyapunov curve under it: the density image of the
 // section points over omega, filling column by column while its worker runs (BifurcationJob); the omega
 // range typed in or dragged as a box (right mouse button) on the diagram; the live section points of the
 // running omega over it; a note when the model or xI has changed since; a legend of the density colours;

@@ -1,4 +1,4 @@
-// A clip exported from replay (issue 11): numbered PNG frames through the core's PNG writer, and an MP4 video
+// A clip exported from replay: numbered PNG frames through the core's PNG writer, and an MP4 video
 // where ffmpeg is on PATH (raw RGB frames piped to it). Everything goes into a hidden staging folder that
 // is renamed to its final name only when the clip is complete, so a failed or cancelled export leaves
 // nothing half-written. GL-free (the app reads the framebuffer and hands the pixels over); UI thread only.

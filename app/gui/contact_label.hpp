@@ -1,6 +1,6 @@
 // The one sentence the rig's badge and the status bar both show for the cart's contact with the bumper,
-// from the same sample (defect 8 of issue 11: the rig said "on the compliant bumper" while the status bar
-// said free flight). A compliant law has no regimes II and III: pressing it is regime I with F_I > 0.
+// from the same sample, so the two can never disagree (the rig saying "on the compliant bumper" while the
+// status bar says free flight). A compliant law has no regimes II and III: pressing it is regime I with F_I > 0.
 // GL-free.
 #pragma once
 

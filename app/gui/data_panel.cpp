@@ -240,12 +240,12 @@ void DataPanel::draw_fit_row(const DataPanelContext& ctx) {
         }
     } else if (report_) {
         ImGui::SameLine();
-        if (report_->x_unit == "m")
+        if (report_->metres())
             ImGui::TextDisabled("fit of %s: %.2f s, noise %.1f um, %zu impacts", fit_model_name_.c_str(), report_->runtime_s,
                                 report_->sigma_x * 1e6, report_->impacts.size());
         else   // a plain Duffing model works in the data's own units
             ImGui::TextDisabled("fit of %s: %.2f s, noise %.3g (%s)", fit_model_name_.c_str(), report_->runtime_s, report_->sigma_x,
-                                report_->x_unit.c_str());
+                                report_->x_unit());
     }
     if (!error_.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 80, 70, 255));
@@ -276,7 +276,7 @@ void DataPanel::draw_effects() {
         }
         ImGui::Indent();
         ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-        ImGui::TextWrapped("%s (%s)", f.sentence.c_str(), f.evidence.c_str());
+        ImGui::TextWrapped("%s (%s)", f.sentence.c_str(), identify::evidence_name(f.evidence));
         ImGui::PopStyleColor();
         ImGui::Unindent();
     }

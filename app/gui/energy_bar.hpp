@@ -1,4 +1,4 @@
-// The energy bar (issue 11, teaching overlays): where the energy put in went, as two stacked bars of the
+// The energy bar, a teaching overlay: where the energy put in went, as two stacked bars of the
 // same length when the balance closes. In: the energy at the start of the balance and the work of the
 // unbalance. Out: kinetic, potential (above the bottom of the well) and what the resistance and the bumper
 // dissipated. The numbers come from the core's EnergyLedger on the sim thread; this only lays them out.

@@ -1,4 +1,4 @@
-// The grazing monitor (issue 9): how close the orbit comes to the bumper, period by period, so that a
+// The grazing monitor: how close the orbit comes to the bumper, period by period, so that a
 // grazing bifurcation can be seen coming: the distance xI - max x over the last forcing period goes to 0
 // from a clear orbit, the impact velocity goes to 0 from an impacting one. Fed with the core simulator's
 // pieces and events (exact dense output, not the display samples, which miss a 0.1 ms contact of C1) on the

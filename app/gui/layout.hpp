@@ -1,4 +1,4 @@
-// Where the visualiser's tiles go (issue 11, defect 5): the pure arithmetic of the window's layout, GL- and
+// Where the visualiser's tiles go: the pure arithmetic of the window's layout, GL- and
 // ImGui-free so that it is unit-tested (tests/app/layout_test.cpp). Given the viewport, the UI scale, which
 // panels are shown or maximised and the mode, it returns rectangles; App::layout_and_draw only draws them.
 //
@@ -91,7 +91,7 @@ private:
 bool overlaps(const Rect& a, const Rect& b);
 bool contains(const Rect& outer, const Rect& inner);
 
-// The rig's displacement magnification (issue 11, defect 6), in the drawing only: positions are magnified
+// The rig's displacement magnification, in the drawing only: positions are magnified
 // about x = 0 (the hilltop, where the springs are relaxed and the magnets face each other) for the cart and
 // the bumper alike, so a contact still looks like one. The end walls move out when the magnified travel
 // needs the room.

@@ -1,4 +1,4 @@
-// The largest Lyapunov exponent at the running omega, live (issue 9): recomputed on a worker from the latest
+// The largest Lyapunov exponent at the running omega, live: recomputed on a worker from the latest
 // published state every few seconds, so the state panel says whether what the class watches is chaotic
 // (lambda > 0) or settles (lambda < 0). The computation is the core's analysis::lyapunov. GL-free.
 #pragma once

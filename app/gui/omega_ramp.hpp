@@ -1,4 +1,4 @@
-// The live omega ramp (issue 11, teaching overlays): the simulation's omega moves slowly from where it is to a
+// The live omega ramp, a teaching overlay: the simulation's omega moves slowly from where it is to a
 // target (the engine's CmdKind::Ramp, the paper's EF protocol run live) while the rig keeps running, and the
 // section points it passes are collected as (omega, x) to be drawn over the bifurcation diagram as it grows.
 // GL-free; UI thread.

@@ -19,7 +19,7 @@ struct Options {
     double warmup = 0;           // [s] of simulated time run at 100x first (a populated Poincare map at once)
     bool light = false;          // theme
     double ui_scale = 0;         // 0: from the monitor's content scale
-    // The layout (issue 11): presentation mode and its plot, panels hidden or maximised, the rig's
+    // The layout: presentation mode and its plot, panels hidden or maximised, the rig's
     // displacement magnification (0: the mode's default, x1 normal, x3 presenting).
     bool presentation = false;
     std::string presentation_plot = "phase";
@@ -60,7 +60,7 @@ struct Options {
     bool continuation = false;   // --continuation: the continued branches over the diagram
     bool small_plane = false;    // --small-plane: a 60 x 30 (omega, xI) plane on a worker
     bool basins = false;         // --basins: the basins at --omega
-    // Sessions and clips (issue 11).
+    // Sessions and clips.
     std::string session;         // --session FILE: load at start (validated before the window opens)
     std::string save_session;    // --save-session FILE: with --frames, written at the end
     std::string clip_out;        // --clip-out DIR: with --frames, export the last --clip-seconds as a clip

@@ -1,4 +1,4 @@
-// A parameter plane as the visualiser shows it (issue 10): a scan CSV (`impactlab scan`: the two axis names,
+// A parameter plane as the visualiser shows it: a scan CSV (`impactlab scan`: the two axis names,
 // then one column per measure, the first axis fastest) or a plane computed by the core's scan_rows, as a
 // regular grid; where a click lands on it; where the bifurcation diagram cuts it. GL-free, UI thread
 // (loading runs on whatever thread calls it).

@@ -1,4 +1,4 @@
-// Replay of the recent past (issue 11, "Record and replay"): a cursor in simulated time over the UI's
+// Replay of the recent past: a cursor in simulated time over the UI's
 // trajectory history (History<SimMsg>, about 9 min at 1x), which the panels show as it was at that time,
 // and the plan of a clip exported from it. The simulation thread is paused meanwhile; nothing here talks
 // to it. GL-free, UI thread only.

@@ -1,4 +1,4 @@
-// Session files (issue 11): the visualiser's whole state as JSON, saved and loaded by the app (File menu,
+// Session files: the visualiser's whole state as JSON, saved and loaded by the app (File menu,
 // Ctrl+S / Ctrl+O, --session / --save-session). This part is GL-free: the state as a plain struct, its JSON
 // and the validation of a file, which either yields a complete Session or a SessionError naming the file,
 // the key (and the line of a parse error) and the problem. The app applies a Session only once it is valid,

@@ -39,7 +39,7 @@ inline constexpr double kMaxAbsXI = 0.020;     // [m]
 inline constexpr double kMinRampRate = 1e-3, kMaxRampRate = 2.0;   // [rad/s per s] of the live omega ramp
 // The bumper moves to a new xI at this speed in wall-clock time (sim time: divided by the real-time factor),
 // pushing the cart ahead of it in steps of at most kBumperPush: x(t) stays continuous instead of stepping
-// by the slider's jump each frame (defect 8 of issue 11). Paused, it moves at once.
+// by the slider's jump each frame (a cart seen to teleport). Paused, it moves at once.
 inline constexpr double kBumperWallSpeed = 0.1;   // [m/s]
 inline constexpr double kBumperPush = 1e-4;       // [m]
 // How far the mouse may put the cart: the rail's travel, as a reset allows [m].

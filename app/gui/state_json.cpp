@@ -78,7 +78,7 @@ bool App::write_state_json(const std::string& path) {
         j["regime_label"] = contact_label(params_, last_.regime, last_.force);   // the rig's and the status bar's
         j["x"] = number(last_.x);
         j["v"] = number(last_.v);
-        // The largest jump of x between two samples in the x(t) strip's window [m] (defect 8: a bumper moved
+        // The largest jump of x between two samples in the x(t) strip's window [m] (a bumper moved
         // into the cart made a staircase of x(t)).
         double step = 0;
         const std::size_t n = traj_.size();

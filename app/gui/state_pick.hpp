@@ -1,4 +1,4 @@
-// The mouse sets the state (issue 11): a click in the phase portrait gives (x, v), in the potential well x
+// The mouse sets the state: a click in the phase portrait gives (x, v), in the potential well x
 // at v = 0, a drag of the cart holds it at the mouse. What is asked is checked here before it becomes a
 // SimCommand: kept on the rail, never beyond the bumper (put on it, with a note the UI shows as a toast).
 // And a plain click becomes a state only once no second click has made it a double-click (which gives the

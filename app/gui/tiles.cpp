@@ -1,4 +1,4 @@
-// The visualiser's tiles on the main viewport (issue 11, defect 5): App::layout_and_draw asks layout.cpp
+// The visualiser's tiles on the main viewport: App::layout_and_draw asks layout.cpp
 // for rectangles and draws each panel in its tile; a tile with several panels shows them as tabs. Each
 // tile's title bar has hide and maximise buttons (a double-click on the title maximises too); presentation
 // mode is the rig and one plot under a slim bar of controls. UI thread only.

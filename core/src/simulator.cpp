@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "impactlab/forces.hpp"
+#include "impactlab/rig.hpp"
 
 namespace impactlab {
 
@@ -33,34 +34,13 @@ constexpr double kRestartStep = 1e-4;   // [s] first step after a discontinuity;
 // the real axis); kept below that bound so that a step never hovers at the edge of stability.
 constexpr double kExplicitStabilityLimit = 2.0;
 
-// Sum of the extra effects at one instant.
-inline EffectForce effects_at(const Params& p, const ForceContext& ctx) {
-    EffectForce sum;
-    for (const auto& e : p.effects) {
-        const EffectForce f = e.law->force(e.p.data(), ctx);
-        sum.F += f.F;
-        sum.dF_dx += f.dF_dx;
-        sum.dF_dv += f.dF_dv;
-        sum.dF_dt += f.dF_dt;
-    }
-    return sum;
-}
-
 // Eq. (1) as a first-order system y = (x, v) for the stepper, in free flight or against a compliant bumper.
 struct RigSystem {
     const Params& p;
     const Drive& d;
     bool compliant;
 
-    Vec2 rhs(double t, const Vec2& y) const {
-        const double w = d.omega(t), phi = d.phi(t);
-        double F = -resistance(p, y[1]).F - spring_magnet(p, y[0]).F;
-        if (p.m0e != 0.0) F += unbalance_force(p, phi, w);   // an input-driven model has no unbalance
-        if (p.input_gain != 0.0) F += p.input_gain * d.input(t);
-        if (compliant) F -= p.impact->contact(p.ip.data(), y[0] - p.xI, y[1]).F;
-        if (!p.effects.empty()) F += effects_at(p, {t, y[0], y[1], phi, w, d.alpha(t), p.m0e, p.xI}).F;
-        return {y[1], F / p.m};
-    }
+    Vec2 rhs(double t, const Vec2& y) const { return rig_rhs(p, d, t, y, compliant); }
 
     // Largest rate of the linearised system [1/s]: friction (and contact damping), contact stiffness.
     double stiffness(const Vec2& y) const {
@@ -74,22 +54,7 @@ struct RigSystem {
     }
 
     void jacobian(double t, const Vec2& y, Mat2& J, Vec2& dfdt) const {
-        const double w = d.omega(t), phi = d.phi(t), al = d.alpha(t);
-        double dFdx = -spring_magnet(p, y[0]).dF, dFdv = -resistance(p, y[1]).dF;
-        double dFdt = p.m0e * (2.0 * w * al * std::sin(phi) + w * w * w * std::cos(phi)) + p.input_gain * d.input_rate(t);
-        if (compliant) {
-            const ContactForce c = p.impact->contact(p.ip.data(), y[0] - p.xI, y[1]);
-            dFdx -= c.dF_dh;
-            dFdv -= c.dF_dhdot;
-        }
-        if (!p.effects.empty()) {
-            const EffectForce e = effects_at(p, {t, y[0], y[1], phi, w, al, p.m0e, p.xI});
-            dFdx += e.dF_dx;
-            dFdv += e.dF_dv;
-            dFdt += e.dF_dt;
-        }
-        J << 0.0, 1.0, dFdx / p.m, dFdv / p.m;
-        dfdt << 0.0, dFdt / p.m;
+        rig_jacobian(p, d, t, y, compliant, ContactSlope::Secant, J, &dfdt);
     }
 };
 
@@ -145,13 +110,8 @@ double bumper_force(const Params& p, const Drive& d, const State& s) {
 }
 
 ForceTerms force_terms(const Params& p, double t, double x, double v, double phi, double omega, double alpha) {
-    ForceTerms f;
-    f.resistance = resistance(p, v).F;
-    f.spring_magnet = spring_magnet(p, x).F;
-    f.impact = p.compliant() ? p.impact->contact(p.ip.data(), x - p.xI, v).F : 0.0;
-    f.unbalance = unbalance_force(p, phi, omega);
-    if (!p.effects.empty()) f.effects = effects_at(p, {t, x, v, phi, omega, alpha, p.m0e, p.xI}).F;
-    return f;
+    const RigForces r = rig_forces(p, t, x, v, phi, omega, alpha, 0.0, p.compliant());
+    return {r.resistance, r.spring_magnet, r.impact, r.unbalance, r.effects};
 }
 
 void Simulator::make_consistent(const Params& p, const Drive& d, State& s) {

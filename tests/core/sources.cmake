@@ -5,6 +5,7 @@ set(IMPACTLAB_CORE_TEST_SOURCES
   core/params_test.cpp
   core/params_json_test.cpp
   core/simulator_test.cpp
+  core/integrator_order_test.cpp
   core/energy_test.cpp
   core/impact_test.cpp
   core/sweep_test.cpp

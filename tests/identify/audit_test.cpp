@@ -55,7 +55,7 @@ TEST_CASE("audit: a baseline fit never hands back parameters worse than those gi
     // A3 data fitted from A1's parameters: the fitted baseline is far better than the one given, and stays.
     const id::MeasuredData a3 = id::synthesize(id::resolve_fit_model("A3H", id::Forcing::Unbalance), short_run(1));
     const id::FitReport r3 = id::run_fit(a3, a1h, fo);
-    CHECK(r3.baseline == "fit");
+    CHECK(r3.baseline == id::Baseline::Fit);
     CHECK(r3.error_after.shooting_rms_1_m < 0.1 * id::evaluate_model(a3, a1h, fo).shooting_rms_1_m);
 }
 
@@ -97,7 +97,7 @@ TEST_CASE("audit: an impact-law effect kept is the one validated, refitted again
     REQUIRE_FALSE(r.effects_found.empty());
     for (const auto& f : r.effects_found) {
         CAPTURE(f.id);
-        CHECK(f.evidence == "impact law");
+        CHECK(f.evidence == id::Evidence::ImpactLaw);
         if (f.id == "bumper_offset") CHECK(std::abs(f.parameters.front().second) >= 5.0 * f.sigma.front().second);
     }
     CHECK(r.error_after.shooting_rms_1_m < 0.5 * r.error_before.shooting_rms_1_m);
@@ -177,9 +177,9 @@ TEST_CASE("audit: x read 3 ms late is a sensor delay, not a phase offset; undela
     CHECK(r.validation_rms_after_m < 1.5 * r.sigma_x);
 }
 
-TEST_CASE("audit: a curved sensor scale (x read as x + s x^2) is not passed off as the noise floor") {
+TEST_CASE("audit: a curved sensor scale (x read as x + s x^2) is named sensor_curvature, not a gain error") {
     // 30 um at 15 mm: a sensor gain absorbs its linear part over a one-sided range and the equation error
-    // reaches its floor, but the shooting error stays well above the sensor noise; the verdict must say so.
+    // reaches its floor, so only the curve itself may be named; the noise floor is claimed only with it.
     const id::Model a1h = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
     id::SynthOptions so = short_run(11);
     so.duration = 40.0;
@@ -189,6 +189,14 @@ TEST_CASE("audit: a curved sensor scale (x read as x + s x^2) is not passed off 
     id::FitOptions fo;
     fo.plots = false;
     const id::FitReport r = id::run_fit(d, a1h, fo);
-    CHECK_MESSAGE(r.verdict.find("at its noise floor") == std::string::npos, r.verdict);
-    CHECK(r.verdict.find("misses something") != std::string::npos);
+    REQUIRE(r.effects_found.size() == 1);
+    const id::FoundEffect& f = r.effects_found.front();
+    CHECK(f.id == "sensor_curvature");
+    CHECK(std::abs(f.parameters.front().second - 0.133) <= 3.0 * f.sigma.front().second);
+    CHECK(r.error_after.shooting_rms_1_m < 1.25 * r.sigma_x);
+    // Without the curve in the library the verdict must not claim the floor.
+    fo.exclude = {"sensor_curvature"};
+    const id::FitReport g = id::run_fit(d, a1h, fo);
+    CHECK_MESSAGE(g.verdict.find("at its noise floor") == std::string::npos, g.verdict);
+    CHECK(g.verdict.find("misses something") != std::string::npos);
 }

@@ -6,6 +6,10 @@ set(IMPACTLAB_IDENTIFY_TEST_SOURCES
   identify/shared_data_test.cpp
   identify/audit_test.cpp
   identify/gate_test.cpp
+  identify/stats_test.cpp
+  identify/signal_test.cpp
+  identify/least_squares_test.cpp
+  identify/residual_test.cpp
   identify/parsimony_test.cpp
   identify/mismatch_test.cpp
   identify/stops_test.cpp

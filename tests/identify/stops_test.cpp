@@ -36,7 +36,7 @@ TEST_CASE("stops: a second stop below the travel is named end_stop at its place,
     REQUIRE(r.effects_found.size() == 1);
     const id::FoundEffect& f = r.effects_found.front();
     CHECK(f.id == "end_stop");
-    CHECK(f.evidence == "stray impacts");
+    CHECK(f.evidence == id::Evidence::StrayImpacts);
     const double got = value(f.parameters, "xS"), se = value(f.sigma, "xS");
     CAPTURE(got);
     CAPTURE(se);

@@ -1,4 +1,4 @@
-// Beyond the sweep (issue 9): periodic orbits as fixed points of the k-th Poincare map with their monodromy
+// Beyond the sweep: periodic orbits as fixed points of the k-th Poincare map with their monodromy
 // and Floquet multipliers, pseudo-arclength continuation with bifurcation detection, Lyapunov exponents of
 // the hybrid flow, and basins of attraction.
 //

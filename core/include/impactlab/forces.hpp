@@ -35,5 +35,9 @@ double spring_magnet_potential(const Params& p, double x);
 inline double unbalance_force(const Params& p, double phi, double omega) {
     return p.m0e * omega * omega * std::sin(phi);
 }
+// Its time derivative, with alpha = omega' [N/s].
+inline double unbalance_force_rate(const Params& p, double phi, double omega, double alpha) {
+    return p.m0e * (2.0 * omega * alpha * std::sin(phi) + omega * omega * omega * std::cos(phi));
+}
 
 }  // namespace impactlab

@@ -103,13 +103,17 @@ struct ErrorSummary {
     double shooting_rms_judge_m = -1;
 };
 
+// What showed an effect: the equation error (a force law) or the impacts (an impact law).
+enum class Evidence { EquationError, ImpactLaw, StrayImpacts };
+const char* evidence_name(Evidence e);   // "equation error", "impact law", "stray impacts"
+
 struct FoundEffect {
     std::string id;
     double explained_fraction = 0;    // share of the baseline residual (of the impact-law error for impact effects)
     std::vector<std::pair<std::string, double>> parameters, sigma;   // fitted values and standard errors
     std::string sentence;
     double z = 0;                     // significance
-    std::string evidence;             // "equation error" or "impact law"
+    Evidence evidence = Evidence::EquationError;
     // The held-out check that kept it: relative fall of the short-horizon simulation error on the fold the
     // effect's parameters were not fitted to, and the paired z of that fall over the windows.
     double validation_gain = 0, validation_z = 0;
@@ -172,8 +176,17 @@ struct RunWell {
     double barrier = 0;            // distance from x0 to that barrier [x unit]
 };
 
+// Whether a fit's base parameters were fitted to the data or kept as given.
+enum class Baseline { Fixed, Fit };
+const char* baseline_name(Baseline b);   // "fixed", "fit"
+
+// Units of x and of the equation error: metres and newtons for the rig; a plain Duffing model (m = 1) works in
+// the data's own units, which the report names as such.
+enum class FitUnits { Metres, DataUnits };
+
 struct FitReport {
-    std::string data_source, model_name, forcing, baseline;
+    std::string data_source, model_name, forcing;
+    Baseline baseline = Baseline::Fixed;
     std::size_t samples = 0, rows_used = 0;
     double dt = 0, duration = 0, sigma_x = 0, window_s = 0, noise_floor_N = 0;
     double omega_min = 0, omega_max = 0, drive_fit_rms_rad = 0, period_s = 0;
@@ -203,9 +216,10 @@ struct FitReport {
     std::vector<std::pair<double, double>> diagram_measured, diagram_before, diagram_after;   // (omega, x)
     std::vector<std::string> notes;
     double runtime_s = 0;
-    // Units of x and of the equation error: "m" and "N" for the rig; a plain Duffing model (m = 1) works in
-    // the data's own units, which the report names as such.
-    std::string x_unit = "m", force_unit = "N";
+    FitUnits units = FitUnits::Metres;
+    bool metres() const { return units == FitUnits::Metres; }
+    const char* x_unit() const { return metres() ? "m" : "data units"; }
+    const char* force_unit() const { return metres() ? "N" : "model force units (m = 1: data units / s^2)"; }
     std::string verdict;   // one sentence on the residual against its noise floor, after the validation
     std::size_t runs = 1;  // records fitted together
     WellReport wells_before, wells_after;

@@ -111,7 +111,8 @@ double bumper_elastic_energy(const Params& p, double x);
 // impulse (regime II), else 0.
 double bumper_force(const Params& p, const Drive& d, const State& s);
 
-// All force terms of Eq. (1) at one instant, with effects; the residual and the GUI use them.
+// The force terms of Eq. (1) at one instant without the input (rig_forces, rig.hpp); the residual and the GUI
+// use them. net() sums them in the order the fit's equation error always has, so its reports stay the same.
 struct ForceTerms {
     double resistance = 0, spring_magnet = 0, impact = 0, unbalance = 0, effects = 0;
     double net() const { return unbalance + effects - resistance - spring_magnet - impact; }

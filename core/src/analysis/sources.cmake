@@ -1,4 +1,4 @@
-# Periodic orbits, continuation, Lyapunov exponents and basins (issue 9); paths relative to core/.
+# Periodic orbits, continuation, Lyapunov exponents and basins; paths relative to core/.
 set(IMPACTLAB_ANALYSIS_SOURCES
   src/analysis/tangent.cpp
   src/analysis/orbit.cpp

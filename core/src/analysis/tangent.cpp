@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "impactlab/forces.hpp"
+#include "impactlab/rig.hpp"
 
 namespace impactlab::analysis::detail {
 
@@ -58,34 +58,13 @@ double scaled_max(const Mat2& E) {
 }  // namespace
 
 double acceleration(const Params& p, const Drive& d, double t, double x, double v) {
-    const ForceTerms f = force_terms(p, t, x, v, d.phi(t), d.omega(t), d.alpha(t));
-    double F = f.net();
-    if (p.input_gain != 0.0) F += p.input_gain * d.input(t);
-    return F / p.m;
+    return rig_rhs(p, d, t, {x, v}, p.compliant())[1];
 }
 
+// The law hands the integrator a bounded secant slope in h' (MODEL.md); the tangent needs the true one.
 Mat2 jacobian(const Params& p, const Drive& d, double t, double x, double v) {
-    double dFdx = -spring_magnet(p, x).dF, dFdv = -resistance(p, v).dF;
-    if (p.compliant() && x > p.xI) {
-        const double h = x - p.xI;
-        const ContactForce c = p.impact->contact(p.ip.data(), h, v);
-        dFdx -= c.dF_dh;
-        // The law hands the integrator a bounded secant slope in h' (MODEL.md); the tangent needs the true
-        // one, so it is taken here by central differences of the force itself.
-        const double dv = 1e-6 * std::abs(v) + 1e-12;
-        const double Fp = p.impact->contact(p.ip.data(), h, v + dv).F, Fm = p.impact->contact(p.ip.data(), h, v - dv).F;
-        dFdv -= (Fp - Fm) / (2.0 * dv);
-    }
-    if (!p.effects.empty()) {
-        const ForceContext ctx{t, x, v, d.phi(t), d.omega(t), d.alpha(t), p.m0e, p.xI};
-        for (const auto& e : p.effects) {
-            const EffectForce f = e.law->force(e.p.data(), ctx);
-            dFdx += f.dF_dx;
-            dFdv += f.dF_dv;
-        }
-    }
     Mat2 A;
-    A << 0.0, 1.0, dFdx / p.m, dFdv / p.m;
+    rig_jacobian(p, d, t, {x, v}, p.compliant(), ContactSlope::Exact, A);
     return A;
 }
 

@@ -1,6 +1,6 @@
 // The effect catalogue of impactlab fit: the registry's effects (each law carries how it is looked for and
-// described, core/src/effects) turned into candidates, plus the four effects that change the base model
-// rather than add a force (bumper_offset, impact_duration, restitution, cart_mass), which live here.
+// described, core/src/effects) and the rows of the effects that change the base model (base_effects.cpp),
+// turned into candidates, applied to a model and described.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -106,14 +106,7 @@ std::vector<EffectInfo> build_catalogue() {
         e.generic = law.fit.generic;
         out.push_back(std::move(e));
     }
-    out.push_back({"bumper_offset", "the bumper stands dx off the model's xI (moves xI)", {"dx"}, {"m"}, {0.0}, false, true});
-    out.push_back({"impact_duration", "each impact holds the cart at the bumper for T_imp(v-) (sets the impact law's Ti0, Ti1, a_T)",
-                   {"Ti0", "Ti1", "a_T"}, {"s", "s", "s/m"}, {6.2193e-3, 4.0689e-3, 2.1733}, false, true});
-    out.push_back({"restitution", "a velocity-dependent restitution kappa(v-) (sets the impact law's kappa0, kappa1, a_kappa)",
-                   {"kappa0", "kappa1", "a_kappa"}, {"-", "-", "s/m"}, {0.6150, 0.1350, 0.6594}, false, true});
-    // A force law cannot take the acceleration, so a wrong mass is a base parameter moved: the residual's
-    // m x'' term (fit screens it as the column of m, see library_candidates).
-    out.push_back({"cart_mass", "the cart's mass is m + dm instead of m (moves m)", {"dm"}, {"kg"}, {0.0}, false, true});
+    for (const auto& b : detail::base_effects()) out.push_back(b.info);
     return out;
 }
 
@@ -165,35 +158,9 @@ void apply_effect(Model& m, const std::string& id, const std::vector<std::pair<s
             if (given[k]) inst->p[k] = v[k];
         return;
     }
-    if (id == "cart_mass") {
-        if (!(m.p.m + v[0] > 0)) throw ParamError("effect 'cart_mass': dm = " + std::to_string(v[0]) + " leaves no mass");
-        m.p.m += v[0];
-        return;
-    }
-    if (!m.bumper()) throw ParamError("effect '" + id + "' needs a model with a bumper");
-    if (id == "bumper_offset") {
-        m.p.xI += v[0];
-        return;
-    }
-    if (!m.p.rigid()) {
-        // A compliant bumper has no T_imp or kappa law: switch to the rigid law (H's values) and set these.
-        const ImpactModel* h = find_impact("H");
-        m.p.impact = h;
-        m.p.ip = h->defaults;
-    }
-    if (id == "impact_duration") {
-        if (given[0] && !given[1]) v[1] = v[0];
-        if (given[0] && !given[2]) v[2] = 0.0;
-        m.p.ip[3] = v[0];
-        m.p.ip[4] = v[1];
-        m.p.ip[5] = v[2];
-    } else {   // restitution
-        if (given[0] && !given[1]) v[1] = v[0];
-        if (given[0] && !given[2]) v[2] = 0.0;
-        m.p.ip[0] = v[0];
-        m.p.ip[1] = v[1];
-        m.p.ip[2] = v[2];
-    }
+    const detail::BaseEffect* b = detail::find_base_effect(id);
+    if (b->needs_bumper && !m.bumper()) throw ParamError("effect '" + id + "' needs a model with a bumper");
+    b->apply(m, v, given);
 }
 
 }  // namespace impactlab::identify
@@ -235,23 +202,15 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
         c.positive = h.positive;
         out.push_back(std::move(c));
     }
-    // A wrong cart mass: the residual is then dm x'', so its column is the acceleration's. It competes with the
-    // force laws in the screening and the validation like any other. Not with fitted base parameters (m, or
-    // m0e or the input gain, which rescale the whole equation with it), nor for a plain Duffing model (m = 1
-    // is its unit of force).
-    const bool cart_mass_wanted = (o.only.empty() || std::find(o.only.begin(), o.only.end(), "cart_mass") != o.only.end()) &&
-                                  std::find(o.exclude.begin(), o.exclude.end(), "cart_mass") == o.exclude.end();
-    if (cart_mass_wanted && !o.fit_baseline && m.p.stiffness_id != "duffing" && m.p.m > 0) {
+    // The base-changing effects the screening looks for (a wrong cart mass: the acceleration's column).
+    for (const auto& b : base_effects()) {
+        if (!b.candidate) continue;
+        const std::string& id = b.info.id;
+        if (std::find(o.exclude.begin(), o.exclude.end(), id) != o.exclude.end()) continue;
+        if (!o.only.empty() && std::find(o.only.begin(), o.only.end(), id) == o.only.end()) continue;
         Candidate c;
-        c.id = "cart_mass";
-        c.base = "m";
-        c.param = "dm";
-        c.free = {0};
-        c.step = {1e-4 * m.p.m};
-        c.linear = {0};
-        c.lo = -0.5 * m.p.m;   // the mass found stays within [0.5, 2] times the model's
-        c.hi = m.p.m;
-        out.push_back(std::move(c));
+        c.id = id;
+        if (b.candidate(m, o, c)) out.push_back(std::move(c));
     }
     return out;
 }
@@ -313,8 +272,6 @@ std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& nam
 }
 
 namespace {
-using effects::fmt;
-using effects::pm;
 double get(const std::vector<std::pair<std::string, double>>& v, const std::string& k) {
     for (const auto& [n, x] : v)
         if (n == k) return x;
@@ -336,35 +293,8 @@ std::string sentence(const std::string& id, const Model& b, const std::vector<st
         const EffectReportContext ctx{&b.p, b.p.stiffness_id != "duffing", c.v_typ, c.x_typ};
         return law->describe(p.data(), sg.data(), ctx);
     }
-    // The four that change the base model.
-    if (id == "cart_mass") {
-        const double dm = val("dm");
-        return "the cart's mass is " + pm(b.p.m + dm, sig("dm")) + " kg, " + fmt("%+.3g", 100.0 * dm / b.p.m) + " % off the model's " +
-               fmt("%.6g", b.p.m) + " kg: the residual follows the acceleration";
-    }
-    if (id == "bumper_offset") {
-        const double dx = val("dx");
-        return "the bumper stands " + pm(std::abs(dx), sig("dx"), 1e3) + " mm " + (dx > 0 ? "to the right (+x)" : "to the left (-x)") +
-               " of the model's xI = " + fmt("%.3g", b.p.xI * 1e3) + " mm: the flat tops of the impacts sit there";
-    }
-    if (id == "impact_duration") {
-        const std::string model_T = fmt("%.3g", b.p.rigid() ? b.p.ip[3] * 1e3 : 0.0);
-        if (val("a_T") == 0.0 || std::abs(val("Ti0") - val("Ti1")) < 1e-12)
-            return "each impact holds the cart at the bumper for " + pm(val("Ti0"), sig("Ti0"), 1e3) +
-                   " ms whatever its speed, where the model's law gives " + model_T + " ms: a finite impact duration";
-        return "each impact holds the cart at the bumper for a finite time, T_imp = " + pm(val("Ti0"), sig("Ti0"), 1e3) +
-               " ms at low speed falling to " + pm(val("Ti1"), sig("Ti1"), 1e3) + " ms at high speed (the model's law gives " +
-               model_T + " ms at low speed): a finite impact duration";
-    }
-    if (id == "restitution") {
-        const std::string model_k = fmt("%.3g", b.p.rigid() ? b.p.ip[0] : 0.0) + " at low and " +
-                                    fmt("%.3g", b.p.rigid() ? b.p.ip[1] : 0.0) + " at high speed";
-        if (val("a_kappa") == 0.0 || std::abs(val("kappa0") - val("kappa1")) < 1e-12)
-            return "the bumper returns " + pm(val("kappa0"), sig("kappa0")) + " of the impact speed whatever the speed (the model's law: " +
-                   model_k + "): a different restitution";
-        return "the restitution coefficient is " + pm(val("kappa0"), sig("kappa0")) + " at low and " + pm(val("kappa1"), sig("kappa1")) +
-               " at high impact speed (the model's law: " + model_k + ")";
-    }
+    // An effect that changes the base model.
+    if (const BaseEffect* be = find_base_effect(id)) return be->describe(b, v, s);
     return "";
 }
 

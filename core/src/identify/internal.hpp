@@ -344,6 +344,23 @@ void end_stop_stage(const Prep& pr, const FitOptions& o, const SentenceContext& 
 std::vector<std::pair<std::string, double>> end_stop_values(const Prep& pr, const Model& m, const std::vector<char>& use, double rtol,
                                                             double* sigma_xS = nullptr);
 
+// ---- base_effects.cpp -------------------------------------------------------------------------------------
+// An effect that changes the base model instead of adding a force (bumper_offset, impact_duration,
+// restitution, cart_mass): its catalogue entry, how it edits the model, its sentence, and, if the screening
+// looks for it, the candidate it makes.
+struct BaseEffect {
+    EffectInfo info;
+    bool needs_bumper = false;
+    // Edits m with the values v (defaults where not given; the row may complete v from what was given).
+    void (*apply)(Model& m, std::vector<double>& v, const std::vector<bool>& given) = nullptr;
+    std::string (*describe)(const Model& before, const std::vector<std::pair<std::string, double>>& values,
+                            const std::vector<std::pair<std::string, double>>& sigma) = nullptr;
+    // Fills the screening candidate (id set) for model m; false: not looked for here.
+    bool (*candidate)(const Model& m, const FitOptions& o, Candidate& c) = nullptr;
+};
+const std::vector<BaseEffect>& base_effects();
+const BaseEffect* find_base_effect(const std::string& id);
+
 // Base parameters that `fit` mode estimates: name and address in the model.
 struct BaseParam {
     std::string name;

@@ -214,12 +214,12 @@ void plots(const FitReport& r, const std::string& dir) {
 std::string markdown(const FitReport& r, bool with_plots) {
     std::ostringstream md;
     md << "# impactlab fit: " << r.data_source << "\n\n";
-    md << "Model **" << r.before.p.name << "** (" << (r.baseline == "fit" ? "parameters fitted to the data" : "parameters fixed")
+    md << "Model **" << r.before.p.name << "** (" << (r.baseline == Baseline::Fit ? "parameters fitted to the data" : "parameters fixed")
        << "), forcing " << r.forcing << ". " << r.samples << " samples, " << g3(r.duration) << " s at " << g3(1.0 / r.dt)
-       << " Hz; sensor noise about " << (r.x_unit == "m" ? g3(r.sigma_x * 1e6) + " um" : g3(r.sigma_x) + " (" + r.x_unit + ")") << ".\n\n";
+       << " Hz; sensor noise about " << (r.metres() ? g3(r.sigma_x * 1e6) + " um" : g3(r.sigma_x) + " (" + r.x_unit() + ")") << ".\n\n";
     md << "The equation error is the local average over a smooth window of half-width " << g3(r.window_s * 1e3)
        << " ms of m x'' + F_R + F_SA + F_I - forcing, on " << r.rows_used
-       << " free-flight windows (impacts left out); its noise floor is about " << g3(r.noise_floor_N) << " " << r.force_unit << ".\n\n";
+       << " free-flight windows (impacts left out); its noise floor is about " << g3(r.noise_floor_N) << " " << r.force_unit() << ".\n\n";
     md << "**Verdict:** " << r.verdict << ".\n\n";
     md << "## Effects found\n\n";
     if (r.effects_found.empty()) {
@@ -228,7 +228,7 @@ std::string markdown(const FitReport& r, bool with_plots) {
         int k = 1;
         for (const auto& f : r.effects_found) {
             md << k++ << ". **" << f.id << "** (explains " << g3(100 * f.explained_fraction, "%.1f") << " % of the "
-               << (f.evidence == "impact law" ? "impact-law error" : "residual") << ", z = " << g3(f.z, "%.1f") << "): "
+               << (f.evidence == Evidence::ImpactLaw ? "impact-law error" : f.evidence == Evidence::StrayImpacts ? "reversals" : "residual") << ", z = " << g3(f.z, "%.1f") << "): "
                << f.sentence << ". Held-out simulation error " << g3(-100 * f.validation_gain, "%+.1f") << " % (paired z = "
                << g3(f.validation_z, "%.1f") << ").\n";
         }
@@ -253,10 +253,10 @@ std::string markdown(const FitReport& r, bool with_plots) {
             md << "The record is too short to measure its own predictability, so the windows are the longest within which the "
                   "model's shooting error has at most doubled from the shortest windows'.\n\n";
         md << "The model's own error growth (the model given or fitted, by window length):\n\n";
-        md << "| window [periods] | shooting RMS [" << (r.x_unit == "m" ? "mm" : r.x_unit) << "] |\n|---|---|\n";
-        for (const auto& [L, e] : r.horizon_growth) md << "| " << g3(L) << " | " << g3(r.x_unit == "m" ? e * 1e3 : e, "%.4g") << " |\n";
-        md << "\nHeld-out shooting RMS: " << g3(r.validation_rms_before_m * (r.x_unit == "m" ? 1e3 : 1), "%.4g") << " before, "
-           << g3(r.validation_rms_after_m * (r.x_unit == "m" ? 1e3 : 1), "%.4g") << " after.\n\n";
+        md << "| window [periods] | shooting RMS [" << (r.metres() ? "mm" : r.x_unit()) << "] |\n|---|---|\n";
+        for (const auto& [L, e] : r.horizon_growth) md << "| " << g3(L) << " | " << g3(r.metres() ? e * 1e3 : e, "%.4g") << " |\n";
+        md << "\nHeld-out shooting RMS: " << g3(r.validation_rms_before_m * (r.metres() ? 1e3 : 1), "%.4g") << " before, "
+           << g3(r.validation_rms_after_m * (r.metres() ? 1e3 : 1), "%.4g") << " after.\n\n";
     } else {
         md << "The record is too short for held-out windows: nothing can be validated, so nothing is reported.\n\n";
     }
@@ -266,11 +266,11 @@ std::string markdown(const FitReport& r, bool with_plots) {
         md << "\n";
     }
     if (!r.data_wells.empty()) {
-        const bool m = r.x_unit == "m";
+        const bool m = r.metres();
         md << "## Each run's well, measured from its data\n\nA local force law per unit mass, a + c v + k x + k2 x^2 + k3 x^3 - F0 = "
               "g u, fitted on each run's free-flight samples (never the model's): its linear frequency, its local even term "
               "(softer toward the barrier: which well) and, by its barrier, the well's depth.\n\n"
-           << "| run | side | x0 [" << (m ? "mm" : r.x_unit) << "] | frequency [Hz] | k2 per unit mass | depth per unit mass |\n|---|---|---|---|---|---|\n";
+           << "| run | side | x0 [" << (m ? "mm" : r.x_unit()) << "] | frequency [Hz] | k2 per unit mass | depth per unit mass |\n|---|---|---|---|---|---|\n";
         for (const auto& w : r.data_wells)
             md << "| " << w.run + 1 << " | " << (w.side.empty() ? "unclear" : w.side) << " | " << g3(w.x0 * (m ? 1e3 : 1.0), "%.4g") << " | "
                << g3(w.omega / (2 * 3.141592653589793), "%.4g") << " +/- " << g3(w.somega / (2 * 3.141592653589793), "%.2g") << " | "
@@ -281,9 +281,9 @@ std::string markdown(const FitReport& r, bool with_plots) {
     }
     const auto& wa = r.wells_after;
     if (wa.wells.size() == 2 && std::isfinite(wa.hill_x)) {
-        const double xs_ = r.x_unit == "m" ? 1e3 : 1.0;
-        const std::string xu_ = r.x_unit == "m" ? "mm" : r.x_unit;
-        const std::string du_ = r.force_unit == "N" ? "J" : "(data units/s)^2 per unit mass";
+        const double xs_ = r.metres() ? 1e3 : 1.0;
+        const std::string xu_ = r.metres() ? "mm" : r.x_unit();
+        const std::string du_ = r.metres() ? "J" : "(data units/s)^2 per unit mass";
         md << "## The two wells (model after)\n\n| well | x [" << xu_ << "] | depth below the hilltop [" << du_
            << "] | linearised omega [rad/s] |\n|---|---|---|---|\n";
         const char* side[2] = {"left", "right"};
@@ -327,10 +327,10 @@ std::string markdown(const FitReport& r, bool with_plots) {
         md << g3(get(r.error_after) * scale, f) << " |\n";
     };
     const auto& b = r.error_before;
-    const bool metres = r.x_unit == "m";
+    const bool metres = r.metres();
     const double xs = metres ? 1e3 : 1.0;
-    const std::string xu = metres ? "mm" : r.x_unit;
-    row("residual RMS [" + r.force_unit + "]", [](const ErrorSummary& e) { return e.residual_rms_N; }, 1, "%.4g");
+    const std::string xu = metres ? "mm" : r.x_unit();
+    row(std::string("residual RMS [") + r.force_unit() + "]", [](const ErrorSummary& e) { return e.residual_rms_N; }, 1, "%.4g");
     row("shooting RMS, 1 period [" + xu + "]", [](const ErrorSummary& e) { return e.shooting_rms_1_m; }, xs, "%.4g");
     row("shooting RMS, 10 periods [" + xu + "]", [](const ErrorSummary& e) { return e.shooting_rms_10_m; }, xs, "%.4g");
     if (b.shooting_rms_judge_m >= 0 && r.horizon_periods != 1.0 && r.horizon_periods != 10.0)
@@ -385,6 +385,17 @@ std::string markdown(const FitReport& r, bool with_plots) {
 
 }  // namespace
 
+const char* evidence_name(Evidence e) {
+    switch (e) {
+    case Evidence::ImpactLaw: return "impact law";
+    case Evidence::StrayImpacts: return "stray impacts";
+    case Evidence::EquationError: break;
+    }
+    return "equation error";
+}
+
+const char* baseline_name(Baseline b) { return b == Baseline::Fit ? "fit" : "fixed"; }
+
 std::string report_json_text(const FitReport& r) {
     json j;
     j["data"] = {{"source", r.data_source},
@@ -398,7 +409,7 @@ std::string report_json_text(const FitReport& r) {
                  {"drive_fit_rms_rad", num(r.drive_fit_rms_rad)},
                  {"impacts", r.impacts.size()}};
     j["model"] = r.before.p.name;
-    j["baseline"] = r.baseline;
+    j["baseline"] = baseline_name(r.baseline);
     j["analysis"] = {{"window_s", r.window_s}, {"rows_used", r.rows_used}, {"noise_floor_N", num(r.noise_floor_N)},
                      {"period_s", num(r.period_s)}};
     j["effects_found"] = json::array();
@@ -411,7 +422,7 @@ std::string report_json_text(const FitReport& r) {
         e["uncertainty"] = json::object();
         for (const auto& [k, v] : f.sigma) e["uncertainty"][k] = num(v);
         e["z"] = num(f.z);
-        e["evidence"] = f.evidence;
+        e["evidence"] = evidence_name(f.evidence);
         e["sentence"] = f.sentence;
         e["validation_gain"] = num(f.validation_gain);
         e["validation_z"] = num(f.validation_z);
@@ -464,7 +475,7 @@ std::string report_json_text(const FitReport& r) {
     j["wells_from_data"] = r.wells_from_data;
     j["wells_before"] = wells_json(r.wells_before);
     j["wells_after"] = wells_json(r.wells_after);
-    j["units"] = {{"x", r.x_unit}, {"force", r.force_unit}};
+    j["units"] = {{"x", r.x_unit()}, {"force", r.force_unit()}};
     j["error_before"] = errors_json(r.error_before);
     j["error_after"] = errors_json(r.error_after);
     if (r.baseline_column) {

@@ -8,8 +8,17 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/stats.cpp
   src/identify/residual.cpp
   src/identify/catalogue.cpp
+  src/identify/base_effects.cpp
   src/identify/shooting.cpp
-  src/identify/fit.cpp
+  src/identify/fit/run_fit.cpp
+  src/identify/fit/baseline.cpp
+  src/identify/fit/screening.cpp
+  src/identify/fit/refit.cpp
+  src/identify/fit/impact_law.cpp
+  src/identify/fit/validation.cpp
+  src/identify/fit/errors.cpp
+  src/identify/fit/held_out.cpp
+  src/identify/fit/tools.cpp
   src/identify/gate.cpp
   src/identify/horizon.cpp
   src/identify/remainder.cpp

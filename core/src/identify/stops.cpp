@@ -216,7 +216,7 @@ void end_stop_stage(const Prep& pr, const FitOptions& o, const SentenceContext& 
     if (values.empty()) return;
     FoundEffect f;
     f.id = "end_stop";
-    f.evidence = "stray impacts";
+    f.evidence = Evidence::StrayImpacts;
     f.parameters = values;
     f.sigma = {{"xS", se}, {"kS", 0.0}, {"cS", 0.0}, {"side", 0.0}};
     f.z = static_cast<double>(pr.stray.size());   // the reversals the model cannot make; the held-out error decides

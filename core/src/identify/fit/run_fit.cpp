@@ -1,0 +1,194 @@
+// The loop of impactlab fit: run_fit takes a FitSession through the stages (baseline, residual, effect
+// selection, the model with the effects, errors before and after); evaluate_model gives one model's errors.
+#include "identify/fit/session.hpp"
+
+namespace impactlab::identify {
+
+using namespace detail;
+
+const char* fit_stage_name(FitStage s) {
+    switch (s) {
+        case FitStage::Prepare: return "preparing the data";
+        case FitStage::Baseline: return "fitting the baseline";
+        case FitStage::Candidates: return "screening the candidate effects";
+        case FitStage::Selection: return "selecting effects";
+        case FitStage::Refit: return "refitting the effects";
+        case FitStage::ImpactLaw: return "comparing the impacts";
+        case FitStage::Validation: return "validating on held-out data";
+        case FitStage::Errors: return "errors before and after";
+        case FitStage::Count: break;
+    }
+    return "?";
+}
+
+FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOptions& options, const MeasuredData* test,
+                  FitProgress* progress) {
+    FitSession fs(data, model0, options, test, progress);
+    FitOptions& o = fs.o;
+    fs.enter(FitStage::Prepare);
+    const auto clock0 = std::chrono::steady_clock::now();
+    FitReport& rep = fs.rep;
+    rep.data_source = data.source;
+    rep.model_name = model0.p.name;
+    rep.forcing = data.has_phi() ? "phi (unbalance)" : "u (measured input)";
+    rep.baseline = o.fit_baseline ? Baseline::Fit : Baseline::Fixed;
+    if (model0.p.stiffness_id == "duffing") rep.units = FitUnits::DataUnits;
+    validate(model0.p, "model");
+    check_plausible(data, model0, o);
+    fs.prep = prepare(data, model0, o, rep.notes);
+    Prep& prep = fs.prep;
+    prep.progress = progress;
+    prep.predictability = data_horizon(prep);
+    const Prep& pr = prep;
+    rep.samples = pr.n;
+    rep.rows_used = pr.rows.size();
+    rep.dt = pr.dt;
+    rep.duration = data.t.back() - data.t.front();
+    rep.sigma_x = pr.sigma_x;
+    rep.window_s = (pr.K.H + 1) * pr.dt;
+    rep.period_s = pr.period;
+    rep.drive_fit_rms_rad = pr.drive_rms;
+    rep.data_horizon_measured = pr.predictability.measured;
+    rep.data_regular = pr.predictability.regular;
+    rep.data_horizon_periods = pr.predictability.periods;
+    rep.data_lambda = pr.predictability.lambda;
+    if (pr.phi_forced) {
+        rep.omega_min = *std::min_element(pr.omega.begin(), pr.omega.end());
+        rep.omega_max = *std::max_element(pr.omega.begin(), pr.omega.end());
+    }
+    const int stride = std::max(1, pr.K.H / 4);
+    fs.hac_lag = static_cast<int>(std::ceil(2.0 * (2 * pr.K.H + 1) / stride));
+    const int hac_lag = fs.hac_lag;
+
+    fs.enter(FitStage::Baseline);
+    // ---- 1. the baseline --------------------------------------------------------------------------------
+    std::vector<std::string>& base_names = fs.base_names;
+    base_names =
+        o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0) : o.fit_params) : std::vector<std::string>{};
+    fit_baseline_stage(fs);
+    Model& base = fs.base;
+    const Model& ee_base = fs.ee_base;
+    Chain& chain = fs.chain;
+    chain = {{"the model given", model0, {}, -1, false}};
+    // Never a worse model than the one given: on a record forced by the unbalance (the given model is the rig's
+    // physical one, not a starting guess) the fitted baseline must predict held-out data better.
+    if (o.fit_baseline && pr.phi_forced) {
+        std::string why;
+        if (!baseline_predicts_better(pr, model0, base, base_names, o, why)) {
+            rep.notes.push_back("the fitted baseline does not predict held-out data better than the parameters given (" + why +
+                                "); the parameters given are kept, fixed");
+            base = model0;
+            o.fit_baseline = false;
+            base_names.clear();
+            rep.baseline = Baseline::Fixed;
+        }
+    }
+    if (o.fit_baseline) {
+        chain.push_back({"the base parameters fitted to the equation error", ee_base, {}, -1, true});
+        if (!pr.phi_forced && rep.notes.size() && rep.notes.back().rfind("baseline refined on the free-run", 0) == 0)
+            chain.push_back({"the base parameters refined on the free-run simulation error", base, {}, -1, true});
+    }
+    std::vector<double> pw;
+    Eigen::VectorXd& R0 = fs.R0;
+    residual(pr, base, R0, pw);
+    rep.before = model0;
+    fs.in0 = R0.squaredNorm();
+    rep.noise_floor_N = base.p.m * pr.sigma_x * pr.K.noise_gain / base.sensor_gain();
+
+    fs.enter(FitStage::Candidates);
+    // ---- 2. candidate columns -----------------------------------------------------------------------------
+    screen_candidates(fs);
+
+    fs.enter(FitStage::Selection);
+    // ---- 3. greedy selection ------------------------------------------------------------------------------
+    select_effects(fs);
+
+    fs.enter(FitStage::Refit);
+    // ---- 4. the model with the effects: linear estimates, then joint nonlinear refinement; an effect whose
+    //         significance does not survive the joint fit is dropped and the rest refitted ------------------
+    SentenceContext& sc = fs.sc;
+    {
+        std::vector<double> av, ax;
+        for (std::size_t r : pr.rows) {
+            av.push_back(std::abs(pr.vs[r]));
+            ax.push_back(std::abs(data.x[r]));
+        }
+        double s = 0;
+        for (double v : av) s += v * v;
+        sc.v_typ = av.empty() ? 0.0 : std::sqrt(s / static_cast<double>(av.size()));
+        sc.x_typ = quantile(ax, 0.9);
+    }
+    refit_stage(fs);
+    Model& after = fs.after;
+
+    fs.enter(FitStage::ImpactLaw);
+    // ---- 5. the impact law: bumper position, impact duration, restitution ----------------------------------
+    impact_law_stage(fs);
+    end_stop_stage(fs.prep, fs.o, fs.sc, fs.after, fs.rep);
+    fs.enter(FitStage::Validation);
+    // ---- 6. validation: an effect stays only if it lowers the short-horizon simulation error on data held
+    //         out from its fit, by more than the windows' scatter; the final model must beat the baseline ----
+    validate_effects(fs);
+    output_error_stage(fs);
+
+    fs.enter(FitStage::Errors);
+    // ---- 7. the final gate, errors before and after; 8. material for the plots; the verdict ------------------
+    errors_stage(fs);
+    std::stable_sort(rep.effects_found.begin(), rep.effects_found.end(),
+                     [](const FoundEffect& a, const FoundEffect& b) { return a.explained_fraction > b.explained_fraction; });
+    if (!rep.effects_found.empty()) after.p.name = base.p.name + "+" + rep.effects_found.front().id;
+    for (std::size_t k = 1; k < rep.effects_found.size(); ++k) after.p.name += "+" + rep.effects_found[k].id;
+    rep.after = after;
+    rep.runs = pr.run_start.size();
+    rep.wells_before = well_report(model0, {}, pr);
+    rep.data_wells = data_wells(pr, hac_lag);
+    rep.wells_from_data = wells_asymmetry(rep.data_wells, rep.x_unit());
+    rep.wells_after = well_report(after, rep.effects_found, pr);
+    // Never a report whose headline numbers are not numbers: name the first and refuse to hand it over.
+    const std::pair<const char*, double> headline[] = {
+        {"sensor noise", rep.sigma_x},
+        {"noise floor", rep.noise_floor_N},
+        {"residual RMS before", rep.error_before.residual_rms_N},
+        {"residual RMS after", rep.error_after.residual_rms_N},
+        {"1-period shooting RMS after", rep.error_after.shooting_rms_1_m},
+    };
+    for (const auto& [what, v] : headline)
+        if (!std::isfinite(v))
+            throw std::runtime_error(data.source + ": the fit's " + what + " came out " + std::to_string(v) +
+                                     "; no report is written (check the data's columns and units)");
+    for (const auto& e : rep.effects_found)
+        for (const auto& [name, v] : e.parameters)
+            if (!std::isfinite(v))
+                throw std::runtime_error(data.source + ": effect " + e.id + "." + name + " came out " + std::to_string(v) +
+                                         "; no report is written");
+    rep.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+    if (progress) progress->fraction.store(1.0, std::memory_order_relaxed);
+    return std::move(rep);
+}
+
+ErrorSummary evaluate_model(const MeasuredData& data, const Model& model, const FitOptions& o) {
+    std::vector<std::string> notes;
+    validate(model.p, "model");
+    check_plausible(data, model, o);
+    const Prep pr = prepare(data, model, o, notes);
+    ErrorSummary e;
+    Eigen::VectorXd R;
+    std::vector<double> pw;
+    residual(pr, model, R, pw);
+    e.residual_rms_N = rms_of(R);
+    const ShootOut so = shooting(pr, model, o);
+    e.shooting_rms_1_m = so.rms1;
+    e.shooting_rms_10_m = so.rms10;
+    e.impact = impact_error(pr, predict_impacts(pr, model, o.rtol));
+    if (pr.phi_forced) {
+        const auto [wmin, wmax] = std::minmax_element(pr.omega.begin(), pr.omega.end());
+        if (*wmax - *wmin > 2 * o.omega_bin)
+            e.diagram_distance_m = diagram_distance(measured_sections(pr), free_run_sections(pr, model, o.rtol), o.omega_bin,
+                                                    e.diagram_bins, &e.diagram_per_bin);
+    } else {
+        e.simulation_rms_m = free_run_rms(free_run(pr, model, o.rtol), data.x);
+    }
+    return e;
+}
+
+}  // namespace impactlab::identify
