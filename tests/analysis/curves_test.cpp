@@ -56,3 +56,18 @@ TEST_CASE("curves: A1C's doubling curve through (10.8613, xI = 0) bounds the per
     CHECK(lower.points.front().q > -3.5e-3);
     CHECK(lower.end.find("lost") != std::string::npos);
 }
+
+TEST_CASE("curves: in (omega, m0e) the doubling moves with the forcing and is followed to both ends of the range") {
+    // A stronger unbalance doubles the orbit earlier: 17.7 rad/s at 0.81 m0e, 10.86 at m0e, 9.2 at 1.19 m0e.
+    const Params p = make_version("A1C");
+    const BifCurve c = continue_doubling_curve(p, ContParam::M0e, 10.8613339, Vec2(-0.0142521, -0.0499209), 1, 0.8 * p.m0e,
+                                               1.2 * p.m0e, 0.02 * p.m0e);
+    REQUIRE(c.points.size() > 10);
+    CHECK(c.end == "m0e range / m0e range");
+    CHECK(c.points.front().q < 0.82 * p.m0e);
+    CHECK(c.points.back().q > 1.18 * p.m0e);
+    for (std::size_t i = 1; i < c.points.size(); ++i) {
+        CHECK(c.points[i].q > c.points[i - 1].q);
+        CHECK(c.points[i].omega < c.points[i - 1].omega);
+    }
+}

@@ -50,8 +50,10 @@ BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega
         // The known point starts both sides (it is kept once, on the upward side).
         CurvePoint prev{omega0, q0, y0}, before = prev;
         int have = 1;
-        for (int i = side == 0 ? 0 : 1;; ++i) {
-            const double q = q0 + dir * step * i;
+        double h = step;
+        bool first = side == 0;   // the known point is located again once, on the upward side
+        while (true) {
+            const double q = first ? q0 : prev.q + dir * h;
             if (q > hi + 1e-12 * std::abs(hi) || q < lo - 1e-12 * std::abs(lo)) {
                 ends[side] = std::string(cont_param_name(second)) + " range";
                 break;
@@ -67,7 +69,7 @@ BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega
             }
             // Secant on mu(omega) + 1 = 0, from w and w + 1e-3.
             double wa = w, wb = w + 1e-3;
-            Probe a = probe(work, wa, y, period, sim), b = probe(work, wb, a.y.allFinite() && std::isfinite(a.mu) ? a.y : y, period, sim);
+            Probe a = probe(work, wa, y, period, sim), b = probe(work, wb, std::isfinite(a.mu) ? a.y : y, period, sim);
             bool ok = false;
             for (int it = 0; it < 20 && std::isfinite(a.mu) && std::isfinite(b.mu) && b.mu != a.mu; ++it) {
                 const double wn = wb - (b.mu + 1.0) * (wb - wa) / (b.mu - a.mu);
@@ -82,13 +84,22 @@ BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega
                 }
             }
             if (!ok) {
+                // A step too long for the predictor (the doubling moves fast in m0e): shorter, down to step / 64.
+                if (!first && h > step / 64) {
+                    h *= 0.5;
+                    continue;
+                }
                 ends[side] = "doubling lost near " + std::string(cont_param_name(second)) + " = " + std::to_string(q);
                 break;
             }
-            if (i > 0 || side == 0) pts.push_back({wb, q, b.y});
-            before = prev;
+            pts.push_back({wb, q, b.y});
+            if (!first) {
+                before = prev;
+                ++have;
+                h = std::min(step, 2 * h);
+            }
             prev = {wb, q, b.y};
-            ++have;
+            first = false;
         }
     }
     c.points.assign(sides[1].rbegin(), sides[1].rend());
