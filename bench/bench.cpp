@@ -6,6 +6,10 @@
 //   damping and of A1C with a sensor offset, without plots (target: under 10 s each on 2 cores).
 //   --scan: impactlab scan's thread pool on a 12 x 64 plane of A1C (omega 8..14 rad/s, xI -4..4 mm): points
 //   per second on 1 thread and on every core, and the parallel efficiency (target >= 90 %).
+//   --analysis: the analysis jobs a researcher waits on (targets on a 2-core machine): the largest Lyapunov
+//   exponent along A1C's CF sweep, 150 omegas from 0.5 (<= 60 s); A1C1's 100-omega lambda strip of the
+//   visualiser (< 60 s); 200 x 200 basins of A1G at 13 rad/s on 2 threads (<= 20 s); A1C's continuation over
+//   5..25 rad/s (<= 5 s).
 #include <cmath>
 #include <algorithm>
 #include <chrono>
@@ -17,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "impactlab/analysis.hpp"
 #include "impactlab/identify.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/scan.hpp"
@@ -26,20 +31,21 @@ namespace {
 
 struct Options {
     bool quick = false;
-    bool cf = true, ef = true, fit = false, scan = false;
+    bool cf = true, ef = true, fit = false, scan = false, analysis = false;
     std::vector<std::string> only;   // empty: the paper's versions
     impactlab::Tolerances tol;
 };
 
 [[noreturn]] void usage(int rc) {
     std::printf(
-        "usage: bench [--quick] [--only VERSION]... [--rtol R] [--cf-only | --ef-only | --fit | --scan]\n"
+        "usage: bench [--quick] [--only VERSION]... [--rtol R] [--cf-only | --ef-only | --fit | --scan | --analysis]\n"
         "  --quick       CF with 60 omegas instead of 300, EF ramp 5x faster (560 s instead of 2800 s)\n"
         "  --only V      this version only (repeatable; any XY name, e.g. A1H, A3G)\n"
         "  --rtol R      relative tolerance of the integrator (default %g)\n"
         "  --cf-only     skip the EF ramps;  --ef-only  skip the CF diagrams\n"
         "  --fit         only the measured-data loop: 300 s records at 1 kHz and a 120 s input-forced one at 2 kHz\n"
-        "  --scan        only impactlab scan's thread pool: points per second on 1 thread and on every core\n",
+        "  --scan        only impactlab scan's thread pool: points per second on 1 thread and on every core\n"
+        "  --analysis    only the analysis jobs: Lyapunov sweep and strip, basins on 2 threads, continuation\n",
         impactlab::Tolerances{}.rtol);
     std::exit(rc);
 }
@@ -59,6 +65,7 @@ Options parse(int argc, char** argv) {
         else if (a == "--ef-only") o.cf = false;
         else if (a == "--fit") o.fit = true;
         else if (a == "--scan") o.scan = true;
+        else if (a == "--analysis") o.analysis = true;
         else if (a == "-h" || a == "--help") usage(0);
         else {
             std::fprintf(stderr, "bench: unknown option '%s'\n", a.c_str());
@@ -179,8 +186,65 @@ void bench_scan() {
     }
 }
 
+// The analysis jobs, each as the CLI or the visualiser runs it.
+void bench_analysis() {
+    using namespace impactlab;
+    std::printf("analysis jobs (targets for a 2-core machine)\n\n%-58s %9s %9s %9s  %s\n", "job", "wall[s]", "cpu[s]",
+                "target[s]", "result");
+    auto line = [](const char* job, Times t, double target, const std::string& result) {
+        std::printf("%-58s %9.2f %9.2f %9.0f  %s\n", job, t.wall, t.cpu, target, result.c_str());
+        std::fflush(stdout);
+    };
+    char buf[160];
+    {
+        CfSpec spec;
+        spec.omega_min = 0.5;
+        spec.steps = 150;
+        std::vector<analysis::LyapunovPoint> pts;
+        const Times t = timed([&] { pts = analysis::lyapunov_sweep(make_version("A1C"), spec); });
+        int positive = 0;
+        for (const auto& q : pts) positive += q.lambda_max > 0.05;
+        std::snprintf(buf, sizeof buf, "%zu omegas, %d with lambda_max > 0.05 1/s", pts.size(), positive);
+        line("lyapunov A1C, CF up, 150 omegas 0.5..25, 20 + 70 periods", t, 60, buf);
+    }
+    {
+        CfSpec spec;   // the visualiser's strip: omega_j = 25 j / 100, 20 + 40 periods
+        spec.omega_min = 0.25;
+        spec.steps = 100;
+        spec.record = 40;
+        std::vector<analysis::LyapunovPoint> pts;
+        const Times t = timed([&] { pts = analysis::lyapunov_sweep(make_version("A1C1"), spec); });
+        std::snprintf(buf, sizeof buf, "%zu omegas", pts.size());
+        line("lambda strip A1C1, 100 omegas 0.25..25, 20 + 40 periods", t, 60, buf);
+    }
+    {
+        analysis::BasinSpec spec;
+        spec.omega = 13;
+        spec.threads = 2;
+        analysis::BasinResult r;
+        const Times t = timed([&] { r = analysis::compute_basins(make_version("A1G"), spec); });
+        std::snprintf(buf, sizeof buf, "%zu attractors, %.1f periods per start", r.attractors.size(),
+                      static_cast<double>(r.periods_run) / (spec.nx * spec.nv));
+        line("basins A1G, omega 13, 200 x 200, 2 threads", t, 20, buf);
+    }
+    {
+        analysis::ContinuationSpec spec;
+        spec.lo = 5;
+        spec.hi = 25;
+        analysis::ContinuationResult r;
+        const Times t = timed([&] { r = analysis::continue_orbits(make_version("A1C"), spec); });
+        std::snprintf(buf, sizeof buf, "%zu branches, %zu points, %llu maps", r.branches.size(), r.points.size(),
+                      static_cast<unsigned long long>(r.map_evaluations));
+        line("continue A1C, omega 5..25, periods up to 8", t, 5, buf);
+    }
+}
+
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
+    if (o.analysis) {
+        bench_analysis();
+        return 0;
+    }
     if (o.scan) {
         bench_scan();
         return 0;

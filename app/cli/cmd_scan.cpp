@@ -3,6 +3,7 @@
 // so the file is the same bit for bit whatever the number of threads or ranks. A tile log beside the output
 // holds every finished row; --resume reads it back and computes only what is missing.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -13,6 +14,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "impactlab/analysis.hpp"
 #include "impactlab/input_file.hpp"
 #include "impactlab/scan.hpp"
 
@@ -36,6 +38,8 @@ const char* kScanHelp =
     "                      forcing period), xrange (xmin,xmax [m]); default period\n"
     "  --out FILE          CSV: the axes, then one column per measure, x fastest (required)\n"
     "  --png FILE          one map per measure with its legend\n"
+    "  --doubling-from W,X,V  a period-1 doubling at omega W with section point (X, V) [m, m/s], as `continue`\n"
+    "                      prints it: continued in the y axis (xI or m0e) and drawn over the maps (x: omega)\n"
     "  --omega W           forcing frequency [rad/s] when neither axis is omega\n"
     "  --start continue|fresh   (default continue)\n"
     "  --transient N, --record N   periods per point (default 20, 70: the CF sweep's)\n"
@@ -83,6 +87,7 @@ int cmd_scan(const std::vector<std::string>& argv) {
     ScanSpec spec;
     Params p;
     std::string out_path, png, log_path;
+    std::vector<double> doubling_from;   // omega, x, v of a period-1 doubling (--doubling-from)
     std::vector<std::vector<ScanPoint>> rows;
     std::vector<int> todo;
     int threads = 1;
@@ -92,7 +97,7 @@ int cmd_scan(const std::vector<std::string>& argv) {
     try {
         const Args a("scan", argv,
                      with_model_flags({"--x", "--y", "--measure", "--out", "--png", "--threads", "--transient", "--record",
-                                       "--start", "--omega"}),
+                                       "--start", "--omega", "--doubling-from"}),
                      {"--resume"});
         p = model_from(a);
         tol = tolerances_from(a);
@@ -135,6 +140,18 @@ int cmd_scan(const std::vector<std::string>& argv) {
                 }
                 validate(q, "scan plane corner");
             }
+        if (a.has("--doubling-from")) {
+            if (!a.has("--png")) throw UsageError("scan: --doubling-from draws on the PNG: give --png");
+            if (spec.x.param != ScanParam::Omega || spec.y.param == ScanParam::Omega)
+                throw UsageError("scan: --doubling-from needs --x omega:... and --y xI:... or m0e:...");
+            const std::string v = a.str("--doubling-from", "");
+            double w[3];
+            char tail = 0;
+            if (std::sscanf(v.c_str(), "%lf,%lf,%lf%c", &w[0], &w[1], &w[2], &tail) != 3 ||
+                !std::isfinite(w[0] + w[1] + w[2]) || !(w[0] > 0))
+                throw UsageError("scan: option '--doubling-from': expected OMEGA,X,V (a period-1 doubling, as continue prints it)");
+            doubling_from = {w[0], w[1], w[2]};
+        }
         out_path = a.required("--out");
         png = a.str("--png", "");
         log_path = out_path + ".tiles";
@@ -247,7 +264,23 @@ int cmd_scan(const std::vector<std::string>& argv) {
     }
 #endif
     write_scan_csv(spec, rows, *out);
-    if (!png.empty()) save_scan_png(spec, rows, p.name, png);   // first: a PNG that fails leaves the old CSV
+    std::vector<ScanCurve> curves;
+    if (!doubling_from.empty()) {
+        // The doubling continued along the y axis at half its grid step, drawn over the maps.
+        const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
+        const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
+        const analysis::BifCurve c = analysis::continue_doubling_curve(
+            p, second, doubling_from[0], Vec2(doubling_from[1], doubling_from[2]), 1, spec.y.lo, spec.y.hi, step);
+        ScanCurve sc;
+        sc.label = "period doubling, continued";
+        for (const auto& q : c.points) {
+            sc.x.push_back(q.omega);
+            sc.y.push_back(q.q);
+        }
+        std::fprintf(stderr, "doubling curve: %zu points, ends: %s\n", c.points.size(), c.end.c_str());
+        curves.push_back(std::move(sc));
+    }
+    if (!png.empty()) save_scan_png(spec, rows, p.name, png, curves);   // first: a PNG that fails leaves the old CSV
     out->commit();
     log.close();
     std::filesystem::remove(log_path);   // complete: nothing to resume

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "impactlab/analysis.hpp"
 #include "impactlab/params.hpp"
@@ -128,4 +129,26 @@ TEST_CASE("continuation: the period-1 branch of A1C covers 0.05..25 rad/s across
     for (const auto& b : r.points) doublings += b.kind == BifKind::PeriodDoubling;
     CHECK(doublings == 2);   // 10.8613 and 22.1473
     CHECK(r.map_evaluations < 20000);   // the work, not the wall time of a shared machine
+}
+
+TEST_CASE("continuation: A1C1's branches report the grazings that end them, as A1C's, and no point twice") {
+    // C1's bumper (kI = 1e12) is too stiff for the corrector to step onto the impacting side: the branches end
+    // at the grazings, which are located on the bumperless orbit as for a rigid bumper.
+    ContinuationSpec spec;
+    spec.lo = 5.0;
+    spec.hi = 25.0;
+    const ContinuationResult r = continue_orbits(make_version("A1C1"), spec);
+    std::vector<double> grazings;
+    for (const auto& b : r.points)
+        if (b.kind == BifKind::Grazing) grazings.push_back(b.param);
+    REQUIRE(grazings.size() == 3);
+    CHECK(grazings[0] == doctest::Approx(12.7992694).epsilon(1e-7));
+    CHECK(grazings[1] == doctest::Approx(15.9679638).epsilon(1e-7));
+    CHECK(grazings[2] == doctest::Approx(17.351123).epsilon(1e-7));
+    for (std::size_t i = 0; i < r.points.size(); ++i)
+        for (std::size_t j = i + 1; j < r.points.size(); ++j) {
+            const BifPoint &a = r.points[i], &b = r.points[j];
+            CAPTURE(a.param);
+            CHECK_FALSE((a.kind == b.kind && a.period == b.period && std::abs(a.param - b.param) < 1e-5));
+        }
 }

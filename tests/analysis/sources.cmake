@@ -4,4 +4,5 @@ set(IMPACTLAB_ANALYSIS_TEST_SOURCES
   analysis/continuation_test.cpp
   analysis/lyapunov_test.cpp
   analysis/basins_test.cpp
+  analysis/curves_test.cpp
 )

@@ -188,3 +188,10 @@ impactlab_cli_test(scan_bad_measure --rc 2 --match "'colour'" -- scan --x omega:
 impactlab_cli_test(scan_small --rc 0 --csv p.csv "omega,m0e,period,impacts,xmin,xmax" 6 6
                    -- scan --model A1H --x omega:10:12:3 --y m0e:0.02:0.03:2 --measure period,impacts,xrange
                       --transient 5 --record 10 --threads 2 --out p.csv)
+impactlab_cli_test(scan_doubling_needs_png --rc 2 --match "--doubling-from draws on the PNG" --absent p.csv
+                   -- scan --model A1C --x omega:10.5:11:3 --y xI:-0.001:0:2 --doubling-from 10.8613339,-0.0142521,-0.0499209 --out p.csv)
+impactlab_cli_test(scan_doubling_bad --rc 2 --match "expected OMEGA,X,V" --absent p.csv
+                   -- scan --model A1C --x omega:10.5:11:3 --y xI:-0.001:0:2 --doubling-from 10.86,-0.014 --png p.png --out p.csv)
+impactlab_cli_test(scan_doubling_curve --rc 0 --match "doubling curve: 3 points, ends: xI range / xI range" --csv p.csv "omega,xI,period" 6 6
+                   -- scan --model A1C --x omega:10.5:11:3 --y xI:-0.001:0:2 --transient 2 --record 4 --threads 1
+                      --doubling-from 10.8613339,-0.0142521,-0.0499209 --png p.png --out p.csv)

@@ -152,6 +152,28 @@ struct ContinuationResult {
 };
 ContinuationResult continue_orbits(const Params& p, const ContinuationSpec& spec, Progress* progress = nullptr);
 
+// ---- Two-parameter curves ---------------------------------------------------------------------------------
+
+// A period doubling followed in two parameters: omega and `second` (xI or m0e). At each value of the second
+// parameter, stepped by `step` from the model's own value to each end of [lo, hi], the doubling's omega is
+// found again by a secant on the multiplier nearest -1 of the period-k orbit (Newton from the previous
+// point's orbit, both extrapolated from the last two points). The curve ends where the orbit or the secant
+// is lost (the multiplier turns complex, or the orbit is no longer found).
+struct CurvePoint {
+    double omega = 0;            // [rad/s]
+    double q = 0;                // the second parameter [m] or [kg m]
+    Vec2 y = Vec2::Zero();       // the period-k orbit's section point there
+};
+struct BifCurve {
+    BifKind kind = BifKind::PeriodDoubling;
+    ContParam second = ContParam::XI;
+    int period = 1;
+    std::vector<CurvePoint> points;   // ordered by q
+    std::string end;                  // why it ended at each end
+};
+BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
+                                 double lo, double hi, double step, const Tolerances& sim = analysis_tolerances());
+
 // ---- Lyapunov exponents -----------------------------------------------------------------------------------
 
 struct LyapunovResult {
@@ -244,8 +266,10 @@ struct BasinResult {
     double x0(int i) const { return spec.x_min + (i + 0.5) * (spec.x_max - spec.x_min) / spec.nx; }
     double v0(int j) const { return spec.v_min + (j + 0.5) * (spec.v_max - spec.v_min) / spec.nv; }
 };
-// The grid on a pool of spec.threads threads (rows handed out one at a time). Labels are assigned after all
-// cells are done, in cell order, so the result is identical for any thread count. Throws
+// The grid on a pool of spec.threads threads (rows handed out one at a time). Every 4th cell in x and v runs
+// first; every other cell also stops once two consecutive section points follow one of their trajectories
+// (within 1e-3 scaled), and takes its outcome. Labels are assigned after all cells are done, in cell order,
+// so the result is identical for any thread count. Throws
 // std::invalid_argument for an empty grid or an inverted range.
 BasinResult compute_basins(const Params& p, const BasinSpec& spec, Progress* progress = nullptr);
 // Whether two outcomes are the same attractor (the matching compute_basins uses).

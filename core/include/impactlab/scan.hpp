@@ -79,8 +79,15 @@ std::string scan_log_line(int row, const std::vector<ScanPoint>& points);
 std::vector<std::pair<int, std::vector<ScanPoint>>> read_scan_log(std::istream& in, const std::string& header,
                                                                   const ScanSpec& spec);
 
-// A PNG with one map per measure (period classes, impacts, lambda, x range) and a legend for each.
+// A curve in the plane's coordinates (x along spec.x, y along spec.y), e.g. a continued bifurcation.
+struct ScanCurve {
+    std::string label;
+    std::vector<double> x, y;
+};
+// A PNG with one map per measure (period classes, impacts, lambda, x range) and a legend for each; the curves,
+// if any, drawn in black over every map, so that the brute-force regions and the continued boundaries can be
+// compared by eye.
 void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, const std::string& model,
-                   const std::string& path);
+                   const std::string& path, const std::vector<ScanCurve>& curves = {});
 
 }  // namespace impactlab

@@ -10,6 +10,8 @@
 #include <numbers>
 #include <stdexcept>
 #include <thread>
+#include <unordered_map>
+#include <cstdint>
 
 #include "impactlab/analysis.hpp"
 
@@ -109,7 +111,47 @@ const char* attractor_kind_name(AttractorKind k) {
 
 namespace {
 
-CellOutcome run_cell(const Params& p, const BasinSpec& spec, const Vec2& y0, std::vector<CheckedCycle>& cache) {
+// The coarse cells' section points, found again in O(1): a later cell whose trajectory follows one of them for
+// two consecutive periods (within kShadowTol) ends where that one ended. The table is complete before any
+// cell consults it, so every cell's outcome is a function of its start alone, whatever the thread count.
+constexpr double kShadowTol = 1e-3;   // scaled (x / 1 cm, v / 0.1 m/s)
+constexpr int kCoarseStride = 4;      // every 4th cell in x and in v runs first, without the table
+
+struct ShadowTable {
+    struct Entry { std::uint32_t cell, index; };
+    std::unordered_map<std::uint64_t, std::vector<Entry>> buckets;
+    const std::vector<std::vector<Vec2>>* traces = nullptr;   // per cell (empty for cells not in the table)
+    const std::vector<CellOutcome>* outcomes = nullptr;
+
+    static std::int64_t coord(double scaled) { return static_cast<std::int64_t>(std::floor(scaled / kShadowTol)); }
+    static std::uint64_t key(std::int64_t i, std::int64_t j) {
+        return (static_cast<std::uint64_t>(i) << 32) ^ (static_cast<std::uint64_t>(j) & 0xffffffffULL);
+    }
+    void insert(std::uint32_t cell, std::uint32_t index, const Vec2& y) {
+        buckets[key(coord(y[0] / kXScale), coord(y[1] / kVScale))].push_back({cell, index});
+    }
+    // The outcome of a coarse trajectory that passes within kShadowTol of `prev` and then of `now` one period
+    // later, if any (the first in cell order, so that the choice is deterministic too).
+    const CellOutcome* follow(const Vec2& prev, const Vec2& now) const {
+        const std::int64_t ci = coord(prev[0] / kXScale), cj = coord(prev[1] / kVScale);
+        const Entry* best = nullptr;
+        for (std::int64_t di = -1; di <= 1; ++di)
+            for (std::int64_t dj = -1; dj <= 1; ++dj) {
+                const auto it = buckets.find(key(ci + di, cj + dj));
+                if (it == buckets.end()) continue;
+                for (const Entry& e : it->second) {
+                    const auto& tr = (*traces)[e.cell];
+                    if (e.index + 1 >= tr.size()) continue;
+                    if (scaled_norm(tr[e.index] - prev) >= kShadowTol || scaled_norm(tr[e.index + 1] - now) >= kShadowTol) continue;
+                    if (!best || e.cell < best->cell || (e.cell == best->cell && e.index < best->index)) best = &e;
+                }
+            }
+        return best ? &(*outcomes)[best->cell] : nullptr;
+    }
+};
+
+CellOutcome run_cell(const Params& p, const BasinSpec& spec, const Vec2& y0, std::vector<CheckedCycle>& cache,
+                     std::vector<Vec2>* trace = nullptr, const ShadowTable* table = nullptr) {
     CellOutcome out;
     const Drive d(spec.omega, 0.0, 0.0);
     Simulator sim(spec.sim);
@@ -131,6 +173,14 @@ CellOutcome run_cell(const Params& p, const BasinSpec& spec, const Vec2& y0, std
             sim.advance(p, d, s, d.time_of_phase(kTwoPi * i), &watch);
             y[static_cast<std::size_t>(i)] = s.regime == Regime::Free ? Vec2(s.x, s.v) : Vec2(p.xI, 0.0);
             flew[static_cast<std::size_t>(i)] = watch.flew ? 1 : 0;
+            if (table && i >= 2) {
+                const CellOutcome* known = table->follow(y[static_cast<std::size_t>(i) - 1], y[static_cast<std::size_t>(i)]);
+                if (known && known->kind != AttractorKind::Failed) {
+                    out = *known;
+                    out.periods_run = i;
+                    return out;
+                }
+            }
             k = recurrence(y, static_cast<std::size_t>(i) + 1, spec.max_period, spec.confirm, 4, spec.recur_tol);
             if (k > 0 && cycle_stable(p, spec, y, static_cast<std::size_t>(i) + 1, k, cache)) break;
             k = 0;
@@ -142,6 +192,7 @@ CellOutcome run_cell(const Params& p, const BasinSpec& spec, const Vec2& y0, std
     }
     const std::size_t n = static_cast<std::size_t>(std::min(i, budget)) + 1;
     out.periods_run = static_cast<int>(n) - 1;
+    if (trace) trace->assign(y.begin(), y.begin() + static_cast<std::ptrdiff_t>(n));
     // A cycle that converges slowly (a multiplier near the unit circle) may not reach recur_tol within the
     // budget; it still repeats to within match_tol, and over the whole recorded window, which a chaotic
     // trajectory lingering near a saddle cycle for a few turns does not.
@@ -217,36 +268,60 @@ BasinResult compute_basins(const Params& p, const BasinSpec& spec, Progress* pro
     threads = std::clamp(threads, 1, std::max(1, spec.nv));
     res.threads = threads;
 
-    // Rows are handed out one at a time: chaotic rows cost ten times periodic ones, so a static split would
-    // leave a thread idle. Each cell is written by exactly one thread; join() publishes them.
+    // Two passes. The coarse cells (every kCoarseStride-th in x and v) run to their attractors and keep their
+    // section points; then every other cell runs until it recurs or follows a coarse trajectory for two
+    // periods, whose end it shares (neighbours mostly converge to the same orbit: A1G at 13 rad/s needs a
+    // fifth of the periods). Rows are handed out one at a time: chaotic rows cost ten times periodic ones, so
+    // a static split would leave a thread idle. Each cell is written by exactly one thread; join() publishes.
+    auto coarse = [](int i, int j) { return i % kCoarseStride == 0 && j % kCoarseStride == 0; };
+    std::vector<std::vector<Vec2>> traces(nx * nv);
+    ShadowTable table;
+    table.traces = &traces;
+    table.outcomes = &cells;
     std::atomic<int> next_row{0}, rows_done{0};
     std::exception_ptr error;
     std::mutex error_mutex;
     auto cancelled = [&] { return progress && progress->cancel.load(std::memory_order_relaxed); };
-    auto worker = [&] {
-        std::vector<CheckedCycle> cache;
-        try {
-            for (int j; (j = next_row.fetch_add(1, std::memory_order_relaxed)) < spec.nv;) {
-                for (int i = 0; i < spec.nx; ++i) {
-                    if (cancelled()) return;
-                    const std::size_t c = static_cast<std::size_t>(j) * nx + static_cast<std::size_t>(i);
-                    cells[c] = run_cell(p, spec, Vec2(res.x0(i), res.v0(j)), cache);
-                    done[c] = 1;
+    const int coarse_rows = (spec.nv + kCoarseStride - 1) / kCoarseStride;
+    auto run_pass = [&](bool first) {
+        next_row.store(0);
+        auto worker = [&] {
+            std::vector<CheckedCycle> cache;
+            try {
+                for (int r; (r = next_row.fetch_add(1, std::memory_order_relaxed)) < (first ? coarse_rows : spec.nv);) {
+                    const int j = first ? r * kCoarseStride : r;
+                    for (int i = 0; i < spec.nx; ++i) {
+                        if (coarse(i, j) != first) continue;
+                        if (cancelled()) return;
+                        const std::size_t c = static_cast<std::size_t>(j) * nx + static_cast<std::size_t>(i);
+                        cells[c] = first ? run_cell(p, spec, Vec2(res.x0(i), res.v0(j)), cache, &traces[c])
+                                         : run_cell(p, spec, Vec2(res.x0(i), res.v0(j)), cache, nullptr, &table);
+                        done[c] = 1;
+                    }
+                    const int finished = rows_done.fetch_add(1, std::memory_order_relaxed) + 1;
+                    if (progress)
+                        progress->fraction.store(static_cast<double>(finished) / (coarse_rows + spec.nv), std::memory_order_relaxed);
                 }
-                const int finished = rows_done.fetch_add(1, std::memory_order_relaxed) + 1;
-                if (progress) progress->fraction.store(static_cast<double>(finished) / spec.nv, std::memory_order_relaxed);
+            } catch (...) {
+                const std::lock_guard<std::mutex> lock(error_mutex);
+                if (!error) error = std::current_exception();
+                next_row.store(spec.nv, std::memory_order_relaxed);   // the others stop at their next row
             }
-        } catch (...) {
-            const std::lock_guard<std::mutex> lock(error_mutex);
-            if (!error) error = std::current_exception();
-            next_row.store(spec.nv, std::memory_order_relaxed);   // the others stop at their next row
-        }
+        };
+        std::vector<std::thread> pool;
+        pool.reserve(static_cast<std::size_t>(threads - 1));
+        for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+        worker();
+        for (auto& t : pool) t.join();
     };
-    std::vector<std::thread> pool;
-    pool.reserve(static_cast<std::size_t>(threads - 1));
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (auto& t : pool) t.join();
+    run_pass(true);
+    if (!error && !cancelled()) {
+        for (std::size_t c = 0; c < cells.size(); ++c)
+            if (done[c] && cells[c].kind != AttractorKind::Failed)
+                for (std::size_t k = 0; k < traces[c].size(); ++k)
+                    table.insert(static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(k), traces[c][k]);
+        run_pass(false);
+    }
     if (error) std::rethrow_exception(error);
     res.cancelled = cancelled();
 

@@ -257,7 +257,10 @@ private:
     }
 
     // Bisection along the step from a (with tangent t) to the point at arclength ds.
-    void locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch);
+    // off_bumper: a grazing the corrector cannot cross is located on the bumperless orbit (rigid bumpers,
+    // and compliant ones too stiff for it, as C1's).
+    void locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch,
+                bool off_bumper = false);
     void follow(const Job& job, Branch& br);
 
     bool cancelled() const { return progress_ && progress_->cancel.load(std::memory_order_relaxed); }
@@ -274,14 +277,16 @@ private:
     double branch_fraction_ = 0;
 };
 
-void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch) {
+void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch,
+                       bool off_bumper) {
     double s_lo = 0, s_hi = ds, f_lo = test(kind, a), f_hi = test(kind, b);
     Sol lo = a, hi = b;
     // A rigid grazing is located on the orbit without the bumper, whose largest x is smooth in the parameter
     // and equals xI exactly at the grazing (on the impacting side the map's derivative grows without bound
-    // and the corrector may fail inside the bracket).
+    // and the corrector may fail inside the bracket). The same holds for a compliant bumper: its force is
+    // zero up to the touch.
     const ImpactModel* rigid_law = nullptr;
-    if (kind == BifKind::Grazing && work_.rigid()) {
+    if (kind == BifKind::Grazing && (work_.rigid() || off_bumper)) {
         rigid_law = work_.impact;
         work_.impact = find_impact("none");
         // Walk along the step (and a little past it) on the bumperless orbit until its largest x passes xI.
@@ -370,6 +375,15 @@ void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, con
         }
     }
     BifPoint bp{kind, q_of(best.u) + shift, y_of(best.u), k, branch, precision};
+    // The same point met again (from the other side of a bubble, on another branch through the same orbit at
+    // another of its k phases, or by a failed corrector after its sign change): reported once.
+    for (const BifPoint& q : result_.points) {
+        if (q.kind != kind || q.period != k) continue;
+        if (std::abs(q.param - bp.param) > std::max(1e-5 * q_scale_, 3 * (q.precision + bp.precision))) continue;
+        bool same = scaled_norm(q.y - bp.y) < 1e-3;
+        for (const Vec2& sp : best.r.sections) same = same || scaled_norm(q.y - sp) < 1e-3;
+        if (same) return;
+    }
     result_.points.push_back(bp);
     if (kind != BifKind::PeriodDoubling || 2 * k > spec_.max_period) return;
     // Switch onto the period-2k branch: it leaves the period-k orbit along the eigenvector of mu = -1.
@@ -426,12 +440,15 @@ void Continuer::follow(const Job& job, Branch& br) {
                     if (restart(cur, t, k, ds, skipped)) continue;
                     end = "Newton failed near " + std::string(cont_param_name(spec_.param)) + " = " +
                           std::to_string(q_of(cur.u));
-                    // A rigid orbit about to graze: the impacting side is out of the corrector's reach, the
-                    // grazing itself is still located on the bumperless orbit.
+                    // An orbit about to graze: the impacting side is out of the corrector's reach (a rigid
+                    // bumper, or a compliant one as stiff as C1's), the grazing itself is still located on
+                    // the bumperless orbit.
                     const double g = test(BifKind::Grazing, cur);
-                    if (work_.rigid() && g < 0 && g > -0.1) {
-                        locate(BifKind::Grazing, cur, t, 0.05, cur, k, br.id);
-                        end = "grazing (rigid impacts begin)";
+                    if (work_.has_bumper() && g < 0 && g > -0.1) {
+                        const std::size_t before = result_.points.size();
+                        locate(BifKind::Grazing, cur, t, 0.05, cur, k, br.id, true);
+                        if (result_.points.size() > before)
+                            end = work_.rigid() ? "grazing (rigid impacts begin)" : "grazing (the corrector cannot step into the contacts)";
                     }
                     break;
                 }

@@ -43,6 +43,7 @@ LyapunovResult lyapunov_watched(const Params& p, double omega, State& s, int tra
     detail::TangentTracker tr(p, d, true);
     tr.sections = &res.sections;
     tr.cancel = cancel;
+    tr.step_tol = detail::step_tol_for(tol.rtol);
     res.sections.reserve(static_cast<std::size_t>(periods));
     double sum1 = 0, sum2 = 0;
     Mat2 Q = Mat2::Identity();   // orthonormal frame, scaled variables

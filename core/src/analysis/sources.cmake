@@ -5,4 +5,5 @@ set(IMPACTLAB_ANALYSIS_SOURCES
   src/analysis/continuation.cpp
   src/analysis/lyapunov.cpp
   src/analysis/basins.cpp
+  src/analysis/curves.cpp
 )

@@ -67,7 +67,7 @@ MapLayer map_panel(const ScanSpec& spec, const std::vector<std::vector<ScanPoint
 }  // namespace
 
 void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, const std::string& model,
-                   const std::string& path) {
+                   const std::string& path, const std::vector<ScanCurve>& curves) {
     plot::Figure fig;
     fig.width = 1400;
     fig.panel_height = 520;
@@ -128,7 +128,19 @@ void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint
                 if (std::isfinite(xI) && p.xmax >= xI - 1e-4) l.cell_class[static_cast<std::size_t>(j * spec.x.n + i)] = 3;
             }
     }
-    for (const auto& l : layers) fig.panels.push_back(l.panel);
+    for (auto& l : layers) {
+        for (const ScanCurve& c : curves) {   // a legend entry; the curve itself is drawn over the cells below
+            plot::Series sr;
+            sr.kind = plot::Series::Kind::Line;
+            sr.color = {0, 0, 0};
+            sr.size = 2.0f;
+            sr.label = c.label;
+            sr.x.push_back(std::nan(""));
+            sr.y.push_back(std::nan(""));
+            l.panel.series.push_back(std::move(sr));
+        }
+        fig.panels.push_back(l.panel);
+    }
     plot::Image img = plot::render(fig);
     const std::vector<plot::Mapping> maps = plot::layout(fig);
     // Each cell is the rectangle half a grid step either side of its point, clipped to the plot area.
@@ -154,6 +166,29 @@ void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint
                         px[2] = col.b;
                         px[3] = 255;
                     }
+            }
+    }
+    // The curves over the cells: 3 x 3 black dots every half pixel along each segment, clipped to the plane.
+    for (std::size_t k = 0; k < layers.size(); ++k) {
+        const plot::Mapping& map = maps[k];
+        const double x_end = spec.x.hi + hx;   // not into the legend's margin
+        for (const ScanCurve& c : curves)
+            for (std::size_t i = 0; i + 1 < c.x.size() && i + 1 < c.y.size(); ++i) {
+                const double x0 = map.px(c.x[i]), y0 = map.py(c.y[i]), x1 = map.px(c.x[i + 1]), y1 = map.py(c.y[i + 1]);
+                if (!std::isfinite(x0 + y0 + x1 + y1)) continue;
+                const int n = 1 + static_cast<int>(2 * std::hypot(x1 - x0, y1 - y0));
+                for (int s = 0; s <= n; ++s) {
+                    const double f = static_cast<double>(s) / n;
+                    const int cx = static_cast<int>(std::lround(x0 + f * (x1 - x0))), cy = static_cast<int>(std::lround(y0 + f * (y1 - y0)));
+                    for (int r = cy - 1; r <= cy + 1; ++r)
+                        for (int cc = cx - 1; cc <= cx + 1; ++cc) {
+                            if (r < map.top || r >= map.bottom || cc < map.left || cc >= std::min(map.right, static_cast<int>(map.px(x_end)))) continue;
+                            std::uint8_t* px = &img.rgba[(static_cast<std::size_t>(r) * static_cast<std::size_t>(img.width) +
+                                                          static_cast<std::size_t>(cc)) * 4];
+                            px[0] = px[1] = px[2] = 0;
+                            px[3] = 255;
+                        }
+                }
             }
     }
     plot::save_png(img, path);

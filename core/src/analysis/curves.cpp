@@ -1,0 +1,111 @@
+// A period doubling continued in two parameters (omega and xI or m0e): natural-parameter steps in the second
+// parameter, the doubling's omega found again at each by a secant on the crossing multiplier.
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "impactlab/analysis.hpp"
+
+namespace impactlab::analysis {
+
+namespace {
+
+// The real multiplier nearest -1 of the period-k orbit at omega near y (NaN when complex or not found).
+struct Probe { double mu = NAN; Vec2 y = Vec2::Zero(); };
+Probe probe(const Params& p, double omega, const Vec2& guess, int period, const Tolerances& sim) {
+    OrbitOptions oo;
+    oo.period = period;
+    oo.sim = sim;
+    oo.max_iterations = 12;
+    Probe r;
+    try {
+        const Orbit o = find_orbit(p, omega, guess, oo);
+        if (!o.converged || scaled_norm(o.y - guess) > 0.2) return r;
+        if (o.floquet.mu[0].imag() != 0.0) return r;
+        const double a = o.floquet.mu[0].real(), b = o.floquet.mu[1].real();
+        r.mu = std::abs(a + 1) < std::abs(b + 1) ? a : b;
+        r.y = o.y;
+    } catch (const std::exception&) {
+    }
+    return r;
+}
+
+}  // namespace
+
+BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
+                                 double lo, double hi, double step, const Tolerances& sim) {
+    if (second == ContParam::Omega) throw std::invalid_argument("a doubling curve needs a second parameter besides omega");
+    if (!(step > 0) || !(hi > lo)) throw std::invalid_argument("a doubling curve needs lo < hi and a positive step");
+    BifCurve c;
+    c.second = second;
+    c.period = period;
+    Params work = p;
+    double& q_ref = second == ContParam::XI ? work.xI : work.m0e;
+    const double q0 = q_ref;
+    std::vector<CurvePoint> sides[2];
+    std::string ends[2];
+    for (int side = 0; side < 2; ++side) {
+        const double dir = side == 0 ? 1.0 : -1.0;
+        std::vector<CurvePoint>& pts = sides[side];
+        // The known point starts both sides (it is kept once, on the upward side).
+        CurvePoint prev{omega0, q0, y0}, before = prev;
+        int have = 1;
+        double h = step;
+        bool first = side == 0;   // the known point is located again once, on the upward side
+        while (true) {
+            const double q = first ? q0 : prev.q + dir * h;
+            if (q > hi + 1e-12 * std::abs(hi) || q < lo - 1e-12 * std::abs(lo)) {
+                ends[side] = std::string(cont_param_name(second)) + " range";
+                break;
+            }
+            q_ref = q;
+            // Predictor: the last two points extrapolated (the first step: the last point).
+            double w = prev.omega;
+            Vec2 y = prev.y;
+            if (have >= 2 && prev.q != before.q) {
+                const double f = (q - prev.q) / (prev.q - before.q);
+                w = prev.omega + f * (prev.omega - before.omega);
+                y = prev.y + f * (prev.y - before.y);
+            }
+            // Secant on mu(omega) + 1 = 0, from w and w + 1e-3.
+            double wa = w, wb = w + 1e-3;
+            Probe a = probe(work, wa, y, period, sim), b = probe(work, wb, std::isfinite(a.mu) ? a.y : y, period, sim);
+            bool ok = false;
+            for (int it = 0; it < 20 && std::isfinite(a.mu) && std::isfinite(b.mu) && b.mu != a.mu; ++it) {
+                const double wn = wb - (b.mu + 1.0) * (wb - wa) / (b.mu - a.mu);
+                if (!std::isfinite(wn) || std::abs(wn - w) > 0.5) break;   // ran off: no doubling near here
+                a = b;
+                wa = wb;
+                wb = wn;
+                b = probe(work, wb, a.y, period, sim);
+                if (std::abs(wb - wa) < 1e-7 && std::isfinite(b.mu)) {
+                    ok = true;
+                    break;
+                }
+            }
+            if (!ok) {
+                // A step too long for the predictor (the doubling moves fast in m0e): shorter, down to step / 64.
+                if (!first && h > step / 64) {
+                    h *= 0.5;
+                    continue;
+                }
+                ends[side] = "doubling lost near " + std::string(cont_param_name(second)) + " = " + std::to_string(q);
+                break;
+            }
+            pts.push_back({wb, q, b.y});
+            if (!first) {
+                before = prev;
+                ++have;
+                h = std::min(step, 2 * h);
+            }
+            prev = {wb, q, b.y};
+            first = false;
+        }
+    }
+    c.points.assign(sides[1].rbegin(), sides[1].rend());
+    c.points.insert(c.points.end(), sides[0].begin(), sides[0].end());
+    c.end = ends[1] + " / " + ends[0];
+    return c;
+}
+
+}  // namespace impactlab::analysis
