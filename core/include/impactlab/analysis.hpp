@@ -152,6 +152,17 @@ struct ContinuationResult {
 };
 ContinuationResult continue_orbits(const Params& p, const ContinuationSpec& spec, Progress* progress = nullptr);
 
+// One curve of a branch in a bifurcation diagram's coordinates: a period-k branch gives k curves, one per
+// section point of its orbit (a diagram shows all k of them at each parameter value).
+struct BranchCurve {
+    int branch = 0, period = 1;
+    std::vector<double> param, x;   // the continued parameter, the section point's x [m]
+    std::vector<char> stable;       // per point
+};
+// The curves of every branch, branch by branch and section point by section point; curves without points
+// are left out.
+std::vector<BranchCurve> branch_curves(const ContinuationResult& r);
+
 // ---- Lyapunov exponents -----------------------------------------------------------------------------------
 
 struct LyapunovResult {
@@ -250,5 +261,8 @@ struct BasinResult {
 BasinResult compute_basins(const Params& p, const BasinSpec& spec, Progress* progress = nullptr);
 // Whether two outcomes are the same attractor (the matching compute_basins uses).
 bool same_attractor(const CellOutcome& a, const CellOutcome& b, const BasinSpec& spec);
+// The window of starts shown by default: x0 in [-0.03, xI] (a bumper beyond 3 cm, or none: [-0.03, 0.03],
+// and at least 3 cm wide below the bumper), v0 in [-0.3, 0.3] m/s.
+void set_default_window(const Params& p, BasinSpec& spec);
 
 }  // namespace impactlab::analysis
