@@ -1,7 +1,7 @@
 // The effect registry: one line per named physical effect. A new effect is one file (its force law, how fit
 // looks for it, how it is described) plus one line here. (impactlab fit also knows four effects that change
-// the base model rather than add a force: bumper_offset, impact_duration, restitution and cart_mass; see
-// core/src/identify/catalogue.cpp.)
+// the base model rather than add a force: bumper_offset, impact_duration, restitution and cart_mass, each a
+// row of core/src/identify/base_effects.cpp.)
 #include "effects/effects.hpp"
 
 namespace impactlab {
