@@ -100,4 +100,41 @@ int Args::integer(const std::string& flag, int fallback, int lo, int hi) const {
     return static_cast<int>(v);
 }
 
+std::array<double, 2> Args::pair(const std::string& flag) const {
+    std::vector<std::string> parts;
+    {
+        std::stringstream ss(str(flag, ""));
+        std::string item;
+        while (std::getline(ss, item, ','))
+            if (!item.empty()) parts.push_back(item);
+    }
+    if (parts.size() != 2) throw UsageError(command_ + ": option '" + flag + "': expected X,V (two numbers)");
+    std::array<double, 2> y{};
+    for (std::size_t i = 0; i < 2; ++i) {
+        char* end = nullptr;
+        y[i] = std::strtod(parts[i].c_str(), &end);
+        if (end == parts[i].c_str() || *end || !std::isfinite(y[i]))
+            throw UsageError(command_ + ": option '" + flag + "': '" + parts[i] + "' is not a finite number");
+    }
+    return y;
+}
+
+std::pair<double, double> Args::range(const std::string& flag, double lo, double hi, std::pair<double, double> fallback) const {
+    if (!has(flag)) return fallback;
+    const std::string s = str(flag, "");
+    const auto colon = s.find(':');
+    if (colon == std::string::npos) throw UsageError(command_ + ": option '" + flag + "': expected A:B, got '" + s + "'");
+    double r[2];
+    const std::string parts[2] = {s.substr(0, colon), s.substr(colon + 1)};
+    for (int i = 0; i < 2; ++i) {
+        char* end = nullptr;
+        r[i] = std::strtod(parts[i].c_str(), &end);
+        if (parts[i].empty() || *end || !std::isfinite(r[i]) || r[i] < lo || r[i] > hi)
+            throw UsageError(command_ + ": option '" + flag + "': '" + parts[i] + "' is not a number in [" + std::to_string(lo) +
+                             ", " + std::to_string(hi) + "]");
+    }
+    if (!(r[1] > r[0])) throw UsageError(command_ + ": option '" + flag + "': the end is not above the start");
+    return {r[0], r[1]};
+}
+
 }  // namespace impactlab::cli

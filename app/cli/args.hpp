@@ -2,10 +2,12 @@
 // UsageError whose message names the flag; main() prints it and exits with code 2.
 #pragma once
 
+#include <array>
 #include <map>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace impactlab::cli {
@@ -23,6 +25,10 @@ public:
     std::string required(const std::string& flag) const;
     double num(const std::string& flag, double fallback, double lo, double hi) const;
     int integer(const std::string& flag, int fallback, int lo, int hi) const;
+    // "X,V": two finite numbers.
+    std::array<double, 2> pair(const std::string& flag) const;
+    // "A:B" with A < B, both finite, inside [lo, hi]; `fallback` when the flag is absent.
+    std::pair<double, double> range(const std::string& flag, double lo, double hi, std::pair<double, double> fallback) const;
     const std::vector<std::string>& positional() const { return positional_; }
 
 private:

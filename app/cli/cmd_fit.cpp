@@ -107,14 +107,14 @@ int cmd_fit(const std::vector<std::string>& argv) {
     const std::string model_name = a.str("--model", "A1H");
     identify::Model model;
     try {
-        model = identify::resolve_fit_model(model_name, data.has_phi() ? identify::Forcing::Unbalance : identify::Forcing::Input);
+        model = identify::resolve_fit_model(model_name, identify::forcing_of(data));
     } catch (const ParamError& e) {
         throw UsageError(std::string("--model: ") + e.what());
     }
     if (a.has("--xI")) model.p.xI = a.num("--xI", 0.0, -0.1, 0.1);
     if (a.has("--m0e")) model.p.m0e = a.num("--m0e", model.p.m0e, 0.0, 10.0);
     if (a.has("--gain")) model.p.input_gain = a.num("--gain", 1.0, -1e12, 1e12);
-    if (!data.has_phi()) model.forcing = identify::Forcing::Input;
+    if (identify::forcing_of(data) == identify::Forcing::Input) model.forcing = identify::Forcing::Input;   // a model file may say otherwise
 
     identify::FitOptions o;
     const std::string baseline = a.str("--baseline", model.bumper() ? "fixed" : "fit");

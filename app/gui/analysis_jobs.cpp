@@ -26,24 +26,7 @@ ContinuationOverlay compute_continuation(const Params& p, double omega_lo, doubl
     out.omega_hi = spec.hi;
     out.points = r.points;
     out.cancelled = r.cancelled;
-    // Each branch point carries its orbit's k section points: a period-k branch draws k curves.
-    for (const analysis::Branch& b : r.branches) {
-        const int k = std::max(b.period, 1);
-        std::vector<BranchCurve> curves(static_cast<std::size_t>(k));
-        for (BranchCurve& c : curves) {
-            c.branch = b.id;
-            c.period = k;
-        }
-        for (const analysis::BranchPoint& q : b.points) {
-            for (std::size_t i = 0; i < curves.size() && i < q.sections.size(); ++i) {
-                curves[i].omega.push_back(q.param);
-                curves[i].x.push_back(q.sections[i][0]);
-                curves[i].stable.push_back(q.stable ? 1 : 0);
-            }
-        }
-        for (BranchCurve& c : curves)
-            if (!c.omega.empty()) out.curves.push_back(std::move(c));
-    }
+    out.curves = analysis::branch_curves(r);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
 }
@@ -70,11 +53,7 @@ analysis::BasinSpec basin_request(const Params& p, double omega, int grid, int t
     analysis::BasinSpec spec;
     spec.omega = omega;
     spec.nx = spec.nv = grid;
-    const double x_hi = p.has_bumper() ? std::min(p.xI, 0.03) : 0.03;
-    spec.x_min = std::min(-0.03, x_hi - 0.03);
-    spec.x_max = x_hi;
-    spec.v_min = -0.3;
-    spec.v_max = 0.3;
+    analysis::set_default_window(p, spec);
     spec.threads = worker_threads(threads);
     return spec;
 }

@@ -114,13 +114,8 @@ private:
 
 // ---- Continued branches, as curves over the bifurcation diagram -----------------------------------------
 
-// One curve of a branch in the diagram's coordinates: a period-k branch gives k curves, one per section
-// point of its orbit (the diagram shows all k of them at each omega).
-struct BranchCurve {
-    int branch = 0, period = 1;
-    std::vector<double> omega, x;   // [rad/s], [m]
-    std::vector<char> stable;       // per point
-};
+// Continued along omega: a curve's param is omega [rad/s].
+using BranchCurve = analysis::BranchCurve;
 struct ContinuationOverlay {
     std::string model;
     double xI = 0;                        // [m] the bumper they were computed at

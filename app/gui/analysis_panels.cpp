@@ -327,10 +327,10 @@ void AnalysisPanels::overlay_diagram(Plot& plot) const {
     for (const BranchCurve& cv : overlay_->curves) {
         pts.clear();
         dashed.clear();
-        for (std::size_t i = 0; i < cv.omega.size(); ++i) {
-            pts.push_back(plot.to_px(cv.omega[i], cv.x[i]));
+        for (std::size_t i = 0; i < cv.param.size(); ++i) {
+            pts.push_back(plot.to_px(cv.param[i], cv.x[i]));
             // A segment is dashed unless both ends are stable (the change of stability sits between them).
-            dashed.push_back(!(cv.stable[i] && (i + 1 >= cv.omega.size() || cv.stable[i + 1])));
+            dashed.push_back(!(cv.stable[i] && (i + 1 >= cv.param.size() || cv.stable[i + 1])));
         }
         draw_branch(dl, pts, dashed, branch_color(cv.period), 2.0f * s);
     }

@@ -92,8 +92,7 @@ identify::Model model_for_subset(const identify::FitReport& report, std::uint32_
 }
 
 identify::Model model_for_data(const std::string& name, const identify::MeasuredData& data) {
-    return identify::resolve_fit_model(name, data.has_u() && !data.has_phi() ? identify::Forcing::Input
-                                                                            : identify::Forcing::Unbalance);
+    return identify::resolve_fit_model(name, identify::forcing_of(data));
 }
 
 std::pair<double, double> robust_extent(const std::vector<const std::vector<double>*>& series, double q, double pad) {

@@ -224,13 +224,13 @@ TEST_CASE("the continued branches over the diagram carry the first period doubli
     // Period 1: one curve, stable below the doubling and unstable above it; period 2: two curves.
     int p1 = 0, p2 = 0;
     for (const BranchCurve& c : o.curves) {
-        REQUIRE(c.omega.size() == c.x.size());
-        REQUIRE(c.omega.size() == c.stable.size());
+        REQUIRE(c.param.size() == c.x.size());
+        REQUIRE(c.param.size() == c.stable.size());
         if (c.period == 1) {
             ++p1;
-            for (std::size_t i = 0; i < c.omega.size(); ++i) {
-                if (c.omega[i] < pd->param - 1e-3) CHECK(c.stable[i]);
-                if (c.omega[i] > pd->param + 1e-3) CHECK_FALSE(c.stable[i]);
+            for (std::size_t i = 0; i < c.param.size(); ++i) {
+                if (c.param[i] < pd->param - 1e-3) CHECK(c.stable[i]);
+                if (c.param[i] > pd->param + 1e-3) CHECK_FALSE(c.stable[i]);
             }
         }
         if (c.period == 2) ++p2;

@@ -10,6 +10,7 @@ set(IMPACTLAB_IDENTIFY_TEST_SOURCES
   identify/signal_test.cpp
   identify/least_squares_test.cpp
   identify/residual_test.cpp
+  identify/add_effect_test.cpp
   identify/parsimony_test.cpp
   identify/mismatch_test.cpp
   identify/stops_test.cpp

@@ -174,6 +174,17 @@ struct BifCurve {
 BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
                                  double lo, double hi, double step, const Tolerances& sim = analysis_tolerances());
 
+// One curve of a branch in a bifurcation diagram's coordinates: a period-k branch gives k curves, one per
+// section point of its orbit (a diagram shows all k of them at each parameter value).
+struct BranchCurve {
+    int branch = 0, period = 1;
+    std::vector<double> param, x;   // the continued parameter, the section point's x [m]
+    std::vector<char> stable;       // per point
+};
+// The curves of every branch, branch by branch and section point by section point; curves without points
+// are left out.
+std::vector<BranchCurve> branch_curves(const ContinuationResult& r);
+
 // ---- Lyapunov exponents -----------------------------------------------------------------------------------
 
 struct LyapunovResult {
@@ -274,5 +285,8 @@ struct BasinResult {
 BasinResult compute_basins(const Params& p, const BasinSpec& spec, Progress* progress = nullptr);
 // Whether two outcomes are the same attractor (the matching compute_basins uses).
 bool same_attractor(const CellOutcome& a, const CellOutcome& b, const BasinSpec& spec);
+// The window of starts shown by default: x0 in [-0.03, xI] (a bumper beyond 3 cm, or none: [-0.03, 0.03],
+// and at least 3 cm wide below the bumper), v0 in [-0.3, 0.3] m/s.
+void set_default_window(const Params& p, BasinSpec& spec);
 
 }  // namespace impactlab::analysis

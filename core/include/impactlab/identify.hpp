@@ -44,6 +44,9 @@ struct Model {
 // A version name ("A1H"), a parameter file (*.json), or "duffing": m y'' + d y' + k y + k3 y^3 = gain u
 // (m = 1, no bumper; for the Silverbox benchmark). Throws ParamError.
 Model resolve_fit_model(const std::string& name_or_path, Forcing forcing);
+// What drives a record: the unbalance where it has phi, else its measured input u (the one rule the CLI and
+// the GUI both follow; the loader refuses a record with neither).
+inline Forcing forcing_of(const MeasuredData& data) { return data.has_phi() ? Forcing::Unbalance : Forcing::Input; }
 
 // The effects impactlab fit and synth know: the registry's force laws plus four that change the base
 // model instead of adding a force (bumper_offset, impact_duration, restitution, cart_mass).

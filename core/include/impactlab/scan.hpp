@@ -67,6 +67,18 @@ void scan_rows(const Params& p, const ScanSpec& spec, const std::vector<int>& to
 // The CSV: the two axis names, then one column per measure (period, lyapunov, impacts, xmin, xmax), rows
 // with the first axis fastest; numbers printed to round-trip exactly.
 void write_scan_csv(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, std::ostream& out);
+// The same CSV read back as a regular grid: values[m][j * nx + i] at (xs[i], ys[j]), axes increasing. Throws
+// ScanCsvError "SOURCE:LINE: why": a header without two different axes (omega, xI, m0e) and a measure, a row
+// with the wrong number of fields or a field that is no number, rows that do not form a grid with the first
+// axis fastest.
+struct ScanCsvError : std::runtime_error { using std::runtime_error::runtime_error; };
+struct ScanGrid {
+    std::string x_name, y_name;
+    std::vector<double> xs, ys;
+    std::vector<std::string> measures;
+    std::vector<std::vector<double>> values;
+};
+ScanGrid read_scan_csv(std::istream& in, const std::string& source);
 
 // The tile log of a scan: a header with everything that shapes the result (the spec, the integrator's
 // tolerances and a fingerprint of every model parameter, effects included), then one line per finished row

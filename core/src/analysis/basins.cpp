@@ -366,4 +366,12 @@ BasinResult compute_basins(const Params& p, const BasinSpec& spec, Progress* pro
     return res;
 }
 
+void set_default_window(const Params& p, BasinSpec& spec) {
+    const double x_hi = p.has_bumper() ? std::min(p.xI, 0.03) : 0.03;
+    spec.x_min = std::min(-0.03, x_hi - 0.03);
+    spec.x_max = x_hi;
+    spec.v_min = -0.3;
+    spec.v_max = 0.3;
+}
+
 }  // namespace impactlab::analysis

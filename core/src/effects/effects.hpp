@@ -26,4 +26,15 @@ const EffectLaw& unexplained_x_law();
 const EffectLaw& unexplained_v_law();
 const EffectLaw& unexplained_x_signv_law();
 const EffectLaw& unexplained_phi_law();
+
+// A law added to the registry for this object's lifetime, after the table's own. The test that adding an
+// effect is one file plus one registry line adds one this way; no simulation or fit may run meanwhile on
+// another thread, and they must be made and destroyed in reverse order.
+class ScopedEffectLaw {
+public:
+    explicit ScopedEffectLaw(const EffectLaw& law);
+    ~ScopedEffectLaw();
+    ScopedEffectLaw(const ScopedEffectLaw&) = delete;
+    ScopedEffectLaw& operator=(const ScopedEffectLaw&) = delete;
+};
 }  // namespace impactlab::effects

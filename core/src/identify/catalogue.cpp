@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <mutex>
 
 #include "effects/law_helpers.hpp"
 #include "identify/internal.hpp"
@@ -113,7 +114,15 @@ std::vector<EffectInfo> build_catalogue() {
 }  // namespace
 
 const std::vector<EffectInfo>& effect_catalogue() {
-    static const std::vector<EffectInfo> cat = build_catalogue();
+    // Rebuilt when the registry changed size (a scoped law added or gone).
+    static std::mutex mutex;
+    static std::vector<EffectInfo> cat;
+    static std::size_t laws = static_cast<std::size_t>(-1);
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (laws != effect_laws().size()) {
+        cat = build_catalogue();
+        laws = effect_laws().size();
+    }
     return cat;
 }
 
