@@ -206,8 +206,9 @@ Options parse_options(const std::vector<std::string>& args) {
             // An optional plot name: the next argument unless it is a flag.
             if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0) {
                 const std::string& p = args[++i];
-                if (p != "phase" && p != "poincare" && p != "potential" && p != "strip" && p != "bifurcation")
-                    throw OptionsError("--presentation: '" + p + "' is not one of phase, poincare, potential, strip, bifurcation");
+                const auto id = panel_from_key(p);
+                if (!id || view_info(*id).presentation_order == 0)
+                    throw OptionsError("--presentation: '" + p + "' is not one of " + panel_keys(true));
                 o.presentation_plot = p;
             }
         } else if (a == "--hide") {

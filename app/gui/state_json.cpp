@@ -40,7 +40,7 @@ bool App::write_state_json(const std::string& path) {
     j["frames"] = frame_count_;
     j["epoch"] = epoch_;
     j["energy"] = number(last_.energy);                 // [J] now
-    j["energy_max_trail"] = number(trail_e_max_);       // [J] over the phase portrait's trail
+    j["energy_max_trail"] = number(potential_.trail_energy_max());       // [J] over the phase portrait's trail
     {
         const EnergyBalance eb = sim_->status().energy;   // the energy bar's numbers [J]
         j["energy_balance"] = {{"t0", number(eb.t0)}, {"t", number(eb.t)}, {"E0", number(eb.E0)}, {"E", number(eb.E)},
@@ -89,7 +89,7 @@ bool App::write_state_json(const std::string& path) {
         }
         j["x_max_step"] = step;
     }
-    j["potential_view"] = {potential_y_.cur.lo, potential_y_.cur.hi};   // [J] the potential plot's y range
+    j["potential_view"] = {potential_.view_y().lo, potential_.view_y().hi};   // [J] the potential plot's y range
     const PoincareMap& map = shown_map();   // replaying: the map at the cursor, as the panel shows it
     const PoincareMap::Status st = map.status();
     j["poincare_status"] = st == PoincareMap::Status::Periodic ? "periodic"
