@@ -126,6 +126,8 @@ bool App::write_state_json(const std::string& path) {
                         : json{{"model", nullptr}, {"running", b.running}};
         d["view_omega"] = {number(b.view_omega.lo), number(b.view_omega.hi)};
         d["range_error"] = b.range_error;
+        d["live_points"] = {{"total", b.live.total}, {"in_view", b.live.in_view}, {"beyond", b.live.beyond},
+                            {"above", b.live.above}, {"below", b.live.below}};
         d["lyapunov"] = {{"on", b.lyap_on}, {"running", b.lyap_running}, {"steps", b.lyap_steps},
                          {"done", b.lyap_done}, {"positive", b.lyap_positive}};
         j["diagram"] = std::move(d);
