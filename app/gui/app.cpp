@@ -1,4 +1,5 @@
 #include "app.hpp"
+#include "param_edit.hpp"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -79,6 +80,7 @@ App::App(const Options& opt) : opt_(opt) {
     bif_panel_.configure(opt);
     bench_.on = opt.bench_plot;
     show_help_ = opt.show_help;
+    show_params_ = opt.show_params;
     if (!opt.data.empty()) {
         show_data_ = true;
         data_panel_.load(opt.data, true);
@@ -274,9 +276,31 @@ void App::set_xi(double xI) {
 void App::set_model(int stiffness, int impact) {
     stiffness_ = std::clamp(stiffness, 0, static_cast<int>(stiffness_sets().size()) - 1);
     impact_ = std::clamp(impact, 0, static_cast<int>(impact_models().size()) - 1);
+    // The same version keeps its edited parameters, as the engine does (a preset of the running model).
+    if (params_.name != model_name()) {
+        params_ = make_version(model_name());
+        params_.xI = xI_;
+        ++params_rev_;
+    }
+    sim_->send(SimCommand::set_model(model_name()));
+}
+
+bool App::set_param(const std::string& key, double value) {
+    std::string error;
+    const bool ok = gui::set_param(params_, key, value, error);
+    params_panel_.set_error(error);
+    if (!ok) return false;
+    ++params_rev_;
+    sim_->send(SimCommand::set_param(key, value));
+    return true;
+}
+
+void App::reset_params() {
     params_ = make_version(model_name());
     params_.xI = xI_;
-    sim_->send(SimCommand::set_model(model_name()));
+    ++params_rev_;
+    params_panel_.set_error("");
+    sim_->send(SimCommand::reset_params());
 }
 
 void App::set_version(const std::string& name) {
@@ -430,6 +454,7 @@ void App::handle_keys() {
     if (pressed(GLFW_KEY_F1) || (pressed(GLFW_KEY_SLASH) && shift)) show_help_ = !show_help_;
     if (pressed(GLFW_KEY_H) && !ctrl) show_help_ = !show_help_;
     if (pressed(GLFW_KEY_F12)) screenshot(screenshot_name());
+    if (pressed(GLFW_KEY_F4)) show_params_ = !show_params_;
     if (ctrl && pressed(GLFW_KEY_S)) open_session_window(true);
     if (ctrl && pressed(GLFW_KEY_O)) open_session_window(false);
     if (ctrl && pressed(GLFW_KEY_E)) export_csv();
@@ -478,6 +503,8 @@ void App::frame() {
     if (!bench_.on) drain_samples();
     xI_shown_ = sim_->status().xI;
     if (opt_.set_state && frame_count_ == 1) set_state(opt_.set_x, opt_.set_v);   // --set-state, as a click
+    if (frame_count_ == 1)
+        for (const auto& [key, value] : opt_.params) set_param(key, value);   // --param, as typed in the panel
     if (warming_ && have_last_ && last_.t >= opt_.warmup) {
         warming_ = false;
         set_speed(opt_.speed);

@@ -27,6 +27,7 @@
 #include "poincare_map.hpp"
 #include "presets.hpp"
 #include "replay.hpp"
+#include "views/params_panel.hpp"
 #include "views/phase_panel.hpp"
 #include "views/poincare_panel.hpp"
 #include "views/potential_panel.hpp"
@@ -72,6 +73,10 @@ private:
     void set_xi(double xI);
     void set_model(int stiffness, int impact);
     void set_version(const std::string& name);   // "A1G": set_model by the version's name
+    // The parameters panel's edits (views/params_panel.hpp): checked, then sent; a toast-free refusal shows
+    // in the panel. reset_params: the version's own values.
+    bool set_param(const std::string& key, double value);
+    void reset_params();
     void set_paused(bool p);
     void step_period();
     void reset();
@@ -166,7 +171,7 @@ private:
     OmegaRamp ramp_;                   // the live omega ramp and the section points it passed
     float ramp_target_ = 25.0f, ramp_rate_ = 0.05f;   // its inputs [rad/s], [rad/s per s]
     double energy_floor_ = 0;          // [J] the well's floor V_min of params_ (the energy bar's zero)
-    std::string energy_floor_for_;     // the version it was computed for
+    int energy_floor_rev_ = -1;        // the params_rev_ it was computed for
     LiveLyapunov lyapunov_live_;       // lambda_max at the running omega (issue 9)
     CompanionTrack companion_;         // the twin or the ghost (source 1 records)
     CompanionMode companion_mode_ = CompanionMode::Off;
@@ -175,6 +180,9 @@ private:
     bool have_grazing_ = false;
     double xI_shown_ = 0;              // [m] the bumper where the simulation has it (travelling to xI_)
     AnalysisPanels analysis_;          // continued branches, parameter plane, basins (issues 9, 10)
+    ParamsPanel params_panel_;         // m, c, k, T, m0e, eps and the impact law's, live
+    bool show_params_ = false;
+    int params_rev_ = 0;               // bumped at every change of params_ (the potential, the energy floor)
     RigPanel rig_;
     PhasePanel phase_;
     PoincarePanel poincare_;

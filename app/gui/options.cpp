@@ -13,6 +13,7 @@
 #include "impactlab/input_file.hpp"
 #include "impactlab/params.hpp"
 #include "layout.hpp"
+#include "param_edit.hpp"
 #include "presets.hpp"
 #include "session.hpp"
 
@@ -43,6 +44,9 @@ const char* usage_text() {
            "  --preset N         start on preset N of the model (1-4, as keys 1-4: period 1, period 2, chaos,\n"
            "                     a periodic window); sets omega, x0 and xI = 0 (over --omega, --x0, --xI)\n"
            "  --show-help        open the keyboard shortcuts window at start\n"
+           "  --param KEY=VALUE  set a parameter of the model at start, as the Parameters panel (F4) does\n"
+           "                     (repeatable; m, c, k, T, m0e, eps or the impact law's: kI, kappa0, ...)\n"
+           "  --show-params      open the Parameters panel at start\n"
            "  --bifurcation P    compute a bifurcation diagram at start: cf-up, cf-down or ef\n"
            "  --bif-steps N      omega steps of a CF sweep, 10..2000 (default 300)\n"
            "  --bif-zoom W0:W1   show the diagram zoomed to omega in [W0, W1] (wheel, drag and double-click\n"
@@ -282,6 +286,13 @@ Options parse_options(const std::vector<std::string>& args) {
             o.set_v = number(a, sv.substr(c + 1), -2.0, 2.0);
             o.set_state = true;
         }
+        else if (a == "--param") {
+            const std::string& kv = value();
+            const auto eq = kv.find('=');
+            if (eq == std::string::npos || eq == 0) throw OptionsError("--param: '" + kv + "' is not KEY=VALUE (e.g. k=1200)");
+            o.params.emplace_back(kv.substr(0, eq), number(a, kv.substr(eq + 1), -1e300, 1e300));
+        }
+        else if (a == "--show-params") o.show_params = true;
         else if (a == "--press") {
             o.press = value();
             const std::string key = o.press.rfind("ctrl+", 0) == 0 ? o.press.substr(5) : o.press;
@@ -309,6 +320,11 @@ Options parse_options(const std::vector<std::string>& args) {
         if (static_cast<std::size_t>(n) > count)
             throw OptionsError(std::string(flag) + ": " + std::to_string(n) + " is out of range [1, " +
                                std::to_string(count) + "] for " + o.model);
+    }
+    {   // --param: each value as the panel would take it, on the model given (--model may come after it)
+        Params p = make_version(o.model);
+        for (const auto& [key, value] : o.params)
+            if (std::string err; !set_param(p, key, value, err)) throw OptionsError("--param " + key + ": " + err);
     }
     if (o.then_preset > 0 && o.frames == 0) throw OptionsError("--then-preset needs --frames N");
     if (o.then_xi && o.frames == 0) throw OptionsError("--then-xI needs --frames N");

@@ -74,6 +74,9 @@ struct Options {
     std::string press;           // --press [ctrl+]KEY: that key pressed at frame 3 (headless tests of the keys)
     bool set_state = false;      // --set-state X,V: at the first frame, as a click in the phase portrait
     double set_x = 0, set_v = 0; // [m], [m/s]
+    // The parameters panel (views/params_panel.hpp).
+    std::vector<std::pair<std::string, double>> params;   // --param KEY=VALUE: at the first frame, as typed there
+    bool show_params = false;    // --show-params: the panel open at start
 };
 
 // argv without the program name. Throws OptionsError naming the flag and the problem.

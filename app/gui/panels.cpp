@@ -80,6 +80,7 @@ void App::draw_menu() {
     if (ImGui::BeginMenu("View")) {
         draw_view_menu_panels();   // tiles.cpp: presentation, panels, maximise, magnification
         ImGui::Separator();
+        if (ImGui::MenuItem("Parameters (m, c, k, ..., the impact law's)...", "F4", show_params_)) show_params_ = !show_params_;
         if (ImGui::MenuItem("Dark theme", "T", dark_)) {
             dark_ = !dark_;
             apply_theme(dark_, ui_scale_);
@@ -335,9 +336,9 @@ void App::draw_controls_state() {
             "unbalance (in) against kinetic, potential (above the well's floor) and what the resistance and\n"
             "the bumper dissipated (out). Each term is integrated on its own, so the two bars agree only if\n"
             "the simulation conserves energy as it should.");
-    if (energy_floor_for_ != params_.name) {
+    if (energy_floor_rev_ != params_rev_) {
         energy_floor_ = potential_floor(params_);
-        energy_floor_for_ = params_.name;
+        energy_floor_rev_ = params_rev_;
     }
     const EnergyBalance eb = sim_->status().energy;
     draw_energy_bars(energy_bars(eb, params_.m, energy_floor_), eb.t0, eb.t);
@@ -360,6 +361,7 @@ ViewContext App::view_context() const {
     c.have_last = have_last_;
     c.phi_prev = phi_prev_;
     c.params = &params_;
+    c.params_rev = params_rev_;
     c.omega = omega_;
     c.speed = speed_;
     c.xI = xI_;

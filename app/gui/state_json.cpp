@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "app.hpp"
+#include "param_edit.hpp"
 #include "contact_label.hpp"
 
 namespace impactlab::gui {
@@ -22,6 +23,12 @@ bool App::write_state_json(const std::string& path) {
     using nlohmann::json;
     json j;
     j["model"] = model_name();
+    {   // The running model's parameters as the Parameters panel shows them, and whether any was edited.
+        json ps = json::object();
+        for (const EditableParam& e : editable_params(params_)) ps[e.key] = number(e.value);
+        j["params"] = std::move(ps);
+        j["params_edited"] = params_edited(params_);
+    }
     j["omega"] = number(omega_);
     j["xI"] = number(xI_);
     j["speed"] = number(speed_);

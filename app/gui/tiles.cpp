@@ -303,6 +303,11 @@ void App::layout_and_draw() {
 
     data_panel_.poll(data_context());
     if (show_data_) data_panel_.draw(&show_data_, data_context());
+    if (show_params_) {
+        const ParamsAction pa = params_panel_.draw(&show_params_, {&params_, model_name(), ui_scale_});
+        if (pa.set) set_param(pa.set->first, pa.set->second);
+        if (pa.reset) reset_params();
+    }
     apply_analysis(analysis_.draw(analysis_context()));
     if (show_help_) draw_help();
     draw_toast();

@@ -109,3 +109,10 @@ add_test(NAME gui_diagram
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_diagram.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_diagram)
 set_tests_properties(gui_diagram PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
+
+# The Parameters panel (issue 21): --param changes the running model (the cart comes to rest without the
+# unbalance), the values are reported back, bad values and keys exit 2 (gui_params.sh says what it checks).
+add_test(NAME gui_params
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_params.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_params)
+set_tests_properties(gui_params PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")

@@ -23,4 +23,5 @@ set(IMPACTLAB_APP_TEST_SOURCES
   app/omega_ramp_test.cpp
   app/layout_test.cpp
   app/input_files_test.cpp
+  app/param_edit_test.cpp
 )

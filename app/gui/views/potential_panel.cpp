@@ -29,7 +29,7 @@ ViewAction PotentialPanel::draw(const ViewContext& ctx) {
     const Params& p = *ctx.params;
     ViewAction act;
     const Palette& pal = palette();
-    const std::string key = p.stiffness_id;
+    const std::string key = p.stiffness_id + "#" + std::to_string(ctx.params_rev);   // k is editable
     if (curve_for_ != key) {
         curve_for_ = key;
         curve_x_.clear();

@@ -22,7 +22,7 @@ private:
     AutoRange y_;
     WindowExtent energy_extent_;   // the energy over the trail
     double e_max_ = 0;
-    std::vector<double> curve_x_, curve_v_;   // V(x) of the stiffness curve_for_
+    std::vector<double> curve_x_, curve_v_;   // V(x) of the stiffness and revision curve_for_
     std::string curve_for_;
     ClickDelay click_;
 };

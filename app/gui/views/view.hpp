@@ -29,6 +29,7 @@ struct ViewContext {
     bool have_last = false;
     double phi_prev = 0;                         // phi one frame ago (the unbalance disc's motion blur)
     const Params* params = nullptr;              // the UI's copy of the model
+    int params_rev = 0;                          // changes whenever *params does (a switch, an edit)
     double omega = 0, speed = 1;                 // asked for [rad/s], the speed factor
     double xI = 0;                               // [m] the slider's bumper position
     double xI_shown = 0;                         // [m] where the simulation has it (travelling to xI)
