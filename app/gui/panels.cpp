@@ -465,6 +465,7 @@ void App::draw_help() {
             {"B", "compute (or cancel) the bifurcation diagram"},
             {"O", "continue the periodic orbits over the diagram's ω range (or cancel)"},
             {"F2, F3", "parameter plane (ω, x_I), basins of attraction at ω"},
+            {"F4", "parameters of the running model (m, c, k, T, m0e, eps, the impact law's)"},
             {"click diagram", "set ω there"},
             {"click phase / well", "start the cart from that (x, v) / that x at rest"},
             {"drag the cart", "hold it at the mouse; let go: from there at rest"},
