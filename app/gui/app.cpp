@@ -81,6 +81,10 @@ App::App(const Options& opt) : opt_(opt) {
     bench_.on = opt.bench_plot;
     show_help_ = opt.show_help;
     show_params_ = opt.show_params;
+    if (!opt.strip.empty()) {   // --strip (checked by the options)
+        const auto second = opt.strip.size() > 1 ? strip_from_key(opt.strip[1]) : std::nullopt;
+        strip_.set_traces(strip_from_key(opt.strip[0]).value_or(StripQuantity::X), second);
+    }
     if (!opt.data.empty()) {
         show_data_ = true;
         data_panel_.load(opt.data, true);

@@ -47,6 +47,8 @@ const char* usage_text() {
            "  --param KEY=VALUE  set a parameter of the model at start, as the Parameters panel (F4) does\n"
            "                     (repeatable; m, c, k, T, m0e, eps or the impact law's: kI, kappa0, ...)\n"
            "  --show-params      open the Parameters panel at start\n"
+           "  --strip Q[,Q2]     the time strip's trace and a second one below it: x, v, E (energy),\n"
+           "                     F (bumper force), drive (m0e ω² cos φ); default x (right-click the strip)\n"
            "  --bifurcation P    compute a bifurcation diagram at start: cf-up, cf-down or ef\n"
            "  --bif-steps N      omega steps of a CF sweep, 10..2000 (default 300)\n"
            "  --bif-zoom W0:W1   show the diagram zoomed to omega in [W0, W1] (wheel, drag and double-click\n"
@@ -293,6 +295,20 @@ Options parse_options(const std::vector<std::string>& args) {
             o.params.emplace_back(kv.substr(0, eq), number(a, kv.substr(eq + 1), -1e300, 1e300));
         }
         else if (a == "--show-params") o.show_params = true;
+        else if (a == "--strip") {
+            const std::string& list = value();
+            o.strip.clear();
+            for (std::size_t from = 0;;) {
+                const std::size_t c = list.find(',', from);
+                const std::string q = list.substr(from, c == std::string::npos ? std::string::npos : c - from);
+                if (q != "x" && q != "v" && q != "E" && q != "F" && q != "drive")
+                    throw OptionsError("--strip: '" + q + "' is not one of x, v, E, F, drive");
+                o.strip.push_back(q);
+                if (c == std::string::npos) break;
+                from = c + 1;
+            }
+            if (o.strip.size() > 2) throw OptionsError("--strip: at most two traces ('" + list + "')");
+        }
         else if (a == "--press") {
             o.press = value();
             const std::string key = o.press.rfind("ctrl+", 0) == 0 ? o.press.substr(5) : o.press;

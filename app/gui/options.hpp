@@ -77,6 +77,7 @@ struct Options {
     // The parameters panel (views/params_panel.hpp).
     std::vector<std::pair<std::string, double>> params;   // --param KEY=VALUE: at the first frame, as typed there
     bool show_params = false;    // --show-params: the panel open at start
+    std::vector<std::string> strip;   // --strip Q[,Q2]: the time strip's traces (x, v, E, F, drive)
 };
 
 // argv without the program name. Throws OptionsError naming the flag and the problem.

@@ -23,6 +23,16 @@ bool App::write_state_json(const std::string& path) {
     using nlohmann::json;
     json j;
     j["model"] = model_name();
+    {   // The time strip's traces and their y ranges [SI units].
+        json traces = json::array(), views = json::array();
+        traces.push_back(strip_key(strip_.first()));
+        views.push_back({number(strip_.view_y(0).lo), number(strip_.view_y(0).hi)});
+        if (const auto q = strip_.second()) {
+            traces.push_back(strip_key(*q));
+            views.push_back({number(strip_.view_y(1).lo), number(strip_.view_y(1).hi)});
+        }
+        j["strip"] = {{"traces", std::move(traces)}, {"views", std::move(views)}};
+    }
     {   // The running model's parameters as the Parameters panel shows them, and whether any was edited.
         json ps = json::object();
         for (const EditableParam& e : editable_params(params_)) ps[e.key] = number(e.value);

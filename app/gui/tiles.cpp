@@ -120,7 +120,10 @@ void App::draw_tile(const Tile& tile) {
     const float button_w = frame_h, buttons_w = static_cast<float>(buttons) * button_w + 4.0f * ui_scale_;
     const float room = tile.rect.w - buttons_w - 2.0f * ImGui::GetStyle().FramePadding.x - 4.0f * ui_scale_;
     std::string title;
-    for (const std::string& t : titles_of(active, magnification())) {
+    std::vector<std::string> titles = titles_of(active, magnification());
+    if (active == PanelId::Strip && (strip_.first() != StripQuantity::X || strip_.second()))   // other traces
+        titles = {"Time strip        dots: Poincaré sections (φ = 2πn)    right-click: the traces", "Time strip"};
+    for (const std::string& t : titles) {
         title = t;
         if (ImGui::CalcTextSize(t.c_str()).x <= room) break;
     }

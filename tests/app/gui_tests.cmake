@@ -116,3 +116,10 @@ add_test(NAME gui_params
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_params.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_params)
 set_tests_properties(gui_params PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
+
+# The time strip's traces (issue 21): --strip chooses one or two of x, v, E, F, drive, each on its own axis
+# (gui_strip.sh says what it checks).
+add_test(NAME gui_strip
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_strip.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_strip)
+set_tests_properties(gui_strip PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")

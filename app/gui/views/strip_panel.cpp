@@ -1,5 +1,6 @@
-// The x(t) strip: the displacement over the last seconds with the section points and the bumper, and
-// beside it, with a companion cart, their separation log10 |dx| since the restart.
+// The time strip: one or two traces (x by default; v, E, the bumper force, the drive) over the last seconds
+// with the section points (and the bumper on x), and beside them, with a companion cart, their separation
+// log10 |dx| since the restart.
 #include "views/strip_panel.hpp"
 
 #include <imgui.h>
@@ -21,14 +22,55 @@ namespace {
 struct XY {
     double x, y;
 };
+
+struct QuantityInfo {
+    const char* key;
+    const char* label;       // the y axis
+    const char* short_label; // where that is longer than the plot is high
+    const char* menu;        // the right-click menu
+    double scale;            // SI -> the axis's unit
+    double min_span;         // [SI] the smallest y span the auto-fit shows
+};
+constexpr QuantityInfo kQuantities[kStripQuantities] = {
+    {"x", "x [mm]", "x [mm]", "x: displacement", 1e3, 0.004},
+    {"v", "v [m/s]", "v [m/s]", "v: velocity", 1.0, 0.04},
+    {"E", "E [mJ]", "E [mJ]", "E: mechanical energy", 1e3, 1e-3},
+    {"F", "F_I [N]", "F_I [N]", "F_I: bumper force", 1.0, 1.0},
+    {"drive", "m0e ω² cos φ [N]", "drive [N]", "drive: the unbalance's force m0e ω² cos φ", 1.0, 0.1},
+};
+const QuantityInfo& info(StripQuantity q) { return kQuantities[static_cast<int>(q)]; }
+
+// The quantity of one record (a sample or a section point; m0e for the drive).
+double value_of(StripQuantity q, const SimMsg& m, double m0e) {
+    switch (q) {
+        case StripQuantity::X: return m.x;
+        case StripQuantity::V: return m.v;
+        case StripQuantity::Energy: return m.energy;
+        case StripQuantity::Force: return m.force;
+        case StripQuantity::Drive: return m0e * m.omega * m.omega * std::cos(m.phi);
+    }
+    return 0.0;
+}
+
 }  // namespace
+
+const char* strip_key(StripQuantity q) { return info(q).key; }
+
+std::optional<StripQuantity> strip_from_key(const std::string& key) {
+    for (int i = 0; i < kStripQuantities; ++i)
+        if (key == kQuantities[i].key) return static_cast<StripQuantity>(i);
+    return std::nullopt;
+}
+
+void StripPanel::set_traces(StripQuantity first, std::optional<StripQuantity> second) {
+    if (traces_[0].q != first) traces_[0] = Trace{first, {}, {}};
+    second_ = second.has_value();
+    if (second && traces_[1].q != *second) traces_[1] = Trace{*second, {}, {}};
+}
 
 ViewAction StripPanel::draw(const ViewContext& ctx) {
     const History<SimMsg>& tr = *ctx.traj;
-    const History<SimMsg>& secs = *ctx.sections;
-    const Params& p = *ctx.params;
     ViewAction act;
-    const Palette& pal = palette();
     const std::size_t n = tr.size();
     const double t_now = n ? tr.back().t : 0.0;
     const double window = ctx.bench_window && n ? std::max(1e-3, t_now - tr[n > ctx.bench_window ? n - ctx.bench_window : 0].t)
@@ -36,39 +78,82 @@ ViewAction StripPanel::draw(const ViewContext& ctx) {
     // Scrolls once the history covers the window; before that the axis starts at the first sample.
     const double t_from = n ? std::min(std::max(t_now - window, tr[0].t), t_now - 0.5) : t_now - window;
     const std::size_t first = tr.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
-    const auto xe = x_extent_.update(tr, first, [](const SimMsg& m) { return m.x; });
-    double lo = xe.lo, hi = xe.hi;
-    if (first >= n) lo = hi = ctx.last.x;
-    y_.track({lo, hi}, 0.08, 0.004, ctx.frame_dt);
-    Plot plot;
-    Axes ax;
-    ax.x_label = "t [s]";
-    ax.y_label = "x [mm]";
-    ax.y_scale = 1e3;
     // With a companion cart, its separation |dx| on a log scale takes the right part of the tile.
     const bool comp = ctx.companion_mode != CompanionMode::Off;
     ImVec2 size = ImGui::GetContentRegionAvail();
     const float sep_w = comp ? std::round(size.x * 0.3f) : 0.0f;
     size.x -= comp ? sep_w + ImGui::GetStyle().ItemSpacing.x : 0.0f;
-    if (!plot.begin("##strip", size, {t_from, t_now}, y_.cur, ax)) return act;
-    if (p.has_bumper()) plot.hline(ctx.xI_shown, pal.bumper, 1.5f, true);
-    plot.hline(0.0, pal.grid, 1.0f);
-    if (comp) {
-        const History<SimMsg>& ct = ctx.companion->traj();
-        const std::size_t c0 = ct.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
-        plot.series(ct.size() - c0, [&](std::size_t i) { const SimMsg& m = ct[c0 + i]; return XY{m.t, m.x}; },
-                    companion_color(0.75f), 1.5f);
+    const ImVec2 origin = ImGui::GetCursorPos();
+    if (second_) {   // one above the other, on the same time axis
+        const float gap = ImGui::GetStyle().ItemSpacing.y;
+        const ImVec2 half(size.x, std::floor(0.5f * (size.y - gap)));
+        draw_trace(ctx, traces_[0], "##strip", half, t_from, t_now, first);
+        draw_trace(ctx, traces_[1], "##strip2", ImVec2(size.x, size.y - half.y - gap), t_from, t_now, first);
+    } else {
+        draw_trace(ctx, traces_[0], "##strip", size, t_from, t_now, first);
     }
-    plot.series(n - first, [&](std::size_t i) { const SimMsg& m = tr[first + i]; return XY{m.t, m.x}; }, pal.trace, 1.5f);
-    const std::size_t s0 = secs.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
-    plot.scatter(secs.size() - s0, [&](std::size_t i) { const SimMsg& m = secs[s0 + i]; return XY{m.t, m.x}; },
-                 pal.section, 4.0f);
-    plot.end();
+    draw_menu();
     if (comp) {
-        ImGui::SameLine();
+        ImGui::SetCursorPos(ImVec2(origin.x + size.x + ImGui::GetStyle().ItemSpacing.x, origin.y));
         draw_separation(ctx, ImVec2(sep_w, size.y));
     }
     return act;
+}
+
+void StripPanel::draw_trace(const ViewContext& ctx, Trace& trace, const char* id, ImVec2 size, double t_from,
+                            double t_now, std::size_t first) {
+    const History<SimMsg>& tr = *ctx.traj;
+    const History<SimMsg>& secs = *ctx.sections;
+    const Params& p = *ctx.params;
+    const Palette& pal = palette();
+    const std::size_t n = tr.size();
+    const StripQuantity q = trace.q;
+    const double m0e = p.m0e;
+    const auto key = [q, m0e](const SimMsg& m) { return value_of(q, m, m0e); };
+    const auto e = trace.extent.update(tr, first, key);
+    double lo = e.lo, hi = e.hi;
+    if (first >= n) lo = hi = value_of(q, ctx.last, m0e);
+    trace.y.track({lo, hi}, 0.08, info(q).min_span, ctx.frame_dt);
+    Plot plot;
+    Axes ax;
+    ax.x_label = "t [s]";
+    ax.y_label = info(q).label;
+    ax.y_label_short = info(q).short_label;
+    ax.y_scale = info(q).scale;
+    if (!plot.begin(id, size, {t_from, t_now}, trace.y.cur, ax)) return;
+    if (q == StripQuantity::X && p.has_bumper()) plot.hline(ctx.xI_shown, pal.bumper, 1.5f, true);
+    plot.hline(0.0, pal.grid, 1.0f);
+    if (ctx.companion_mode != CompanionMode::Off) {
+        const History<SimMsg>& ct = ctx.companion->traj();
+        const std::size_t c0 = ct.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
+        plot.series(ct.size() - c0, [&](std::size_t i) { const SimMsg& m = ct[c0 + i]; return XY{m.t, key(m)}; },
+                    companion_color(0.75f), 1.5f);
+    }
+    plot.series(n - first, [&](std::size_t i) { const SimMsg& m = tr[first + i]; return XY{m.t, key(m)}; }, pal.trace, 1.5f);
+    const std::size_t s0 = secs.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
+    plot.scatter(secs.size() - s0, [&](std::size_t i) { const SimMsg& m = secs[s0 + i]; return XY{m.t, key(m)}; },
+                 pal.section, 4.0f);
+    if (plot.hovered() && !plot.dragging()) ImGui::SetTooltip("t = %.3f s\nright-click: choose the traces", plot.x_at(ImGui::GetIO().MousePos.x));
+    if (plot.hovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right)) ImGui::OpenPopup("##strip_menu");
+    plot.end();
+}
+
+void StripPanel::draw_menu() {
+    if (!ImGui::BeginPopup("##strip_menu")) return;
+    ImGui::TextDisabled("trace");
+    for (int i = 0; i < kStripQuantities; ++i) {
+        const auto q = static_cast<StripQuantity>(i);
+        if (ImGui::MenuItem(kQuantities[i].menu, nullptr, traces_[0].q == q)) set_traces(q, second());
+    }
+    ImGui::Separator();
+    ImGui::TextDisabled("second trace, below it");
+    if (ImGui::MenuItem("none", nullptr, !second_)) set_traces(first(), std::nullopt);
+    for (int i = 0; i < kStripQuantities; ++i) {
+        const auto q = static_cast<StripQuantity>(i);
+        if (ImGui::MenuItem((std::string(kQuantities[i].menu) + "##2").c_str(), nullptr, second_ && traces_[1].q == q))
+            set_traces(first(), q);
+    }
+    ImGui::EndPopup();
 }
 
 void StripPanel::draw_separation(const ViewContext& ctx, ImVec2 size) {
