@@ -81,6 +81,10 @@ App::App(const Options& opt) : opt_(opt) {
     bench_.on = opt.bench_plot;
     show_help_ = opt.show_help;
     show_params_ = opt.show_params;
+    details_ = opt.details;
+    // The first screen teaches, unless the run is scripted (any flag that drives it or reads it back).
+    show_guide_ = opt.guide || (opt.frames == 0 && !opt.bench_plot && opt.soak <= 0 && opt.session.empty() &&
+                                opt.data.empty() && opt.demo == 0);
     if (!opt.strip.empty()) {   // --strip (checked by the options)
         const auto second = opt.strip.size() > 1 ? strip_from_key(opt.strip[1]) : std::nullopt;
         strip_.set_traces(strip_from_key(opt.strip[0]).value_or(StripQuantity::X), second);
@@ -307,6 +311,46 @@ void App::reset_params() {
     sim_->send(SimCommand::reset_params());
 }
 
+void App::run_demo(int k) {
+    demo_ = k;
+    if (companion_mode_ != CompanionMode::Off && k != 3) set_companion(CompanionMode::Off);
+    switch (k) {
+        case 1:   // period doubling: the first doubling of A1H at 10.86 rad/s, crossed slowly
+            set_version("A1H");
+            set_omega(10.3);
+            set_speed(20.0);
+            start_ramp(11.4, 0.02);
+            break;
+        case 2:   // the road to chaos: the live ramp over the diagram
+            set_version("A1H");
+            set_omega(9.0);
+            set_speed(50.0);
+            start_bifurcation();
+            start_ramp(16.0, 0.05);
+            break;
+        case 3: {   // the impact model: a ghost under G beside A1C in chaos
+            set_version("A1C");
+            apply_preset(presets_for("A1C")[2]);
+            const auto& laws = impact_models();
+            for (std::size_t i = 0; i < laws.size(); ++i)
+                if (std::string(laws[i].id) == "G") ghost_impact_ = static_cast<int>(i);
+            set_companion(CompanionMode::Ghost);
+            break;
+        }
+        case 4:   // the energy budget, in chaos
+            set_version("A1H");
+            apply_preset(presets_for("A1H")[2]);
+            break;
+        case 5:   // basins: A1G's two attractors at 13 rad/s
+            set_version("A1G");
+            set_omega(13.0);
+            analysis_.start_basins(analysis_context());
+            break;
+        default: demo_ = 0; return;
+    }
+    toast(std::string(guide_demo(k).title) + ": " + guide_demo(k).look_for);
+}
+
 void App::set_version(const std::string& name) {
     const Params p = make_version(name);
     set_model(index_of_stiffness(p.stiffness_id), index_of_impact(p.impact));
@@ -509,6 +553,7 @@ void App::frame() {
     if (opt_.set_state && frame_count_ == 1) set_state(opt_.set_x, opt_.set_v);   // --set-state, as a click
     if (frame_count_ == 1)
         for (const auto& [key, value] : opt_.params) set_param(key, value);   // --param, as typed in the panel
+    if (frame_count_ == 1 && opt_.demo > 0) run_demo(opt_.demo);             // --demo, as its button
     if (warming_ && have_last_ && last_.t >= opt_.warmup) {
         warming_ = false;
         set_speed(opt_.speed);

@@ -27,6 +27,7 @@
 #include "poincare_map.hpp"
 #include "presets.hpp"
 #include "replay.hpp"
+#include "views/guide_panel.hpp"
 #include "views/params_panel.hpp"
 #include "views/phase_panel.hpp"
 #include "views/poincare_panel.hpp"
@@ -77,6 +78,7 @@ private:
     // in the panel. reset_params: the version's own values.
     bool set_param(const std::string& key, double value);
     void reset_params();
+    void run_demo(int k);   // "What to try": demonstration k (1-5) set up
     void set_paused(bool p);
     void step_period();
     void reset();
@@ -181,6 +183,10 @@ private:
     double xI_shown_ = 0;              // [m] the bumper where the simulation has it (travelling to xI_)
     AnalysisPanels analysis_;          // continued branches, parameter plane, basins (issues 9, 10)
     ParamsPanel params_panel_;         // m, c, k, T, m0e, eps and the impact law's, live
+    GuidePanel guide_;                 // "What to try": five demonstrations
+    bool show_guide_ = false;
+    int demo_ = 0;                     // the last demonstration run (1-5), 0 none
+    bool details_ = false;             // the status bar's technical fields
     bool show_params_ = false;
     int params_rev_ = 0;               // bumped at every change of params_ (the potential, the energy floor)
     RigPanel rig_;

@@ -47,6 +47,10 @@ const char* usage_text() {
            "  --param KEY=VALUE  set a parameter of the model at start, as the Parameters panel (F4) does\n"
            "                     (repeatable; m, c, k, T, m0e, eps or the impact law's: kI, kappa0, ...)\n"
            "  --show-params      open the Parameters panel at start\n"
+           "  --guide            open \"What to try\" (it opens by itself when no flag scripts the run)\n"
+           "  --demo N           run its demonstration N at start: 1 period doubling, 2 the road to chaos,\n"
+           "                     3 switching the impact model, 4 the energy budget, 5 basins of attraction\n"
+           "  --details          the status bar's technical fields (epoch, samples, dropped)\n"
            "  --strip Q[,Q2]     the time strip's trace and a second one below it: x, v, E (energy),\n"
            "                     F (bumper force), drive (m0e ω² cos φ); default x (right-click the strip)\n"
            "  --bifurcation P    compute a bifurcation diagram at start: cf-up, cf-down or ef\n"
@@ -295,6 +299,9 @@ Options parse_options(const std::vector<std::string>& args) {
             o.params.emplace_back(kv.substr(0, eq), number(a, kv.substr(eq + 1), -1e300, 1e300));
         }
         else if (a == "--show-params") o.show_params = true;
+        else if (a == "--guide") o.guide = true;
+        else if (a == "--demo") o.demo = static_cast<int>(number(a, value(), 1, 5));
+        else if (a == "--details") o.details = true;
         else if (a == "--strip") {
             const std::string& list = value();
             o.strip.clear();

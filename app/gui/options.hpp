@@ -78,6 +78,10 @@ struct Options {
     std::vector<std::pair<std::string, double>> params;   // --param KEY=VALUE: at the first frame, as typed there
     bool show_params = false;    // --show-params: the panel open at start
     std::vector<std::string> strip;   // --strip Q[,Q2]: the time strip's traces (x, v, E, F, drive)
+    // The first screen (views/guide_panel.hpp).
+    bool guide = false;          // --guide: "What to try" open (it opens by itself on an unscripted start)
+    int demo = 0;                // --demo N: run demonstration N (1-5) at the first frame
+    bool details = false;        // --details: the status bar's technical fields (epoch, samples, dropped)
 };
 
 // argv without the program name. Throws OptionsError naming the flag and the problem.

@@ -81,6 +81,7 @@ void App::draw_menu() {
         draw_view_menu_panels();   // tiles.cpp: presentation, panels, maximise, magnification
         ImGui::Separator();
         if (ImGui::MenuItem("Parameters (m, c, k, ..., the impact law's)...", "F4", show_params_)) show_params_ = !show_params_;
+        if (ImGui::MenuItem("Details in the status bar (epoch, samples, dropped)", nullptr, details_)) details_ = !details_;
         if (ImGui::MenuItem("Dark theme", "T", dark_)) {
             dark_ = !dark_;
             apply_theme(dark_, ui_scale_);
@@ -101,6 +102,7 @@ void App::draw_menu() {
     }
     analysis_.menu(analysis_context());
     if (ImGui::BeginMenu("Help")) {
+        if (ImGui::MenuItem("What to try (five demonstrations)...", nullptr, show_guide_)) show_guide_ = !show_guide_;
         if (ImGui::MenuItem("Keyboard shortcuts", "F1")) show_help_ = true;
         ImGui::EndMenu();
     }
@@ -423,15 +425,18 @@ void App::draw_status() {
     const char* regime = contact_label(params_, last_.regime, last_.force);
     const float sep = ImGui::CalcTextSize("|").x + 36.0f;
     float room = ImGui::GetWindowWidth() - right_w - (ImGui::GetItemRectMax().x - ImGui::GetWindowPos().x);
-    const char* fields[3] = {epoch, samples, regime};
-    for (const char* field : fields) room -= sep + ImGui::CalcTextSize(field).x;
+    // The epoch and the ring's counts are the simulation's bookkeeping: shown with View > Details only.
+    const char* fields[3] = {details_ ? epoch : "", details_ ? samples : "", regime};
+    for (const char* field : fields)
+        if (*field) room -= sep + ImGui::CalcTextSize(field).x;
     bool drop[3] = {};
     for (int i = 0; i < 3 && room < 0; ++i) {
+        if (!*fields[i]) continue;
         drop[i] = true;
         room += sep + ImGui::CalcTextSize(fields[i]).x;
     }
     for (int i = 0; i < 3; ++i) {
-        if (drop[i]) continue;
+        if (drop[i] || !*fields[i]) continue;
         const char* field = fields[i];
         ImGui::SameLine(0, 18);
         ImGui::TextDisabled("|");

@@ -23,6 +23,7 @@ bool App::write_state_json(const std::string& path) {
     using nlohmann::json;
     json j;
     j["model"] = model_name();
+    j["guide"] = {{"open", show_guide_}, {"demo", demo_}, {"details", details_}, {"basins_open", analysis_.basins_shown()}};
     {   // The time strip's traces and their y ranges [SI units].
         json traces = json::array(), views = json::array();
         traces.push_back(strip_key(strip_.first()));

@@ -306,6 +306,8 @@ void App::layout_and_draw() {
 
     data_panel_.poll(data_context());
     if (show_data_) data_panel_.draw(&show_data_, data_context());
+    if (show_guide_)
+        if (const GuideAction ga = guide_.draw(&show_guide_, demo_); ga.demo) run_demo(ga.demo);
     if (show_params_) {
         const ParamsAction pa = params_panel_.draw(&show_params_, {&params_, model_name(), ui_scale_});
         if (pa.set) set_param(pa.set->first, pa.set->second);

@@ -123,3 +123,10 @@ add_test(NAME gui_strip
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_strip.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_strip)
 set_tests_properties(gui_strip PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
+
+# "What to try" (issue 21): each demonstration sets up what it says; the guide and the status bar's details
+# (gui_guide.sh says what it checks).
+add_test(NAME gui_guide
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_guide.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_guide)
+set_tests_properties(gui_guide PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
