@@ -82,6 +82,7 @@ App::App(const Options& opt) : opt_(opt) {
     show_help_ = opt.show_help;
     show_params_ = opt.show_params;
     details_ = opt.details;
+    poincare_.set_clicker(opt.clicker || !opt.orbits.empty());
     // The first screen teaches, unless the run is scripted (any flag that drives it or reads it back).
     show_guide_ = opt.guide || (opt.frames == 0 && !opt.bench_plot && opt.soak <= 0 && opt.session.empty() &&
                                 opt.data.empty() && opt.demo == 0);

@@ -111,6 +111,8 @@ private:
     // views/: the live plots. The App hands them the shared history and routes what a click asks for.
     ViewContext view_context() const;
     void apply_view(const ViewAction& a);
+    void start_orbit(double x, double v);          // the Poincare clicker: a new orbit (--orbit as a click)
+    void restart_at_section(double x, double v);   // the cart from (x, v) at the next section
     void draw_bifurcation();
     void draw_status();
     void draw_help();

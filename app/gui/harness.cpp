@@ -135,6 +135,11 @@ int App::run_bench() {
 }
 
 bool App::script_step() {
+    // --orbit: the clicks, one at each of the first n of n + 1 equal parts of the run.
+    const long parts = static_cast<long>(opt_.orbits.size()) + 1;
+    for (long k = 1; k < parts; ++k)
+        if (counted_frames_ == k * opt_.frames / parts)
+            start_orbit(opt_.orbits[static_cast<std::size_t>(k - 1)].first, opt_.orbits[static_cast<std::size_t>(k - 1)].second);
     // With --data the fit is for the start model, and --preset or --state-json look at one model: no
     // switch unless one is asked for.
     const bool keep_model = !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty() || !opt_.session.empty() ||

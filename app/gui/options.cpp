@@ -51,6 +51,8 @@ const char* usage_text() {
            "  --demo N           run its demonstration N at start: 1 period doubling, 2 the road to chaos,\n"
            "                     3 switching the impact model, 4 the energy budget, 5 basins of attraction\n"
            "  --details          the status bar's technical fields (epoch, samples, dropped)\n"
+           "  --clicker          the Poincare clicker on: each click on the map starts an orbit in its own colour\n"
+           "  --orbit X,V        (repeatable) such a click at x = X m, v = V m/s, spread over --frames\n"
            "  --strip Q[,Q2]     the time strip's trace and a second one below it: x, v, E (energy),\n"
            "                     F (bumper force), drive (m0e ω² cos φ); default x (right-click the strip)\n"
            "  --bifurcation P    compute a bifurcation diagram at start: cf-up, cf-down or ef\n"
@@ -302,6 +304,13 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--guide") o.guide = true;
         else if (a == "--demo") o.demo = static_cast<int>(number(a, value(), 1, 5));
         else if (a == "--details") o.details = true;
+        else if (a == "--clicker") o.clicker = true;
+        else if (a == "--orbit") {
+            const std::string& sv = value();
+            const auto c = sv.find(',');
+            if (c == std::string::npos) throw OptionsError("--orbit: '" + sv + "' is not X,V (metres, m/s)");
+            o.orbits.emplace_back(number(a, sv.substr(0, c), -0.05, 0.05), number(a, sv.substr(c + 1), -2.0, 2.0));
+        }
         else if (a == "--strip") {
             const std::string& list = value();
             o.strip.clear();
@@ -349,6 +358,7 @@ Options parse_options(const std::vector<std::string>& args) {
         for (const auto& [key, value] : o.params)
             if (std::string err; !set_param(p, key, value, err)) throw OptionsError("--param " + key + ": " + err);
     }
+    if (!o.orbits.empty() && o.frames == 0) throw OptionsError("--orbit needs --frames N");
     if (o.then_preset > 0 && o.frames == 0) throw OptionsError("--then-preset needs --frames N");
     if (o.then_xi && o.frames == 0) throw OptionsError("--then-xI needs --frames N");
     if (o.then_w && o.frames == 0) throw OptionsError("--then-omega needs --frames N");

@@ -82,6 +82,9 @@ struct Options {
     bool guide = false;          // --guide: "What to try" open (it opens by itself on an unscripted start)
     int demo = 0;                // --demo N: run demonstration N (1-5) at the first frame
     bool details = false;        // --details: the status bar's technical fields (epoch, samples, dropped)
+    // The Poincare clicker (views/poincare_panel.hpp).
+    bool clicker = false;        // --clicker: on at start
+    std::vector<std::pair<double, double>> orbits;   // --orbit X,V (repeatable): clicks spread over --frames
 };
 
 // argv without the program name. Throws OptionsError naming the flag and the problem.

@@ -361,6 +361,7 @@ ViewContext App::view_context() const {
     c.map = &shown_map();
     c.last = last_;
     c.have_last = have_last_;
+    c.epoch = epoch_;
     c.phi_prev = phi_prev_;
     c.params = &params_;
     c.params_rev = params_rev_;
@@ -393,6 +394,21 @@ ViewContext App::view_context() const {
 void App::apply_view(const ViewAction& a) {
     if (a.hold) sim_->send(SimCommand::hold(*a.hold));   // each hold restarts the companion too
     if (a.set_state) set_state(a.set_state->first, a.set_state->second);
+    if (a.start_orbit) restart_at_section(a.start_orbit->first, a.start_orbit->second);
+}
+
+void App::start_orbit(double x, double v) {
+    poincare_.start_orbit(x, v, epoch_);
+    restart_at_section(x, v);
+}
+
+void App::restart_at_section(double x, double v) {
+    // The orbit starts on the section: at the next phi = 2 pi n (the forcing's phase moves on to it), from
+    // (x, v) checked as a click in the phase portrait is (rail, bumper).
+    const PickedState s = pick_state(x, v, xI_, params_.has_bumper());
+    if (!s.note.empty()) toast(s.note);
+    const double phi0 = kTwoPi * std::ceil(last_.phi / kTwoPi - 1e-9);
+    restart_sim(s.x, s.v, last_.t, phi0, omega_, false);
 }
 
 void App::draw_status() {

@@ -23,6 +23,22 @@ bool App::write_state_json(const std::string& path) {
     using nlohmann::json;
     json j;
     j["model"] = model_name();
+    {   // The Poincare clicker's orbits: where each started, its section points, the last of them.
+        json orbits = json::array();
+        for (const ClickedOrbit& o : poincare_.orbits())
+            orbits.push_back({{"start", {number(o.x0), number(o.v0)}}, {"points", o.pts.size()},
+                              {"last", o.pts.empty() ? json(nullptr) : json{number(o.pts.back().first), number(o.pts.back().second)}},
+                              {"spread", o.pts.size() < 20 ? json(nullptr) : [&] {
+                                   // max - min of x over its last 20 points [m]: ~0 on a periodic orbit of period <= 20
+                                   double lo = 1e300, hi = -1e300;
+                                   for (std::size_t i = o.pts.size() - 20; i < o.pts.size(); ++i) {
+                                       lo = std::min(lo, o.pts[i].first);
+                                       hi = std::max(hi, o.pts[i].first);
+                                   }
+                                   return number(hi - lo);
+                               }()}});
+        j["clicker"] = {{"on", poincare_.clicker()}, {"orbits", std::move(orbits)}};
+    }
     j["guide"] = {{"open", show_guide_}, {"demo", demo_}, {"details", details_}, {"basins_open", analysis_.basins_shown()}};
     {   // The time strip's traces and their y ranges [SI units].
         json traces = json::array(), views = json::array();

@@ -99,7 +99,7 @@ void App::draw_panel(PanelId p) {
         case PanelId::Rig: apply_view(rig_.draw(view_context())); break;
         case PanelId::Bifurcation: draw_bifurcation(); break;
         case PanelId::Phase: apply_view(phase_.draw(view_context())); break;
-        case PanelId::Poincare: poincare_.draw(view_context(), phase_.view_x(), phase_.view_v()); break;
+        case PanelId::Poincare: apply_view(poincare_.draw(view_context(), phase_.view_x(), phase_.view_v())); break;
         case PanelId::Potential: apply_view(potential_.draw(view_context())); break;
         case PanelId::Strip: apply_view(strip_.draw(view_context())); break;
     }

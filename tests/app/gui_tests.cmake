@@ -130,3 +130,10 @@ add_test(NAME gui_guide
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_guide.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_guide)
 set_tests_properties(gui_guide PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
+
+# The Poincare clicker (issue 21): each click starts an orbit kept in its own colour; A1G's coexisting
+# period-1 orbit and chaos at 13 rad/s mapped by two clicks (gui_clicker.sh says what it checks).
+add_test(NAME gui_clicker
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_clicker.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_clicker)
+set_tests_properties(gui_clicker PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")

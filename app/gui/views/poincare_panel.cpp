@@ -38,7 +38,45 @@ ImU32 impacts_color(int impacts, float alpha) {
 }
 }  // namespace
 
-void PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x, const AutoRange& phase_v) {
+namespace {
+// The clicker's orbits, one colour each, apart from the impacts' colours of the settled map.
+ImU32 orbit_color(std::size_t k) {
+    static constexpr ImU32 kColors[PoincarePanel::kMaxOrbits] = {
+        IM_COL32(80, 220, 120, 255), IM_COL32(240, 110, 220, 255), IM_COL32(90, 170, 255, 255), IM_COL32(255, 150, 60, 255),
+        IM_COL32(230, 230, 90, 255), IM_COL32(150, 110, 255, 255), IM_COL32(60, 220, 220, 255), IM_COL32(255, 90, 90, 255)};
+    return kColors[k % PoincarePanel::kMaxOrbits];
+}
+}  // namespace
+
+void PoincarePanel::start_orbit(double x, double v, std::uint32_t epoch) {
+    if (orbits_.size() == kMaxOrbits) orbits_.erase(orbits_.begin());
+    ClickedOrbit o;
+    o.x0 = x;
+    o.v0 = v;
+    o.click_epoch = epoch;
+    orbits_.push_back(std::move(o));
+    clicker_ = true;
+}
+
+void PoincarePanel::feed_orbits(const ViewContext& ctx) {
+    if (orbits_.empty()) return;
+    ClickedOrbit& o = orbits_.back();   // only the newest runs; the others are kept as they ended
+    if (o.waiting) {
+        if (ctx.epoch == o.click_epoch) return;   // the restart has not come back yet
+        o.waiting = false;
+        o.epoch = ctx.epoch;
+        o.taken = 0;
+    }
+    if (ctx.epoch != o.epoch) return;   // another change since: the orbit ended there
+    const History<SimMsg>& secs = *ctx.sections;   // cleared at every new epoch: all of it is this orbit's
+    for (std::size_t i = o.taken; i < secs.size() && o.pts.size() < kMaxOrbitPoints; ++i)
+        o.pts.emplace_back(secs[i].x, secs[i].v);
+    o.taken = secs.size();
+}
+
+ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x, const AutoRange& phase_v) {
+    ViewAction act;
+    feed_orbits(ctx);
     const History<SimMsg>& tr = *ctx.traj;
     const Params& p = *ctx.params;
     const Palette& pal = palette();
@@ -103,7 +141,27 @@ void PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x, const
     const bool two_lines = legend && ImGui::CalcTextSize(label).x + legend_w + 24 > area_w;
     const double edge = ring + 3.0 + 0.06 * std::min(area_w, area_h);
     const double label_band = (two_lines ? 2.1 : 1.0) * fs + 10.0;
-    if (n == 0 && phase_x.init) {
+    bool orbit_fit = false;
+    for (const ClickedOrbit& o : orbits_) orbit_fit = orbit_fit || (clicker_ && !o.pts.empty());
+    if (orbit_fit) {   // the clicker's orbits, and the map: the view holds them all
+        double xl = 1e300, xh = -1e300, vl = 1e300, vh = -1e300;
+        const auto add = [&](double x, double v) {
+            xl = std::min(xl, x);
+            xh = std::max(xh, x);
+            vl = std::min(vl, v);
+            vh = std::max(vh, v);
+        };
+        for (const ClickedOrbit& o : orbits_) {
+            add(o.x0, o.v0);
+            for (const auto& [x, v] : o.pts) add(x, v);
+        }
+        for (std::size_t i = 0; i < n; ++i) add(pts[i].x, pts[i].v);
+        const AxisFit fx = fit_axis(xl, xh, 0.002, area_w, edge, edge);
+        const AxisFit fv = fit_axis(vl, vh, 0.02, area_h, edge, edge + label_band);
+        x_.track({fx.lo, fx.hi}, 0.0, 1e-12, ctx.frame_dt);
+        v_.track({fv.lo, fv.hi}, 0.0, 1e-12, ctx.frame_dt);
+        fit_generation_ = ~std::uint64_t{0};
+    } else if (n == 0 && phase_x.init) {
         // Settling: an empty map in the phase portrait's view.
         x_ = phase_x;
         v_ = phase_v;
@@ -140,7 +198,7 @@ void PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x, const
     ax.x_label = "x [mm]";
     ax.y_label = "v [m/s]";
     ax.x_scale = 1e3;
-    if (!plot.begin("##poincare", avail, x_.cur, v_.cur, ax)) return;
+    if (!plot.begin("##poincare", avail, x_.cur, v_.cur, ax)) return act;
     if (p.has_bumper()) {   // impact law "none": no bumper to draw
         plot.shade_right_of(ctx.xI, pal.bumper);
         plot.vline(ctx.xI, pal.bumper, 1.5f, true);
@@ -150,7 +208,8 @@ void PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x, const
     // for an older one (100k points cost one pass, not sixteen).
     static constexpr float kAlpha[4] = {0.22f, 0.42f, 0.68f, 1.0f};
     plot.share_dots(true);
-    for (std::size_t b = 4; b-- > 0;) {
+    // With the clicker's orbits the running one is drawn in its colour instead of the map's.
+    for (std::size_t b = (clicker_ && !orbits_.empty()) ? 0 : 4; b-- > 0;) {
         for (int cat = 0; cat < 4; ++cat) {
             const auto& idx = buckets_[b * 4 + static_cast<std::size_t>(cat)];
             plot.scatter(idx.size(), [&](std::size_t j) { const MapPoint& m = pts[idx[j]]; return XY{m.x, m.v}; },
@@ -158,6 +217,15 @@ void PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x, const
         }
     }
     plot.share_dots(false);
+    for (std::size_t k = 0; k < orbits_.size(); ++k) {   // the clicker's orbits over the map, each its colour
+        const auto& op = orbits_[k].pts;
+        plot.scatter(op.size(), [&](std::size_t j) { return XY{op[j].first, op[j].second}; }, orbit_color(k),
+                     std::max(3.0f, 3.5f * ctx.ui_scale));
+        const ImVec2 c0 = plot.to_px(orbits_[k].x0, orbits_[k].v0);   // where it was started: a cross
+        const float r = 4.0f * ctx.ui_scale;
+        plot.draw()->AddLine(ImVec2(c0.x - r, c0.y - r), ImVec2(c0.x + r, c0.y + r), orbit_color(k), 2.0f);
+        plot.draw()->AddLine(ImVec2(c0.x - r, c0.y + r), ImVec2(c0.x + r, c0.y - r), orbit_color(k), 2.0f);
+    }
     if (n) {
         const ImVec2 c = plot.to_px(pts.back().x, pts.back().v);
         plot.draw()->AddCircle(c, ring, pal.section_new, 0, 2.0f);
@@ -203,7 +271,26 @@ void PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x, const
         x -= ImGui::CalcTextSize(legend_title).x;
         plot.draw()->AddText(ImVec2(x, y), pal.axis_text, legend_title);
     }
+    if (clicker_) {
+        char note[64];
+        std::snprintf(note, sizeof note, "clicker: %zu orbit%s", orbits_.size(), orbits_.size() == 1 ? "" : "s");
+        plate_text(plot.draw(), ImVec2(plot.area_min().x + 6, plot.area_max().y - fs - 6), note, pal.axis_text);
+        const ImVec2 mp = ImGui::GetIO().MousePos;
+        const double mx = plot.x_at(mp.x), mv = plot.y_at(mp.y);
+        if (plot.hovered() && !plot.dragging())
+            ImGui::SetTooltip("x = %+.2f mm, v = %+.3f m/s\nclick: a new orbit from here (kept in its own colour)\n"
+                              "right-click: clicker off, clear the orbits", mx * 1e3, mv);
+        act.start_orbit = delayed_click(click_, plot.hovered(), plot.clicked(), mx, mv, ctx.now);
+        if (act.start_orbit) start_orbit(mx, mv, ctx.epoch);
+    }
+    if (plot.hovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right)) ImGui::OpenPopup("##poincare_menu");
     plot.end();
+    if (ImGui::BeginPopup("##poincare_menu")) {
+        if (ImGui::MenuItem("Clicker: each click starts an orbit in its own colour", nullptr, clicker_)) clicker_ = !clicker_;
+        if (ImGui::MenuItem("Clear the orbits", nullptr, false, !orbits_.empty())) orbits_.clear();
+        ImGui::EndPopup();
+    }
+    return act;
 }
 
 }  // namespace impactlab::gui

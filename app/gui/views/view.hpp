@@ -27,6 +27,7 @@ struct ViewContext {
     const PoincareMap* map = nullptr;            // the map shown (replaying: as it stood at the cursor)
     SimMsg last{};                               // the newest sample (replaying: the cursor's)
     bool have_last = false;
+    std::uint32_t epoch = 0;                     // of the newest record (bumped by every change)
     double phi_prev = 0;                         // phi one frame ago (the unbalance disc's motion blur)
     const Params* params = nullptr;              // the UI's copy of the model
     int params_rev = 0;                          // changes whenever *params does (a switch, an edit)
@@ -53,6 +54,7 @@ struct ViewContext {
 struct ViewAction {
     std::optional<std::pair<double, double>> set_state;   // start from (x, v) [m, m/s]
     std::optional<double> hold;                           // hold the cart at x [m] (dragged in the rig)
+    std::optional<std::pair<double, double>> start_orbit; // the Poincare clicker: a new orbit from (x, v) at a section
 };
 
 // The companion's colour in every plot (magenta: apart from the cart's trace, the sections and the bumper).
