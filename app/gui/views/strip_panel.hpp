@@ -36,6 +36,9 @@ private:
     };
     void draw_trace(const ViewContext& ctx, Trace& tr, const char* id, ImVec2 size, double t_from, double t_now,
                     std::size_t first);
+    template <class Key>
+    void draw_trace_with(const ViewContext& ctx, Trace& tr, const char* id, ImVec2 size, double t_from, double t_now,
+                         std::size_t first, Key key);
     void draw_menu();
     void draw_separation(const ViewContext& ctx, ImVec2 size);   // beside x(t): log10 |dx| of cart and companion
     std::array<Trace, 2> traces_;
