@@ -12,7 +12,7 @@ TEST=gui_clicker
 gui_need xvfb-run python3
 mkdir -p "$dir"
 
-gui_json two --model A1G --omega 13 --speed 100 --orbit -0.02,-0.1 --orbit -0.013,0 --frames 600 --screenshot "$dir/two.png"
+gui_json two --model A1G --omega 13 --speed 100 --orbit -0.02,-0.1 --orbit -0.013,0 --frames 900 --screenshot "$dir/two.png"
 
 for bad in "--orbit 1,2 --frames 2" "--orbit -0.01 --frames 2" "--orbit -0.01,0"; do
     # shellcheck disable=SC2086
