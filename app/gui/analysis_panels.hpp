@@ -46,6 +46,7 @@ public:
     void start_basins(const AnalysisContext& c);
     // Any job still running, or one asked for at start and not begun yet (headless runs wait for them).
     bool busy() const;
+    bool basins_shown() const { return show_basins_; }
     // The first error of a run asked for on the command line ("" when none): headless runs exit 1 with it.
     const std::string& startup_error() const { return startup_error_; }
 

@@ -1,4 +1,5 @@
 #include "app.hpp"
+#include "param_edit.hpp"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -12,7 +13,6 @@
 #include <cstdio>
 #include <ctime>
 #include <numbers>
-#include <unistd.h>
 
 #include "gl_util.hpp"
 #include "impactlab/assets.hpp"
@@ -78,8 +78,18 @@ App::App(const Options& opt) : opt_(opt) {
     if (opt.bifurcation == "cf-down") bif_protocol_ = 1;
     else if (opt.bifurcation == "ef") bif_protocol_ = 2;
     bif_panel_.configure(opt);
-    bench_mode_ = opt.bench_plot;
+    bench_.on = opt.bench_plot;
     show_help_ = opt.show_help;
+    show_params_ = opt.show_params;
+    details_ = opt.details;
+    poincare_.set_clicker(opt.clicker || !opt.orbits.empty());
+    // The first screen teaches, unless the run is scripted (any flag that drives it or reads it back).
+    show_guide_ = opt.guide || (opt.frames == 0 && !opt.bench_plot && opt.soak <= 0 && opt.session.empty() &&
+                                opt.data.empty() && opt.demo == 0);
+    if (!opt.strip.empty()) {   // --strip (checked by the options)
+        const auto second = opt.strip.size() > 1 ? strip_from_key(opt.strip[1]) : std::nullopt;
+        strip_.set_traces(strip_from_key(opt.strip[0]).value_or(StripQuantity::X), second);
+    }
     if (!opt.data.empty()) {
         show_data_ = true;
         data_panel_.load(opt.data, true);
@@ -171,13 +181,13 @@ bool App::init(std::string& error) {
     cfg.xI = xI_;
     cfg.x0 = x0_;
     cfg.v0 = opt_.preset > 0 ? 0.0 : opt_.v0;
-    warming_ = opt_.warmup > 0 && !bench_mode_;
+    warming_ = opt_.warmup > 0 && !bench_.on;
     if (warming_) {
         speed_ = kMaxSpeed;
         paused_ = false;
     }
     cfg.speed = speed_;
-    cfg.paused = (paused_ && !warming_) || bench_mode_;
+    cfg.paused = (paused_ && !warming_) || bench_.on;
     sim_ = std::make_unique<SimThread>(cfg);
     sim_->start();
     xI_shown_ = xI_;
@@ -275,9 +285,76 @@ void App::set_xi(double xI) {
 void App::set_model(int stiffness, int impact) {
     stiffness_ = std::clamp(stiffness, 0, static_cast<int>(stiffness_sets().size()) - 1);
     impact_ = std::clamp(impact, 0, static_cast<int>(impact_models().size()) - 1);
+    // The same version keeps its edited parameters, as the engine does (a preset of the running model).
+    if (params_.name != model_name()) {
+        params_ = make_version(model_name());
+        params_.xI = xI_;
+        ++params_rev_;
+    }
+    sim_->send(SimCommand::set_model(model_name()));
+}
+
+bool App::set_param(const std::string& key, double value) {
+    std::string error;
+    const bool ok = gui::set_param(params_, key, value, error);
+    params_panel_.set_error(error);
+    if (!ok) return false;
+    ++params_rev_;
+    sim_->send(SimCommand::set_param(key, value));
+    return true;
+}
+
+void App::reset_params() {
     params_ = make_version(model_name());
     params_.xI = xI_;
-    sim_->send(SimCommand::set_model(model_name()));
+    ++params_rev_;
+    params_panel_.set_error("");
+    sim_->send(SimCommand::reset_params());
+}
+
+void App::run_demo(int k) {
+    demo_ = k;
+    if (companion_mode_ != CompanionMode::Off && k != 3) set_companion(CompanionMode::Off);
+    switch (k) {
+        case 1:   // period doubling: the first doubling of A1H at 10.86 rad/s, crossed slowly
+            set_version("A1H");
+            set_omega(10.3);
+            set_speed(20.0);
+            start_ramp(11.4, 0.02);
+            break;
+        case 2:   // the road to chaos: the live ramp over the diagram
+            set_version("A1H");
+            set_omega(9.0);
+            set_speed(50.0);
+            start_bifurcation();
+            start_ramp(16.0, 0.05);
+            break;
+        case 3: {   // the impact model: a ghost under G beside A1C in chaos
+            set_version("A1C");
+            apply_preset(presets_for("A1C")[2]);
+            const auto& laws = impact_models();
+            for (std::size_t i = 0; i < laws.size(); ++i)
+                if (std::string(laws[i].id) == "G") ghost_impact_ = static_cast<int>(i);
+            set_companion(CompanionMode::Ghost);
+            break;
+        }
+        case 4:   // the energy budget, in chaos
+            set_version("A1H");
+            apply_preset(presets_for("A1H")[2]);
+            break;
+        case 5:   // basins: A1G's two attractors at 13 rad/s
+            set_version("A1G");
+            set_omega(13.0);
+            analysis_.start_basins(analysis_context());
+            break;
+        default: demo_ = 0; return;
+    }
+    toast(std::string(guide_demo(k).title) + ": " + guide_demo(k).look_for);
+}
+
+void App::set_version(const std::string& name) {
+    const Params p = make_version(name);
+    set_model(index_of_stiffness(p.stiffness_id), index_of_impact(p.impact));
 }
 
 void App::set_paused(bool p) {
@@ -426,6 +503,7 @@ void App::handle_keys() {
     if (pressed(GLFW_KEY_F1) || (pressed(GLFW_KEY_SLASH) && shift)) show_help_ = !show_help_;
     if (pressed(GLFW_KEY_H) && !ctrl) show_help_ = !show_help_;
     if (pressed(GLFW_KEY_F12)) screenshot(screenshot_name());
+    if (pressed(GLFW_KEY_F4)) show_params_ = !show_params_;
     if (ctrl && pressed(GLFW_KEY_S)) open_session_window(true);
     if (ctrl && pressed(GLFW_KEY_O)) open_session_window(false);
     if (ctrl && pressed(GLFW_KEY_E)) export_csv();
@@ -471,9 +549,12 @@ void App::frame() {
     ImGui::NewFrame();
     plot_gpu::begin_frame();
     opaque_image::begin_frame();
-    if (!bench_mode_) drain_samples();
+    if (!bench_.on) drain_samples();
     xI_shown_ = sim_->status().xI;
     if (opt_.set_state && frame_count_ == 1) set_state(opt_.set_x, opt_.set_v);   // --set-state, as a click
+    if (frame_count_ == 1)
+        for (const auto& [key, value] : opt_.params) set_param(key, value);   // --param, as typed in the panel
+    if (frame_count_ == 1 && opt_.demo > 0) run_demo(opt_.demo);             // --demo, as its button
     if (warming_ && have_last_ && last_.t >= opt_.warmup) {
         warming_ = false;
         set_speed(opt_.speed);
@@ -529,87 +610,13 @@ void App::frame() {
     capture_clip_frame(fw, fh);   // exporting a clip: this frame
     glFlush();   // rendering starts now; the next frame's swap shows it
     frame_pending_ = true;
-    if (bench_mode_) {
-        bench_events_s_ += t - t_events;
-        bench_build_s_ += t_built - t;
-        bench_wait_s_ += t_shown - t_built;
-        bench_submit_s_ += now_s() - t_shown;
+    if (bench_.on) {
+        bench_.events_s += t - t_events;
+        bench_.build_s += t_built - t;
+        bench_.wait_s += t_shown - t_built;
+        bench_.submit_s += now_s() - t_shown;
     }
     ++frame_count_;
-}
-
-namespace {
-// Bench mode: the headless engine's samples go straight into the UI's history, as if drained from the ring.
-struct HistorySink final : MsgSink {
-    History<SimMsg>* traj = nullptr;
-    std::vector<SimMsg>* ahead = nullptr;   // set: samples computed ahead go here instead
-    void put(const SimMsg& m) override {   // UI thread (the bench engine runs there)
-        if (m.kind != MsgKind::Sample) return;
-        if (ahead) ahead->push_back(m);
-        else traj->push(m);
-    }
-};
-}  // namespace
-
-void App::fill_bench_data(int points) {
-    // Real trajectory for the phase portrait and x(t): the engine, headless, at omega = 18 (chaos), at
-    // 100x real time (1 ms samples) as in the live app.
-    auto sink = std::make_unique<HistorySink>();
-    HistorySink* hs = sink.get();
-    sink->traj = &traj_;
-    EngineConfig cfg;
-    cfg.model = model_name();
-    cfg.omega = 18.0;
-    cfg.speed = 100.0;
-    bench_engine_ = std::make_unique<SimEngine>(cfg, sink.get());
-    bench_sink_ = std::move(sink);
-    traj_.clear();
-    bench_engine_->advance_to(points * bench_engine_->sample_dt() * 1.0001);
-    last_ = traj_.back();
-    // The frames' new samples are computed now: the app runs the simulation on its own thread, and the
-    // benchmark times the UI thread's frames only. feed_bench_frame() hands them over a frame's worth at a time.
-    bench_feed_.clear();
-    bench_fed_ = 0;
-    hs->ahead = &bench_feed_;
-    bench_engine_->advance_to(last_.t + kBenchFrames * 100.0 / 60.0 + 1.0);
-    hs->ahead = nullptr;
-    have_last_ = true;
-    omega_ = 18.0;
-    // Synthetic section points and diagram (shapes like the real ones; the draw cost is what is measured).
-    // The map's points carry 0, 1 or 2 impacts in turn, so the bench draws every colour.
-    sections_.clear();
-    pc_map_.reset();
-    double a = 0.1, b = 0.2;
-    for (int i = 0; i < points; ++i) {   // a Henon map, scaled into the left well
-        const double na = 1.0 - 1.4 * a * a + b;
-        b = 0.3 * a;
-        a = na;
-        SimMsg m;
-        m.kind = MsgKind::Section;
-        m.x = -0.010 + 0.005 * a;
-        m.v = 0.12 * b / 0.4;
-        m.t = i;
-        sections_.push(m);
-        pc_map_.push({m.t, m.x, m.v, i % 3, 0.02, 0.2});
-    }
-    Diagram d;
-    d.model = model_name();
-    d.protocol = "bench";
-    for (int i = 0; i < points; ++i) {   // a logistic-map cascade over omega
-        const double w = 25.0 * (i / 70) / (points / 70.0);
-        double r = 2.8 + 1.2 * w / 25.0, x = 0.4;
-        for (int k = 0; k < 60 + i % 70; ++k) x = r * x * (1 - x);
-        d.points.push_back({w, -0.018 + 0.014 * x, 0.0});
-    }
-    bif_panel_.show_bench(std::move(d), {0, 25}, {-0.019, -0.003});
-    bench_window_ = static_cast<std::size_t>(points);
-}
-
-void App::feed_bench_frame() {
-    // One 60 Hz frame at 100x real time: 1/60 s x 100 = 1.67 s of simulation, 1,667 samples of 1 ms.
-    const double t = last_.t + 100.0 / 60.0;
-    while (bench_fed_ < bench_feed_.size() && bench_feed_[bench_fed_].t <= t) traj_.push(bench_feed_[bench_fed_++]);
-    last_ = traj_.back();
 }
 
 int App::run() {
@@ -618,46 +625,7 @@ int App::run() {
         std::fprintf(stderr, "impactlab-gui: error: %s\n", error.c_str());
         return 1;
     }
-    if (bench_mode_) {
-        fill_bench_data(opt_.bench_points);
-        constexpr int kWarm = 20, kFrames = kBenchFrames - kWarm;
-        double s = 0;   // wall time of the timed frames, each shown (swapped) by the next one
-        std::size_t verts = 0;
-        for (int i = 0; i < kWarm + kFrames + 1 && !glfwWindowShouldClose(win_); ++i) {
-            if (i == kWarm) {
-                Plot::reset_stats();
-                bench_events_s_ = bench_build_s_ = bench_wait_s_ = bench_submit_s_ = 0;
-                for (double& p : panel_s_) p = 0;
-                s = now_s();
-            }
-            if (i == kWarm + kFrames) {   // the last timed frame is shown by this swap
-                glfwSwapBuffers(win_);
-                frame_pending_ = false;
-                s = now_s() - s;
-                break;
-            }
-            feed_bench_frame();
-            if (i + 1 == kWarm && !opt_.screenshot.empty()) screenshot(opt_.screenshot);   // an untimed frame
-            frame();
-            if (i >= kWarm) verts = std::max(verts, static_cast<std::size_t>(ImGui::GetDrawData()->TotalVtxCount) +
-                                                         plot_gpu::queued_points());
-        }
-        int fw = 0, fh = 0;
-        glfwGetFramebufferSize(win_, &fw, &fh);
-        std::printf("plot benchmark (%s backend): %dx%d, %d points on each plot (phase portrait, x(t), Poincare map, "
-                    "bifurcation), 1,667 new samples a frame (100x real time): %.1f fps (%.2f ms/frame, %zu vertices/frame, renderer: %s)\n",
-                    opt_.plot_backend.c_str(), fw, fh, opt_.bench_points, kFrames / s, 1e3 * s / kFrames, verts,
-                    reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
-        std::printf("plot benchmark: per frame %.2f ms polling events, %.2f ms building the UI (ImGui, the plots' "
-                    "images, rig geometry), %.2f ms waiting for the previous frame's rendering (the rest of it overlaps "
-                    "the building), %.2f ms submitting (uploads, GL calls); panels [ms]:",
-                    1e3 * bench_events_s_ / kFrames, 1e3 * bench_build_s_ / kFrames, 1e3 * bench_wait_s_ / kFrames,
-                    1e3 * bench_submit_s_ / kFrames);
-        for (std::size_t i = 0; i < 7; ++i) std::printf(" %s %.2f", kPanelNames[i], 1e3 * panel_s_[i] / kFrames);
-        std::printf("; %zu points reached the renderer per frame after decimation\n", Plot::emitted_vertices() / kFrames);
-        return 0;
-    }
-
+    if (bench_.on) return run_bench();
     if (opt_.soak > 0) return soak();
 
     while (!glfwWindowShouldClose(win_) && loop_once()) {}
@@ -676,59 +644,7 @@ bool App::loop_once() {
         return true;
     }
     ++counted_frames_;
-    // With --data the fit is for the start model, and --preset or --state-json look at one model: no
-    // switch unless one is asked for.
-    const bool keep_model = !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty() || !opt_.session.empty() ||
-                            !opt_.save_session.empty();
-    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_preset > 0) {
-        switched_ = true;   // --then-preset: what pressing key N does
-        apply_preset(presets_for(model_name())[static_cast<std::size_t>(opt_.then_preset - 1)]);
-    }
-    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_xi) {
-        switched_ = true;   // --then-xI: what dragging the x_I slider there does
-        set_xi(opt_.then_xI);
-    }
-    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_w) {
-        switched_ = true;   // --then-omega: what the arrow keys do, live (no reset)
-        set_omega(opt_.then_omega);
-    }
-    if (!switched_ && counted_frames_ >= opt_.frames / 2 && (!keep_model || !opt_.switch_model.empty())) {
-        switched_ = true;
-        // Switch the model once, live: to --switch-model, or H <-> G with the same stiffness.
-        std::string target = opt_.switch_model;
-        if (target.empty()) {
-            const std::string imp = impact_models()[static_cast<std::size_t>(impact_)].id;
-            target = std::string(stiffness_sets()[static_cast<std::size_t>(stiffness_)].id) + (imp == "H" ? "G" : "H");
-        }
-        const Params p = make_version(target);
-        set_model(index_of_stiffness(p.stiffness_id), index_of_impact(p.impact));
-    }
-    if (counted_frames_ >= opt_.frames) {
-        if (!opt_.clip_out.empty() && !clip_started_) {   // --clip-out: the last seconds, a frame each
-            clip_started_ = true;
-            if (std::string err; !start_clip(opt_.clip_out, opt_.clip_seconds, err)) {
-                std::fprintf(stderr, "impactlab-gui: error: --clip-out: %s\n", err.c_str());
-                exit_code_ = 1;
-            }
-            return true;
-        }
-        if (clip_frame_ >= 0) return true;
-        if (opt_.replay_back > 0 && !replay_back_done_) {   // --replay-back: the last frame shows the past
-            replay_back_done_ = true;
-            if (enter_replay()) replay_.seek(replay_.cursor() - opt_.replay_back);
-            if (opt_.replay_continue) {   // then Enter, and 60 more frames of the continued run
-                replay_request_ = ReplayRequest::Continue;
-                counted_frames_ -= 60;
-            }
-            return true;
-        }
-        if (!opt_.screenshot.empty()) {
-            screenshot(opt_.screenshot);
-            frame();   // renders once more and reads that frame back
-        }
-        return false;
-    }
-    return true;
+    return script_step();
 }
 
 int App::finish() {
@@ -755,58 +671,6 @@ int App::finish() {
         exit_code_ = 1;
     }
     return exit_code_;
-}
-
-namespace {
-// Resident set size of this process [MB] (Linux /proc; 0 where unknown).
-double rss_mb() {
-    std::FILE* f = std::fopen("/proc/self/statm", "r");
-    if (!f) return 0;
-    long pages = 0, resident = 0;
-    const int n = std::fscanf(f, "%ld %ld", &pages, &resident);
-    std::fclose(f);
-    return n == 2 ? static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / 1048576.0 : 0.0;
-}
-}  // namespace
-
-int App::soak() {
-    // Every version in turn, 3 s each, at 100x: what a class sees when the teacher flips through the models.
-    std::vector<std::string> versions;
-    for (const auto& st : stiffness_sets())
-        for (const auto& im : impact_models())
-            if (im.kind != ImpactKind::None) versions.push_back(std::string(st.id) + im.id);
-    set_speed(kMaxSpeed);
-    const double t0 = now_s();
-    double next_switch = t0 + 3.0, next_report = t0 + 10.0, rss_ref = -1;
-    std::size_t k = 0;
-    long frames_at_report = frame_count_;
-    double worst_growth = 0;
-    std::printf("soak: %.0f s at %gx, switching through %zu versions every 3 s\n", opt_.soak, kMaxSpeed, versions.size());
-    while (!glfwWindowShouldClose(win_)) {
-        frame();
-        const double now = now_s();
-        if (now >= next_switch) {
-            const Params p = make_version(versions[++k % versions.size()]);
-            set_model(index_of_stiffness(p.stiffness_id), index_of_impact(p.impact));
-            next_switch += 3.0;
-        }
-        if (now >= next_report || now - t0 >= opt_.soak) {
-            const SimStatus st = sim_->status();
-            const double rss = rss_mb();
-            if (rss_ref < 0 && now - t0 >= 0.25 * opt_.soak) rss_ref = rss;   // after the caches and pools filled
-            if (rss_ref >= 0) worst_growth = std::max(worst_growth, rss - rss_ref);
-            std::printf("soak: t=%6.0f s rss=%7.1f MB dropped=%llu samples=%llu sim_time=%.0f s fps=%.1f model=%s\n", now - t0, rss,
-                        static_cast<unsigned long long>(st.dropped), static_cast<unsigned long long>(samples_seen_),
-                        have_last_ ? last_.t : st.sim_time, static_cast<double>(frame_count_ - frames_at_report) / 10.0,
-                        model_name().c_str());
-            std::fflush(stdout);
-            frames_at_report = frame_count_;
-            next_report += 10.0;
-            if (now - t0 >= opt_.soak) break;
-        }
-    }
-    std::printf("soak: RSS grew by %.1f MB after the first quarter (limit 16 MB)\n", worst_growth);
-    return worst_growth > 16.0 ? 1 : 0;
 }
 
 }  // namespace impactlab::gui

@@ -27,7 +27,14 @@
 #include "poincare_map.hpp"
 #include "presets.hpp"
 #include "replay.hpp"
-#include "rig_view.hpp"
+#include "views/guide_panel.hpp"
+#include "views/params_panel.hpp"
+#include "views/phase_panel.hpp"
+#include "views/poincare_panel.hpp"
+#include "views/potential_panel.hpp"
+#include "views/rig_panel.hpp"
+#include "views/strip_panel.hpp"
+#include "views/view.hpp"
 #include "session.hpp"
 #include "sim_thread.hpp"
 #include "state_pick.hpp"
@@ -66,6 +73,12 @@ private:
     void draw_ramp_points(Plot& plot) const;        // ramp_hooks.cpp: its section points on the diagram
     void set_xi(double xI);
     void set_model(int stiffness, int impact);
+    void set_version(const std::string& name);   // "A1G": set_model by the version's name
+    // The parameters panel's edits (views/params_panel.hpp): checked, then sent; a toast-free refusal shows
+    // in the panel. reset_params: the version's own values.
+    bool set_param(const std::string& key, double value);
+    void reset_params();
+    void run_demo(int k);   // "What to try": demonstration k (1-5) set up
     void set_paused(bool p);
     void step_period();
     void reset();
@@ -80,7 +93,10 @@ private:
     void toast(const std::string& msg);
     std::string model_name() const;
     double now_s() const;
-    int soak();   // --soak: model switches at 100x with an RSS report
+    // harness.cpp: the scripted runs (tests, benchmarks); the live app never calls these.
+    int run_bench();           // --bench-plot: the timed frames and their report
+    int soak();                // --soak: model switches at 100x with an RSS report
+    bool script_step();        // a counted --frames frame: the script's changes; false when the run is over
     void fill_bench_data(int points);
     void feed_bench_frame();   // appends one frame's worth of new samples (bench mode)
 
@@ -92,11 +108,11 @@ private:
     void draw_controls_run();     // model, forcing and bumper, run, presets
     void draw_controls_view();    // display settings
     void draw_controls_state();   // state, forces, energy
-    void draw_rig();
-    void draw_phase();
-    void draw_poincare();
-    void draw_potential();
-    void draw_strip();
+    // views/: the live plots. The App hands them the shared history and routes what a click asks for.
+    ViewContext view_context() const;
+    void apply_view(const ViewAction& a);
+    void start_orbit(double x, double v);          // the Poincare clicker: a new orbit (--orbit as a click)
+    void restart_at_section(double x, double v);   // the cart from (x, v) at the next section
     void draw_bifurcation();
     void draw_status();
     void draw_help();
@@ -106,10 +122,6 @@ private:
     void set_companion(CompanionMode mode);
     void draw_companion_controls();                     // Controls: the companion's mode and ghost law
     void draw_grazing();                                // State: distance to the bumper, impact velocity
-    void draw_separation(ImVec2 size);                  // beside x(t): log10 |dx| of cart and companion
-    void rig_mouse(ImVec2 image_min, float fbs);        // drag the cart (left button): hold, then let go at v = 0
-    void plot_click(ClickDelay& delay, bool hovered, bool clicked, double x, double v);
-    static ImU32 companion_color(float alpha);          // the companion's colour in every plot
     // app_replay.cpp: replay of the recent past and clip export
     bool enter_replay();                                // pauses the simulation; false if nothing is recorded
     void leave_replay();                                // back to live (the simulation as it was before)
@@ -153,8 +165,6 @@ private:
     double magnification() const;   // the rig's displacement magnification in the current mode
     void set_magnification(double g);
     LayoutRequest layout_request(const Rect& area) const;
-    static constexpr const char* kPanelNames[7] = {"controls", "rig", "bifurcation", "phase", "poincare", "potential", "x(t)"};
-    double panel_s_[7] = {};
 
     Options opt_;
     GLFWwindow* win_ = nullptr;
@@ -165,20 +175,27 @@ private:
     OmegaRamp ramp_;                   // the live omega ramp and the section points it passed
     float ramp_target_ = 25.0f, ramp_rate_ = 0.05f;   // its inputs [rad/s], [rad/s per s]
     double energy_floor_ = 0;          // [J] the well's floor V_min of params_ (the energy bar's zero)
-    std::string energy_floor_for_;     // the version it was computed for
+    int energy_floor_rev_ = -1;        // the params_rev_ it was computed for
     LiveLyapunov lyapunov_live_;       // lambda_max at the running omega
     CompanionTrack companion_;         // the twin or the ghost (source 1 records)
     CompanionMode companion_mode_ = CompanionMode::Off;
     int ghost_impact_ = 2;             // the ghost's impact law, an index into impact_models()
-    ClickDelay phase_click_, potential_click_;
-    bool dragging_cart_ = false;
-    double drag_grab_ = 0;             // [m] where on the cart the mouse took it (cart centre - mouse)
-    double drag_x_ = 0;                // [m] where the mouse holds the cart
     SimMsg grazing_{};                 // the cart's grazing monitor, last whole period (MsgKind::Grazing)
     bool have_grazing_ = false;
     double xI_shown_ = 0;              // [m] the bumper where the simulation has it (travelling to xI_)
     AnalysisPanels analysis_;          // continued branches, parameter plane, basins (issues 9, 10)
-    RigView rig_;
+    ParamsPanel params_panel_;         // m, c, k, T, m0e, eps and the impact law's, live
+    GuidePanel guide_;                 // "What to try": five demonstrations
+    bool show_guide_ = false;
+    int demo_ = 0;                     // the last demonstration run (1-5), 0 none
+    bool details_ = false;             // the status bar's technical fields
+    bool show_params_ = false;
+    int params_rev_ = 0;               // bumped at every change of params_ (the potential, the energy floor)
+    RigPanel rig_;
+    PhasePanel phase_;
+    PoincarePanel poincare_;
+    PotentialPanel potential_;
+    StripPanel strip_;
     bool imgui_ready_ = false;
     bool glfw_ready_ = false;
 
@@ -231,11 +248,6 @@ private:
     bool show_help_ = false;
     float trail_periods_ = 8.0f;
     float strip_window_ = 6.0f;
-    AutoRange phase_x_, phase_v_, pc_x_, pc_v_, strip_y_, potential_y_;
-    WindowExtent energy_extent_;       // the energy over the phase portrait's trail (the potential's y range)
-    double trail_e_max_ = 0;           // [J] its largest value at the last frame (--state-json)
-    std::vector<double> potential_x_, potential_v_;   // V(x) of the current stiffness
-    std::string potential_for_;
     double last_frame_time_ = 0, fps_ = 0, frame_dt_ = 1.0 / 60;
 
     // Screenshot / toast / modes.
@@ -245,21 +257,20 @@ private:
     long frame_count_ = 0;
     long counted_frames_ = 0;
     bool switched_ = false;
-    bool bench_mode_ = false;
     bool warming_ = false;   // --warmup: at 100x until the sim time reaches opt_.warmup
-    // --bench-plot: the plots show the newest bench_window_ samples (0: the normal trail and strip), and a
-    // headless engine appends what the live app would receive at 100x real time every frame.
-    std::size_t bench_window_ = 0;
-    // Auto-fit extents of the plots' windows, kept incrementally (100k points would cost a pass a frame).
-    WindowExtent phase_x_extent_, phase_v_extent_, pc_x_extent_, pc_v_extent_, strip_x_extent_;
-    std::uint64_t pc_fit_generation_ = ~std::uint64_t{0};   // the map's generation the fit last snapped to
-    std::vector<std::uint32_t> pc_buckets_[16];              // per frame: map points by age band and impacts
-    std::unique_ptr<SimEngine> bench_engine_;
-    std::unique_ptr<MsgSink> bench_sink_;
-    double bench_events_s_ = 0, bench_build_s_ = 0, bench_wait_s_ = 0, bench_submit_s_ = 0;
-    static constexpr int kBenchFrames = 220;   // --bench-plot: 20 warm-up frames and 200 timed
-    std::vector<SimMsg> bench_feed_;           // the timed frames' samples, computed before
-    std::size_t bench_fed_ = 0;
+    // --bench-plot (harness.cpp): the plots show the newest `window` samples (0: the normal trail and
+    // strip), and a headless engine appends what the live app would receive at 100x real time every frame.
+    static constexpr int kBenchFrames = 220;   // 20 warm-up frames and 200 timed
+    struct Bench {
+        bool on = false;
+        std::size_t window = 0;
+        std::unique_ptr<SimEngine> engine;
+        std::unique_ptr<MsgSink> sink;
+        std::vector<SimMsg> feed;              // the timed frames' samples, computed before
+        std::size_t fed = 0;
+        double events_s = 0, build_s = 0, wait_s = 0, submit_s = 0;
+        double panel_s[1 + kPanelCount] = {};  // the controls, then each view (the view table's order)
+    } bench_;
     bool frame_pending_ = false;               // a frame is submitted and waits for the next one's swap
     int exit_code_ = 0;
 

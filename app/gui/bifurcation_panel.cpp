@@ -227,6 +227,7 @@ BifurcationState BifurcationPanel::state(const BifurcationContext& c) const {
     s.lyap_steps = lyap_req_.steps;
     s.lyap_done = lyap_done_;
     for (const auto& q : lyap_) s.lyap_positive += q.lambda_max > 0;
+    s.live = live_;
     return s;
 }
 
@@ -405,6 +406,7 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
     Axes ax;
     ax.x_label = "ω [rad/s]";
     ax.y_label = "x at sections [mm]";
+    ax.y_label_short = "x [mm]";
     ax.y_scale = 1e3;
     if (!zoom_applied_ && have_ && !job_.running() && !shown_.points.empty()) {
         // --bif-zoom: the omega range asked for, the auto-fit's x at sections.
@@ -456,6 +458,7 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
     if (!c.params || c.params->has_bumper()) plot.hline(c.xI, pal.bumper, 1.0f, true);   // "none": no bumper
     // The running omega: a line, its value (to 0.01 rad/s), and the Poincare map's settled points on it.
     plot.vline(c.omega, pal.cursor, 2.0f);
+    live_ = {};
     if (c.live && !is_stale) {
         const History<MapPoint>& h = *c.live;
         const std::size_t n = std::min<std::size_t>(h.size(), 400), first = h.size() - n;
@@ -465,9 +468,19 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         const float step = 0.5f * r;
         std::vector<std::uint8_t> taken(static_cast<std::size_t>(std::max(1.0f, (b.y - a.y) / step)) + 2, 0);
         std::vector<ImVec2> dots;
+        const bool omega_in_view = c.omega >= vx.lo && c.omega <= vx.hi;
+        live_.total = n;
         for (std::size_t i = first; i < h.size(); ++i) {
             const ImVec2 p = plot.to_px(c.omega, h[i].x);
-            if (p.y < a.y - r || p.y > b.y + r) continue;
+            // A point off the view is counted and said, never drawn at an edge as if it were there.
+            if (!omega_in_view) {
+                ++live_.beyond;
+                continue;
+            }
+            if (p.y < a.y) ++live_.above;
+            if (p.y > b.y) ++live_.below;
+            if (p.y < a.y || p.y > b.y) continue;
+            ++live_.in_view;
             const auto cell = static_cast<std::size_t>(std::clamp((p.y - a.y) / step + 1.0f, 0.0f,
                                                                   static_cast<float>(taken.size() - 1)));
             if (taken[cell]) continue;
@@ -491,6 +504,17 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         // The label sits right of the line, or left of it near the right edge, so it is never cut off.
         const bool left = beyond_hi || (!beyond_lo && p.x + ImGui::CalcTextSize(buf).x + 12 > b.x);
         plate_text(plot.draw(), ImVec2(left ? p.x - 5 : p.x + 5, p.y + 3), buf, pal.title_text, ImVec2(left ? 1.0f : 0.0f, 0));
+        // The running attractor's section points the view does not hold: how many, and on which side.
+        const float line = ImGui::GetTextLineHeightWithSpacing();
+        const auto note = [&](std::size_t count, const char* where, float y) {
+            if (count == 0) return;
+            char text[64];
+            std::snprintf(text, sizeof text, "%zu live point%s %s", count, count == 1 ? "" : "s", where);
+            plate_text(plot.draw(), ImVec2(left ? p.x - 5 : p.x + 5, y), text, kLiveColor, ImVec2(left ? 1.0f : 0.0f, 0));
+        };
+        note(live_.beyond, beyond_hi ? "to the right" : "to the left", p.y + 3 + line);
+        note(live_.above, "above the view", p.y + 3 + line);
+        note(live_.below, "below the view", b.y - 2.0f * line - 6);
     }
     if (is_stale) {
         // Says whose diagram this is, in one line or, in a narrow tile, two.

@@ -39,6 +39,12 @@ struct BifurcationAction {
     std::string toast;
 };
 
+// The running attractor's section points at the last frame: how many the diagram drew on the omega line and
+// how many lay off its view (omega beyond the omega axis, or x above or below the y axis).
+struct LivePoints {
+    std::size_t total = 0, in_view = 0, beyond = 0, above = 0, below = 0;
+};
+
 // What the panel shows, for --state-json.
 struct BifurcationState {
     bool have = false;                    // a diagram is shown (computing or done)
@@ -52,6 +58,7 @@ struct BifurcationState {
     std::string range_error;              // the range inputs' complaint ("" when valid)
     bool lyap_on = false, lyap_running = false;
     int lyap_steps = 0, lyap_done = 0, lyap_positive = 0;   // omegas asked, done, with lambda_max > 0
+    LivePoints live;
 };
 
 class BifurcationPanel {
@@ -118,6 +125,8 @@ private:
     bool dark_ = true;               // the theme the image was drawn for
     Range view_x_, view_y_;
     float max_count_ = 0;            // points in the densest pixel (the legend's top)
+
+    LivePoints live_;                // at the last frame
 
     // The box being dragged with the right mouse button [rad/s].
     bool box_active_ = false;

@@ -7,8 +7,6 @@ namespace impactlab::gui {
 
 namespace {
 
-constexpr const char* kKeys[kPanelCount] = {"rig", "bifurcation", "phase", "poincare", "potential", "strip"};
-
 // A row of the normal layout: its tiles, their width shares, and the row's share of the height.
 struct Row {
     std::vector<std::vector<PanelId>> tiles;
@@ -58,11 +56,13 @@ void normal_tiles(const LayoutRequest& r, const Rect& area, Layout& out) {
         out.tiles.push_back({area, {*r.maximised}});
         return;
     }
-    // The rows as the wide layout has them, hidden panels left out.
-    const std::vector<std::pair<std::vector<PanelId>, float>> wanted = {
-        {{PanelId::Rig, PanelId::Bifurcation}, 0.41f},
-        {{PanelId::Phase, PanelId::Poincare, PanelId::Potential}, 0.34f},
-        {{PanelId::Strip}, 0.25f}};
+    // The rows as the view table has them, hidden panels left out.
+    std::vector<std::pair<std::vector<PanelId>, float>> wanted;
+    for (int row = 0; row < kViewRows; ++row) {
+        wanted.push_back({{}, kViewRowWeight[row]});
+        for (const ViewInfo& v : kViews)
+            if (v.row == row) wanted.back().first.push_back(v.id);
+    }
     const float min_w = min_tile_w(s);
     std::vector<Row> rows;
     for (const auto& [panels, weight] : wanted) {
@@ -113,8 +113,8 @@ void normal_tiles(const LayoutRequest& r, const Rect& area, Layout& out) {
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const float y1 = i + 1 == rows.size() ? area.bottom() : std::round(y + heights[i]);
         const Row& row = rows[i];
-        std::vector<float> shares(row.tiles.size(), 1.0f);
-        if (row.tiles.size() == 2 && row.tiles[0][0] == PanelId::Rig) shares = {0.58f, 0.42f};   // the rig is wide
+        std::vector<float> shares;   // a tile of tabs takes its first panel's share (the rig is wide)
+        for (const auto& t : row.tiles) shares.push_back(view_info(t[0]).width_share);
         const std::vector<float> widths = share_widths(area.w, shares, min_w);
         float x = area.x;
         for (std::size_t k = 0; k < row.tiles.size(); ++k) {
@@ -152,20 +152,6 @@ void presentation_tiles(const LayoutRequest& r, Layout& out) {
 }
 
 }  // namespace
-
-const char* panel_key(PanelId p) { return kKeys[static_cast<int>(p)]; }
-
-std::optional<PanelId> panel_from_key(const std::string& key) {
-    for (int i = 0; i < kPanelCount; ++i)
-        if (key == kKeys[i]) return static_cast<PanelId>(i);
-    return std::nullopt;
-}
-
-std::string panel_keys() {
-    std::string all;
-    for (const char* k : kKeys) all += (all.empty() ? "" : ", ") + std::string(k);
-    return all;
-}
 
 float min_tile_w(float scale) { return 190.0f * scale; }
 float min_tile_h(float scale) { return 140.0f * scale; }

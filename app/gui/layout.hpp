@@ -12,17 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "views/view_table.hpp"
+
 namespace impactlab::gui {
-
-// The plot tiles (the controls column is laid out apart).
-enum class PanelId : int { Rig, Bifurcation, Phase, Poincare, Potential, Strip };
-inline constexpr int kPanelCount = 6;
-
-// "rig", "bifurcation", "phase", "poincare", "potential", "strip" (flags and --state-json).
-const char* panel_key(PanelId p);
-std::optional<PanelId> panel_from_key(const std::string& key);
-// The panel keys joined with ", " (for error messages).
-std::string panel_keys();
 
 enum class LayoutMode { Normal, Presentation };
 

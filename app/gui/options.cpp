@@ -13,6 +13,7 @@
 #include "impactlab/input_file.hpp"
 #include "impactlab/params.hpp"
 #include "layout.hpp"
+#include "param_edit.hpp"
 #include "presets.hpp"
 #include "session.hpp"
 
@@ -43,6 +44,17 @@ const char* usage_text() {
            "  --preset N         start on preset N of the model (1-4, as keys 1-4: period 1, period 2, chaos,\n"
            "                     a periodic window); sets omega, x0 and xI = 0 (over --omega, --x0, --xI)\n"
            "  --show-help        open the keyboard shortcuts window at start\n"
+           "  --param KEY=VALUE  set a parameter of the model at start, as the Parameters panel (F4) does\n"
+           "                     (repeatable; m, c, k, T, m0e, eps or the impact law's: kI, kappa0, ...)\n"
+           "  --show-params      open the Parameters panel at start\n"
+           "  --guide            open \"What to try\" (it opens by itself when no flag scripts the run)\n"
+           "  --demo N           run its demonstration N at start: 1 period doubling, 2 the road to chaos,\n"
+           "                     3 switching the impact model, 4 the energy budget, 5 basins of attraction\n"
+           "  --details          the status bar's technical fields (epoch, samples, dropped)\n"
+           "  --clicker          the Poincare clicker on: each click on the map starts an orbit in its own colour\n"
+           "  --orbit X,V        (repeatable) such a click at x = X m, v = V m/s, spread over --frames\n"
+           "  --strip Q[,Q2]     the time strip's trace and a second one below it: x, v, E (energy),\n"
+           "                     F (bumper force), drive (m0e ω² cos φ); default x (right-click the strip)\n"
            "  --bifurcation P    compute a bifurcation diagram at start: cf-up, cf-down or ef\n"
            "  --bif-steps N      omega steps of a CF sweep, 10..2000 (default 300)\n"
            "  --bif-zoom W0:W1   show the diagram zoomed to omega in [W0, W1] (wheel, drag and double-click\n"
@@ -206,8 +218,9 @@ Options parse_options(const std::vector<std::string>& args) {
             // An optional plot name: the next argument unless it is a flag.
             if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0) {
                 const std::string& p = args[++i];
-                if (p != "phase" && p != "poincare" && p != "potential" && p != "strip" && p != "bifurcation")
-                    throw OptionsError("--presentation: '" + p + "' is not one of phase, poincare, potential, strip, bifurcation");
+                const auto id = panel_from_key(p);
+                if (!id || view_info(*id).presentation_order == 0)
+                    throw OptionsError("--presentation: '" + p + "' is not one of " + panel_keys(true));
                 o.presentation_plot = p;
             }
         } else if (a == "--hide") {
@@ -281,6 +294,37 @@ Options parse_options(const std::vector<std::string>& args) {
             o.set_v = number(a, sv.substr(c + 1), -2.0, 2.0);
             o.set_state = true;
         }
+        else if (a == "--param") {
+            const std::string& kv = value();
+            const auto eq = kv.find('=');
+            if (eq == std::string::npos || eq == 0) throw OptionsError("--param: '" + kv + "' is not KEY=VALUE (e.g. k=1200)");
+            o.params.emplace_back(kv.substr(0, eq), number(a, kv.substr(eq + 1), -1e300, 1e300));
+        }
+        else if (a == "--show-params") o.show_params = true;
+        else if (a == "--guide") o.guide = true;
+        else if (a == "--demo") o.demo = static_cast<int>(number(a, value(), 1, 5));
+        else if (a == "--details") o.details = true;
+        else if (a == "--clicker") o.clicker = true;
+        else if (a == "--orbit") {
+            const std::string& sv = value();
+            const auto c = sv.find(',');
+            if (c == std::string::npos) throw OptionsError("--orbit: '" + sv + "' is not X,V (metres, m/s)");
+            o.orbits.emplace_back(number(a, sv.substr(0, c), -0.05, 0.05), number(a, sv.substr(c + 1), -2.0, 2.0));
+        }
+        else if (a == "--strip") {
+            const std::string& list = value();
+            o.strip.clear();
+            for (std::size_t from = 0;;) {
+                const std::size_t c = list.find(',', from);
+                const std::string q = list.substr(from, c == std::string::npos ? std::string::npos : c - from);
+                if (q != "x" && q != "v" && q != "E" && q != "F" && q != "drive")
+                    throw OptionsError("--strip: '" + q + "' is not one of x, v, E, F, drive");
+                o.strip.push_back(q);
+                if (c == std::string::npos) break;
+                from = c + 1;
+            }
+            if (o.strip.size() > 2) throw OptionsError("--strip: at most two traces ('" + list + "')");
+        }
         else if (a == "--press") {
             o.press = value();
             const std::string key = o.press.rfind("ctrl+", 0) == 0 ? o.press.substr(5) : o.press;
@@ -309,6 +353,12 @@ Options parse_options(const std::vector<std::string>& args) {
             throw OptionsError(std::string(flag) + ": " + std::to_string(n) + " is out of range [1, " +
                                std::to_string(count) + "] for " + o.model);
     }
+    {   // --param: each value as the panel would take it, on the model given (--model may come after it)
+        Params p = make_version(o.model);
+        for (const auto& [key, value] : o.params)
+            if (std::string err; !set_param(p, key, value, err)) throw OptionsError("--param " + key + ": " + err);
+    }
+    if (!o.orbits.empty() && o.frames == 0) throw OptionsError("--orbit needs --frames N");
     if (o.then_preset > 0 && o.frames == 0) throw OptionsError("--then-preset needs --frames N");
     if (o.then_xi && o.frames == 0) throw OptionsError("--then-xI needs --frames N");
     if (o.then_w && o.frames == 0) throw OptionsError("--then-omega needs --frames N");

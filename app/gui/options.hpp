@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace impactlab::gui {
@@ -73,6 +74,17 @@ struct Options {
     std::string press;           // --press [ctrl+]KEY: that key pressed at frame 3 (headless tests of the keys)
     bool set_state = false;      // --set-state X,V: at the first frame, as a click in the phase portrait
     double set_x = 0, set_v = 0; // [m], [m/s]
+    // The parameters panel (views/params_panel.hpp).
+    std::vector<std::pair<std::string, double>> params;   // --param KEY=VALUE: at the first frame, as typed there
+    bool show_params = false;    // --show-params: the panel open at start
+    std::vector<std::string> strip;   // --strip Q[,Q2]: the time strip's traces (x, v, E, F, drive)
+    // The first screen (views/guide_panel.hpp).
+    bool guide = false;          // --guide: "What to try" open (it opens by itself on an unscripted start)
+    int demo = 0;                // --demo N: run demonstration N (1-5) at the first frame
+    bool details = false;        // --details: the status bar's technical fields (epoch, samples, dropped)
+    // The Poincare clicker (views/poincare_panel.hpp).
+    bool clicker = false;        // --clicker: on at start
+    std::vector<std::pair<double, double>> orbits;   // --orbit X,V (repeatable): clicks spread over --frames
 };
 
 // argv without the program name. Throws OptionsError naming the flag and the problem.

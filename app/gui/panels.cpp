@@ -27,10 +27,6 @@ namespace impactlab::gui {
 
 namespace {
 
-struct XY {
-    double x, y;
-};
-
 void section(const char* label) {
     ImGui::Spacing();
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_SliderGrab]);
@@ -84,6 +80,8 @@ void App::draw_menu() {
     if (ImGui::BeginMenu("View")) {
         draw_view_menu_panels();   // tiles.cpp: presentation, panels, maximise, magnification
         ImGui::Separator();
+        if (ImGui::MenuItem("Parameters (m, c, k, ..., the impact law's)...", "F4", show_params_)) show_params_ = !show_params_;
+        if (ImGui::MenuItem("Details in the status bar (epoch, samples, dropped)", nullptr, details_)) details_ = !details_;
         if (ImGui::MenuItem("Dark theme", "T", dark_)) {
             dark_ = !dark_;
             apply_theme(dark_, ui_scale_);
@@ -104,6 +102,7 @@ void App::draw_menu() {
     }
     analysis_.menu(analysis_context());
     if (ImGui::BeginMenu("Help")) {
+        if (ImGui::MenuItem("What to try (five demonstrations)...", nullptr, show_guide_)) show_guide_ = !show_guide_;
         if (ImGui::MenuItem("Keyboard shortcuts", "F1")) show_help_ = true;
         ImGui::EndMenu();
     }
@@ -339,516 +338,77 @@ void App::draw_controls_state() {
             "unbalance (in) against kinetic, potential (above the well's floor) and what the resistance and\n"
             "the bumper dissipated (out). Each term is integrated on its own, so the two bars agree only if\n"
             "the simulation conserves energy as it should.");
-    if (energy_floor_for_ != params_.name) {
+    if (energy_floor_rev_ != params_rev_) {
         energy_floor_ = potential_floor(params_);
-        energy_floor_for_ = params_.name;
+        energy_floor_rev_ = params_rev_;
     }
     const EnergyBalance eb = sim_->status().energy;
     draw_energy_bars(energy_bars(eb, params_.m, energy_floor_), eb.t0, eb.t);
 }
 
-void App::draw_rig() {
-    const Palette& pal = palette();
-    const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const int w = std::max(16, static_cast<int>(avail.x)), h = std::max(16, static_cast<int>(avail.y));
-    RigState st;
-    st.x = last_.x;
-    st.v = last_.v;
-    st.phi = last_.phi;
-    st.phi_span = have_last_ ? last_.phi - phi_prev_ : 0.0;
-    st.xI = xI_shown_;   // where the simulation has it: it travels to the slider's x_I, pushing the cart
-    st.bumper_force = std::max(frame_max_force_, last_.force);
-    st.bumper = params_.has_bumper();
-    st.flash = flash_;
-    st.magnet_force = -(spring_magnet(params_, last_.x).F - params_.k * last_.x);
-    st.spring_force = -params_.k * last_.x;
-    st.in_contact = in_contact(params_, last_.regime, last_.force);
-    st.magnify = magnification();   // the drawing only (layout.hpp: RigMagnify)
-    // Rendered at the framebuffer's resolution (sharp on high-DPI screens), shown at display size.
-    const float fbs = std::max(1.0f, ImGui::GetIO().DisplayFramebufferScale.x);
-    rig_.prepare(static_cast<int>(w * fbs), static_cast<int>(h * fbs), st, pal);
-    const ImVec2 p0 = ImGui::GetCursorScreenPos();
-    ImGui::Dummy(ImVec2(static_cast<float>(w), static_cast<float>(h)));   // the item the mouse hovers
-    rig_.add_to(ImGui::GetWindowDrawList(), p0);
-    rig_mouse(p0, fbs);   // drag the cart
-
-    ImDrawList* dl = ImGui::GetWindowDrawList();
-    const ImU32 text = pal.title_text, dim = pal.axis_text;
-    const RigMagnify& mag = rig_.magnify();
-    // Screen position of a point of the drawing (x already magnified: mag.draw_x, mag.bumper_face).
-    auto at = [&](double x, double y) {
-        const ImVec2 q = rig_.to_image(x, y);
-        return ImVec2(p0.x + q.x / fbs, p0.y + q.y / fbs);
-    };
-    char buf[128];
-    const float fs = ImGui::GetFontSize();
-    // The labels go in order of importance, each at the first of its spots that lies inside the image and
-    // clear of those placed before (LabelPlacer): none overprints another, none is cut at the edge, at any
-    // UI scale, tile size, x_I or magnification; what finds no room is left out.
-    LabelPlacer labels({p0.x, p0.y, static_cast<float>(w), static_cast<float>(h)});
-    const ImU32 plate_bg = pal.dark ? IM_COL32(10, 12, 16, 150) : IM_COL32(255, 255, 255, 170);
-    struct Spot {
-        ImVec2 p, align;   // the point, and where on the text's box it sits (0..1 in x and y)
-    };
-    auto put = [&](const char* s, ImU32 col, std::initializer_list<Spot> spots, bool plate = true) {
-        const ImVec2 ts = ImGui::CalcTextSize(s);
-        for (const Spot& sp : spots) {
-            const Rect r{std::round(sp.p.x - ts.x * sp.align.x) - 3, std::round(sp.p.y - ts.y * sp.align.y) - 1, ts.x + 6,
-                         ts.y + 2};
-            if (!labels.place(r)) continue;
-            if (plate) dl->AddRectFilled(ImVec2(r.x, r.y), ImVec2(r.right(), r.bottom()), plate_bg, 3.0f);
-            dl->AddText(ImVec2(r.x + 3, r.y + 1), col, s);
-            return true;
-        }
-        return false;
-    };
-    // The ruler and the end walls are no place for a label either: their boxes are taken first.
-    const auto reserve = [&](double x0, double y0, double x1, double y1) {
-        const ImVec2 a = at(x0, y0), b = at(x1, y1);
-        labels.reserve({std::min(a.x, b.x), std::min(a.y, b.y), std::abs(b.x - a.x), std::abs(b.y - a.y)});
-    };
-    {
-        const double wall_x = mag.wall_x(), ruler = 0.025 * mag.gain;
-        reserve(-ruler, rig::kRulerY - 0.001, ruler, rig::kRulerY + 0.0052);   // the ticks (numbers sit above)
-        reserve(wall_x - 0.003, -0.065, wall_x + 0.013, 0.045);
-        reserve(-wall_x - 0.013, -0.065, -wall_x + 0.003, 0.045);
-    }
-    const float edge = fs * 0.6f;
-    // Regime badge (a compliant bumper has no regimes II/III: contact is free flight with F_I > 0).
-    // The same words as the status bar, from the same sample (contact_label.hpp).
-    const char* badge = contact_label(params_, last_.regime, last_.force);
-    const ImU32 badge_col = in_contact(params_, last_.regime, last_.force) ? pal.bumper : pal.energy;
-    const ImVec2 bp(p0.x + edge, p0.y + fs * 0.5f);
-    put(badge, badge_col, {{bp, {0, 0}}});
-    if (paused_) put(sim_->status().paused ? "PAUSED" : "STEPPING", pal.warn, {{ImVec2(p0.x + w - edge, bp.y), {1, 0}}}, false);
-    // The magnification, where every eye goes first: beside the badge or under it.
-    if (mag.gain > 1.001) {
-        std::snprintf(buf, sizeof buf, "displacement ×%.3g (drawing only)", mag.gain);
-        const float bw = ImGui::CalcTextSize(badge).x;
-        if (!put(buf, pal.warn, {{ImVec2(bp.x + bw + fs, bp.y), {0, 0}}, {ImVec2(bp.x, bp.y + 1.6f * fs), {0, 0}}})) {
-            std::snprintf(buf, sizeof buf, "displacement ×%.3g", mag.gain);
-            put(buf, pal.warn, {{ImVec2(bp.x + bw + fs, bp.y), {0, 0}}, {ImVec2(bp.x, bp.y + 1.6f * fs), {0, 0}},
-                                {ImVec2(p0.x + w - edge, p0.y + h - fs * 2.2f), {1, 1}}});
-        }
-    }
-    const double face = mag.bumper_face(xI_shown_);
-    const double bumper_top = rig::kBumperY + rig::kBumperHalfH + 0.0025, bumper_low = rig::kBumperY - rig::kBumperHalfH - 0.003;
-    // The impact label speaks of the displayed instant: the force now while in contact, then the last
-    // contact's v- or peak force, fading, for at most half a forcing period of simulated time.
-    const bool touching = in_contact(params_, last_.regime, last_.force);
-    const double label_alpha =
-        impact_label_.alpha(touching, last_.t, now_s(), kTwoPi / std::max(omega_, 0.5), speed_);
-    if (label_alpha > 0.02) {
-        if (touching) std::snprintf(buf, sizeof buf, "F = %.1f N", std::max(0.0, last_.force));
-        else if (impact_label_.was_impact()) std::snprintf(buf, sizeof buf, "impact  v- = %.3f m/s", impact_label_.v_minus());
-        else std::snprintf(buf, sizeof buf, "contact  peak F = %.1f N", impact_label_.peak_force());
-        const double heat = touching ? std::min(1.0, last_.force / 100) : 0.0;
-        const ImU32 col = heat_color(static_cast<float>(0.5 + 0.5 * std::max(flash_, heat)), static_cast<float>(label_alpha));
-        const ImVec2 q = at(face + 0.004, bumper_top);
-        put(buf, col, {{q, {0, 1}}, {ImVec2(p0.x + w - 4, q.y), {1, 1}}, {at(face - 0.004, bumper_top), {1, 1}}});
-    }
-    // The cart's x beside the ruler (whose millimetres are magnified with the displacement).
-    std::snprintf(buf, sizeof buf, "x = %+.2f mm", last_.x * 1e3);
-    const double ruler_end = 0.025 * mag.gain;
-    put(buf, text, {{at(ruler_end + 0.004, rig::kRulerY + 0.0025), {0, 0.5f}},
-                    {at(-ruler_end - 0.004, rig::kRulerY + 0.0025), {1, 0.5f}},
-                    {at(0.0, rig::kRulerY - 0.004), {0.5f, 0}}});
-    // The bumper: under it, right of its face; at a large x_I against the image's right edge, or shorter.
-    if (params_.has_bumper()) {
-        std::snprintf(buf, sizeof buf, "bumper  x_I = %+.1f mm", xI_shown_ * 1e3);
-        const ImVec2 q = at(face + 0.004, bumper_low), q_left = at(face - 0.004, bumper_low);
-        if (!put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}, {q_left, {1, 0}}})) {
-            std::snprintf(buf, sizeof buf, "x_I = %+.1f mm", xI_shown_ * 1e3);
-            put(buf, dim, {{q, {0, 0}}, {ImVec2(p0.x + w - 4, q.y), {1, 0}}, {q_left, {1, 0}}});
-        }
-    }
-    // Legend: scale bar (the rig's size; the displacement is magnified on top of it) and the forcing.
-    const ImVec2 lg(p0.x + edge, p0.y + h - fs * 0.8f);
-    const float ten_mm = 0.010f * rig_.px_per_m() / fbs;
-    const ImVec2 tl = ImGui::CalcTextSize("10 mm");
-    if (labels.place({lg.x - 2, lg.y - fs * 0.6f, ten_mm + 8 + tl.x, fs * 1.2f})) {
-        dl->AddLine(ImVec2(lg.x, lg.y), ImVec2(lg.x + ten_mm, lg.y), text, 2.0f);
-        dl->AddLine(ImVec2(lg.x, lg.y - 4), ImVec2(lg.x, lg.y + 4), text, 1.5f);
-        dl->AddLine(ImVec2(lg.x + ten_mm, lg.y - 4), ImVec2(lg.x + ten_mm, lg.y + 4), text, 1.5f);
-        dl->AddText(ImVec2(lg.x + ten_mm + 6, lg.y - fs * 0.55f), dim, "10 mm");
-    }
-    const double om = last_.omega;
-    std::snprintf(buf, sizeof buf, "unbalance  m0e ω² = %.2f N", params_.m0e * om * om);
-    const ImVec2 ub(p0.x + w - edge, lg.y - fs * 0.55f);
-    if (!put(buf, dim, {{ub, {1, 0}}})) {
-        std::snprintf(buf, sizeof buf, "m0e ω² = %.2f N", params_.m0e * om * om);
-        put(buf, dim, {{ub, {1, 0}}});
-    }
-    // Parts.
-    std::snprintf(buf, sizeof buf, "magnets repel: %+.2f N", st.magnet_force);
-    if (!put(buf, dim, {{at(-0.014, rig::kMagnetFixedY - 0.001), {1, 0.5f}}})) {
-        std::snprintf(buf, sizeof buf, "magnets %+.2f N", st.magnet_force);
-        put(buf, dim, {{at(-0.014, rig::kMagnetFixedY - 0.001), {1, 0.5f}}});
-    }
-    std::snprintf(buf, sizeof buf, "springs  k = %.0f N/m", params_.k);
-    put(buf, dim, {{at(-mag.wall_x() + 0.012, rig::kSpringY + 0.0115), {0, 1}}});
-    // Ruler numbers, at the magnified millimetres.
-    for (int mm = -20; mm <= 20; mm += 20) {
-        std::snprintf(buf, sizeof buf, "%d", mm);
-        put(buf, dim, {{at(mm * 1e-3 * mag.gain, rig::kRulerY + 0.0058), {0.5f, 1}}}, false);
-    }
-    // The companion cart: a translucent outline where the twin or the ghost is.
-    if (companion_mode_ != CompanionMode::Off && companion_.have()) {
-        const double xc = rig_.magnify().draw_x(companion_.last().x);   // drawn as the cart is
-        const ImVec2 a = at(xc - rig::kCartHalfW, rig::kCartHalfH), b = at(xc + rig::kCartHalfW, -rig::kCartHalfH);
-        dl->AddRectFilled(a, b, companion_color(0.22f), 6.0f);
-        dl->AddRect(a, b, companion_color(0.9f), 6.0f, 0, 2.0f);
-        const std::string who = companion_mode_ == CompanionMode::Twin
-                                    ? std::string("twin")
-                                    : "ghost " + std::string(impact_models()[static_cast<std::size_t>(ghost_impact_)].id);
-        dl->AddText(ImVec2(a.x + 4, b.y - ImGui::GetFontSize() - 2), companion_color(1.0f), who.c_str());
-    }
-}
-
 std::size_t App::trail_first() const {
     const std::size_t n = traj_.size();
-    if (bench_window_) return n > bench_window_ ? n - bench_window_ : 0;
+    if (bench_.window) return n > bench_.window ? n - bench_.window : 0;
     if (n == 0) return 0;
     const double t_from = traj_.back().t - trail_periods_ * kTwoPi / std::max(omega_, 0.5);
     return traj_.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
 }
 
-void App::draw_phase() {
-    const Palette& pal = palette();
-    const std::size_t n = traj_.size();
-    const std::size_t first = trail_first();
-    // Auto-fit to the trail (and keep the bumper in view when it is near).
-    const auto xe = phase_x_extent_.update(traj_, first, [](const SimMsg& m) { return m.x; });
-    const auto ve = phase_v_extent_.update(traj_, first, [](const SimMsg& m) { return m.v; });
-    double xl = xe.lo, xh = xe.hi, vl = ve.lo, vh = ve.hi;
-    if (first >= n) {
-        xl = xh = last_.x;
-        vl = vh = 0;
-    }
-    if (xI_ > xh && xI_ - xh < 0.004) xh = xI_;
-    const double dt = frame_dt_;
-    phase_x_.track({xl, xh}, 0.08, 0.004, dt);
-    phase_v_.track({vl, vh}, 0.08, 0.04, dt);
-    Plot plot;
-    Axes ax;
-    ax.x_label = "x [mm]";
-    ax.y_label = "v [m/s]";
-    ax.x_scale = 1e3;
-    if (!plot.begin("##phase", ImGui::GetContentRegionAvail(), phase_x_.cur, phase_v_.cur, ax)) return;
-    if (params_.has_bumper()) {   // impact law "none": no bumper to draw
-        plot.shade_right_of(xI_shown_, pal.bumper);
-        plot.vline(xI_shown_, pal.bumper, 1.5f, true);
-    }
-    plot.hline(0.0, pal.grid, 1.0f);
-    const History<SimMsg>& ct = companion_.traj();   // the companion over the same stretch of time, under the cart
-    const bool comp = companion_mode_ != CompanionMode::Off && companion_.have();
-    const std::size_t cf = comp && first < n ? ct.lower_bound(traj_[first].t, [](const SimMsg& m) { return m.t; }) : ct.size();
-    if (comp)
-        plot.path(ct.size() - cf, [&](std::size_t i) { const SimMsg& m = ct[cf + i]; return XY{m.x, m.v}; },
-                  companion_color(0.6f), 1.3f);
-    plot.trail(n - first, traj_.seq_of(first), traj_.generation(),
-               [&](std::size_t i) { const SimMsg& m = traj_[first + i]; return XY{m.x, m.v}; }, pal.trace, 1.6f);
-    // The latest section points on the orbit, and the cart now.
-    const std::size_t ns = sections_.size(), s0 = ns > 64 ? ns - 64 : 0;
-    plot.scatter(ns - s0, [&](std::size_t i) { const SimMsg& m = sections_[s0 + i]; return XY{m.x, m.v}; }, pal.section, 4.0f);
-    const ImVec2 c = plot.to_px(last_.x, last_.v);
-    plot.draw()->AddCircleFilled(c, 4.5f * ui_scale_, pal.trail_head);
-    plot.draw()->AddCircle(c, 7.0f * ui_scale_, pal.trace, 0, 1.5f);
-    if (comp) plot.draw()->AddCircle(plot.to_px(companion_.last().x, companion_.last().v), 6.0f * ui_scale_, companion_color(1.0f), 0, 2.0f);
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "trail %.0f periods", static_cast<double>(trail_periods_));
-    plot.draw()->AddText(ImVec2(plot.area_min().x + 6, plot.area_min().y + 4), pal.axis_text, buf);
-    // A plain click starts the cart from (x, v) there (drag, wheel and double-click keep zooming).
-    const ImVec2 mp = ImGui::GetIO().MousePos;
-    const double mx = plot.x_at(mp.x), mv = plot.y_at(mp.y);
-    if (plot.hovered() && !plot.dragging())
-        ImGui::SetTooltip("x = %+.2f mm, v = %+.3f m/s\nclick to start from here", mx * 1e3, mv);
-    plot_click(phase_click_, plot.hovered(), plot.clicked(), mx, mv);
-    plot.end();
+ViewContext App::view_context() const {
+    ViewContext c;
+    c.traj = &traj_;
+    c.sections = &sections_;
+    c.map = &shown_map();
+    c.last = last_;
+    c.have_last = have_last_;
+    c.epoch = epoch_;
+    c.phi_prev = phi_prev_;
+    c.params = &params_;
+    c.params_rev = params_rev_;
+    c.omega = omega_;
+    c.speed = speed_;
+    c.xI = xI_;
+    c.xI_shown = xI_shown_;
+    c.paused = paused_;
+    c.sim_paused = sim_->status().paused;
+    c.replay = replay_.active();
+    c.ui_scale = ui_scale_;
+    c.frame_dt = frame_dt_;
+    c.now = now_s();
+    c.trail_first = trail_first();
+    c.trail_periods = trail_periods_;
+    c.strip_window = strip_window_;
+    c.bench_window = bench_.window;
+    c.companion = &companion_;
+    c.companion_mode = companion_mode_;
+    c.companion_name = companion_mode_ == CompanionMode::Twin
+                           ? std::string("twin")
+                           : "ghost " + std::string(impact_models()[static_cast<std::size_t>(ghost_impact_)].id);
+    c.magnify = magnification();
+    c.frame_max_force = frame_max_force_;
+    c.flash = flash_;
+    c.impact_label = &impact_label_;
+    return c;
 }
 
-namespace {
-// Poincare points by impacts in the forcing period before them: 0, 1, 2, 3 or more.
-ImU32 impacts_color(int impacts, float alpha) {
-    const bool dark = palette().dark;
-    static constexpr ImU32 kDark[4] = {IM_COL32(255, 196, 70, 255), IM_COL32(255, 96, 96, 255),
-                                       IM_COL32(196, 126, 255, 255), IM_COL32(90, 200, 255, 255)};
-    static constexpr ImU32 kLight[4] = {IM_COL32(205, 120, 0, 255), IM_COL32(200, 30, 40, 255),
-                                        IM_COL32(120, 50, 200, 255), IM_COL32(20, 110, 200, 255)};
-    const int k = impacts < 0 ? 0 : impacts > 3 ? 3 : impacts;
-    ImVec4 c = ImGui::ColorConvertU32ToFloat4((dark ? kDark : kLight)[k]);
-    c.w = alpha;
-    return ImGui::ColorConvertFloat4ToU32(c);
-}
-}  // namespace
-
-void App::draw_poincare() {
-    const Palette& pal = palette();
-    const PoincareMap& map = shown_map();   // replaying: as it stood at the cursor
-    const History<MapPoint>& pts = map.points();
-    const std::size_t n = pts.size();
-    const PoincareMap::Status status = map.status();
-    const bool periodic = status == PoincareMap::Status::Periodic;
-    // A periodic orbit is a few points: large. A chaotic one is thousands: small enough to show structure.
-    const float dot = periodic ? std::max(7.0f, 8.0f * ui_scale_) : std::max(3.0f, 3.5f * ui_scale_);
-    const float ring = std::max(dot * 0.5f + 3.0f, 6.0f * ui_scale_);
-
-    // Four age bands (oldest first, fading) times four impact counts (0, 1, 2, 3+): one scatter call each.
-    for (auto& b : pc_buckets_) b.clear();
-    bool impacts_seen[4] = {};
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t age_band = periodic ? 3 : std::min<std::size_t>(3, 4 * i / n);
-        const int cat = std::min(pts[i].impacts, 3);
-        impacts_seen[cat] = true;
-        pc_buckets_[age_band * 4 + static_cast<std::size_t>(cat)].push_back(static_cast<std::uint32_t>(i));
-    }
-    const bool legend = impacts_seen[1] || impacts_seen[2] || impacts_seen[3];
-
-    // The label: what the map knows. The period is the settle detector's, never a guess from the transient.
-    char label[160];
-    const unsigned long long seen = map.seen();
-    if (seen == 0) std::snprintf(label, sizeof label, "no section yet (one per forcing period)");
-    else if (map.provisional())
-        std::snprintf(label, sizeof label, "no period yet (provisional)  %zu of %llu points", n, seen);
-    else if (status == PoincareMap::Status::Settling)
-        std::snprintf(label, sizeof label, "settling...  %llu period%s, the transient is not drawn", seen, seen == 1 ? "" : "s");
-    else if (periodic) std::snprintf(label, sizeof label, "period %d", map.period());
-    else std::snprintf(label, sizeof label, "chaos: no period <= 16   %zu points", n);
-    static const char* kNames[4] = {"0", "1", "2", "3+"};
-    const char* legend_title = "impacts/period";
-    const float fs = ImGui::GetFontSize();
-    const float r_legend = 0.3f * fs;
-    float legend_w = ImGui::CalcTextSize(legend_title).x;
-    for (int cat = 0; cat < 4; ++cat)
-        if (impacts_seen[cat]) legend_w += 0.6f * fs + 2 * r_legend + 3 + ImGui::CalcTextSize(kNames[cat]).x;
-
-    // The fit, in the data area Plot::begin will lay out (its margins): the newest point's ring stays off
-    // the frame, and a band at the top for the label and the legend (a second line when they do not fit
-    // side by side) stays free of points.
-    const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const double area_w = avail.x - fs * 4.4f, area_h = avail.y - fs * 2.8f;
-    // Replaying, the map is that of the replayed instant, and says so.
-    char when[48] = "";
-    if (replay_.active()) std::snprintf(when, sizeof when, "  (replay, t = %.2f s)", last_.t);
-    const auto too_wide = [&] { return ImGui::CalcTextSize(label).x + ImGui::CalcTextSize(when).x + 12 > area_w; };
-    if (too_wide()) {   // a small tile or a large UI scale: the short words
-        if (seen == 0) std::snprintf(label, sizeof label, "no section yet");
-        else if (map.provisional()) std::snprintf(label, sizeof label, "no period yet  %zu", n);
-        else if (status == PoincareMap::Status::Settling) std::snprintf(label, sizeof label, "settling... %llu", seen);
-        else if (!periodic) std::snprintf(label, sizeof label, "chaos  %zu points", n);
-        if (replay_.active() && too_wide()) std::snprintf(when, sizeof when, "  (replay)");
-    }
-    {
-        const std::size_t len = std::strlen(label);
-        std::snprintf(label + len, sizeof label - len, "%s", when);
-    }
-    const bool two_lines = legend && ImGui::CalcTextSize(label).x + legend_w + 24 > area_w;
-    const double edge = ring + 3.0 + 0.06 * std::min(area_w, area_h);
-    const double label_band = (two_lines ? 2.1 : 1.0) * fs + 10.0;
-    if (n == 0 && phase_x_.init) {
-        // Settling: an empty map in the phase portrait's view.
-        pc_x_ = phase_x_;
-        pc_v_ = phase_v_;
-        pc_fit_generation_ = ~std::uint64_t{0};
-    } else if (n == 0) {
-        // The phase portrait is not drawn (presentation mode): the trail's own extent, not an unset 0..1 m.
-        double xl = last_.x, xh = last_.x, vl = last_.v, vh = last_.v;
-        for (std::size_t i = trail_first(); i < traj_.size(); ++i) {
-            xl = std::min(xl, traj_[i].x);
-            xh = std::max(xh, traj_[i].x);
-            vl = std::min(vl, traj_[i].v);
-            vh = std::max(vh, traj_[i].v);
-        }
-        pc_x_.snap({xl, xh}, 0.08, 0.004);
-        pc_v_.snap({vl, vh}, 0.08, 0.04);
-        pc_fit_generation_ = ~std::uint64_t{0};
-    } else {
-        const auto xe = pc_x_extent_.update(pts, 0, [](const MapPoint& m) { return m.x; });
-        const auto ve = pc_v_extent_.update(pts, 0, [](const MapPoint& m) { return m.v; });
-        const AxisFit fx = fit_axis(xe.lo, xe.hi, 0.002, area_w, edge, edge);
-        const AxisFit fv = fit_axis(ve.lo, ve.hi, 0.02, area_h, edge, edge + label_band);
-        if (pts.generation() != pc_fit_generation_) {
-            // A new decision (period found, chaos said): the view jumps to it rather than gliding there.
-            pc_x_.snap({fx.lo, fx.hi}, 0.0, 1e-12);
-            pc_v_.snap({fv.lo, fv.hi}, 0.0, 1e-12);
-            pc_fit_generation_ = pts.generation();
-        } else {
-            pc_x_.track({fx.lo, fx.hi}, 0.0, 1e-12, frame_dt_);
-            pc_v_.track({fv.lo, fv.hi}, 0.0, 1e-12, frame_dt_);
-        }
-    }
-    Plot plot;
-    Axes ax;
-    ax.x_label = "x [mm]";
-    ax.y_label = "v [m/s]";
-    ax.x_scale = 1e3;
-    if (!plot.begin("##poincare", avail, pc_x_.cur, pc_v_.cur, ax)) return;
-    if (params_.has_bumper()) {   // impact law "none": no bumper to draw
-        plot.shade_right_of(xI_, pal.bumper);
-        plot.vline(xI_, pal.bumper, 1.5f, true);
-    }
-
-    // Newest band first over one shared pixel bitmap: a pixel a newer point covers is not drawn again
-    // for an older one (100k points cost one pass, not sixteen).
-    static constexpr float kAlpha[4] = {0.22f, 0.42f, 0.68f, 1.0f};
-    plot.share_dots(true);
-    for (std::size_t b = 4; b-- > 0;) {
-        for (int cat = 0; cat < 4; ++cat) {
-            const auto& idx = pc_buckets_[b * 4 + static_cast<std::size_t>(cat)];
-            plot.scatter(idx.size(), [&](std::size_t j) { const MapPoint& m = pts[idx[j]]; return XY{m.x, m.v}; },
-                         impacts_color(cat, kAlpha[b]), dot);
-        }
-    }
-    plot.share_dots(false);
-    if (n) {
-        const ImVec2 c = plot.to_px(pts.back().x, pts.back().v);
-        plot.draw()->AddCircle(c, ring, pal.section_new, 0, 2.0f);
-    }
-    if (periodic && n >= static_cast<std::size_t>(map.period())) {
-        // The order of the visits, 1..k along the last cycle: points closer than a dot share one label
-        // ("1,4"), so a doubled orbit's close pairs read as pairs, not as single points.
-        const std::size_t k = static_cast<std::size_t>(map.period());
-        std::vector<ImVec2> at(k);
-        std::vector<bool> done(k, false);
-        for (std::size_t j = 0; j < k; ++j) at[j] = plot.to_px(pts[n - k + j].x, pts[n - k + j].v);
-        for (std::size_t j = 0; j < k; ++j) {
-            if (done[j]) continue;
-            char text[64];
-            int len = std::snprintf(text, sizeof text, "%zu", j + 1);
-            for (std::size_t q = j + 1; q < k; ++q) {
-                const float dx = at[q].x - at[j].x, dy = at[q].y - at[j].y;
-                if (!done[q] && dx * dx + dy * dy < 1.44f * dot * dot) {
-                    done[q] = true;
-                    if (len > 0 && len < 56) len += std::snprintf(text + len, sizeof text - static_cast<std::size_t>(len), ",%zu", q + 1);
-                }
-            }
-            const float tw = ImGui::CalcTextSize(text).x;
-            const bool left = at[j].x + ring + 4 + tw > plot.area_max().x;
-            plot.draw()->AddText(ImVec2(left ? at[j].x - ring - 4 - tw : at[j].x + ring + 2, at[j].y - fs - 1),
-                                 pal.axis_text, text);
-        }
-    }
-
-    const ImVec2 lp(plot.area_min().x + 6, plot.area_min().y + 4);
-    plate_text(plot.draw(), lp, label, pal.title_text);
-    if (legend) {   // right-aligned, beside the label or on the line below it
-        float x = plot.area_max().x - 6;
-        const float y = two_lines ? lp.y + fs + 4 : lp.y;
-        for (int cat = 3; cat >= 0; --cat) {
-            if (!impacts_seen[cat]) continue;
-            x -= ImGui::CalcTextSize(kNames[cat]).x;
-            plot.draw()->AddText(ImVec2(x, y), pal.axis_text, kNames[cat]);
-            x -= r_legend + 3;
-            plot.draw()->AddCircleFilled(ImVec2(x, y + 0.5f * fs), r_legend, impacts_color(cat, 1.0f), 12);
-            x -= r_legend + 0.6f * fs;
-        }
-        x -= ImGui::CalcTextSize(legend_title).x;
-        plot.draw()->AddText(ImVec2(x, y), pal.axis_text, legend_title);
-    }
-    plot.end();
+void App::apply_view(const ViewAction& a) {
+    if (a.hold) sim_->send(SimCommand::hold(*a.hold));   // each hold restarts the companion too
+    if (a.set_state) set_state(a.set_state->first, a.set_state->second);
+    if (a.start_orbit) restart_at_section(a.start_orbit->first, a.start_orbit->second);
 }
 
-void App::draw_potential() {
-    const Palette& pal = palette();
-    const std::string key = params_.stiffness_id;
-    if (potential_for_ != key) {
-        potential_for_ = key;
-        potential_x_.clear();
-        potential_v_.clear();
-        for (int i = 0; i <= 400; ++i) {
-            const double x = -0.026 + 0.052 * i / 400.0;
-            potential_x_.push_back(x);
-            potential_v_.push_back(spring_magnet_potential(params_, x));
-        }
-    }
-    const double vmin = *std::min_element(potential_v_.begin(), potential_v_.end());
-    const Range xr{-0.026, 0.026};
-    // The y range follows the largest energy of the phase portrait's trail (grows at once, shrinks
-    // slowly), with room for the "E = ..." label above the line.
-    const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const auto ee = energy_extent_.update(traj_, trail_first(), [](const SimMsg& m) { return m.energy; });
-    const double e_max = ee.empty ? last_.energy : std::max(ee.hi, last_.energy);
-    trail_e_max_ = e_max;
-    const float fs = ImGui::GetFontSize();
-    const AxisFit fy = potential_y_range(vmin, e_max, avail.y - fs * 2.8f, fs * 1.6f);
-    potential_y_.track({fy.lo, fy.hi}, 0.0, 1e-12, frame_dt_);
-    const Range yr = potential_y_.cur;
-    Plot plot;
-    Axes ax;
-    ax.x_label = "x [mm]";
-    ax.y_label = "V(x), E [mJ]";
-    ax.x_scale = 1e3;
-    ax.y_scale = 1e3;
-    if (!plot.begin("##potential", avail, xr, yr, ax)) return;
-    if (params_.has_bumper()) {   // impact law "none": no bumper to draw
-        plot.shade_right_of(xI_shown_, pal.bumper);
-        plot.vline(xI_shown_, pal.bumper, 1.5f, true);
-    }
-    plot.path(potential_x_.size(), [&](std::size_t i) { return XY{potential_x_[i], potential_v_[i]}; }, pal.trace2, 2.0f);
-    // Total mechanical energy as a level: where it cuts V(x) are the turning points.
-    plot.hline(last_.energy, pal.energy, 1.2f, true);
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "E = %.2f mJ", last_.energy * 1e3);
-    plot.text(xr.lo + 0.001, last_.energy, buf, pal.energy, ImVec2(0, 1.05f));
-    const double vx = spring_magnet_potential(params_, last_.x);
-    const ImVec2 c = plot.to_px(last_.x, vx);
-    plot.draw()->AddCircleFilled(c, 6.0f * ui_scale_, pal.trace);
-    plot.draw()->AddCircle(c, 6.0f * ui_scale_, pal.trail_head, 0, 1.5f);
-    if (companion_mode_ != CompanionMode::Off && companion_.have()) {
-        const double xc = companion_.last().x;
-        plot.draw()->AddCircle(plot.to_px(xc, spring_magnet_potential(params_, xc)), 8.0f * ui_scale_, companion_color(1.0f), 0, 2.0f);
-    }
-    if (params_.has_bumper()) plot.text(xI_shown_, yr.hi, " bumper", pal.bumper, ImVec2(0, -0.2f));
-    // A plain click puts the cart at x there, at rest.
-    const double mx = plot.x_at(ImGui::GetIO().MousePos.x);
-    if (plot.hovered() && !plot.dragging())
-        ImGui::SetTooltip("x = %+.2f mm, V = %.2f mJ\nclick to start from here at rest", mx * 1e3,
-                          spring_magnet_potential(params_, mx) * 1e3);
-    plot_click(potential_click_, plot.hovered(), plot.clicked(), mx, 0.0);
-    plot.end();
+void App::start_orbit(double x, double v) {
+    poincare_.start_orbit(x, v, epoch_);
+    restart_at_section(x, v);
 }
 
-void App::draw_strip() {
-    const Palette& pal = palette();
-    const std::size_t n = traj_.size();
-    const double t_now = n ? traj_.back().t : 0.0;
-    const double window = bench_window_ && n ? std::max(1e-3, t_now - traj_[n > bench_window_ ? n - bench_window_ : 0].t)
-                                             : strip_window_;
-    // Scrolls once the history covers the window; before that the axis starts at the first sample.
-    const double t_from = n ? std::min(std::max(t_now - window, traj_[0].t), t_now - 0.5) : t_now - window;
-    const std::size_t first = traj_.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
-    const auto xe = strip_x_extent_.update(traj_, first, [](const SimMsg& m) { return m.x; });
-    double lo = xe.lo, hi = xe.hi;
-    if (first >= n) lo = hi = last_.x;
-    strip_y_.track({lo, hi}, 0.08, 0.004, frame_dt_);
-    Plot plot;
-    Axes ax;
-    ax.x_label = "t [s]";
-    ax.y_label = "x [mm]";
-    ax.y_scale = 1e3;
-    // With a companion cart, its separation |dx| on a log scale takes the right part of the tile.
-    const bool comp = companion_mode_ != CompanionMode::Off;
-    ImVec2 size = ImGui::GetContentRegionAvail();
-    const float sep_w = comp ? std::round(size.x * 0.3f) : 0.0f;
-    size.x -= comp ? sep_w + ImGui::GetStyle().ItemSpacing.x : 0.0f;
-    if (!plot.begin("##strip", size, {t_from, t_now}, strip_y_.cur, ax)) return;
-    if (params_.has_bumper()) plot.hline(xI_shown_, pal.bumper, 1.5f, true);
-    plot.hline(0.0, pal.grid, 1.0f);
-    if (comp) {
-        const History<SimMsg>& ct = companion_.traj();
-        const std::size_t c0 = ct.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
-        plot.series(ct.size() - c0, [&](std::size_t i) { const SimMsg& m = ct[c0 + i]; return XY{m.t, m.x}; },
-                    companion_color(0.75f), 1.5f);
-    }
-    plot.series(n - first, [&](std::size_t i) { const SimMsg& m = traj_[first + i]; return XY{m.t, m.x}; }, pal.trace, 1.5f);
-    const std::size_t s0 = sections_.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
-    plot.scatter(sections_.size() - s0, [&](std::size_t i) { const SimMsg& m = sections_[s0 + i]; return XY{m.t, m.x}; },
-                 pal.section, 4.0f);
-    plot.end();
-    if (comp) {
-        ImGui::SameLine();
-        draw_separation(ImVec2(sep_w, size.y));
-    }
+void App::restart_at_section(double x, double v) {
+    // The orbit starts on the section: at the next phi = 2 pi n (the forcing's phase moves on to it), from
+    // (x, v) checked as a click in the phase portrait is (rail, bumper).
+    const PickedState s = pick_state(x, v, xI_, params_.has_bumper());
+    if (!s.note.empty()) toast(s.note);
+    const double phi0 = kTwoPi * std::ceil(last_.phi / kTwoPi - 1e-9);
+    restart_sim(s.x, s.v, last_.t, phi0, omega_, false);
 }
 
 void App::draw_status() {
@@ -881,15 +441,18 @@ void App::draw_status() {
     const char* regime = contact_label(params_, last_.regime, last_.force);
     const float sep = ImGui::CalcTextSize("|").x + 36.0f;
     float room = ImGui::GetWindowWidth() - right_w - (ImGui::GetItemRectMax().x - ImGui::GetWindowPos().x);
-    const char* fields[3] = {epoch, samples, regime};
-    for (const char* field : fields) room -= sep + ImGui::CalcTextSize(field).x;
+    // The epoch and the ring's counts are the simulation's bookkeeping: shown with View > Details only.
+    const char* fields[3] = {details_ ? epoch : "", details_ ? samples : "", regime};
+    for (const char* field : fields)
+        if (*field) room -= sep + ImGui::CalcTextSize(field).x;
     bool drop[3] = {};
     for (int i = 0; i < 3 && room < 0; ++i) {
+        if (!*fields[i]) continue;
         drop[i] = true;
         room += sep + ImGui::CalcTextSize(fields[i]).x;
     }
     for (int i = 0; i < 3; ++i) {
-        if (drop[i]) continue;
+        if (drop[i] || !*fields[i]) continue;
         const char* field = fields[i];
         ImGui::SameLine(0, 18);
         ImGui::TextDisabled("|");
@@ -923,6 +486,7 @@ void App::draw_help() {
             {"B", "compute (or cancel) the bifurcation diagram"},
             {"O", "continue the periodic orbits over the diagram's ω range (or cancel)"},
             {"F2, F3", "parameter plane (ω, x_I), basins of attraction at ω"},
+            {"F4", "parameters of the running model (m, c, k, T, m0e, eps, the impact law's)"},
             {"click diagram", "set ω there"},
             {"click phase / well", "start the cart from that (x, v) / that x at rest"},
             {"drag the cart", "hold it at the mouse; let go: from there at rest"},

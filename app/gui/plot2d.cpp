@@ -252,8 +252,17 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
         const ImVec2 ts = ImGui::CalcTextSize(axes.x_label);
         dl_->AddText(ImVec2(0.5f * (min_.x + max_.x) - 0.5f * ts.x, max_.y + fs * 1.25f), pal.title_text, axes.x_label);
     }
-    if (axes.y_label && *axes.y_label)
-        add_text_vertical(dl_, ImVec2(p0.x + fs * 0.6f, 0.5f * (min_.y + max_.y)), pal.title_text, axes.y_label);
+    // The y label stays inside the plot's own height (centred where it can be): rotated text longer than
+    // that would run over whatever sits above the plot. Too long even so: the short label, or none.
+    const char* y_label = axes.y_label;
+    if (y_label && *y_label && ImGui::CalcTextSize(y_label).x > p1.y - p0.y) y_label = axes.y_label_short;
+    if (y_label && *y_label) {
+        const float half = 0.5f * ImGui::CalcTextSize(y_label).x;
+        if (2.0f * half <= p1.y - p0.y) {
+            const float cy = std::clamp(0.5f * (min_.y + max_.y), p0.y + half, p1.y - half);
+            add_text_vertical(dl_, ImVec2(p0.x + fs * 0.6f, cy), pal.title_text, y_label);
+        }
+    }
 
     dl_->PushClipRect(min_, max_, true);
     return true;

@@ -69,6 +69,7 @@ std::vector<PlotBackdrop> take_plot_backdrops();
 struct Axes {
     const char* x_label = "";
     const char* y_label = "";
+    const char* y_label_short = nullptr;   // drawn instead where y_label is longer than the plot is high
     double x_scale = 1, y_scale = 1;   // data units -> tick label units (e.g. 1e3 for m -> mm)
 };
 

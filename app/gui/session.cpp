@@ -104,18 +104,18 @@ public:
         out = v->get<bool>();
     }
     // One of `choices`.
-    void word(const char* key, std::string& out, std::initializer_list<const char*> choices) const {
+    void word(const char* key, std::string& out, const std::vector<std::string>& choices) const {
         const json* v = find(key);
         if (!v) return;
         if (!v->is_string()) fail(key, std::string("expected a string, got ") + v->type_name());
         const std::string s = v->get<std::string>();
         std::string all;
-        for (const char* c : choices) {
+        for (const std::string& c : choices) {
             if (s == c) {
                 out = s;
                 return;
             }
-            all += (all.empty() ? "" : ", ") + std::string(c);
+            all += (all.empty() ? "" : ", ") + c;
         }
         fail(key, "'" + s + "' is not one of " + all);
     }
@@ -248,7 +248,9 @@ Session session_from_json(const json& j, const Session& base, const std::string&
                 r.fail("maximised", m->dump() + " is not a panel (null, or one of " + panel_keys() + ")");
             else s.maximised = m->get<std::string>();
         }
-        r.word("presentation_plot", s.presentation_plot, {"phase", "poincare", "potential", "strip", "bifurcation"});
+        std::vector<std::string> plots;
+        for (PanelId p : presentation_plots()) plots.emplace_back(panel_key(p));
+        r.word("presentation_plot", s.presentation_plot, plots);
         if (const json* g = r.find("magnify")) {
             if (!g->is_array() || g->size() != 2 || !(*g)[0].is_number() || !(*g)[1].is_number())
                 r.fail("magnify", "expected [normal, presentation], two numbers in [1, 10]");

@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 
+#include "param_edit.hpp"
+
 namespace impactlab::gui {
 
 // Turns the core's pieces and events into published records, in time order. Lives on the engine's stack
@@ -179,6 +181,25 @@ bool SimEngine::apply(const SimCommand& c) {
             np.xI = p_.xI;
             p_ = std::move(np);
             // x, v and phi carry over; only the hybrid bookkeeping is made consistent with the new law.
+            Simulator::make_consistent(p_, d_, s_);
+            bump();
+            emit_now();
+            return true;
+        }
+        case CmdKind::SetParam:
+        case CmdKind::ResetParams: {
+            Params np = p_;
+            if (c.kind == CmdKind::ResetParams) {
+                try {
+                    np = make_version(p_.name);
+                } catch (const ParamError&) {
+                    return false;
+                }
+                np.xI = p_.xI;
+            } else if (std::string error; !set_param(np, std::string(c.model, std::find(c.model, c.model + sizeof(c.model), '\0')), c.a, error)) {
+                return false;
+            }
+            p_ = std::move(np);
             Simulator::make_consistent(p_, d_, s_);
             bump();
             emit_now();

@@ -54,6 +54,9 @@ enum class CmdKind : std::uint8_t {
                   // continuous (the paper's EF protocol, live); any other omega command or Reset ends it
     Restart,      // continue from a replayed instant or a saved session: x = a [m], v = b [m/s], t = t0 [s],
                   // phi = phi0 [rad] (unwrapped), at the omega running now; what came after t0 is dropped
+    SetParam,     // model = a parameter's key ("k", "kappa0", ...; param_edit.hpp), a = its value; x, v, phi
+                  // kept. A value the core's validate() refuses changes nothing
+    ResetParams,  // every parameter back to the running version's own values; x, v, phi kept
 };
 
 // The second cart that runs beside the first in lockstep (issues 9, 11).
@@ -92,6 +95,13 @@ struct SimCommand {
         c.b = offset;
         return c;
     }
+    static SimCommand set_param(std::string_view key, double value) {
+        SimCommand c = set_model(key);
+        c.kind = CmdKind::SetParam;
+        c.a = value;
+        return c;
+    }
+    static SimCommand reset_params() { return {CmdKind::ResetParams, 0, 0, {}}; }
     static SimCommand set_model(std::string_view name) {
         SimCommand c{CmdKind::SetModel, 0, 0, {}};
         const std::size_t n = name.size() < sizeof(c.model) - 1 ? name.size() : sizeof(c.model) - 1;

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "app.hpp"
+#include "param_edit.hpp"
 #include "contact_label.hpp"
 
 namespace impactlab::gui {
@@ -22,6 +23,39 @@ bool App::write_state_json(const std::string& path) {
     using nlohmann::json;
     json j;
     j["model"] = model_name();
+    {   // The Poincare clicker's orbits: where each started, its section points, the last of them.
+        json orbits = json::array();
+        for (const ClickedOrbit& o : poincare_.orbits())
+            orbits.push_back({{"start", {number(o.x0), number(o.v0)}}, {"points", o.pts.size()},
+                              {"last", o.pts.empty() ? json(nullptr) : json{number(o.pts.back().first), number(o.pts.back().second)}},
+                              {"spread", o.pts.size() < 20 ? json(nullptr) : [&] {
+                                   // max - min of x over its last 20 points [m]: ~0 on a periodic orbit of period <= 20
+                                   double lo = 1e300, hi = -1e300;
+                                   for (std::size_t i = o.pts.size() - 20; i < o.pts.size(); ++i) {
+                                       lo = std::min(lo, o.pts[i].first);
+                                       hi = std::max(hi, o.pts[i].first);
+                                   }
+                                   return number(hi - lo);
+                               }()}});
+        j["clicker"] = {{"on", poincare_.clicker()}, {"orbits", std::move(orbits)}};
+    }
+    j["guide"] = {{"open", show_guide_}, {"demo", demo_}, {"details", details_}, {"basins_open", analysis_.basins_shown()}};
+    {   // The time strip's traces and their y ranges [SI units].
+        json traces = json::array(), views = json::array();
+        traces.push_back(strip_key(strip_.first()));
+        views.push_back({number(strip_.view_y(0).lo), number(strip_.view_y(0).hi)});
+        if (const auto q = strip_.second()) {
+            traces.push_back(strip_key(*q));
+            views.push_back({number(strip_.view_y(1).lo), number(strip_.view_y(1).hi)});
+        }
+        j["strip"] = {{"traces", std::move(traces)}, {"views", std::move(views)}};
+    }
+    {   // The running model's parameters as the Parameters panel shows them, and whether any was edited.
+        json ps = json::object();
+        for (const EditableParam& e : editable_params(params_)) ps[e.key] = number(e.value);
+        j["params"] = std::move(ps);
+        j["params_edited"] = params_edited(params_);
+    }
     j["omega"] = number(omega_);
     j["xI"] = number(xI_);
     j["speed"] = number(speed_);
@@ -40,7 +74,7 @@ bool App::write_state_json(const std::string& path) {
     j["frames"] = frame_count_;
     j["epoch"] = epoch_;
     j["energy"] = number(last_.energy);                 // [J] now
-    j["energy_max_trail"] = number(trail_e_max_);       // [J] over the phase portrait's trail
+    j["energy_max_trail"] = number(potential_.trail_energy_max());       // [J] over the phase portrait's trail
     {
         const EnergyBalance eb = sim_->status().energy;   // the energy bar's numbers [J]
         j["energy_balance"] = {{"t0", number(eb.t0)}, {"t", number(eb.t)}, {"E0", number(eb.E0)}, {"E", number(eb.E)},
@@ -89,7 +123,7 @@ bool App::write_state_json(const std::string& path) {
         }
         j["x_max_step"] = step;
     }
-    j["potential_view"] = {potential_y_.cur.lo, potential_y_.cur.hi};   // [J] the potential plot's y range
+    j["potential_view"] = {potential_.view_y().lo, potential_.view_y().hi};   // [J] the potential plot's y range
     const PoincareMap& map = shown_map();   // replaying: the map at the cursor, as the panel shows it
     const PoincareMap::Status st = map.status();
     j["poincare_status"] = st == PoincareMap::Status::Periodic ? "periodic"
@@ -126,6 +160,8 @@ bool App::write_state_json(const std::string& path) {
                         : json{{"model", nullptr}, {"running", b.running}};
         d["view_omega"] = {number(b.view_omega.lo), number(b.view_omega.hi)};
         d["range_error"] = b.range_error;
+        d["live_points"] = {{"total", b.live.total}, {"in_view", b.live.in_view}, {"beyond", b.live.beyond},
+                            {"above", b.live.above}, {"below", b.live.below}};
         d["lyapunov"] = {{"on", b.lyap_on}, {"running", b.lyap_running}, {"steps", b.lyap_steps},
                          {"done", b.lyap_done}, {"positive", b.lyap_positive}};
         j["diagram"] = std::move(d);

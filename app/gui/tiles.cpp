@@ -34,36 +34,23 @@ bool begin_tile_at(const char* name, const Rect& r, ImGuiWindowFlags extra = 0) 
     return open;
 }
 
-// Titles, longest first: the tile shows the longest that fits beside its buttons.
+// Titles, longest first: the tile shows the longest that fits beside its buttons (the view table's, and
+// the rig's magnification where it is not x1).
 std::vector<std::string> titles_of(PanelId p, double magnify) {
-    switch (p) {
-        case PanelId::Rig:
-            if (magnify > 1.001) {
-                char g[16];
-                std::snprintf(g, sizeof g, "%.3g", magnify);
-                return {std::string("Rig (top view, to scale; displacement ×") + g + ")", std::string("Rig (displacement ×") + g + ")",
-                        std::string("Rig ×") + g};
-            }
-            return {"Rig (top view, to scale)", "Rig"};
-        case PanelId::Bifurcation: return {"Bifurcation diagram", "Bifurcation"};
-        case PanelId::Phase: return {"Phase portrait (x, v)", "Phase (x, v)"};
-        case PanelId::Poincare: return {"Poincaré map (φ = 2πn)", "Poincaré map", "Poincaré"};
-        case PanelId::Potential: return {"Potential well V(x)", "V(x)"};
-        case PanelId::Strip:
-            return {"Displacement x(t)        dots: Poincaré sections (φ = 2πn)    dashed: bumper x_I",
-                    "x(t)    dots: sections (φ = 2πn)    dashed: x_I", "x(t)"};
+    if (p == PanelId::Rig && magnify > 1.001) {
+        char g[16];
+        std::snprintf(g, sizeof g, "%.3g", magnify);
+        return {std::string("Rig (top view, to scale; displacement ×") + g + ")", std::string("Rig (displacement ×") + g + ")",
+                std::string("Rig ×") + g};
     }
-    return {"?"};
+    std::vector<std::string> out;
+    for (const char* t : view_info(p).titles)
+        if (t) out.emplace_back(t);
+    return out;
 }
 
 // The tab's label: the shortest title.
 std::string tab_label(PanelId p) { return titles_of(p, 1.0).back(); }
-
-const std::vector<PanelId>& presentation_plots() {
-    static const std::vector<PanelId> all = {PanelId::Phase, PanelId::Poincare, PanelId::Potential, PanelId::Strip,
-                                             PanelId::Bifurcation};
-    return all;
-}
 
 }  // namespace
 
@@ -106,18 +93,18 @@ void App::toggle_maximised(PanelId p) {
 }
 
 void App::draw_panel(PanelId p) {
-    const int slot = 1 + static_cast<int>(p);   // kPanelNames: controls first
+    const int slot = 1 + static_cast<int>(p);   // bench_.panel_s: the controls first
     const auto t0 = std::chrono::steady_clock::now();
     switch (p) {
-        case PanelId::Rig: draw_rig(); break;
+        case PanelId::Rig: apply_view(rig_.draw(view_context())); break;
         case PanelId::Bifurcation: draw_bifurcation(); break;
-        case PanelId::Phase: draw_phase(); break;
-        case PanelId::Poincare: draw_poincare(); break;
-        case PanelId::Potential: draw_potential(); break;
-        case PanelId::Strip: draw_strip(); break;
+        case PanelId::Phase: apply_view(phase_.draw(view_context())); break;
+        case PanelId::Poincare: apply_view(poincare_.draw(view_context(), phase_.view_x(), phase_.view_v())); break;
+        case PanelId::Potential: apply_view(potential_.draw(view_context())); break;
+        case PanelId::Strip: apply_view(strip_.draw(view_context())); break;
     }
-    if (bench_mode_)
-        panel_s_[static_cast<std::size_t>(slot)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (bench_.on)
+        bench_.panel_s[static_cast<std::size_t>(slot)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // One tile: its title (the longest that fits), the hide and maximise buttons drawn over the title bar,
@@ -133,7 +120,10 @@ void App::draw_tile(const Tile& tile) {
     const float button_w = frame_h, buttons_w = static_cast<float>(buttons) * button_w + 4.0f * ui_scale_;
     const float room = tile.rect.w - buttons_w - 2.0f * ImGui::GetStyle().FramePadding.x - 4.0f * ui_scale_;
     std::string title;
-    for (const std::string& t : titles_of(active, magnification())) {
+    std::vector<std::string> titles = titles_of(active, magnification());
+    if (active == PanelId::Strip && (strip_.first() != StripQuantity::X || strip_.second()))   // other traces
+        titles = {"Time strip        dots: Poincaré sections (φ = 2πn)    right-click: the traces", "Time strip"};
+    for (const std::string& t : titles) {
         title = t;
         if (ImGui::CalcTextSize(t.c_str()).x <= room) break;
     }
@@ -284,7 +274,7 @@ void App::layout_and_draw() {
         if (begin_tile_at("Controls###controls", layout_.controls)) {
             const auto t0 = std::chrono::steady_clock::now();
             draw_controls();
-            if (bench_mode_) panel_s_[0] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            if (bench_.on) bench_.panel_s[0] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         }
         ImGui::End();
     }
@@ -316,6 +306,13 @@ void App::layout_and_draw() {
 
     data_panel_.poll(data_context());
     if (show_data_) data_panel_.draw(&show_data_, data_context());
+    if (show_guide_)
+        if (const GuideAction ga = guide_.draw(&show_guide_, demo_); ga.demo) run_demo(ga.demo);
+    if (show_params_) {
+        const ParamsAction pa = params_panel_.draw(&show_params_, {&params_, model_name(), ui_scale_});
+        if (pa.set) set_param(pa.set->first, pa.set->second);
+        if (pa.reset) reset_params();
+    }
     apply_analysis(analysis_.draw(analysis_context()));
     if (show_help_) draw_help();
     draw_toast();

@@ -2,7 +2,8 @@
 # The bifurcation panel through --state-json (issue 11 defect 4): a diagram over --bif-range fills while
 # computing (a run that does not wait for it sees some but not all of its levels, whole levels only), and
 # after it reports its omega range and every column; --bif-box recomputes a sub-range with the same steps and
-# the view follows it; after a model switch the diagram says it is stale. A bad --bif-range is refused.
+# the view follows it; after a model switch the diagram says it is stale; the running attractor's points are
+# counted in or off the diagram's view. A bad --bif-range is refused.
 # Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
 # usage: gui_diagram.sh IMPACTLAB_GUI OUT_DIR
 gui="$1"; dir="$2"
@@ -48,7 +49,16 @@ check box 'd["view_omega"] == [12, 13] and not d["running"]'
 run stale --model A1H --bifurcation cf-up --bif-range 8:10 --bif-steps 20 --switch-model A1G --frames 10
 check stale 'd["model"] == "A1H" and d["stale"] and d["levels_done"] == 20'
 
-# 5. A bad range is refused with the flag named (exit 2), before any window.
+# 5. The running attractor's section points on the diagram (the live points): at omega = 9 inside the
+# 0-25 diagram they are in its view; at omega = 30, beyond its omega axis, every one is counted as off to
+# the right (and said so on the plot), none drawn at the edge as if it were there.
+run live_in --model A1H --omega 9 --warmup 60 --bifurcation cf-up --bif-steps 30 --frames 30
+check live_in 'd["live_points"]["total"] > 0 and d["live_points"]["in_view"] == d["live_points"]["total"]'
+run live_out --model A1H --omega 30 --warmup 60 --bifurcation cf-up --bif-steps 30 --frames 30 --screenshot "$dir/live_out.png"
+check live_out 'd["view_omega"] == [0, 25] and d["live_points"]["total"] > 0'
+check live_out 'd["live_points"]["beyond"] == d["live_points"]["total"] and d["live_points"]["in_view"] == 0'
+
+# 6. A bad range is refused with the flag named (exit 2), before any window.
 "$gui" --bif-range 5:3 --frames 2 >"$dir/bad.log" 2>&1
 rc=$?
 cat "$dir/bad.log"

@@ -1,9 +1,8 @@
 # Headless tests of the visualiser's GL-free parts (paths relative to tests/): the SPSC ring buffer, the
 # simulation engine's command handling, the history and its CSV export, the options, the presets, the
 # measured-data panel's worker and effect-subset mapping, the plots' CPU rasterizer, the Poincare map's
-# settle detector, and the plots' fits (view_fit). They build into impactlab_tests, which links only
-# impactlab::core and doctest, so the app sources they exercise are compiled in here too (nothing in them
-# touches GL).
+# settle detector, and the plots' fits (view_fit). They build into impactlab_tests, which links the app's
+# own GL-free library (impactlab_gui_core, app/gui/CMakeLists.txt) rather than compiling its sources again.
 # The test files include those headers by relative path ("../../app/gui/..."), so this list needs no
 # directory-wide include or link settings.
 set(IMPACTLAB_APP_TEST_SOURCES
@@ -24,26 +23,5 @@ set(IMPACTLAB_APP_TEST_SOURCES
   app/omega_ramp_test.cpp
   app/layout_test.cpp
   app/input_files_test.cpp
-  ../app/gui/sim_engine.cpp
-  ../app/gui/sim_thread.cpp
-  ../app/gui/history.cpp
-  ../app/gui/options.cpp
-  ../app/gui/presets.cpp
-  ../app/gui/data_job.cpp
-  ../app/gui/plot_raster.cpp
-  ../app/gui/poincare_map.cpp
-  ../app/gui/view_fit.cpp
-  ../app/gui/layout.cpp
-  ../app/gui/plane_data.cpp
-  ../app/gui/analysis_jobs.cpp
-  ../app/gui/lyapunov_live.cpp
-  ../app/gui/bifurcation_job.cpp
-  ../app/gui/grazing_monitor.cpp
-  ../app/gui/companion_track.cpp
-  ../app/gui/state_pick.cpp
-  ../app/gui/replay.cpp
-  ../app/gui/clip_writer.cpp
-  ../app/gui/session.cpp
-  ../app/gui/energy_bar.cpp
-  ../app/gui/omega_ramp.cpp
+  app/param_edit_test.cpp
 )
