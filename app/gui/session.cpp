@@ -92,6 +92,10 @@ public:
         const json* v = find(key);
         if (!v) return;
         if (!v->is_number_integer()) fail(key, std::string("expected an integer, got ") + v->type_name());
+        // Beyond long long the parser keeps it unsigned: name it as written, not as its wrapped value.
+        if (v->is_number_unsigned() && v->get<unsigned long long>() > static_cast<unsigned long long>(hi))
+            fail(key, std::to_string(v->get<unsigned long long>()) + " is out of range [" + std::to_string(lo) + ", " +
+                          std::to_string(hi) + "]");
         const long long n = v->get<long long>();
         if (n < lo || n > hi)
             fail(key, std::to_string(n) + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");

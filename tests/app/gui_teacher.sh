@@ -34,8 +34,7 @@ for bad in huge dup; do
 done
 by_hand() {   # by_hand NAME ARGS...: no --frames, stopped by timeout after 6 s; $rc 124 if it was still running
     name="$1"; shift
-    LIBGL_ALWAYS_SOFTWARE=1 timeout 6 xvfb-run -a -s "-screen 0 1280x800x24" "$gui" "$@" >"$dir/$name.log" 2>&1
-    rc=$?
+    xvfb_rc "$dir/$name.rc" timeout 6 "$gui" "$@" >"$dir/$name.log" 2>&1
     [ $rc -eq 124 ] || { cat "$dir/$name.log"; echo "$TEST: $name: exit $rc before the timeout, expected a window"; exit 1; }
 }
 by_hand by_hand_session --session "$dir/huge.json"

@@ -129,6 +129,9 @@ TEST_CASE("session: bad files are refused naming the file, the key or line, and 
     CHECK(has(error_of(""), "s.json: line 1"));
     // A number beyond a double is refused, not an abort; a key given twice is refused, naming it (also nested).
     CHECK(has(error_of(R"({"format": "impactlab-gui session", "omega": 1e999})"), "s.json: a number is out of range"));
+    // An integer beyond long long is named as written, not as its wrapped value (-1).
+    CHECK(has(error_of(R"({"format": "impactlab-gui session", "version": 18446744073709551615})"),
+              "key 'version': 18446744073709551615 is out of range [1, 1000000]"));
     CHECK(has(error_of(R"({"format": "impactlab-gui session", "omega": 9, "omega": 12})"), "s.json: key 'omega' appears twice"));
     CHECK(has(error_of(R"({"format": "impactlab-gui session", "state": {"x": 0, "x": 0.01}})"), "key 'x' appears twice"));
     CHECK(error_of(R"({"format": "impactlab-gui session", "state": {"x": 0}, "view": {"x": 1}})").find("twice") == std::string::npos);

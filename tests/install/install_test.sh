@@ -4,6 +4,7 @@
 # AppStream metainfo with their validators where installed. The GUI part is skipped without xvfb-run.
 # usage: install_test.sh BUILD_DIR PNG_CHECK OUT_DIR
 build="$1"; check="$2"; dir="$3"
+here=$(cd "$(dirname "$0")" && pwd)
 set -u
 rm -rf "$dir"
 mkdir -p "$dir/elsewhere"
@@ -35,8 +36,11 @@ if ! command -v xvfb-run >/dev/null 2>&1; then
     echo "install_test: xvfb-run is not installed: the installed impactlab-gui was not run"
     exit 0
 fi
-LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1280x800x24" "$prefix/bin/impactlab-gui" --frames 30 \
-    --screenshot gui.png --model A1H --preset 1 >gui.log 2>&1 || { cat gui.log; fail "the installed impactlab-gui failed"; }
+# The program's own exit status, not xvfb-run's (whose clean-up can race a quick exit): gui_lib's xvfb_rc.
+TEST=install_test
+. "$here/../app/gui_lib.sh"
+xvfb_rc "$PWD/gui.rc" "$prefix/bin/impactlab-gui" --frames 30 --screenshot gui.png --model A1H --preset 1 >gui.log 2>&1
+[ "$rc" -eq 0 ] || { cat gui.log; fail "the installed impactlab-gui failed (exit $rc)"; }
 if grep -q "not found" gui.log; then cat gui.log; fail "the installed impactlab-gui did not find its font"; fi
 "$check" gui.png 1280 800 || fail "the installed impactlab-gui's screenshot is not a real picture"
 echo "install_test: installed into $prefix; impactlab and impactlab-gui ran from $dir/elsewhere"
