@@ -16,7 +16,7 @@ std::vector<RecoveryCase> recovery_cases(const std::vector<std::string>& version
         {{"", "sensor_offset", "o", 3e-4}, false},       {{"", "sensor_gain", "g", 1.03}, false},
         {{"", "bumper_offset", "dx", 5e-4}, false},      {{"", "restitution", "kappa0", 0.4}, true},
         {{"", "cart_mass", "dm", -0.2}, false},          {{"", "sensor_delay", "tau", 3e-3}, false},
-        {{"", "magnet_drift", "r", -1e-3}, false},
+        {{"", "magnet_drift", "r", -1e-3}, false},       {{"", "sensor_curvature", "s", 0.133}, false},
     };
     std::vector<RecoveryCase> out;
     for (const auto& v : versions) {
