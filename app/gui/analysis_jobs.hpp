@@ -1,4 +1,4 @@
-// The visualiser's analysis jobs (issues 9 and 10) on worker threads, each handing its finished result to
+// The visualiser's analysis jobs on worker threads, each handing its finished result to
 // the UI whole, as BifurcationJob does: the continued branches for the bifurcation diagram, a small
 // parameter plane, the basins of attraction at one omega. The computations are the core's
 // (continue_orbits, scan_rows, compute_basins); this file only says what is asked and reshapes the answer

@@ -1,4 +1,4 @@
-// The visualiser's analysis views (issues 9 and 10): the continued branches over the bifurcation diagram,
+// The visualiser's analysis views: the continued branches over the bifurcation diagram,
 // the parameter-plane window and the basins window, with their workers (analysis_jobs). The app hands
 // them what it shows (AnalysisContext) and applies what a click asks for (AnalysisAction) through its own
 // commands to the simulation thread; nothing here talks to that thread. UI thread only.

@@ -117,7 +117,7 @@ private:
     void draw_status();
     void draw_help();
     void draw_toast();
-    // companion_hooks.cpp: the mouse sets the state, the companion cart, the grazing monitor (issues 9, 11)
+    // companion_hooks.cpp: the mouse sets the state, the companion cart, the grazing monitor
     void set_state(double x, double v);                 // checked (rail, bumper; a toast says why it moved)
     void set_companion(CompanionMode mode);
     void draw_companion_controls();                     // Controls: the companion's mode and ghost law
@@ -183,7 +183,7 @@ private:
     SimMsg grazing_{};                 // the cart's grazing monitor, last whole period (MsgKind::Grazing)
     bool have_grazing_ = false;
     double xI_shown_ = 0;              // [m] the bumper where the simulation has it (travelling to xI_)
-    AnalysisPanels analysis_;          // continued branches, parameter plane, basins (issues 9, 10)
+    AnalysisPanels analysis_;          // continued branches, parameter plane, basins
     ParamsPanel params_panel_;         // m, c, k, T, m0e, eps and the impact law's, live
     GuidePanel guide_;                 // "What to try": five demonstrations
     bool show_guide_ = false;

@@ -1,4 +1,4 @@
-// The mouse sets the state, the companion cart and the grazing monitor (issues 9, 11): the App's side of
+// The mouse sets the state, the companion cart and the grazing monitor: the App's side of
 // them. The physics is the sim thread's (SimEngine: SetState, Hold; SimThread: the companion in lockstep);
 // what is checked before a command is sent is state_pick.cpp's; this file sends, lays out and draws.
 // UI thread.

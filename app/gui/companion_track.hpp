@@ -1,5 +1,5 @@
-// What the UI keeps of the companion cart (the twin 1 um apart, or the ghost under another impact law;
-// issues 9, 11): its own trajectory, and its separation |dx| from the cart at the same sample instants,
+// What the UI keeps of the companion cart (the twin 1 um apart, or the ghost under another impact law):
+// its own trajectory, and its separation |dx| from the cart at the same sample instants,
 // which the sim thread keeps on one grid for both. GL-free; UI thread only.
 #pragma once
 

@@ -56,7 +56,7 @@ struct Options {
     bool help = false;
     bool show_help = false;      // open the shortcuts window at start
     std::string data;            // a measured run to load into the "Measured data" window at start (and fit)
-    // Analysis (issues 9, 10): a scan CSV for the plane window; jobs begun at start (--frames waits for them).
+    // Analysis: a scan CSV for the plane window; jobs begun at start (--frames waits for them).
     std::string plane;           // --plane FILE
     bool continuation = false;   // --continuation: the continued branches over the diagram
     bool small_plane = false;    // --small-plane: a 60 x 30 (omega, xI) plane on a worker
@@ -68,7 +68,7 @@ struct Options {
     double clip_seconds = 2.0;   // [s] of simulated time
     double replay_back = 0;      // [s] with --frames: end in replay this far before the newest sample
     bool replay_continue = false;   // with --replay-back: continue from there (Enter), 60 more frames
-    // The companion cart (issues 9, 11) and the mouse's state, as scripts set them.
+    // The companion cart and the mouse's state, as scripts set them.
     bool twin = false;           // --twin: a second cart 1 um to the right, the same model
     std::string ghost;           // --ghost M: a second cart from the same state under M's impact law
     std::string press;           // --press [ctrl+]KEY: that key pressed at frame 3 (headless tests of the keys)

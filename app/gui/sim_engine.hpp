@@ -65,7 +65,7 @@ public:
     // Publishes the current state as a sample now (the sample grid restarts after it).
     void publish_state() { emit_now(); }
 
-    // The companion (issues 9, 11): this engine restarts from `src`'s state now (its t, phi, omega, xI and
+    // The companion: this engine restarts from `src`'s state now (its t, phi, omega, xI and
     // pace), x moved by dx, under its own model `model` (the twin: src's; the ghost: another). Bumps the
     // epoch and publishes. False for an unknown model (nothing changes then).
     bool restart_from(const SimEngine& src, const std::string& model, double dx);

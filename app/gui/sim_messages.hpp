@@ -59,7 +59,7 @@ enum class CmdKind : std::uint8_t {
     ResetParams,  // every parameter back to the running version's own values; x, v, phi kept
 };
 
-// The second cart that runs beside the first in lockstep (issues 9, 11).
+// The second cart that runs beside the first in lockstep.
 enum class CompanionMode : std::uint8_t {
     Off = 0,
     Twin = 1,    // the same model from x + 1 um: sensitivity to initial conditions

@@ -97,7 +97,7 @@ private:
     SpscRing<SimCommand> commands_{kCommandCapacity};
     RingSink sink_{samples_};
     SimEngine engine_;   // touched by the UI thread only before start()
-    // The companion cart (issues 9, 11): a second engine advanced to the same sim time as engine_ after
+    // The companion cart: a second engine advanced to the same sim time as engine_ after
     // every slice, fed the same commands; its records carry SimMsg::source = 1. Sim thread only.
     std::unique_ptr<SimEngine> companion_;
     CompanionMode companion_mode_ = CompanionMode::Off;

@@ -83,7 +83,7 @@ bool App::write_state_json(const std::string& path) {
                                {"dissipated_bumper", number(eb.dissipated_bumper)}, {"residual", number(eb.residual())}};
     }
     {
-        // The companion cart (issues 9, 11): mode, its state, its separation |dx| from the cart [m].
+        // The companion cart: mode, its state, its separation |dx| from the cart [m].
         json c;
         c["mode"] = companion_mode_ == CompanionMode::Twin ? "twin" : companion_mode_ == CompanionMode::Ghost ? "ghost" : "off";
         if (companion_mode_ != CompanionMode::Off) {

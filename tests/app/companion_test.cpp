@@ -1,6 +1,6 @@
-// The mouse sets the state, the companion cart and the grazing monitor (issues 9, 11), and defect 8 of
-// issue 11 (the bumper moved into the cart teleported it; the rig and the status bar disagreed on the
-// regime), all without a window: the engine's commands, the lockstep pair, the monitor against a fine
+// The mouse sets the state, the companion cart and the grazing monitor, and a bumper moved into the cart
+// (it once teleported the cart, and the rig and the status bar disagreed on the regime), all without a
+// window: the engine's commands, the lockstep pair, the monitor against a fine
 // sampling of the core's dense output.
 #include <doctest/doctest.h>
 
@@ -33,7 +33,7 @@ double largest_step(const std::vector<SimMsg>& samples) {
 
 }  // namespace
 
-TEST_CASE("defect 8: the bumper moved into the cart pushes it continuously, not in frame-sized steps") {
+TEST_CASE("the bumper and the cart: the bumper moved into the cart pushes it continuously, not in frame-sized steps") {
     for (const std::string model : {"A1C", "A1H"}) {
         CAPTURE(model);
         for (const bool one_jump : {false, true}) {
@@ -66,7 +66,7 @@ TEST_CASE("defect 8: the bumper moved into the cart pushes it continuously, not 
     }
 }
 
-TEST_CASE("defect 8: paused, the bumper moves at once; resending the same xI leaves a pressed cart alone") {
+TEST_CASE("the bumper and the cart: paused, the bumper moves at once; resending the same xI leaves a pressed cart alone") {
     VectorSink sink;
     EngineConfig c = config("A1C", 9.0);
     c.xI = -0.015;   // the magnets press the cart onto the compliant bumper
@@ -82,7 +82,7 @@ TEST_CASE("defect 8: paused, the bumper moves at once; resending the same xI lea
     CHECK(e.state().x <= -0.018 + (x + 0.015) + 1e-15);
 }
 
-TEST_CASE("defect 8: the rig's badge and the status bar read the contact from one function") {
+TEST_CASE("the bumper and the cart: the rig's badge and the status bar read the contact from one function") {
     const Params c = make_version("A1C"), h = make_version("A1H");
     CHECK(std::string(contact_label(c, Regime::Free, 3.0)) == "I  on the compliant bumper");
     CHECK(std::string(contact_label(c, Regime::Free, 0.0)) == "I  free flight");

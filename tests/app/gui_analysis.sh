@@ -1,5 +1,5 @@
 #!/bin/sh
-# The analysis views under Xvfb (issues 9, 10): a plane CSV loaded with --plane, the continued branches
+# The analysis views under Xvfb: a plane CSV loaded with --plane, the continued branches
 # (--continuation) and the basins (--basins) computed on their workers before the frames are counted; the
 # screenshot must be a real picture and the log must report each result. A plane CSV with a bad line must
 # make the run exit 1 naming the file and the line (the window shows the same message and keeps going).

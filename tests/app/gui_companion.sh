@@ -1,5 +1,5 @@
 #!/bin/sh
-# GUI test of the companion cart, the grazing monitor and the mouse's state (issues 9, 11) through
+# GUI test of the companion cart, the grazing monitor and the mouse's state through
 # --state-json, under Xvfb with Mesa's software OpenGL:
 #  1. --twin on A1H's chaos preset: the twin starts 1 um from the cart and the two part by orders of
 #     magnitude (the separation grows past 1 mm);
@@ -8,7 +8,7 @@
 #  4. the grazing monitor on the period-1 orbit: clear of the bumper, xI - max x > 1 mm, no impact; in
 #     A1G's chaos: impacts with v- > 0 and max x = xI;
 #  5. --set-state beyond the rigid bumper is put on it (x = xI) with a message saying so;
-#  6. defect 8 of issue 11: the bumper moved 18 mm into the cart at once (--then-xI, as the slider) pushes
+#  6. the bumper moved 18 mm into the cart at once (--then-xI, as the slider) pushes
 #     it continuously (no jump of x between two samples over 0.3 mm; before: the whole way in one), and the
 #     cart pressed onto the compliant bumper reads "on the compliant bumper" (the rig's badge and the
 #     status bar share that label);

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The bifurcation panel through --state-json (issue 11 defect 4): a diagram over --bif-range fills while
+# The bifurcation panel through --state-json: a diagram over --bif-range fills while
 # computing (a run that does not wait for it sees some but not all of its levels, whole levels only), and
 # after it reports its omega range and every column; --bif-box recomputes a sub-range with the same steps and
 # the view follows it; after a model switch the diagram says it is stale; the running attractor's points are

@@ -1,5 +1,5 @@
 #!/bin/sh
-# GUI test of the layout (issue 11, defects 5, 6 and 9) through --state-json, under Xvfb with Mesa:
+# GUI test of the layout through --state-json, under Xvfb with Mesa:
 #  1. 1280x800 at --ui-scale 2: the tiles, the controls and the viewport as drawn: every tile inside the
 #     window and clear of the others, every panel shown once (the extra ones as tabs), the controls tabbed
 #     rather than scrolling, the magnification x1.

@@ -59,7 +59,7 @@ if j["poincare_period"] is not None or j["poincare_status"] != "settling" or j["
 j = load("chaos")
 if j["poincare_period"] != 0 or len(j["poincare_points"]) < 100:
     fail.append(f"chaos: period {j['poincare_period']} with {len(j['poincare_points'])} points, expected 0 and > 100")
-# Issue 11, defect 3: the potential plot's y range holds the largest energy of the trail (the old fixed
+# The potential plot's y range holds the largest energy of the trail (the old fixed
 # limit, 2.3 times the wells' depth, was about 35 mJ; this orbit reaches past it).
 lo, hi = j["potential_view"]
 if not (lo < j["energy"] < hi and j["energy_max_trail"] < hi):

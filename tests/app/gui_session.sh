@@ -1,5 +1,5 @@
 #!/bin/sh
-# GUI test of session files and clip export (issue 11), under Xvfb with Mesa's software OpenGL:
+# GUI test of session files and clip export, under Xvfb with Mesa's software OpenGL:
 #  1. A1G at omega 12.5, xI 2 mm, light theme, scale 1.25 saved with --save-session; loaded with --session:
 #     the state JSON shows that model, omega and xI, the run goes on from the saved time, and saving again
 #     gives the same model, forcing, view and companion cart (the twin).

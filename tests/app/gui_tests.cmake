@@ -53,7 +53,7 @@ add_test(NAME gui_bad_flag
          COMMAND sh -c "\"$0\" --no-such-flag; test $? -eq 2" $<TARGET_FILE:impactlab-gui>)
 add_test(NAME gui_bad_value
          COMMAND sh -c "\"$0\" --omega fast; test $? -eq 2" $<TARGET_FILE:impactlab-gui>)
-# --preset beyond the model's list, --state-json without --frames, and (defect 9 of issue 11) a missing
+# --preset beyond the model's list, --state-json without --frames, and a missing
 # --data file in a headless run: each names the flag and exits 2 before any window opens.
 add_test(NAME gui_bad_preset
          COMMAND sh -c "\"$0\" --model A3H --preset 9 --frames 2 2>&1 | grep -q -- '--preset'; test $? -eq 0 && \"$0\" --model A3H --preset 9 --frames 2; test $? -eq 2"
@@ -74,28 +74,28 @@ add_test(NAME gui_soak_short
                  $<TARGET_FILE:impactlab-gui>)
 set_tests_properties(gui_soak_short PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "gui")
 
-# The analysis views (issues 9, 10): --plane, --continuation and --basins under Xvfb, and a bad plane file
+# The analysis views: --plane, --continuation and --basins under Xvfb, and a bad plane file
 # named with its line (gui_analysis.sh says what it checks). Skipped (exit 77) without xvfb-run.
 add_test(NAME gui_analysis
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_analysis.sh $<TARGET_FILE:impactlab-gui>
                  $<TARGET_FILE:impactlab_png_check> ${CMAKE_CURRENT_BINARY_DIR}/gui_analysis)
 set_tests_properties(gui_analysis PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "gui")
 
-# Session files and clip export (issue 11): save and load through --save-session / --session, bad files
+# Session files and clip export: save and load through --save-session / --session, bad files
 # refused naming file, key and problem, a clip's PNG frames (gui_session.sh says what it checks).
 add_test(NAME gui_session
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_session.sh $<TARGET_FILE:impactlab-gui>
                  $<TARGET_FILE:impactlab_png_check> ${CMAKE_CURRENT_BINARY_DIR}/gui_session)
 set_tests_properties(gui_session PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
 
-# The layout (issue 11, defects 5, 6, 9): tiles at UI scale 2, hide and maximise, presentation mode and the
+# The layout: tiles at UI scale 2, hide and maximise, presentation mode and the
 # rig's magnification through --state-json, bad layout flags (gui_layout.sh says what it checks).
 add_test(NAME gui_layout
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_layout.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_layout)
 set_tests_properties(gui_layout PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
 
-# The companion cart, the grazing monitor and the mouse's state (issues 9, 11): a twin parts in chaos and
+# The companion cart, the grazing monitor and the mouse's state: a twin parts in chaos and
 # not on period 1, a ghost under A1G parts from A1C, the monitor's gap and impact velocity, --set-state
 # beyond the bumper, the shared contact label, bad flags (gui_companion.sh says what it checks).
 add_test(NAME gui_companion
@@ -103,35 +103,35 @@ add_test(NAME gui_companion
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_companion)
 set_tests_properties(gui_companion PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
 
-# The bifurcation panel (issue 11 defect 4): range, progressive fill, the box, the stale note, via
+# The bifurcation panel: range, progressive fill, the box, the stale note, via
 # --state-json (gui_diagram.sh says what it checks). Skipped (exit 77) without xvfb-run or python3.
 add_test(NAME gui_diagram
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_diagram.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_diagram)
 set_tests_properties(gui_diagram PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
 
-# The Parameters panel (issue 21): --param changes the running model (the cart comes to rest without the
+# The Parameters panel: --param changes the running model (the cart comes to rest without the
 # unbalance), the values are reported back, bad values and keys exit 2 (gui_params.sh says what it checks).
 add_test(NAME gui_params
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_params.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_params)
 set_tests_properties(gui_params PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
 
-# The time strip's traces (issue 21): --strip chooses one or two of x, v, E, F, drive, each on its own axis
+# The time strip's traces: --strip chooses one or two of x, v, E, F, drive, each on its own axis
 # (gui_strip.sh says what it checks).
 add_test(NAME gui_strip
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_strip.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_strip)
 set_tests_properties(gui_strip PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
 
-# "What to try" (issue 21): each demonstration sets up what it says; the guide and the status bar's details
+# "What to try": each demonstration sets up what it says; the guide and the status bar's details
 # (gui_guide.sh says what it checks).
 add_test(NAME gui_guide
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_guide.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_guide)
 set_tests_properties(gui_guide PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
 
-# The Poincare clicker (issue 21): each click starts an orbit kept in its own colour; A1G's coexisting
+# The Poincare clicker: each click starts an orbit kept in its own colour; A1G's coexisting
 # period-1 orbit and chaos at 13 rad/s mapped by two clicks (gui_clicker.sh says what it checks).
 add_test(NAME gui_clicker
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_clicker.sh $<TARGET_FILE:impactlab-gui>

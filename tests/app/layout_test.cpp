@@ -1,4 +1,4 @@
-// The visualiser's layout (app/gui/layout, issue 11 defects 5 and 6): at 1024x768 and 1280x800 with UI scale
+// The visualiser's layout (app/gui/layout): at 1024x768 and 1280x800 with UI scale
 // 1, 1.5 and 2, every tile lies inside the viewport, none overlaps another, each keeps its minimum size, and
 // every visible panel is shown exactly once; hidden panels give their space away, a maximised one fills the
 // plot area; presentation mode shows the rig and the chosen plot under a slim bar. The rig's labels never
@@ -205,7 +205,7 @@ TEST_CASE("label placer: no label overprints another or leaves the drawing") {
     LabelPlacer lp({0, 0, 400, 200});
     CHECK(lp.place({10, 10, 100, 20}));
     CHECK_FALSE(lp.place({60, 15, 100, 20}));    // over the first
-    CHECK_FALSE(lp.place({350, 10, 100, 20}));   // past the right edge (defect 9: clipped at xI = 20 mm)
+    CHECK_FALSE(lp.place({350, 10, 100, 20}));   // past the right edge (it was once clipped at xI = 20 mm)
     CHECK(lp.place_first({{60, 15, 100, 20}, {60, 40, 100, 20}}) == 1);   // the second candidate
     CHECK(lp.place_first({{-5, 0, 10, 10}}) == -1);
     for (std::size_t i = 0; i < lp.placed().size(); ++i)

@@ -1,4 +1,4 @@
-// The live omega ramp (issue 11, teaching overlays): the engine's drive moves omega linearly at the asked
+// The live omega ramp (a teaching overlay): the engine's drive moves omega linearly at the asked
 // rate with phi continuous, section points keep phi = 2 pi n on the ramp, and it stops at its target.
 #include <doctest/doctest.h>
 

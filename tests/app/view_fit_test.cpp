@@ -1,5 +1,5 @@
 // The plots' fits (app/gui/view_fit): an axis fitted with pixel margins, the potential plot's range
-// following the energy (issue 11, defect 3), and the rig's impact label in sim and wall time (defect 7).
+// following the energy, and the rig's impact label in sim and wall time.
 #include <doctest/doctest.h>
 
 #include "../../app/gui/view_fit.hpp"

@@ -1,4 +1,4 @@
-# Command-line behaviour of orbit, continue, lyapunov and basins (issue 9): exit codes, messages naming the flag,
+# Command-line behaviour of orbit, continue, lyapunov and basins: exit codes, messages naming the flag,
 # the files written (run_cli_test.sh does the checks).
 if(NOT TARGET impactlab)
   return()
@@ -19,6 +19,10 @@ impactlab_cli_test(orbit_bad_from --rc 2 --match "'--from'" -- orbit --model A1C
 impactlab_cli_test(continue_short --rc 0 --match "period_doubling +omega = 10.86"
                    --csv out/branches.csv "branch,omega,x,v,period,stable" 3 1000
                    -- continue --model A1C --omega-min 10 --omega-max 11.5 --max-period 1 --out out)
+# A special point met from several branches or phases of one orbit is listed once (A3C's doubling at
+# 18.4466542 was listed three times, its grazing at 16.5239088 twice).
+impactlab_cli_test(continue_points_once --rc 0 --count "period_doubling +omega = 18\\.4466" 1 --count "grazing +omega = 16\\.5239" 1
+                   -- continue --model A3C --omega-min 8 --omega-max 25 --omega-start 9 --out out)
 impactlab_cli_test(continue_bad_param --rc 2 --match "'--param'" -- continue --param bogus --out out)
 impactlab_cli_test(continue_inverted --rc 2 --match "--omega-max" -- continue --omega-min 12 --omega-max 11 --out out)
 impactlab_cli_test(lyapunov_one --rc 0 --match "lambda_max = " -- lyapunov --model A1G --omega 16 --periods 100)

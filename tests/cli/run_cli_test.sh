@@ -7,6 +7,7 @@
 #   --rc N | --rc nonzero       expected exit status (required)
 #   --match REGEX               stdout+stderr must match this extended regex (repeatable)
 #   --no-match REGEX            ... must not match it (repeatable)
+#   --count REGEX N             exactly N lines of stdout+stderr match it (repeatable)
 #   --mkdir DIR                 create the directory DIR in the scratch directory first (repeatable)
 #   --fifo FILE                 create a named pipe FILE first (repeatable; nothing ever writes to it)
 #   --sparse FILE SIZE          create FILE of SIZE (truncate's syntax: 2G) holding no data blocks
@@ -34,6 +35,7 @@ shift
 EXPECT_RC=""
 MATCH=()
 NOMATCH=()
+COUNTS=()
 WRITES=()
 MKDIRS=()
 FIFOS=()
@@ -46,6 +48,7 @@ while [[ $# -gt 0 && $1 != "--" ]]; do
     --rc) EXPECT_RC=$2; shift 2 ;;
     --match) MATCH+=("$2"); shift 2 ;;
     --no-match) NOMATCH+=("$2"); shift 2 ;;
+    --count) COUNTS+=("$2" "$3"); shift 3 ;;
     --write) WRITES+=("$2" "$3"); shift 3 ;;
     --mkdir) MKDIRS+=("$2"); shift 2 ;;
     --fifo) FIFOS+=("$2"); shift 2 ;;
@@ -91,6 +94,10 @@ for re in "${MATCH[@]+"${MATCH[@]}"}"; do
 done
 for re in "${NOMATCH[@]+"${NOMATCH[@]}"}"; do
   if grep -Eq -- "$re" "$WORK/.out"; then fail "output matches /$re/"; fi
+done
+for ((i = 0; i < ${#COUNTS[@]}; i += 2)); do
+  n=$(grep -Ec -- "${COUNTS[i]}" "$WORK/.out")
+  [[ $n -eq ${COUNTS[i + 1]} ]] || fail "$n lines match /${COUNTS[i]}/, expected ${COUNTS[i + 1]}"
 done
 for f in "${ABSENT[@]+"${ABSENT[@]}"}"; do
   [[ ! -e $WORK/$f ]] || fail "$f exists"

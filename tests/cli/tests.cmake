@@ -130,7 +130,7 @@ impactlab_cli_test(fit_runs_short_one --rc 2 --match "a.csv: only 3 samples"
                    --write a.csv "t,x,phi\n0,0,0\n0.001,0,0.01\n0.002,0,0.02\n" --write b.csv "t,x,phi\n0,0,0\n0.001,0,0.01\n"
                    -- fit a.csv b.csv --model A1H --report r)
 
-# --- issue 12: files never clobbered, outputs checked before computing, errors that name the culprit ----------
+# --- files never clobbered, outputs checked before computing, errors that name the culprit ----------
 set(_model_json "{\"base\": \"A1H\"}")
 impactlab_cli_test(out_is_model_input --rc 2 --match "'model.json' is an input of this command" --unchanged model.json
                    --write model.json "${_model_json}"

@@ -431,7 +431,7 @@ TEST_CASE("Hunt-Crossley with damping (C, C1): slower exit, energy lost = work o
     }
 }
 
-TEST_CASE("a cart resting on a compliant bumper costs few steps (issue 12: it crawled at 2e6 steps/s)") {
+TEST_CASE("a cart resting on a compliant bumper costs few steps (it once crawled at 2e6 steps/s)") {
     // The damping factor |h'|^n3 continues linearly below kLinearVelocity, so the force has a finite slope
     // where the resting cart's h' changes sign; before that 100 s took 8.5e7 steps.
     struct Case { const char* version; double m0e, omega, duration; std::uint64_t max_steps; };

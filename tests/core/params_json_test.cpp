@@ -201,7 +201,7 @@ TEST_CASE("JSON: values out of range are refused, naming the key") {
     CHECK(contains(error_of_text(R"({"base": "A1C", "impact": {"model": "C", "kI": -5}})"), "impact.kI"));
 }
 
-TEST_CASE("JSON: magnitudes that stalled the integrator are refused with the key and the range (issue 12)") {
+TEST_CASE("JSON: magnitudes that stalled the integrator are refused with the key and the range") {
     struct Case { const char* text; const char* key; const char* why; };
     const Case cases[] = {
         {R"({"base": "A1G", "m": 1e-20})", "'m'", "[0.001, 10000] kg"},

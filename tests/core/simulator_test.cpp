@@ -481,7 +481,7 @@ TEST_CASE("move_bumper: a bumper moved onto the cart pushes it back to the conta
 }
 
 TEST_CASE("move_bumper: a compliant bumper the cart presses keeps its depth; a move by nothing changes nothing") {
-    // GUI defect 8 of issue 11: resending the slider's value pulled a pressed cart out of the bumper, a jump
+    // GUI resending the slider's value pulled a pressed cart out of the bumper, a jump
     // of the penetration every frame.
     Params p = make_version("A1C");
     p.xI = -0.015;   // the magnets press the cart (left well at -10.9 mm) onto it

@@ -190,7 +190,7 @@ TEST_CASE("noise floor: holds for white noise on a smooth record and on one with
     CHECK(impactlab::identify::estimate_noise(busy) == doctest::Approx(sigma).epsilon(0.15));
 }
 
-TEST_CASE("loader: issue 12's inputs: CR-only lines, 100k columns, scales that overflow, corrupt samples, time units") {
+TEST_CASE("loader: hostile inputs: CR-only lines, 100k columns, scales that overflow, corrupt samples, time units") {
     // Old Mac line endings: read as lines, not as one header with a repeated name.
     std::string cr = "t,x,phi\n" + rows(100);
     std::replace(cr.begin(), cr.end(), '\n', '\r');

@@ -425,7 +425,7 @@ TEST_CASE("chaotic double well forced by u: the baseline is recovered, stays bis
     CHECK(rf.after.p.k == doctest::Approx(-1.0).epsilon(0.02));
 }
 
-TEST_CASE("fit refuses implausible positions with a hint, before any fitting (issue 12)") {
+TEST_CASE("fit refuses implausible positions with a hint, before any fitting") {
     id::SynthOptions so = short_run(5);
     so.duration = 4.0;
     id::MeasuredData d = id::synthesize(a1h(), so);
