@@ -338,6 +338,8 @@ std::string sentence(const std::string& id, const Model& before, const std::vect
 // An end stop proposed from pr.stray (position from the reversals' level, restitution from their speeds),
 // appended to rep.effects_found for the held-out validation; nothing when the model has one already.
 void end_stop_stage(const Prep& pr, const FitOptions& o, const SentenceContext& sc, const Model& after, FitReport& rep);
+// The end stop's sentence: its law's description of `f` added to `m`, and how many reversals showed it.
+std::string end_stop_sentence(const Prep& pr, const Model& m, const FoundEffect& f, const SentenceContext& sc);
 // The end stop's parameters (xS, kS, cS, side) from the reversals with use[k] set (all when empty): first
 // estimates from their level, dwell and restitution, then refined on the simulation error of short windows
 // around them. Empty when fewer than three are used. sigma_xS, if given: xS's standard error.

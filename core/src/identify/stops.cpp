@@ -220,9 +220,13 @@ void end_stop_stage(const Prep& pr, const FitOptions& o, const SentenceContext& 
     f.parameters = values;
     f.sigma = {{"xS", se}, {"kS", 0.0}, {"cS", 0.0}, {"side", 0.0}};
     f.z = static_cast<double>(pr.stray.size());   // the reversals the model cannot make; the held-out error decides
-    f.sentence = sentence(f.id, after, f.parameters, f.sigma, sc) + "; seen in " + std::to_string(pr.stray.size()) +
-                 " reversals the model cannot make";
+    f.sentence = end_stop_sentence(pr, after, f, sc);
     rep.effects_found.push_back(std::move(f));
+}
+
+std::string end_stop_sentence(const Prep& pr, const Model& m, const FoundEffect& f, const SentenceContext& sc) {
+    return sentence(f.id, m, f.parameters, f.sigma, sc) + "; seen in " + std::to_string(pr.stray.size()) +
+           " reversals the model cannot make";
 }
 
 }  // namespace impactlab::identify::detail

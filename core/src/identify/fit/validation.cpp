@@ -147,8 +147,7 @@ void validate_effects(FitSession& fs) {
                     f.parameters = values;
                     f.sigma.front().second = se;
                 }
-                f.sentence = sentence(f.id, cur, f.parameters, f.sigma, sc) + "; seen in " + std::to_string(pr.stray.size()) +
-                             " reversals the model cannot make";
+                f.sentence = end_stop_sentence(pr, cur, f, sc);
                 rej.parameters = f.parameters;
                 apply_effect(cand, f.id, f.parameters);
             } else {
