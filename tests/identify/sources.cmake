@@ -14,4 +14,5 @@ set(IMPACTLAB_IDENTIFY_TEST_SOURCES
   identify/parsimony_test.cpp
   identify/mismatch_test.cpp
   identify/stops_test.cpp
+  identify/features_test.cpp
 )

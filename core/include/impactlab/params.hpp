@@ -72,6 +72,8 @@ struct FitNeeds {
     static constexpr unsigned Magnets = 4;        // the model has a magnetic force to shift
     static constexpr unsigned DryFriction = 8;    // the model has dry friction T > 0
     static constexpr unsigned FixedBaseline = 16; // only when the base parameters are not fitted
+    static constexpr unsigned XFeature = 32;      // the residual shows a narrow feature in x (identify/features.cpp)
+    static constexpr unsigned VFeature = 64;      // ... in v
 };
 
 inline constexpr std::array<double, kMaxLawParams> kUnboundedBelow{-1e12, -1e12, -1e12, -1e12, -1e12, -1e12, -1e12, -1e12};
@@ -109,6 +111,8 @@ using EffectDescribeFn = std::string (*)(const double* p, const double* sigma, c
 struct EffectStartContext {
     const Params* model = nullptr;
     double x_lo = 0, x_hi = 0, v_lo = 0, v_hi = 0, start = 0;
+    // Where the residual shows its narrowest strong feature in x and in v (lo == hi: none), true coordinates.
+    double x_feature_lo = 0, x_feature_hi = 0, v_feature_lo = 0, v_feature_hi = 0;
 };
 using EffectStartFn = void (*)(double* p, const EffectStartContext& c);
 // A sensor effect: what the sensor reads for the true position x (affine in x, unless the law is `curved`).

@@ -37,6 +37,8 @@ std::vector<EffectLaw>& table() {
             effects::unexplained_v_law(),
             effects::unexplained_x_signv_law(),
             effects::unexplained_phi_law(),
+            effects::unexplained_x_local_law(),
+            effects::unexplained_v_local_law(),
         };
         t.reserve(t.size() + kSpare);
         return t;

@@ -4,7 +4,10 @@
 //   unexplained_v        F = S(v)                    (held constant outside [lo, hi])
 //   unexplained_x_signv  F = S(x) v/sqrt(v^2+eps^2)  (a position-dependent dry friction or hysteresis)
 //   unexplained_phi      F = sum_k a_k cos(k phi) + b_k sin(k phi), k = 1..3 [N]
-// Parameters of the spline laws: lo, hi (the range, in the variable's unit), c1..c6 [N].
+//   unexplained_x_local  F = S(x) over a narrow range where the residual has a feature (a rail defect)
+//   unexplained_v_local  F = S(v) likewise (a friction bump near v = 0)
+// Parameters of the spline laws: lo, hi (the range, in the variable's unit), c1..c6 [N]. The global laws
+// span the data; the local ones the feature identify/features.cpp finds, and are offered only where it finds one.
 #include <algorithm>
 #include <cmath>
 
@@ -111,6 +114,15 @@ void start_v(double* p, const EffectStartContext& c) {
     p[0] = c.v_lo;
     p[1] = c.v_hi > c.v_lo ? c.v_hi : c.v_lo + 1e-6;
 }
+// The feature's window, narrowed by the trial value (the screening keeps the width that explains most): the
+// window found carries the residual's blur, and six knots follow a narrow feature only if they sit close.
+void window(double* p, double lo, double hi, double scale) {
+    const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo) * (scale > 0 ? scale : 1.0);
+    p[0] = mid - half;
+    p[1] = mid + half;
+}
+void start_x_local(double* p, const EffectStartContext& c) { window(p, c.x_feature_lo, c.x_feature_hi, c.start); }
+void start_v_local(double* p, const EffectStartContext& c) { window(p, c.v_feature_lo, c.v_feature_hi, c.start); }
 
 constexpr const char* kSplineNames[] = {"lo", "hi", "c1", "c2", "c3", "c4", "c5", "c6"};
 using Names = std::array<const char*, kMaxLawParams>;
@@ -125,6 +137,15 @@ EffectLaw spline_law(const char* id, const char* meaning, const Names& units, Ef
     l.fit.generic = true;
     l.describe = d;
     l.start = st;
+    return l;
+}
+// A local law: offered only where the residual has a feature in its variable, tried at three widths of it.
+EffectLaw local_law(const char* id, const char* meaning, const Names& units, EffectForceFn f, EffectDescribeFn d, EffectStartFn st,
+                    unsigned needs) {
+    EffectLaw l = spline_law(id, meaning, units, f, d, st);
+    l.fit.needs = needs;
+    l.fit.starts = {0.5, 0.75, 1.0};
+    l.fit.n_starts = 3;
     return l;
 }
 }  // namespace
@@ -143,6 +164,16 @@ const EffectLaw& unexplained_x_signv_law() {
     static const EffectLaw law =
         spline_law("unexplained_x_signv", "a force S(x) sign(v) (position-dependent friction) no named effect explains", kSplineXUnits,
                    force_x_signv, describe_x_signv, start_x);
+    return law;
+}
+const EffectLaw& unexplained_x_local_law() {
+    static const EffectLaw law = local_law("unexplained_x_local", "a force over a narrow range of x (a defect of the rail) no named effect explains",
+                                           kSplineXUnits, force_x, describe_x, start_x_local, FitNeeds::XFeature);
+    return law;
+}
+const EffectLaw& unexplained_v_local_law() {
+    static const EffectLaw law = local_law("unexplained_v_local", "a force over a narrow range of v (a friction bump) no named effect explains",
+                                           kSplineVUnits, force_v, describe_v, start_v_local, FitNeeds::VFeature);
     return law;
 }
 const EffectLaw& unexplained_phi_law() {

@@ -114,14 +114,19 @@ std::vector<EffectInfo> build_catalogue() {
 }  // namespace
 
 const std::vector<EffectInfo>& effect_catalogue() {
-    // Rebuilt when the registry changed size (a scoped law added or gone).
+    // Rebuilt when the registry changed (a scoped law added, gone, or one swapped for another: the size and
+    // the last law's id together tell).
     static std::mutex mutex;
     static std::vector<EffectInfo> cat;
     static std::size_t laws = static_cast<std::size_t>(-1);
+    static std::string last;
     const std::lock_guard<std::mutex> lock(mutex);
-    if (laws != effect_laws().size()) {
+    const auto& table = effect_laws();
+    const std::string now_last = table.empty() ? std::string() : table.back().id;
+    if (laws != table.size() || last != now_last) {
         cat = build_catalogue();
-        laws = effect_laws().size();
+        laws = table.size();
+        last = now_last;
     }
     return cat;
 }
@@ -196,6 +201,8 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
         if ((h.needs & FitNeeds::Magnets) && m.p.a[0] == 0.0 && m.p.a[1] == 0.0) continue;
         if ((h.needs & FitNeeds::DryFriction) && !(m.p.T > 0)) continue;
         if ((h.needs & FitNeeds::FixedBaseline) && o.fit_baseline) continue;
+        if ((h.needs & FitNeeds::XFeature) && !pr.x_feature.found()) continue;
+        if ((h.needs & FitNeeds::VFeature) && !pr.v_feature.found()) continue;
         if (h.absorbed_by && fitted(h.absorbed_by)) continue;
         Candidate c;
         c.id = id;
@@ -236,7 +243,16 @@ EffectInstance start_instance(const Candidate& c, const Model& m, const Prep& pr
             xs.push_back(m.true_x(d.x[r]));
             vs.push_back(pr.vs[r] / m.measure_slope(xs.back()));
         }
-        EffectStartContext ctx{&m.p, quantile(xs, 0.005), quantile(xs, 0.995), quantile(vs, 0.005), quantile(vs, 0.995), start};
+        EffectStartContext ctx{&m.p,
+                               quantile(xs, 0.005),
+                               quantile(xs, 0.995),
+                               quantile(vs, 0.005),
+                               quantile(vs, 0.995),
+                               start,
+                               pr.x_feature.lo,
+                               pr.x_feature.hi,
+                               pr.v_feature.lo,
+                               pr.v_feature.hi};
         c.law->start(e.p.data(), ctx);
     }
     return e;

@@ -89,6 +89,12 @@ struct Prep {
     std::vector<ImpactObs> stray;
     int stray_side = 0;
     std::vector<char> zone;                  // 1: the sample lies in or next to an impact
+    // The narrowest strong feature of the baseline's residual against x and against v (features.cpp), in true
+    // coordinates; lo == hi: none. The local generic terms put their knots there.
+    struct Feature {
+        double lo = 0, hi = 0, z = 0;
+        bool found() const { return hi > lo; }
+    } x_feature, v_feature;
     std::vector<std::size_t> rows;           // centres of the residual windows used
     std::size_t j_lo = 0, j_hi = 0;          // samples the rows' windows touch [j_lo, j_hi)
     FitProgress* progress = nullptr;         // run_fit's, if any: checked for cancellation per simulation
@@ -230,6 +236,8 @@ Horizon predictability_horizon(const Prep& pr, const Model& m, double rtol);
 // The share of the residual R (at pr.rows) that smooth functions of each variable alone explain, cross-validated
 // over contiguous blocks, largest first: "a constant", "x", "v", "the forcing phase", "time", "the time since an
 // impact".
+// Finds Prep::x_feature and v_feature in the residual R (one value per row) of the model m.
+void locate_features(Prep& pr, const Model& m, const Eigen::VectorXd& R);
 std::vector<std::pair<std::string, double>> remainder_dependence(const Prep& pr, const Eigen::VectorXd& R);
 
 // ---- data_wells.cpp -------------------------------------------------------------------------------------

@@ -22,6 +22,7 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/gate.cpp
   src/identify/horizon.cpp
   src/identify/remainder.cpp
+  src/identify/features.cpp
   src/identify/data_wells.cpp
   src/identify/report.cpp
   src/identify/synth.cpp

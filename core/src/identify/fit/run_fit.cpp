@@ -91,6 +91,7 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     std::vector<double> pw;
     Eigen::VectorXd& R0 = fs.R0;
     residual(pr, base, R0, pw);
+    locate_features(prep, base, R0);
     rep.before = model0;
     fs.in0 = R0.squaredNorm();
     rep.noise_floor_N = base.p.m * pr.sigma_x * pr.K.noise_gain / base.sensor_gain();
