@@ -137,6 +137,18 @@ void refit_stage(FitSession& fs) {
                             std::to_string(force_found[weakest].z) + " in the joint fit");
         chosen.erase(chosen.begin() + static_cast<long>(weakest));
         step_gain.erase(step_gain.begin() + static_cast<long>(weakest));
+        // The shares the rest explain, in the order chosen, without the one gone: a share measured beside it
+        // would leave what it took unclaimed (or claimed twice where two terms shared it).
+        std::vector<int> cols = base_cols;
+        double cv = 0, prev = 0;
+        cv_sse(folds, cols, cv, prev);
+        for (std::size_t k = 0; k < chosen.size(); ++k) {
+            cols.insert(cols.end(), groups[chosen[k]].cols.begin(), groups[chosen[k]].cols.end());
+            double in = 0;
+            cv_sse(folds, cols, cv, in);
+            step_gain[k] = (prev - in) / in_base;
+            prev = in;
+        }
     }
     // A sensor effect moves the measured bumper level too: if the impacts' flat tops contradict it, it is an
     // artefact of the free-flight fit and goes (the impact stage then sees the level as it is).
