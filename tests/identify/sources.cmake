@@ -15,4 +15,5 @@ set(IMPACTLAB_IDENTIFY_TEST_SOURCES
   identify/mismatch_test.cpp
   identify/stops_test.cpp
   identify/features_test.cpp
+  identify/drift_test.cpp
 )

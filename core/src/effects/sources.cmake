@@ -5,6 +5,10 @@ set(IMPACTLAB_EFFECT_SOURCES
   src/effects/tangential_unbalance.cpp
   src/effects/magnet_offset.cpp
   src/effects/magnet_drift.cpp
+  src/effects/damping_drift.cpp
+  src/effects/friction_drift.cpp
+  src/effects/stiffness_drift.cpp
+  src/effects/unbalance_drift.cpp
   src/effects/even_stiffness.cpp
   src/effects/linear_stiffness.cpp
   src/effects/viscous_damping.cpp

@@ -255,6 +255,11 @@ EffectInstance start_instance(const Candidate& c, const Model& m, const Prep& pr
                                pr.v_feature.hi};
         c.law->start(e.p.data(), ctx);
     }
+    // A law with a time origin (the drifts) measures time from the record's start, so a record on a late clock
+    // shows a drift as a drift and not as a constant change times the clock.
+    if (c.law)
+        for (std::size_t k = 0; k < kMaxLawParams && c.law->names[k]; ++k)
+            if (std::string(c.law->names[k]) == "t0") e.p[k] = pr.data->t.front();
     return e;
 }
 
