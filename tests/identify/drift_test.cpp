@@ -39,7 +39,6 @@ TEST_CASE("drift: each drifting parameter is named with its rate, on a record st
             id::apply_effect(truth, effect, {{"r", r}});
             const id::FitReport rep = fit_shifted(truth, shift);
             CAPTURE(rep.verdict);
-            for (const auto& e : rep.effects_found) CAPTURE(e.sentence);
             REQUIRE(rep.effects_found.size() == 1);
             const id::FoundEffect& f = rep.effects_found.front();
             CHECK(f.id == effect);

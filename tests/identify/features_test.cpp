@@ -51,6 +51,8 @@ TEST_CASE("features: a 2 mm bump in the rail is followed by the local generic te
     for (const auto& e : r.effects_found) CHECK(e.id.rfind("unexplained_", 0) == 0);
     CAPTURE(r.error_before.shooting_rms_1_m);
     CAPTURE(r.error_after.shooting_rms_1_m);
+    MESSAGE("rail bump: 1-period shooting ", r.error_before.shooting_rms_1_m, " -> ", r.error_after.shooting_rms_1_m, " m, noise ",
+            r.sigma_x);
     CHECK(r.error_after.shooting_rms_1_m < 0.3 * r.error_before.shooting_rms_1_m);
     CHECK(r.error_after.shooting_rms_1_m < 3.0 * r.sigma_x);
 }

@@ -17,6 +17,8 @@ std::vector<RecoveryCase> recovery_cases(const std::vector<std::string>& version
         {{"", "bumper_offset", "dx", 5e-4}, false},      {{"", "restitution", "kappa0", 0.4}, true},
         {{"", "cart_mass", "dm", -0.2}, false},          {{"", "sensor_delay", "tau", 3e-3}, false},
         {{"", "magnet_drift", "r", -1e-3}, false},       {{"", "sensor_curvature", "s", 0.133}, false},
+        {{"", "unbalance_drift", "r", -1e-3}, false},    {{"", "damping_drift", "r", 3e-3}, false},
+        {{"", "friction_drift", "r", 3e-3}, false},      {{"", "stiffness_drift", "r", -5e-4}, false},
     };
     std::vector<RecoveryCase> out;
     for (const auto& v : versions) {
