@@ -105,3 +105,27 @@ TEST_CASE("gate: diagram bins are paired by omega and their sampling noise is pa
     // The same rise when each bin's distance carries a sampling noise of 0.5: not beyond the scatter.
     CHECK_FALSE(dt::gate_check(bins({1.0, 2.0, 3.0}, {9.0, 13.5, 16.0}, 0.5), bins({3.3, 1.1, 2.2}, {16.0, 9.0, 13.5}, 0.5)).worse);
 }
+
+TEST_CASE("gate: impacts only the candidate predicts do not count against it; both are judged on the impacts both have") {
+    // The given model misses the slow impacts (their apparent restitution is the noisiest); the candidate
+    // predicts them too, and matches the ones both predict as well.
+    std::vector<double> ref = noisy(0.0009, 0.0002, 5, 30), cand = ref;
+    for (std::size_t i = 0; i < ref.size(); i += 3) {
+        ref[i] = INFINITY;   // missed by the given model
+        cand[i] = 0.01;      // a slow impact: ten times the squared error of the rest
+    }
+    auto with = [](const std::vector<double>& v) {
+        dt::PrintedErrors p = one(dt::kErrKappa, v);
+        p.e.front().missing_fails = false;
+        return p;
+    };
+    CHECK(with(cand).e.front().value() > 2.0 * with(ref).e.front().value());   // over its own set it looks worse
+    const dt::GateCheck g = dt::gate_check(with(ref), with(cand));
+    CAPTURE(g.why);
+    CHECK_FALSE(g.worse);
+    // On the impacts both have, a real rise still counts.
+    std::vector<double> worse = cand;
+    for (std::size_t i = 0; i < worse.size(); ++i)
+        if (i % 3) worse[i] *= 3.0;
+    CHECK(dt::gate_check(with(ref), with(worse)).worse);
+}

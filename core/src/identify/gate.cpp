@@ -174,7 +174,7 @@ GateCheck gate_check(const PrintedErrors& given, const PrintedErrors& cand, doub
     for (const PrintedError& ref : given.e) {
         const PrintedError* c = cand.find(ref.name);
         if (!c) continue;
-        const double vr = ref.value(), vc = c->value();
+        double vr = ref.value(), vc = c->value();
         if (!std::isfinite(vr)) continue;   // the given model could not be simulated here: nothing to be worse than
         char buf[320];
         if (!std::isfinite(vc)) {
@@ -183,7 +183,14 @@ GateCheck gate_check(const PrintedErrors& given, const PrintedErrors& cand, doub
             g.why = buf;
             return g;
         }
-        // Paired units (by omega for the diagram's bins, by position otherwise).
+        // Paired units (by omega for the diagram's bins, by position otherwise). Both values are then taken over
+        // the units both have: a model that also predicts the slow impacts the other misses is judged on the
+        // impacts both predict, not on a harder set than the other's.
+        PrintedError rc = ref, cc = *c;
+        rc.num.clear();
+        rc.den.clear();
+        cc.num.clear();
+        cc.den.clear();
         std::vector<double> d;
         double den = 0, noise2 = 0;
         std::size_t failed = 0;
@@ -195,6 +202,10 @@ GateCheck gate_check(const PrintedErrors& given, const PrintedErrors& cand, doub
                 if (it == by_key.end() || !std::isfinite(ref.num[i])) continue;
                 d.push_back(c->num[it->second] - ref.num[i]);
                 den += ref.den[i];
+                rc.num.push_back(ref.num[i]);
+                rc.den.push_back(ref.den[i]);
+                cc.num.push_back(c->num[it->second]);
+                cc.den.push_back(c->den[it->second]);
                 const double na = i < ref.noise.size() ? ref.noise[i] : 0.0, nb = it->second < c->noise.size() ? c->noise[it->second] : 0.0;
                 noise2 += na * na + nb * nb;
             }
@@ -208,6 +219,10 @@ GateCheck gate_check(const PrintedErrors& given, const PrintedErrors& cand, doub
                 }
                 d.push_back(c->num[i] - ref.num[i]);
                 den += ref.den[i];
+                rc.num.push_back(ref.num[i]);
+                rc.den.push_back(ref.den[i]);
+                cc.num.push_back(c->num[i]);
+                cc.den.push_back(c->den[i]);
             }
         }
         if (failed > 0) {
@@ -218,6 +233,10 @@ GateCheck gate_check(const PrintedErrors& given, const PrintedErrors& cand, doub
             return g;
         }
         if (d.empty() || den <= 0) continue;
+        if (std::isfinite(rc.value()) && std::isfinite(cc.value())) {
+            vr = rc.value();
+            vc = cc.value();
+        }
         const double n = static_cast<double>(d.size());
         double mean = 0;
         for (double x : d) mean += x;
@@ -231,7 +250,7 @@ GateCheck gate_check(const PrintedErrors& given, const PrintedErrors& cand, doub
         if (ref.kind == PrintedError::Kind::AbsMedian) {
             rise = std::abs(vc) - std::abs(vr);
             std::vector<double> dev;
-            for (double x : ref.num)
+            for (double x : rc.num)
                 if (std::isfinite(x)) dev.push_back(std::abs(x - vr));
             scatter = dev.empty() ? 0.0 : 1.4826 * median(dev) * 1.2533 / std::sqrt(static_cast<double>(dev.size()));
         } else {
