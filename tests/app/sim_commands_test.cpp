@@ -189,7 +189,12 @@ TEST_CASE("sim thread: paced run, commands through the ring, pause holds the tim
     CHECK(t_before < 20.0);
     REQUIRE(th.send(SimCommand::set_model("A1G")));
     REQUIRE(th.send(SimCommand::paused(true)));
-    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    // The thread takes the commands at its next slice: wait for it (up to 5 s on a loaded machine), not a
+    // fixed time.
+    for (int i = 0; i < 500 && !th.status().paused; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        drain();
+    }
     drain();
     CHECK(th.status().paused);
     const double t_paused = th.status().sim_time;
