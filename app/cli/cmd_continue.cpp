@@ -103,6 +103,11 @@ int cmd_continue(const std::vector<std::string>& argv) {
     for (const auto& q : r.points)
         std::printf("%-16s %s = %.9g (+- %.1g), period %d, x = %.6g m, v = %.6g m/s\n", analysis::bif_kind_name(q.kind), pname,
                     q.param, q.precision, q.period, q.y[0], q.y[1]);
+    for (const auto& q : r.points)
+        if (!q.scenario.empty())
+            std::printf("grazing at %s = %.9g crossed onto the impacting branch: %s; |mu| ~ d^%.3f, v- ~ d^%.3f "
+                        "(d: distance from the grazing; the square-root map gives -1, 1)\n",
+                        pname, q.param, q.scenario.c_str(), q.mu_exponent, q.speed_exponent);
     if (a.has("--png")) {
         plot::Figure fig;
         fig.width = 1200;
