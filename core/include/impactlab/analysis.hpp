@@ -216,6 +216,13 @@ struct BifCurve {
 BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
                                  double lo, double hi, double step, const Tolerances& sim = analysis_tolerances());
 
+// A grazing followed in two parameters the same way: at each value of the second parameter the omega where
+// the period-k orbit of the rig without its bumper reaches xI with its largest x (a secant on that x minus xI,
+// which is smooth through the grazing). (omega0, y0): a grazing and its orbit's section point, as continue
+// reports it. The curve ends where that orbit is lost.
+BifCurve continue_grazing_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
+                                double lo, double hi, double step, const Tolerances& sim = analysis_tolerances());
+
 // One curve of a branch in a bifurcation diagram's coordinates: a period-k branch gives k curves, one per
 // section point of its orbit (a diagram shows all k of them at each parameter value).
 struct BranchCurve {

@@ -1,5 +1,6 @@
-// A period doubling continued in two parameters (omega and xI or m0e): natural-parameter steps in the second
-// parameter, the doubling's omega found again at each by a secant on the crossing multiplier.
+// A period doubling or a grazing continued in two parameters (omega and xI or m0e): natural-parameter steps in
+// the second parameter, the point's omega found again at each by a secant on its test (the crossing
+// multiplier, or the bumperless orbit's largest x minus xI).
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -30,7 +31,105 @@ Probe probe(const Params& p, double omega, const Vec2& guess, int period, const 
     return r;
 }
 
+// The period-k orbit of the rig without its bumper at omega near y, and its largest x minus xI (NaN if not
+// found): zero at a grazing, smooth through it (the bumper's law never enters).
+struct GapProbe { double gap = NAN; Vec2 y = Vec2::Zero(); };
+GapProbe gap_probe(const Params& p, double omega, const Vec2& guess, int period, const Tolerances& sim) {
+    Params f = p;
+    f.impact = find_impact("none");
+    OrbitOptions oo;
+    oo.period = period;
+    oo.sim = sim;
+    oo.max_iterations = 12;
+    GapProbe r;
+    try {
+        const Orbit o = find_orbit(f, omega, guess, oo);
+        if (!o.converged || scaled_norm(o.y - guess) > 0.2) return r;
+        double x_max = 0;
+        peak_phase(f, omega, o.y, period, sim, &x_max);
+        r.gap = (x_max - p.xI) / kXScale;
+        r.y = o.y;
+    } catch (const std::exception&) {
+    }
+    return r;
+}
+
 }  // namespace
+
+BifCurve continue_grazing_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period, double lo,
+                                double hi, double step, const Tolerances& sim) {
+    if (second == ContParam::Omega) throw std::invalid_argument("a grazing curve needs a second parameter besides omega");
+    if (!(step > 0) || !(hi > lo)) throw std::invalid_argument("a grazing curve needs lo < hi and a positive step");
+    if (!p.has_bumper()) throw std::invalid_argument("a grazing curve needs a bumper");
+    BifCurve c;
+    c.kind = BifKind::Grazing;
+    c.second = second;
+    c.period = period;
+    Params work = p;
+    double& q_ref = second == ContParam::XI ? work.xI : work.m0e;
+    const double q0 = q_ref;
+    std::vector<CurvePoint> sides[2];
+    std::string ends[2];
+    for (int side = 0; side < 2; ++side) {
+        const double dir = side == 0 ? 1.0 : -1.0;
+        std::vector<CurvePoint>& pts = sides[side];
+        CurvePoint prev{omega0, q0, y0}, before = prev;
+        int have = 1;
+        double h = step;
+        bool first = side == 0;
+        while (true) {
+            const double q = first ? q0 : prev.q + dir * h;
+            if (q > hi + 1e-12 * std::abs(hi) || q < lo - 1e-12 * std::abs(lo)) {
+                ends[side] = std::string(cont_param_name(second)) + " range";
+                break;
+            }
+            q_ref = q;
+            double w = prev.omega;
+            Vec2 y = prev.y;
+            if (have >= 2 && prev.q != before.q) {
+                const double f = (q - prev.q) / (prev.q - before.q);
+                w = prev.omega + f * (prev.omega - before.omega);
+                y = prev.y + f * (prev.y - before.y);
+            }
+            // Secant on the gap in omega, from w and w + 1e-3.
+            double wa = w, wb = w + 1e-3;
+            GapProbe a = gap_probe(work, wa, y, period, sim), b = gap_probe(work, wb, std::isfinite(a.gap) ? a.y : y, period, sim);
+            bool ok = false;
+            for (int it = 0; it < 30 && std::isfinite(a.gap) && std::isfinite(b.gap) && b.gap != a.gap; ++it) {
+                const double wn = wb - b.gap * (wb - wa) / (b.gap - a.gap);
+                if (!std::isfinite(wn) || std::abs(wn - w) > 1.0) break;   // ran off: no grazing near here
+                a = b;
+                wa = wb;
+                wb = wn;
+                b = gap_probe(work, wb, a.y, period, sim);
+                if (std::abs(wb - wa) < 1e-8 && std::isfinite(b.gap)) {
+                    ok = true;
+                    break;
+                }
+            }
+            if (!ok) {
+                if (!first && h > step / 64) {
+                    h *= 0.5;
+                    continue;
+                }
+                ends[side] = "grazing lost near " + std::string(cont_param_name(second)) + " = " + std::to_string(q);
+                break;
+            }
+            pts.push_back({wb, q, b.y});
+            if (!first) {
+                before = prev;
+                ++have;
+                h = std::min(step, 2 * h);
+            }
+            prev = {wb, q, b.y};
+            first = false;
+        }
+    }
+    c.points.assign(sides[1].rbegin(), sides[1].rend());
+    c.points.insert(c.points.end(), sides[0].begin(), sides[0].end());
+    c.end = ends[1] + " / " + ends[0];
+    return c;
+}
 
 BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
                                  double lo, double hi, double step, const Tolerances& sim) {
