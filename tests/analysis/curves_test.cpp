@@ -110,3 +110,37 @@ TEST_CASE("curves: A1G's grazing curve through (9.6005, xI = -4 mm) bounds the i
         CHECK(std::abs(spec.x.at(first) - w) <= grid);
     }
 }
+
+TEST_CASE("curves: A1G's fold of the impacting period-1 orbit followed in xI is where continue in omega finds it") {
+    // At xI = -4 mm the impacting orbit past the grazing at 9.6005 turns in a fold at 9.548943 (continue).
+    Params p = make_version("A1G");
+    p.xI = -0.004;
+    const BifCurve c = continue_fold_curve(p, ContParam::XI, 9.548943, Vec2(-0.0157368, 0.00230387), 1, -0.0045, -0.003,
+                                           5e-4);
+    CHECK(c.end == "xI range / xI range");   // (towards -4.5 mm the steps are halved: the fold nears its grazing)
+    CHECK(c.kind == BifKind::Fold);
+    int checked = 0;
+    const CurvePoint* pick = &c.points.front();   // the point nearest xI = -3.5 mm
+    for (const CurvePoint& q : c.points)
+        if (std::abs(q.q + 0.0035) < std::abs(pick->q + 0.0035)) pick = &q;
+    CHECK(std::abs(pick->q + 0.0035) < 2.5e-4);
+    for (const CurvePoint& q : c.points) {
+        if (&q != pick) continue;
+        // The one-parameter continuation at that xI, from the free orbit at 9, through the grazing.
+        Params pq = p;
+        pq.xI = q.q;
+        ContinuationSpec spec;
+        spec.lo = 8.0;
+        spec.hi = 12.0;
+        spec.start = 9.0;
+        spec.max_period = 1;
+        const ContinuationResult r = continue_orbits(pq, spec);
+        bool found = false;
+        for (const BifPoint& b : r.points)
+            if (b.kind == BifKind::Fold && std::abs(b.param - q.omega) < 1e-5) found = true;
+        CAPTURE(q.omega);
+        CHECK(found);
+        ++checked;
+    }
+    CHECK(checked == 1);
+}

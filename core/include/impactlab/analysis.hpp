@@ -223,6 +223,11 @@ BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega
 BifCurve continue_grazing_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
                                 double lo, double hi, double step, const Tolerances& sim = analysis_tolerances());
 
+// A fold (a multiplier at +1) followed the same way: at each value of the second parameter, Newton on the
+// extended system P^k(y) = y, det(M - I) = 0 in (x, v, omega), from the last two points extrapolated.
+BifCurve continue_fold_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
+                             double lo, double hi, double step, const Tolerances& sim = analysis_tolerances());
+
 // One curve of a branch in a bifurcation diagram's coordinates: a period-k branch gives k curves, one per
 // section point of its orbit (a diagram shows all k of them at each parameter value).
 struct BranchCurve {

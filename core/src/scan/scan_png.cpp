@@ -180,8 +180,9 @@ void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint
                 const int n = 1 + static_cast<int>(2 * std::hypot(x1 - x0, y1 - y0));
                 for (int s = 0; s <= n; ++s) {
                     const double f = static_cast<double>(s) / n;
-                    // Dashed: 8 pixels on, 6 off along the curve's length in pixels.
+                    // Dashed: 8 pixels on, 6 off along the curve's length in pixels; dotted: 3 on, 4 off.
                     if (c.dashed && std::fmod(dash_pos + 0.5 * s, 14.0) >= 8.0) continue;
+                    if (c.dotted && std::fmod(dash_pos + 0.5 * s, 7.0) >= 3.0) continue;   // 3 on, 4 off
                     const int cx = static_cast<int>(std::lround(x0 + f * (x1 - x0))), cy = static_cast<int>(std::lround(y0 + f * (y1 - y0)));
                     for (int r = cy - 1; r <= cy + 1; ++r)
                         for (int cc = cx - 1; cc <= cx + 1; ++cc) {
