@@ -237,6 +237,37 @@ void bench_analysis() {
                       static_cast<unsigned long long>(r.map_evaluations));
         line("continue A1C, omega 5..25, periods up to 8", t, 5, buf);
     }
+    {
+        // Through the grazings (a rigid bumper): the impacting period-2 branch between 12.80 and 15.97.
+        analysis::ContinuationSpec spec;
+        spec.lo = 8;
+        spec.hi = 25;
+        spec.start = 9;
+        analysis::ContinuationResult r;
+        const Times t = timed([&] { r = analysis::continue_orbits(make_version("A1G"), spec); });
+        int crossed = 0;
+        for (const auto& q : r.points) crossed += !q.scenario.empty();
+        std::snprintf(buf, sizeof buf, "%zu branches, %zu points (%d grazings crossed), %llu maps", r.branches.size(),
+                      r.points.size(), crossed, static_cast<unsigned long long>(r.map_evaluations));
+        line("continue A1G, omega 8..25 from 9, through grazings", t, 5, buf);
+    }
+    {
+        Params p = make_version("A1G");
+        p.xI = -0.004;
+        analysis::BifCurve g, f;
+        const Times tg = timed([&] {
+            g = analysis::continue_grazing_curve(p, analysis::ContParam::XI, 9.60049627, Vec2(-0.0156163, -0.00744857), 1,
+                                                 -0.008, -0.002, 1.25e-4);
+        });
+        std::snprintf(buf, sizeof buf, "%zu points", g.points.size());
+        line("grazing curve A1G, xI -8..-2 mm (the plane's half step)", tg, 5, buf);
+        const Times tf = timed([&] {
+            f = analysis::continue_fold_curve(p, analysis::ContParam::XI, 9.548943, Vec2(-0.0157368, 0.00230387), 1, -0.008,
+                                              -0.002, 1.25e-4);
+        });
+        std::snprintf(buf, sizeof buf, "%zu points", f.points.size());
+        line("fold curve A1G, xI -8..-2 mm (the plane's half step)", tf, 5, buf);
+    }
 }
 
 int main(int argc, char** argv) {

@@ -19,6 +19,9 @@ int cmd_continue(const std::vector<std::string>& argv) {
     if (wants_help_tight(argv, "usage: impactlab continue --model A1C --omega-min 5 --omega-max 25 --out DIR [--png FILE]\n\n"
                          "Pseudo-arclength continuation of periodic orbits (stable and unstable) with folds, period doublings\n"
                          "(the period-2k branch switched onto), Neimark-Sacker and grazing located to 1e-7 in the parameter.\n"
+                         "A branch of a G version goes on through a grazing onto the impacting branch (from impact to impact\n"
+                         "while the impacts are slower than 0.05 m/s); each grazing crossed is printed with its scenario and\n"
+                         "the impacting orbit's scaling. A branch back at an earlier orbit ends (\"closed loop\").\n"
                          "Writes DIR/branches.csv (branch,omega,x,v,period,stable; x, v at the section phi = 0) and\n"
                          "DIR/points.csv (kind,omega,x,v,period).\n"
                          "  --omega-min W, --omega-max W   the range [rad/s] (default 5, 25)\n"
@@ -103,6 +106,11 @@ int cmd_continue(const std::vector<std::string>& argv) {
     for (const auto& q : r.points)
         std::printf("%-16s %s = %.9g (+- %.1g), period %d, x = %.6g m, v = %.6g m/s\n", analysis::bif_kind_name(q.kind), pname,
                     q.param, q.precision, q.period, q.y[0], q.y[1]);
+    for (const auto& q : r.points)
+        if (!q.scenario.empty())
+            std::printf("grazing at %s = %.9g crossed onto the impacting branch: %s; |mu| ~ d^%.3f, v- ~ d^%.3f "
+                        "(d: distance from the grazing; the square-root map gives -1, 1)\n",
+                        pname, q.param, q.scenario.c_str(), q.mu_exponent, q.speed_exponent);
     if (a.has("--png")) {
         plot::Figure fig;
         fig.width = 1200;

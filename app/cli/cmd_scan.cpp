@@ -40,6 +40,11 @@ const char* kScanHelp =
     "  --png FILE          one map per measure with its legend\n"
     "  --doubling-from W,X,V  a period-1 doubling at omega W with section point (X, V) [m, m/s], as `continue`\n"
     "                      prints it: continued in the y axis (xI or m0e) and drawn over the maps (x: omega)\n"
+    "  --grazing-from W,X,V[,K]  a grazing of the period-K orbit (default 1) at omega W with section point (X, V),\n"
+    "                      as `continue` prints it: continued in the y axis (the omega where the orbit without\n"
+    "                      the bumper reaches xI) and drawn over the maps, dashed\n"
+    "  --fold-from W,X,V[,K]  a fold of the period-K orbit (default 1) at omega W with section point (X, V), as\n"
+    "                      `continue` prints it: continued in the y axis and drawn over the maps, dotted\n"
     "  --omega W           forcing frequency [rad/s] when neither axis is omega\n"
     "  --start continue|fresh   (default continue)\n"
     "  --transient N, --record N   periods per point (default 20, 70: the CF sweep's)\n"
@@ -88,6 +93,8 @@ int cmd_scan(const std::vector<std::string>& argv) {
     Params p;
     std::string out_path, png, log_path;
     std::vector<double> doubling_from;   // omega, x, v of a period-1 doubling (--doubling-from)
+    std::vector<double> grazing_from;    // omega, x, v, k of a grazing (--grazing-from)
+    std::vector<double> fold_from;       // omega, x, v, k of a fold (--fold-from)
     std::vector<std::vector<ScanPoint>> rows;
     std::vector<int> todo;
     int threads = 1;
@@ -97,7 +104,7 @@ int cmd_scan(const std::vector<std::string>& argv) {
     try {
         const Args a("scan", argv,
                      with_model_flags({"--x", "--y", "--measure", "--out", "--png", "--threads", "--transient", "--record",
-                                       "--start", "--omega", "--doubling-from"}),
+                                       "--start", "--omega", "--doubling-from", "--grazing-from", "--fold-from"}),
                      {"--resume"});
         p = model_from(a);
         tol = tolerances_from(a);
@@ -151,6 +158,24 @@ int cmd_scan(const std::vector<std::string>& argv) {
                 !std::isfinite(w[0] + w[1] + w[2]) || !(w[0] > 0))
                 throw UsageError("scan: option '--doubling-from': expected OMEGA,X,V (a period-1 doubling, as continue prints it)");
             doubling_from = {w[0], w[1], w[2]};
+        }
+        for (const char* flag : {"--grazing-from", "--fold-from"}) {
+            if (!a.has(flag)) continue;
+            const std::string f = flag;
+            const std::string what = f == "--fold-from" ? "fold" : "grazing";
+            if (!a.has("--png")) throw UsageError("scan: " + f + " draws on the PNG: give --png");
+            if (spec.x.param != ScanParam::Omega || spec.y.param == ScanParam::Omega)
+                throw UsageError("scan: " + f + " needs --x omega:... and --y xI:... or m0e:...");
+            if (what == "grazing" && !p.has_bumper()) throw UsageError("scan: --grazing-from needs a model with a bumper");
+            const std::string v = a.str(flag, "");
+            double w[4] = {0, 0, 0, 1};
+            char tail = 0;
+            const int n = std::sscanf(v.c_str(), "%lf,%lf,%lf,%lf%c", &w[0], &w[1], &w[2], &w[3], &tail);
+            if ((n != 3 && n != 4) || !std::isfinite(w[0] + w[1] + w[2] + w[3]) || !(w[0] > 0) || !(w[3] >= 1 && w[3] <= 64) ||
+                w[3] != std::floor(w[3]))
+                throw UsageError("scan: option '" + f + "': expected OMEGA,X,V[,K] (a " + what +
+                                 " of the period-K orbit, as continue prints it)");
+            (what == "fold" ? fold_from : grazing_from) = {w[0], w[1], w[2], w[3]};
         }
         out_path = a.required("--out");
         png = a.str("--png", "");
@@ -278,6 +303,37 @@ int cmd_scan(const std::vector<std::string>& argv) {
             sc.y.push_back(q.q);
         }
         std::fprintf(stderr, "doubling curve: %zu points, ends: %s\n", c.points.size(), c.end.c_str());
+        curves.push_back(std::move(sc));
+    }
+    if (!grazing_from.empty()) {
+        // The grazing continued along the y axis at half its grid step.
+        const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
+        const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
+        const analysis::BifCurve c = analysis::continue_grazing_curve(p, second, grazing_from[0], Vec2(grazing_from[1], grazing_from[2]),
+                                                                      static_cast<int>(grazing_from[3]), spec.y.lo, spec.y.hi, step);
+        ScanCurve sc;
+        sc.label = "grazing, continued (dashed)";
+        sc.dashed = true;
+        for (const auto& q : c.points) {
+            sc.x.push_back(q.omega);
+            sc.y.push_back(q.q);
+        }
+        std::fprintf(stderr, "grazing curve: %zu points, ends: %s\n", c.points.size(), c.end.c_str());
+        curves.push_back(std::move(sc));
+    }
+    if (!fold_from.empty()) {
+        const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
+        const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
+        const analysis::BifCurve c = analysis::continue_fold_curve(p, second, fold_from[0], Vec2(fold_from[1], fold_from[2]),
+                                                                   static_cast<int>(fold_from[3]), spec.y.lo, spec.y.hi, step);
+        ScanCurve sc;
+        sc.label = "fold, continued (dotted)";
+        sc.dotted = true;
+        for (const auto& q : c.points) {
+            sc.x.push_back(q.omega);
+            sc.y.push_back(q.q);
+        }
+        std::fprintf(stderr, "fold curve: %zu points, ends: %s\n", c.points.size(), c.end.c_str());
         curves.push_back(std::move(sc));
     }
     if (!png.empty()) save_scan_png(spec, rows, p.name, png, curves);   // first: a PNG that fails leaves the old CSV

@@ -71,3 +71,76 @@ TEST_CASE("curves: in (omega, m0e) the doubling moves with the forcing and is fo
         CHECK(c.points[i].omega < c.points[i - 1].omega);
     }
 }
+
+TEST_CASE("curves: A1G's grazing curve through (9.6005, xI = -4 mm) bounds the impacting region of the plane scan") {
+    // The free period-1 orbit of the left well reaches a bumper at -4 mm at 9.60049627 rad/s (continue's
+    // grazing); its grazing followed in xI is where the orbit without the bumper peaks at xI.
+    Params p = make_version("A1G");
+    p.xI = -0.004;
+    const BifCurve c = continue_grazing_curve(p, ContParam::XI, 9.60049627, Vec2(-0.0156163, -0.00744857), 1, -0.007,
+                                              -0.004, 5e-4);
+    REQUIRE(c.points.size() == 7);
+    CHECK(c.kind == BifKind::Grazing);
+    for (std::size_t i = 1; i < c.points.size(); ++i) CHECK(c.points[i].omega > c.points[i - 1].omega);   // a higher bumper is reached later
+    // The plane: rows in xI, each a CF sweep in omega from rest with the grid step 0.05 rad/s. Below the curve
+    // (in omega) the cart flies free; the first impacts appear within a grid step of it (a nonsmooth fold:
+    // the free orbit ends there and the sweep jumps onto an impacting one).
+    ScanSpec spec;
+    spec.x = parse_scan_axis("omega:8.5:10.5:41");
+    spec.y = parse_scan_axis("xI:-0.007:-0.004:4");
+    spec.measures.impacts = true;
+    const double grid = (spec.x.hi - spec.x.lo) / (spec.x.n - 1);
+    for (int row = 0; row < spec.y.n; ++row) {
+        const double xI = spec.y.at(row);
+        CAPTURE(xI);
+        double w = NAN;
+        for (const auto& q : c.points)
+            if (std::abs(q.q - xI) < 1e-9) w = q.omega;
+        REQUIRE(std::isfinite(w));
+        const std::vector<ScanPoint> pts = scan_row(p, spec, row);
+        REQUIRE(pts.size() == static_cast<std::size_t>(spec.x.n));
+        int first = -1;
+        for (int i = 0; i < spec.x.n; ++i)
+            if (pts[static_cast<std::size_t>(i)].impacts > 0 && first < 0) first = i;
+        REQUIRE(first >= 0);
+        CAPTURE(spec.x.at(first));
+        CAPTURE(w);
+        // (At -4 mm the sweep's 20-period transient, near the grazing, already touches at 9.60: the impacting
+        // orbits coexist with the free ones down to their fold at 9.549.)
+        CHECK(std::abs(spec.x.at(first) - w) <= grid);
+    }
+}
+
+TEST_CASE("curves: A1G's fold of the impacting period-1 orbit followed in xI is where continue in omega finds it") {
+    // At xI = -4 mm the impacting orbit past the grazing at 9.6005 turns in a fold at 9.548943 (continue).
+    Params p = make_version("A1G");
+    p.xI = -0.004;
+    const BifCurve c = continue_fold_curve(p, ContParam::XI, 9.548943, Vec2(-0.0157368, 0.00230387), 1, -0.0045, -0.003,
+                                           5e-4);
+    CHECK(c.end == "xI range / xI range");   // (towards -4.5 mm the steps are halved: the fold nears its grazing)
+    CHECK(c.kind == BifKind::Fold);
+    int checked = 0;
+    const CurvePoint* pick = &c.points.front();   // the point nearest xI = -3.5 mm
+    for (const CurvePoint& q : c.points)
+        if (std::abs(q.q + 0.0035) < std::abs(pick->q + 0.0035)) pick = &q;
+    CHECK(std::abs(pick->q + 0.0035) < 2.5e-4);
+    for (const CurvePoint& q : c.points) {
+        if (&q != pick) continue;
+        // The one-parameter continuation at that xI, from the free orbit at 9, through the grazing.
+        Params pq = p;
+        pq.xI = q.q;
+        ContinuationSpec spec;
+        spec.lo = 8.0;
+        spec.hi = 12.0;
+        spec.start = 9.0;
+        spec.max_period = 1;
+        const ContinuationResult r = continue_orbits(pq, spec);
+        bool found = false;
+        for (const BifPoint& b : r.points)
+            if (b.kind == BifKind::Fold && std::abs(b.param - q.omega) < 1e-5) found = true;
+        CAPTURE(q.omega);
+        CHECK(found);
+        ++checked;
+    }
+    CHECK(checked == 1);
+}

@@ -5,4 +5,5 @@ set(IMPACTLAB_ANALYSIS_TEST_SOURCES
   analysis/lyapunov_test.cpp
   analysis/basins_test.cpp
   analysis/curves_test.cpp
+  analysis/grazing_test.cpp
 )

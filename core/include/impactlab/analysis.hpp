@@ -94,6 +94,39 @@ Vec2 settle(const Params& p, double omega, const Vec2& y0, int periods, const To
 // The bottom of the left well (x < 0, where F_SA = 0), the usual start of a search [m].
 double left_well(const Params& p);
 
+// ---- Impacting orbits from impact to impact (rigid bumpers) ----------------------------------------------
+
+// A period-k orbit with one rigid impact per k forcing periods, written from impact to impact: the cart hits
+// xI at phase theta with speed v- >= 0, is held for T_imp(v-), leaves with v+ = -kappa(v-) v- and flies (on the
+// rig without the bumper) until phase theta + 2 pi k. The residual is zero when it arrives at xI with v- again.
+// Unlike the stroboscopic map, whose derivative grows as 1/v- near a grazing, these equations are smooth
+// through v- = 0: the grazing orbit is the solution with v- = 0.
+struct ImpactShot {
+    Vec2 residual = Vec2::Zero();        // scaled ((x_end - xI) / kXScale, (v_end - v-) / kVScale)
+    Mat2 J = Mat2::Zero();               // d residual / d (theta [rad], v- / kVScale), if asked for
+    Vec2 section = Vec2::Zero();         // (x, v) at the first phi = 2 pi n after the release
+    double section_phase = 0;            // that 2 pi n [rad]
+};
+ImpactShot impact_shot(const Params& p, double omega, double theta, double v_minus, int k, bool jacobian,
+                       const Tolerances& tol);
+struct ImpactOrbit {
+    bool converged = false;
+    int iterations = 0;
+    double theta = 0, v_minus = 0;       // impact phase [rad] and speed [m/s]
+    double residual = 0;                 // scaled
+    Vec2 section = Vec2::Zero();         // a section point of the orbit (P^k fixes it when the orbit is admissible)
+};
+// Newton on the two equations at fixed parameters, from (theta, v-).
+ImpactOrbit find_impact_orbit(const Params& p, double omega, double theta, double v_minus, int k,
+                              const Tolerances& tol = analysis_tolerances(), int max_iterations = 20);
+// The phase omega t [rad] at which the orbit through section point y reaches its largest x over k periods
+// on the rig without the bumper (the grazing orbit's touch), and that x (if x_max is given).
+double peak_phase(const Params& p, double omega, const Vec2& y, int k, const Tolerances& tol, double* x_max = nullptr);
+// The first rigid impact within k periods from section point y: its phase omega t [rad] and v- [m/s]; false
+// without one.
+bool first_impact(const Params& p, double omega, const Vec2& y, int k, const Tolerances& tol, double& theta,
+                  double& v_minus);
+
 // ---- Continuation -----------------------------------------------------------------------------------------
 
 enum class ContParam : std::uint8_t { Omega, XI, M0e };
@@ -127,6 +160,15 @@ struct BifPoint {
     int branch = 0;
     double precision = 0;        // uncertainty of param: the final bracket or, if larger, how far a crossing
                                  // still moves between the integrator at rtol/10 and rtol/100
+    // A rigid grazing that the continuation crossed onto the impacting branch (G, H): "persistence" when the
+    // impacting orbits lie on the far side (the branch goes through), "nonsmooth fold" when they lie on the
+    // free orbits' side (the two meet there and end). The impacting orbit's largest |multiplier| and impact
+    // speed scale as d^mu_exponent and d^speed_exponent in the distance d = |param - grazing| (fitted over the
+    // orbits with impacts of 1e-4 .. 1e-3 m/s). Nordmark's map, x' = A x + b sqrt(penetration) + mu c, has
+    // impacting fixed points whose sqrt(penetration), hence v-, grows linearly in d, and a derivative that grows
+    // as 1/sqrt(penetration): -1 and +1.
+    std::string scenario;
+    double mu_exponent = NAN, speed_exponent = NAN;
 };
 
 struct ContinuationSpec {
@@ -173,6 +215,18 @@ struct BifCurve {
 };
 BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
                                  double lo, double hi, double step, const Tolerances& sim = analysis_tolerances());
+
+// A grazing followed in two parameters the same way: at each value of the second parameter the omega where
+// the period-k orbit of the rig without its bumper reaches xI with its largest x (a secant on that x minus xI,
+// which is smooth through the grazing). (omega0, y0): a grazing and its orbit's section point, as continue
+// reports it. The curve ends where that orbit is lost.
+BifCurve continue_grazing_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
+                                double lo, double hi, double step, const Tolerances& sim = analysis_tolerances());
+
+// A fold (a multiplier at +1) followed the same way: at each value of the second parameter, Newton on the
+// extended system P^k(y) = y, det(M - I) = 0 in (x, v, omega), from the last two points extrapolated.
+BifCurve continue_fold_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
+                             double lo, double hi, double step, const Tolerances& sim = analysis_tolerances());
 
 // One curve of a branch in a bifurcation diagram's coordinates: a period-k branch gives k curves, one per
 // section point of its orbit (a diagram shows all k of them at each parameter value).

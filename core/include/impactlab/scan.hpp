@@ -95,6 +95,8 @@ std::vector<std::pair<int, std::vector<ScanPoint>>> read_scan_log(std::istream& 
 struct ScanCurve {
     std::string label;
     std::vector<double> x, y;
+    bool dashed = false;   // drawn in dashes (a second kind of curve over the same maps)
+    bool dotted = false;   // drawn in dots (a third)
 };
 // A PNG with one map per measure (period classes, impacts, lambda, x range) and a legend for each; the curves,
 // if any, drawn in black over every map, so that the brute-force regions and the continued boundaries can be

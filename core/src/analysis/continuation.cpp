@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <deque>
 #include <string>
 
@@ -52,12 +53,15 @@ constexpr double kGrazingLayer = 1e-6;
 // A step whose multipliers move more than this is retried shorter: it may have jumped onto another
 // segment of the branch (across a fold onto the impacting orbit) and a crossing would go unseen.
 constexpr double kMaxMultiplierStep = 0.3;
+// Rigid impacts slower than this are followed from impact to impact, faster ones on the stroboscopic map,
+// whose corrector handles them (A1G's window from 16 rad/s, whose slowest impacts are near 0.1 m/s) [m/s].
+constexpr double kHandover = 0.05;
 
 // A converged point of a branch and what the test functions need.
 struct Sol {
     Vec3 u = Vec3::Zero();          // scaled (x / kXScale, v / kVScale, q / q_scale)
     MapResult r;                    // at u, with the monodromy
-    Eigen::Matrix<double, 2, 3> J;  // scaled d G / d u (G = scaled P^k(y) - y)
+    Eigen::Matrix<double, 2, 3> J = Eigen::Matrix<double, 2, 3>::Zero();  // scaled d G / d u (G = scaled P^k(y) - y)
     int iterations = 0;
 };
 
@@ -73,7 +77,9 @@ public:
     ContinuationResult run();
 
 private:
-    struct Job { int period; int parent; Vec3 u; Vec3 t; bool both_ways; };
+    // mode 0: a start (both_ways) or a doubling's switch; 1: a rigid grazing to cross (u: the grazing orbit,
+    // t[2]: the free branch's direction there); 2: onward from a converged point along t, one way.
+    struct Job { int period; int parent; Vec3 u; Vec3 t; bool both_ways; int mode = 0; };
 
     double q_of(const Vec3& u) const { return u[2] * q_scale_; }
     Vec2 y_of(const Vec3& u) const { return Vec2(u[0] * kXScale, u[1] * kVScale); }
@@ -262,6 +268,24 @@ private:
     void locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch,
                 bool off_bumper = false);
     void follow(const Job& job, Branch& br);
+    // From a rigid grazing onto the impacting branch, written from impact to impact (impact_shot) while the
+    // impacts are slow, then on with the stroboscopic map (follow, mode 2).
+    void follow_impacting(const Job& job, Branch& br);
+    // The exponents of a crossed grazing (BifPoint::mu_exponent, speed_exponent) from the impacting orbits
+    // near it; z, t: the grazing orbit from impact to impact and the impacting branch's tangent there.
+    void measure_scaling(BifPoint& gp, const Vec3& z, const Vec3& t, int k);
+    // The grazing orbit at (q_g, y_g) from impact to impact (z) and the impacting branch's tangent there (t).
+    bool grazing_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section);
+    // Its scenario (persistence or nonsmooth fold) and exponents.
+    void describe_grazing(BifPoint& gp, double free_dir, const Vec3& z, const Vec3& t, int k);
+    // A fold, doubling or Neimark-Sacker between two impact-to-impact points (z + s t, s in [0, ds]), located
+    // by bisection on the test function of the stroboscopic monodromy; a and b are the two ends' orbits.
+    void locate_impacting(BifKind kind, const Vec3& z, const Vec3& t, double ds, const Sol& a, const Sol& b, int k,
+                          int branch);
+    // The impact-to-impact equations at z = (theta, v- / kVScale, q / q_scale), with d/dz (q by a forward
+    // difference). False if the flight stalls.
+    bool shot(const Vec3& z, int k, Vec2& G, Eigen::Matrix<double, 2, 3>& J, Vec2& section);
+    bool correct_impacting(const Vec3& z_pred, const Vec3& n, int k, Vec3& z, Eigen::Matrix<double, 2, 3>& J, Vec2& section);
 
     bool cancelled() const { return progress_ && progress_->cancel.load(std::memory_order_relaxed); }
 
@@ -275,6 +299,9 @@ private:
     ContinuationResult result_;
     std::deque<Job> jobs_;
     double branch_fraction_ = 0;
+    int last_located_ = -1;   // index in result_.points of what locate() last found (new or met again)
+    int handoffs_ = 0;   // stroboscopic -> impact to impact switches in this run (bounded against a ping-pong)
+    std::vector<double> reached_;   // grazings reached from the impacting side (where the impacts end)
 };
 
 void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch,
@@ -374,16 +401,21 @@ void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, con
             }
         }
     }
-    BifPoint bp{kind, q_of(best.u) + shift, y_of(best.u), k, branch, precision};
+    BifPoint bp{kind, q_of(best.u) + shift, y_of(best.u), k, branch, precision, {}, NAN, NAN};
     // The same point met again (from the other side of a bubble, on another branch through the same orbit at
     // another of its k phases, or by a failed corrector after its sign change): reported once.
-    for (const BifPoint& q : result_.points) {
+    for (std::size_t qi = 0; qi < result_.points.size(); ++qi) {
+        const BifPoint& q = result_.points[qi];
         if (q.kind != kind || q.period != k) continue;
         if (std::abs(q.param - bp.param) > std::max(1e-5 * q_scale_, 3 * (q.precision + bp.precision))) continue;
         bool same = scaled_norm(q.y - bp.y) < 1e-3;
         for (const Vec2& sp : best.r.sections) same = same || scaled_norm(q.y - sp) < 1e-3;
-        if (same) return;
+        if (same) {
+            last_located_ = static_cast<int>(qi);
+            return;
+        }
     }
+    last_located_ = static_cast<int>(result_.points.size());
     result_.points.push_back(bp);
     if (kind != BifKind::PeriodDoubling || 2 * k > spec_.max_period) return;
     // Switch onto the period-2k branch: it leaves the period-k orbit along the eigenvector of mu = -1.
@@ -393,7 +425,7 @@ void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, con
     e = Vec2(e[0] / kXScale, e[1] / kVScale);
     if (e.norm() == 0) return;
     e.normalize();
-    jobs_.push_back({2 * k, branch, best.u, Vec3(e[0], e[1], 0.0), false});
+    jobs_.push_back({2 * k, branch, best.u, Vec3(e[0], e[1], 0.0), false, 0});
 }
 
 void Continuer::follow(const Job& job, Branch& br) {
@@ -401,13 +433,15 @@ void Continuer::follow(const Job& job, Branch& br) {
     std::vector<BranchPoint> fwd, bwd;
     std::string end_fwd, end_bwd, skipped;
     const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
-    for (int dir = 0; dir < (job.both_ways ? 2 : 1); ++dir) {
+    bool closed = false;
+    for (int dir = 0; dir < (job.both_ways && !closed ? 2 : 1); ++dir) {
         auto& pts = dir == 0 ? fwd : bwd;
         auto& end = dir == 0 ? end_fwd : end_bwd;
+        std::vector<double> arc(pts.size(), 0.0);   // arclength of each point from this direction's start
         Vec3 t = dir == 0 ? job.t : Vec3(-job.t);
         Sol cur;
         double ds = spec_.ds;
-        if (job.both_ways) {   // the start is a converged point of this branch
+        if (job.both_ways || job.mode == 2) {   // the start is a converged point of this branch
             if (!correct(job.u, t, k, cur)) {
                 end = "the start did not converge";
                 continue;
@@ -419,7 +453,7 @@ void Continuer::follow(const Job& job, Branch& br) {
             cur.r = map(job.u, k, true);
             pts.push_back(point_of(cur, k));
         }
-        bool first = !job.both_ways;
+        bool first = !job.both_ways && job.mode != 2;
         bool clipped = false;
         while (true) {
             if (cancelled()) {
@@ -445,10 +479,22 @@ void Continuer::follow(const Job& job, Branch& br) {
                     // the bumperless orbit.
                     const double g = test(BifKind::Grazing, cur);
                     if (work_.has_bumper() && g < 0 && g > -0.1) {
-                        const std::size_t before = result_.points.size();
+                        last_located_ = -1;
                         locate(BifKind::Grazing, cur, t, 0.05, cur, k, br.id, true);
-                        if (result_.points.size() > before)
+                        if (last_located_ >= 0) {
                             end = work_.rigid() ? "grazing (rigid impacts begin)" : "grazing (the corrector cannot step into the contacts)";
+                            // A free orbit touching a rigid bumper: its impacting continuation starts there,
+                            // when the law makes the map continuous at the grazing. H's zero-speed impact still
+                            // holds the cart for T_imp(0) = 6.2 ms, so its map jumps there: no branch through.
+                            const bool continuous_law = work_.rigid() && work_.impact->duration(work_.ip.data(), 0.0) == 0.0;
+                            if (work_.rigid() && !continuous_law)
+                                end = "grazing (rigid impacts begin; a zero-speed impact still sticks for T_imp(0) > 0, "
+                                      "so the map jumps there)";
+                            if (continuous_law && cur.r.impacts == 0) {
+                                const BifPoint& g0 = result_.points[static_cast<std::size_t>(last_located_)];
+                                jobs_.push_back({k, br.id, u_of(g0.y, g0.param), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, 1});
+                            }
+                        }
                     }
                     break;
                 }
@@ -497,13 +543,38 @@ void Continuer::follow(const Job& job, Branch& br) {
                     continue;
                 }
             }
+            // Slow rigid impacts (near a grazing): the stroboscopic map's derivative grows as 1/v-, and its
+            // corrector crawls or jumps across; on from impact to impact, where the grazing can be reached.
+            if (work_.rigid() && !first && next.r.impacts == 1 && cur.r.impacts == 1 && handoffs_ < 16 &&
+                next.r.min_impact_speed < 0.8 * kHandover) {
+                pts.push_back(point_of(next, k));
+                Branch rest;
+                rest.id = br.id;
+                Job on{k, job.parent, next.u, t, false, 3};
+                ++handoffs_;
+                follow_impacting(on, rest);
+                pts.insert(pts.end(), rest.points.begin(), rest.points.end());
+                end = rest.end;
+                break;
+            }
             const Vec3 t_next = tangent_of(next, t);
             if (!first) {
                 for (BifKind kind : {BifKind::Fold, BifKind::PeriodDoubling, BifKind::NeimarkSacker, BifKind::Grazing}) {
                     const double fa = test(kind, cur), fb = test(kind, next);
                     if (!((fa > 0) != (fb > 0)) || !std::isfinite(fa) || !std::isfinite(fb)) continue;
                     if (kind == BifKind::NeimarkSacker && !(complex_pair(cur.r.M) && complex_pair(next.r.M))) continue;
+                    last_located_ = -1;
                     locate(kind, cur, t, ds, next, k, br.id);
+                    // A rigid grazing the corrector itself stepped across (a continuous law): its scenario and
+                    // exponents, from the grazing orbit.
+                    if (kind == BifKind::Grazing && last_located_ >= 0 && work_.rigid() &&
+                        work_.impact->duration(work_.ip.data(), 0.0) == 0.0 && (cur.r.impacts == 0) != (next.r.impacts == 0)) {
+                        BifPoint& gp = result_.points[static_cast<std::size_t>(last_located_)];
+                        Vec3 zg, tg;
+                        Vec2 sec;
+                        if (gp.scenario.empty() && grazing_start(gp.param, gp.y, k, zg, tg, sec))
+                            describe_grazing(gp, cur.r.impacts == 0 ? t[2] : -t[2], zg, tg, k);
+                    }
                 }
             }
             first = false;
@@ -513,6 +584,29 @@ void Continuer::follow(const Job& job, Branch& br) {
                 break;
             }
             pts.push_back(point_of(next, k));
+            arc.push_back((arc.empty() ? 0.0 : arc.back()) + (next.u - cur.u).norm());
+            // Back at an earlier orbit of the branch (or at one of its k phases, the same orbit): a closed
+            // branch, an isola. Without this it would be followed round again up to the point limit.
+            if (pts.size() > 8) {
+                const Vec3 a = cur.u, b = next.u;
+                const double len2 = (b - a).squaredNorm();
+                auto near = [&](const BranchPoint& pj) {
+                    for (const Vec2& sp : pj.sections) {
+                        const Vec3 c = u_of(sp, pj.param);
+                        const double f = len2 > 0 ? std::clamp((c - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
+                        if ((a + f * (b - a) - c).norm() < 1e-3) return true;
+                    }
+                    return false;
+                };
+                // Only orbits at least 0.5 (scaled arclength) behind: a branch's own last steps are always near.
+                for (std::size_t j = 0; j + 8 < pts.size() && !closed; ++j)
+                    if (arc.back() - arc[j] > 0.5) closed = near(pts[j]);
+                if (!closed && dir == 1 && !fwd.empty() && arc.back() > 0.5) closed = near(fwd.front());
+                if (closed) {
+                    end = "closed loop (back at an earlier orbit)";
+                    break;
+                }
+            }
             cur = std::move(next);
             t = t_next;
             if (progress_ && dir == 0) {
@@ -527,8 +621,283 @@ void Continuer::follow(const Job& job, Branch& br) {
     }
     br.points.assign(bwd.rbegin(), bwd.rend());
     br.points.insert(br.points.end(), fwd.begin(), fwd.end());
-    br.end = job.both_ways ? end_bwd + " / " + end_fwd : end_fwd;
+    br.end = job.both_ways && !bwd.empty() ? end_bwd + " / " + end_fwd : job.both_ways && !closed ? end_bwd + " / " + end_fwd : end_fwd;
     if (!skipped.empty()) br.end += " (restarted across " + skipped + ": near-neutral orbit, corrector failed)";
+}
+
+bool Continuer::shot(const Vec3& z, int k, Vec2& G, Eigen::Matrix<double, 2, 3>& J, Vec2& section) {
+    const double q = q_of(z);
+    if (spec_.param == ContParam::Omega && !(q > 0)) return false;
+    try {
+        const double omega = apply(q);
+        ++evaluations_;
+        const ImpactShot a = impact_shot(work_, omega, z[0], z[1] * kVScale, k, true, spec_.sim);
+        const double dq = 1e-6;
+        const double omega_q = apply(q + dq * q_scale_);
+        ++evaluations_;
+        const ImpactShot b = impact_shot(work_, omega_q, z[0], z[1] * kVScale, k, false, spec_.sim);
+        apply(q);
+        G = a.residual;
+        J.leftCols<2>() = a.J;
+        J.col(2) = (b.residual - a.residual) / dq;
+        section = a.section;
+        return G.allFinite() && J.allFinite();
+    } catch (const std::exception&) {
+        apply(q);
+        return false;
+    }
+}
+
+bool Continuer::correct_impacting(const Vec3& z_pred, const Vec3& n, int k, Vec3& z, Eigen::Matrix<double, 2, 3>& J,
+                                  Vec2& section) {
+    z = z_pred;
+    for (int it = 0; it <= kMaxCorrector; ++it) {
+        Vec2 G;
+        if (!shot(z, k, G, J, section)) return false;
+        const double h = n.dot(z - z_pred);
+        if (G.cwiseAbs().maxCoeff() < res_tol_ && std::abs(h) < 1e-9) return true;
+        if (it == kMaxCorrector) break;
+        Mat3 A;
+        A.topRows<2>() = J;
+        A.row(2) = n.transpose();
+        const Vec3 dz = A.fullPivLu().solve(-Vec3(G[0], G[1], h));
+        if (!dz.allFinite() || dz.norm() > 1.0) return false;
+        z += dz;
+    }
+    return false;
+}
+
+void Continuer::follow_impacting(const Job& job, Branch& br) {
+    const int k = job.period;
+    const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
+    Vec3 z, t;
+    Eigen::Matrix<double, 2, 3> J;
+    Vec2 section;
+    if (job.mode == 1) {
+        if (!grazing_start(q_of(job.u), y_of(job.u), k, z, t, section)) {
+            br.end = "the grazing orbit did not converge from impact to impact";
+            return;
+        }
+        for (BifPoint& b : result_.points)
+            if (b.kind == BifKind::Grazing && b.param == q_of(job.u) && b.scenario.empty()) describe_grazing(b, job.t[2], z, t, k);
+        // Its impacting branch already followed to here from another grazing: not again.
+        for (double qr : reached_)
+            if (std::abs(qr - q_of(job.u)) < 1e-5 * q_scale_) {
+                br.end = "reached";
+                return;
+            }
+    } else {
+        // From an impacting orbit of the stroboscopic branch whose impacts are slow (mode 3).
+        double theta = 0, vm = 0;
+        if (!first_impact(work_, apply(q_of(job.u)), y_of(job.u), k, spec_.sim, theta, vm) ||
+            !correct_impacting(Vec3(theta, vm / kVScale, job.u[2]), Vec3(0, 0, 1), k, z, J, section)) {
+            br.end = "the impacting orbit did not converge from impact to impact";
+            return;
+        }
+        t = Vec3(J.row(0).transpose()).cross(Vec3(J.row(1).transpose()));
+        if (!(t.norm() > 0) || !t.allFinite()) {
+            br.end = "singular impact-to-impact equations";
+            return;
+        }
+        t.normalize();
+        if (t[2] * job.t[2] < 0) t = -t;   // the way the stroboscopic branch was going in the parameter
+    }
+    double ds = 0.01;
+    std::string end;
+    bool handed = false, have_prev = false;
+    Sol prev;
+    while (true) {
+        if (cancelled()) { end = "cancelled"; break; }
+        if (static_cast<int>(br.points.size()) >= spec_.max_points) { end = "point limit"; break; }
+        Vec3 zn;
+        Vec2 sec;
+        Eigen::Matrix<double, 2, 3> Jn;
+        if (!correct_impacting(z + ds * t, t, k, zn, Jn, sec)) {
+            ds *= 0.5;
+            if (ds < spec_.ds_min) {
+                end = "Newton failed (impact to impact) near " + std::string(cont_param_name(spec_.param)) + " = " +
+                      std::to_string(q_of(z));
+                break;
+            }
+            continue;
+        }
+        if (zn[1] <= 0 && z[1] > 0) {
+            // The impacts end: v- passes zero between z and zn, a grazing, located by a secant on v- along
+            // the step (the equations are smooth there).
+            double sa = 0, sb = ds, va = z[1], vb = zn[1];
+            Vec3 zm = zn;
+            Vec2 secm = sec;
+            for (int it = 0; it < 60 && std::abs(vb - va) > 0; ++it) {
+                const double sm = sb - vb * (sb - sa) / (vb - va);
+                Eigen::Matrix<double, 2, 3> Jm;
+                if (!correct_impacting(z + sm * t, t, k, zm, Jm, secm)) break;
+                sa = sb; va = vb; sb = sm; vb = zm[1];
+                if (std::abs(vb) * kVScale < 1e-12) break;
+            }
+            BifPoint bp{BifKind::Grazing, q_of(zm), secm, k, br.id, std::abs(sb - sa) * q_scale_, {}, NAN, NAN};
+            bp.precision = std::max(bp.precision, 1e-9 * q_scale_);
+            bool known = false;
+            for (const BifPoint& q : result_.points)
+                if (q.kind == BifKind::Grazing && std::abs(q.param - bp.param) < 1e-5 * q_scale_) known = true;
+            if (!known) result_.points.push_back(bp);
+            reached_.push_back(bp.param);
+            end = "grazing at " + std::string(cont_param_name(spec_.param)) + " = " + std::to_string(bp.param) +
+                  " (the impacts end)";
+            break;
+        }
+        const double q = q_of(zn);
+        if (q < lo || q > hi) { end = std::string(cont_param_name(spec_.param)) + " range"; break; }
+        // The same orbit on the real map: one impact per k periods and a fixed point of P^k. Otherwise the
+        // flight crosses xI in between (a second impact) and the orbit is not the rig's.
+        Sol sp;
+        sp.u = u_of(sec, q);
+        sp.r = map(sp.u, k, true);
+        if (sp.r.impacts != 1 || scaled_norm(sp.r.y - sec) > 1e-5) {
+            end = "the impacting orbit is no longer admissible near " + std::string(cont_param_name(spec_.param)) +
+                  " = " + std::to_string(q) + " (its flight crosses xI)";
+            break;
+        }
+        Vec3 tn = Vec3(Jn.row(0).transpose()).cross(Vec3(Jn.row(1).transpose()));
+        if (tn.norm() > 0 && tn.allFinite()) {
+            tn.normalize();
+            if (tn.dot(t) < 0) tn = -tn;
+        } else {
+            tn = t;
+        }
+        if (have_prev)
+            for (BifKind kind : {BifKind::Fold, BifKind::PeriodDoubling, BifKind::NeimarkSacker}) {
+                const double fa = test(kind, prev), fb = test(kind, sp);
+                if (!std::isfinite(fa) || !std::isfinite(fb) || (fa > 0) == (fb > 0)) continue;
+                if (kind == BifKind::NeimarkSacker && !(complex_pair(prev.r.M) && complex_pair(sp.r.M))) continue;
+                locate_impacting(kind, z, t, ds, prev, sp, k, br.id);
+            }
+        prev = sp;
+        have_prev = true;
+        z = zn;
+        t = tn;
+        section = sec;
+        br.points.push_back(point_of(sp, k));
+        ds = std::min(ds * 1.5, 0.1);
+        // Fast enough for the stroboscopic map (and growing): on with it.
+        if (zn[1] * kVScale > kHandover && t[1] > 0) {
+            handed = true;
+            break;
+        }
+    }
+    if (!handed) {
+        br.end = (job.mode == 1 ? "grazing / " : "slow impacts / ") + end;
+        return;
+    }
+    Branch onward;
+    onward.id = br.id;
+    follow({k, job.parent, u_of(section, q_of(z)), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, 2}, onward);
+    br.points.insert(br.points.end(), onward.points.begin(), onward.points.end());
+    br.end = (job.mode == 1 ? "grazing / " : "slow impacts / ") + onward.end;
+}
+
+void Continuer::locate_impacting(BifKind kind, const Vec3& z, const Vec3& t, double ds, const Sol& a, const Sol& b,
+                                 int k, int branch) {
+    double s_lo = 0, s_hi = ds, f_lo = test(kind, a), f_hi = test(kind, b);
+    Sol lo = a, hi = b;
+    for (int it = 0; it < 80 && std::abs(q_of(hi.u) - q_of(lo.u)) > spec_.locate_tol; ++it) {
+        const double sm = 0.5 * (s_lo + s_hi);
+        Vec3 zm;
+        Eigen::Matrix<double, 2, 3> Jm;
+        Vec2 sec;
+        if (!correct_impacting(z + sm * t, t, k, zm, Jm, sec)) break;
+        Sol m;
+        m.u = u_of(sec, q_of(zm));
+        m.r = map(m.u, k, true);
+        const double fm = test(kind, m);
+        if ((fm > 0) == (f_hi > 0)) { s_hi = sm; hi = m; f_hi = fm; }
+        else { s_lo = sm; lo = m; f_lo = fm; }
+    }
+    // A crossing of the multiplier it names, near +1, -1 or the unit circle on both sides (see locate()).
+    const double target = 1.0 * (kind == BifKind::PeriodDoubling ? -1.0 : 1.0);
+    const double m_lo = crossing_multiplier(kind, lo.r.M), m_hi = crossing_multiplier(kind, hi.r.M);
+    if (!std::isfinite(m_lo) || !std::isfinite(m_hi)) return;
+    if (std::abs(m_lo - target) > kNearCrossing || std::abs(m_hi - target) > kNearCrossing) return;
+    const Sol& best = std::abs(f_lo) < std::abs(f_hi) ? lo : hi;
+    BifPoint bp{kind, q_of(best.u), y_of(best.u), k, branch, std::abs(q_of(hi.u) - q_of(lo.u)), {}, NAN, NAN};
+    for (const BifPoint& q : result_.points)
+        if (q.kind == kind && q.period == k && std::abs(q.param - bp.param) < std::max(1e-5 * q_scale_, 3 * (q.precision + bp.precision)))
+            return;
+    result_.points.push_back(bp);
+}
+
+bool Continuer::grazing_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section) {
+    // The grazing orbit written from impact to impact touches xI at the peak of the bumperless orbit, v- = 0.
+    Eigen::Matrix<double, 2, 3> J;
+    const double theta_g = peak_phase(work_, apply(q_g), y_g, k, spec_.sim);
+    if (!correct_impacting(Vec3(theta_g, 0.0, q_g / q_scale_), Vec3(0, 0, 1), k, z, J, section)) return false;
+    t = Vec3(J.row(0).transpose()).cross(Vec3(J.row(1).transpose()));
+    if (!(t.norm() > 0) || !t.allFinite()) return false;
+    t.normalize();
+    if (t[1] < 0) t = -t;   // onto the impacting side: v- grows
+    return true;
+}
+
+void Continuer::describe_grazing(BifPoint& gp, double free_dir, const Vec3& z, const Vec3& t, int k) {
+    // The free orbits' side: where the bumperless orbit stays below xI, 1e-4 (scaled) either side of the
+    // grazing. The way the branch was going (free_dir) is the fallback: it is not reliable, since a corrector
+    // that steps across a nonsmooth fold turns back in the parameter there.
+    double free_side = free_dir >= 0 ? -1.0 : 1.0;
+    const ImpactModel* law = work_.impact;
+    work_.impact = find_impact("none");
+    int below = 0;
+    double side_below = 0;
+    for (double sgn : {-1.0, 1.0}) {
+        const double q = gp.param + sgn * 1e-4 * q_scale_;
+        OrbitOptions oo;
+        oo.period = k;
+        oo.sim = spec_.sim;
+        const double omega = apply(q);
+        const Orbit o = find_orbit(work_, omega, gp.y, oo);
+        double x_max = 0;
+        if (!o.converged) continue;
+        peak_phase(work_, omega, o.y, k, spec_.sim, &x_max);
+        if (x_max < work_.xI) {
+            ++below;
+            side_below = sgn;
+        }
+    }
+    work_.impact = law;
+    apply(gp.param);
+    if (below == 1) free_side = side_below;
+    gp.scenario = (t[2] >= 0) == (free_side >= 0) ? "nonsmooth fold" : "persistence";
+    measure_scaling(gp, z, t, k);
+}
+
+void Continuer::measure_scaling(BifPoint& gp, const Vec3& z, const Vec3& t, int k) {
+    const double side = t[2] >= 0 ? 1.0 : -1.0;
+    // The scaling: orbits at fixed q whose impacts are 1e-4, 3e-4 and 1e-3 m/s fast (d from the tangent).
+    // Slower impacts are below what the Simulator resolves on the real map (an impact of 1e-7 m/s comes
+    // out at 3e-6: the event is located to about 1e-12 m); faster ones are no longer near the grazing.
+    if (std::abs(t[2]) > 1e-9 && t[1] > 0) {
+        double sx = 0, sy_mu = 0, sy_v = 0, sxx = 0, sxm = 0, sxv = 0;
+        int n = 0;
+        const double dv_dd = t[1] * kVScale / std::abs(t[2]);   // [m/s] per scaled q
+        for (double v_target : {1e-4, 3e-4, 1e-3}) {
+            const double d = v_target / dv_dd;
+            if (!(d < 0.5)) continue;
+            Vec3 zd;
+            Eigen::Matrix<double, 2, 3> Jd;
+            Vec2 sec;
+            const Vec3 pred = z + (side * d / t[2]) * t;
+            if (!correct_impacting(pred, Vec3(0, 0, 1), k, zd, Jd, sec) || !(zd[1] > 0)) continue;
+            const MapResult m = map(u_of(sec, q_of(zd)), k, true);
+            if (m.impacts != 1) continue;   // the orbit is not admissible there
+            const double mu = std::abs(floquet(m.M).mu[0]);
+            const double lx = std::log(d), lm = std::log(mu), lv = std::log(zd[1] * kVScale);
+            sx += lx; sxx += lx * lx; sy_mu += lm; sy_v += lv; sxm += lx * lm; sxv += lx * lv;
+            ++n;
+        }
+        if (n == 3) {
+            const double den = n * sxx - sx * sx;
+            gp.mu_exponent = (n * sxm - sx * sy_mu) / den;
+            gp.speed_exponent = (n * sxv - sx * sy_v) / den;
+        }
+    }
 }
 
 ContinuationResult Continuer::run() {
@@ -550,7 +919,7 @@ ContinuationResult Continuer::run() {
         result_.branches.push_back(b);
         return std::move(result_);
     }
-    jobs_.push_back({spec_.period, -1, u_of(o.y, q0), Vec3(0, 0, 1), q0 > lo && q0 < hi});
+    jobs_.push_back({spec_.period, -1, u_of(o.y, q0), Vec3(0, 0, 1), q0 > lo && q0 < hi, 0});
     if (!(q0 > lo && q0 < hi) && q0 >= hi) jobs_.back().t = Vec3(0, 0, -1);
     while (!jobs_.empty() && static_cast<int>(result_.branches.size()) < spec_.max_branches) {
         const Job job = jobs_.front();
@@ -564,7 +933,7 @@ ContinuationResult Continuer::run() {
         // phase): each is compared.
         bool known = false;
         for (const auto& b : result_.branches)
-            if (b.period == job.period)
+            if (job.mode == 0 && b.period == job.period)
                 for (const auto& pt : b.points)
                     if (std::abs(pt.param / q_scale_ - job.u[2]) < 0.3)
                         for (const Vec2& sp : pt.sections)
@@ -574,7 +943,9 @@ ContinuationResult Continuer::run() {
         br.id = static_cast<int>(result_.branches.size());
         br.period = job.period;
         br.parent = job.parent;
-        follow(job, br);
+        if (job.mode == 1) follow_impacting(job, br);
+        else follow(job, br);
+        if (job.mode == 1 && br.points.empty() && br.end == "reached") continue;
         result_.branches.push_back(std::move(br));
         branch_fraction_ += (1.0 - branch_fraction_) / static_cast<double>(1 + jobs_.size());
     }
@@ -595,3 +966,6 @@ ContinuationResult continue_orbits(const Params& p, const ContinuationSpec& spec
 }
 
 }  // namespace impactlab::analysis
+
+
+

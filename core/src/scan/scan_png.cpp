@@ -172,13 +172,17 @@ void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint
     for (std::size_t k = 0; k < layers.size(); ++k) {
         const plot::Mapping& map = maps[k];
         const double x_end = spec.x.hi + hx;   // not into the legend's margin
-        for (const ScanCurve& c : curves)
+        for (const ScanCurve& c : curves) {
+            double dash_pos = 0;   // pixels along the curve so far
             for (std::size_t i = 0; i + 1 < c.x.size() && i + 1 < c.y.size(); ++i) {
                 const double x0 = map.px(c.x[i]), y0 = map.py(c.y[i]), x1 = map.px(c.x[i + 1]), y1 = map.py(c.y[i + 1]);
                 if (!std::isfinite(x0 + y0 + x1 + y1)) continue;
                 const int n = 1 + static_cast<int>(2 * std::hypot(x1 - x0, y1 - y0));
                 for (int s = 0; s <= n; ++s) {
                     const double f = static_cast<double>(s) / n;
+                    // Dashed: 8 pixels on, 6 off along the curve's length in pixels; dotted: 3 on, 4 off.
+                    if (c.dashed && std::fmod(dash_pos + 0.5 * s, 14.0) >= 8.0) continue;
+                    if (c.dotted && std::fmod(dash_pos + 0.5 * s, 7.0) >= 3.0) continue;   // 3 on, 4 off
                     const int cx = static_cast<int>(std::lround(x0 + f * (x1 - x0))), cy = static_cast<int>(std::lround(y0 + f * (y1 - y0)));
                     for (int r = cy - 1; r <= cy + 1; ++r)
                         for (int cc = cx - 1; cc <= cx + 1; ++cc) {
@@ -189,7 +193,9 @@ void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint
                             px[3] = 255;
                         }
                 }
+                dash_pos += 0.5 * n;
             }
+        }
     }
     plot::save_png(img, path);
 }
