@@ -1,4 +1,4 @@
-#include "data_panel.hpp"
+#include "views/data_panel.hpp"
 
 #include <imgui.h>
 

@@ -1,4 +1,4 @@
-#include "bifurcation_panel.hpp"
+#include "views/bifurcation_panel.hpp"
 
 #include <imgui.h>
 
@@ -18,6 +18,19 @@
 namespace impactlab::gui {
 
 namespace {
+
+// The section points a live omega ramp passed, over the diagram: the paper's EF protocol growing as it runs.
+void draw_ramp_points(Plot& plot, const OmegaRamp& ramp) {
+    const auto& pts = ramp.points();
+    if (pts.empty()) return;
+    // Green, apart from the density image's magma ramp and the live points' cyan.
+    const ImU32 col = IM_COL32(110, 235, 120, 255);
+    struct Dot { double x, y; };
+    plot.scatter(pts.size(), [&](std::size_t i) { return Dot{pts[i].omega, pts[i].x}; }, col, 3.0f);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s ramp: %zu points", ramp.active() ? "live" : "last", pts.size());
+    plot.text(plot.x_range().lo, plot.y_range().hi, buf, col, ImVec2(-0.05f, -1.4f));
+}
 
 double wall_s() {
     using namespace std::chrono;
@@ -562,6 +575,7 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
                           w_mouse);
         if (plot.clicked()) act.omega = w_mouse;
     }
+    if (c.ramp) draw_ramp_points(plot, *c.ramp);
     if (c.overlay) c.overlay(plot);   // continued branches and bifurcation points (named on hover)
     plot.end();
     if (lyap_on_) draw_strip(c, vx, act);

@@ -17,6 +17,7 @@
 #include "impactlab/analysis.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/sweep.hpp"
+#include "omega_ramp.hpp"
 #include "options.hpp"
 #include "plot2d.hpp"
 #include "poincare_map.hpp"
@@ -30,6 +31,7 @@ struct BifurcationContext {
     const History<MapPoint>* live = nullptr; // the Poincare map's settled section points at omega (or null)
     int* protocol = nullptr;                 // the app's settings, which sessions save: 0 CF up, 1 CF down, 2 EF
     int* steps = nullptr;                    // CF omega levels
+    const OmegaRamp* ramp = nullptr;         // the live omega ramp: the section points it passed, in green
     std::function<void(Plot&)> overlay;      // drawn last inside the diagram (the continued branches)
 };
 

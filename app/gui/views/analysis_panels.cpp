@@ -1,4 +1,4 @@
-#include "analysis_panels.hpp"
+#include "views/analysis_panels.hpp"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
