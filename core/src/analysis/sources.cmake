@@ -7,4 +7,5 @@ set(IMPACTLAB_ANALYSIS_SOURCES
   src/analysis/lyapunov.cpp
   src/analysis/basins.cpp
   src/analysis/curves.cpp
+  src/analysis/plane_doubling.cpp
 )
