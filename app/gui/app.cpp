@@ -345,7 +345,8 @@ void App::run_demo(int k) {
         case 5:   // basins: A1G's two attractors at 13 rad/s
             set_version("A1G");
             set_omega(13.0);
-            analysis_.start_basins(analysis_context());
+            analysis_.basins.start(analysis_context());
+            set_panel_visible(PanelId::Basins, true);
             break;
         default: demo_ = 0; return;
     }

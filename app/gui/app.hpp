@@ -233,7 +233,7 @@ private:
     // user's scale to go back to.
     LayoutMode mode_ = LayoutMode::Normal;
     float normal_scale_ = 1.0f;
-    std::array<bool, kPanelCount> panel_visible_{true, true, true, true, true, true};
+    std::array<bool, kPanelCount> panel_visible_ = default_visible();   // on-demand panels: open
     bool controls_visible_ = true;
     std::optional<PanelId> maximised_;
     std::optional<PanelId> hovered_panel_;         // the panel under the mouse at the last frame (key Z)

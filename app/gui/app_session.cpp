@@ -38,8 +38,9 @@ Session App::current_session() const {
     s.ui_scale = mode_ == LayoutMode::Presentation ? normal_scale_ : ui_scale_;   // presenting raised it
     s.presentation = mode_ == LayoutMode::Presentation;
     if (!controls_visible_) s.hidden.push_back("controls");
-    for (int i = 0; i < kPanelCount; ++i)
-        if (!panel_visible_[static_cast<std::size_t>(i)]) s.hidden.push_back(panel_key(static_cast<PanelId>(i)));
+    for (int i = 0; i < kPanelCount; ++i)   // the analysis tiles are not saved (nor their results)
+        if (!panel_visible_[static_cast<std::size_t>(i)] && !on_demand(static_cast<PanelId>(i)))
+            s.hidden.push_back(panel_key(static_cast<PanelId>(i)));
     s.maximised = maximised_ ? panel_key(*maximised_) : "";
     s.presentation_plot = panel_key(featured_);
     s.magnify = magnify_[0];
@@ -89,7 +90,8 @@ void App::apply_session(const Session& s) {
         fonts_dirty_ = true;
     }
     controls_visible_ = true;
-    panel_visible_.fill(true);
+    for (int i = 0; i < kPanelCount; ++i)
+        if (!on_demand(static_cast<PanelId>(i))) panel_visible_[static_cast<std::size_t>(i)] = true;
     for (const std::string& h : s.hidden) {
         if (h == "controls") controls_visible_ = false;
         else if (const auto panel = panel_from_key(h)) panel_visible_[static_cast<std::size_t>(*panel)] = false;

@@ -73,10 +73,13 @@ const char* usage_text() {
            "                     and fit the model to it (with --frames: counted once the fit is done,\n"
            "                     and no model switch unless --switch-model is given)\n"
            "  --plane FILE       show a parameter plane (impactlab scan --out FILE) in the Parameter plane\n"
-           "                     window; a bad file is reported there naming its line (exit 1 with --frames)\n"
+           "                     tile; a bad file is reported there naming its line (exit 1 with --frames)\n"
            "  --continuation     continue the period-1 branch over the diagram's omega range at start (key O)\n"
-           "  --small-plane      compute a 60 x 30 (omega, xI) plane at start (Parameter plane window, F2)\n"
-           "  --basins           compute the basins of attraction at --omega at start (Basins window, F3)\n"
+           "  --continue-here    continue the running orbit over the diagram's range once the Poincare map has\n"
+           "                     settled on it (Shift+O); a chaotic map is an error (exit 1 with --frames)\n"
+           "  --small-plane      compute a 60 x 30 (omega, xI) plane at start (the Parameter plane tile, F2)\n"
+           "  --plane-doubling   continue the first period-1 doubling over the plane (--plane or --small-plane)\n"
+           "  --basins           compute the basins of attraction at --omega at start (the Basins tile, F3)\n"
            "  --session FILE     load a session (File > Load session, Ctrl+O) at start; a bad file is refused\n"
            "                     naming the file, the key (or line) and the problem (exit 2)\n"
            "  --twin             a second cart 1 um to the right of the first, same model (sensitivity)\n"
@@ -277,6 +280,8 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--plane") o.plane = value();
         else if (a == "--continuation") o.continuation = true;
         else if (a == "--small-plane") o.small_plane = true;
+        else if (a == "--plane-doubling") o.plane_doubling = true;
+        else if (a == "--continue-here") o.continue_here = true;
         else if (a == "--basins") o.basins = true;
         else if (a == "--session") o.session = value();
         else if (a == "--save-session") o.save_session = value();

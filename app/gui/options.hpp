@@ -60,6 +60,8 @@ struct Options {
     std::string plane;           // --plane FILE
     bool continuation = false;   // --continuation: the continued branches over the diagram
     bool small_plane = false;    // --small-plane: a 60 x 30 (omega, xI) plane on a worker
+    bool continue_here = false;  // --continue-here: continue the running periodic orbit once the map settles
+    bool plane_doubling = false; // --plane-doubling: the continued doubling over the plane, once it is there
     bool basins = false;         // --basins: the basins at --omega
     // Sessions and clips.
     std::string session;         // --session FILE: load at start (validated before the window opens)

@@ -80,7 +80,7 @@ void App::draw_menu() {
         }
         ImGui::EndMenu();
     }
-    analysis_.menu(analysis_context());
+    apply_analysis(analysis_.menu(analysis_context()));
     if (ImGui::BeginMenu("Help")) {
         if (ImGui::MenuItem("What to try (five demonstrations)...", nullptr, show_guide_)) show_guide_ = !show_guide_;
         if (ImGui::MenuItem("Keyboard shortcuts", "F1")) show_help_ = true;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
 
 #include "app.hpp"
 #include "plot2d.hpp"
@@ -160,10 +161,23 @@ AnalysisContext App::analysis_context() const {
     c.xI = xI_;
     c.diagram_omega = bif_panel_.omega_axis();
     c.ui_scale = ui_scale_;
+    c.plane_open = panel_visible_[static_cast<std::size_t>(PanelId::Plane)];
+    c.basins_open = panel_visible_[static_cast<std::size_t>(PanelId::Basins)];
+    // The live map (not a replayed one): continuation starts from what runs now.
+    if (pc_map_.status() == PoincareMap::Status::Periodic && !pc_map_.points().empty()) {
+        const MapPoint& m = pc_map_.points().back();
+        c.orbit = AnalysisContext::Orbit{m.x, m.v, pc_map_.period()};
+    }
+    c.chaotic = pc_map_.status() == PoincareMap::Status::Chaotic;
     return c;
 }
 
 void App::apply_analysis(const AnalysisAction& a) {
+    for (auto [p, toggle, open] : {std::tuple{PanelId::Plane, a.toggle_plane, a.open_plane},
+                                   std::tuple{PanelId::Basins, a.toggle_basins, a.open_basins}}) {
+        const bool now = panel_visible_[static_cast<std::size_t>(p)];
+        if (toggle || (open && !now)) set_panel_visible(p, !now);
+    }
     if (a.xI) set_xi(*a.xI);
     if (a.omega) set_omega(*a.omega);
     if (a.reset) {

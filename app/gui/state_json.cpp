@@ -39,7 +39,7 @@ bool App::write_state_json(const std::string& path) {
                                }()}});
         j["clicker"] = {{"on", poincare_.clicker()}, {"orbits", std::move(orbits)}};
     }
-    j["guide"] = {{"open", show_guide_}, {"demo", demo_}, {"details", details_}, {"basins_open", analysis_.basins_shown()}};
+    j["guide"] = {{"open", show_guide_}, {"demo", demo_}, {"details", details_}, {"basins_open", panel_visible_[static_cast<std::size_t>(PanelId::Basins)]}};
     {   // The time strip's traces and their y ranges [SI units].
         json traces = json::array(), views = json::array();
         traces.push_back(strip_key(strip_.first()));
@@ -140,13 +140,18 @@ bool App::write_state_json(const std::string& path) {
     }
     j["poincare_points"] = std::move(pts);
     j["session_window"] = session_window_ ? json(session_saving_ ? "save" : "load") : json(nullptr);
+    j["plane"] = analysis_.plane.state();   // the plane shown and the doubling continued over it
     if (const auto& ov = analysis_.overlay()) {   // the continued branches' special points, as the hover names them
         json bif_pts = json::array();
         for (const analysis::BifPoint& b : ov->points)
             bif_pts.push_back({{"kind", analysis::bif_kind_name(b.kind)}, {"omega", b.param}, {"x", b.y[0]}, {"v", b.y[1]},
                                {"period", b.period}, {"precision", b.precision}});
         j["continuation"] = {{"model", ov->model}, {"omega_lo", ov->omega_lo}, {"omega_hi", ov->omega_hi},
-                             {"cancelled", ov->cancelled}, {"curves", ov->curves.size()}, {"points", std::move(bif_pts)}};
+                             {"cancelled", ov->cancelled}, {"curves", ov->curves.size()}, {"points", std::move(bif_pts)},
+                             {"end", ov->end}};
+        if (ov->from_orbit)
+            j["continuation"]["from_orbit"] = {{"omega", ov->start_omega}, {"x", ov->start_x}, {"v", ov->start_v},
+                                               {"period", ov->start_period}};
     } else {
         j["continuation"] = nullptr;
     }

@@ -137,3 +137,21 @@ add_test(NAME gui_clicker
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_clicker.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_clicker)
 set_tests_properties(gui_clicker PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
+
+# The parameter plane as a tile, and the core's continued doubling over it agreeing with the CLI's
+# (gui_plane.sh says what it checks).
+if(TARGET impactlab)
+  add_test(NAME gui_plane
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_plane.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_plane)
+  set_tests_properties(gui_plane PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
+endif()
+
+# Continuation from the running orbit (A1G's period-1 window at 14.5 rad/s) agrees with the CLI's from the same
+# point (gui_continue_here.sh says what it checks).
+if(TARGET impactlab)
+  add_test(NAME gui_continue_here
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_continue_here.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_continue_here)
+  set_tests_properties(gui_continue_here PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "gui")
+endif()
