@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string_view>
 #include <tuple>
 #include <utility>
 
@@ -16,6 +18,7 @@
 #include "param_edit.hpp"
 #include "presets.hpp"
 #include "session.hpp"
+#include "views/strip_keys.hpp"
 
 namespace impactlab::gui {
 
@@ -322,7 +325,7 @@ Options parse_options(const std::vector<std::string>& args) {
             for (std::size_t from = 0;;) {
                 const std::size_t c = list.find(',', from);
                 const std::string q = list.substr(from, c == std::string::npos ? std::string::npos : c - from);
-                if (q != "x" && q != "v" && q != "E" && q != "F" && q != "drive")
+                if (std::find(std::begin(kStripKeys), std::end(kStripKeys), std::string_view(q)) == std::end(kStripKeys))
                     throw OptionsError("--strip: '" + q + "' is not one of x, v, E, F, drive");
                 o.strip.push_back(q);
                 if (c == std::string::npos) break;

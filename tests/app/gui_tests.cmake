@@ -155,3 +155,10 @@ if(TARGET impactlab)
                    $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_continue_here)
   set_tests_properties(gui_continue_here PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "gui")
 endif()
+
+# Session files keep the edited parameters, the strip's traces and the clicker's orbits
+# (gui_session_desk.sh says what it checks).
+add_test(NAME gui_session_desk
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_session_desk.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_session_desk)
+set_tests_properties(gui_session_desk PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
