@@ -83,6 +83,7 @@ const char* usage_text() {
            "  --small-plane      compute a 60 x 30 (omega, xI) plane at start (the Parameter plane tile, F2)\n"
            "  --plane-doubling   continue the first period-1 doubling over the plane (--plane or --small-plane)\n"
            "  --basins           compute the basins of attraction at --omega at start (the Basins tile, F3)\n"
+           "  --basins-box X0:X1:V0:V1  the basins over that box of (x0 [m], v0 [m/s]) (a right-drag on them)\n"
            "  --session FILE     load a session (File > Load session, Ctrl+O) at start; a bad file is refused\n"
            "                     naming the file, the key (or line) and the problem (exit 2)\n"
            "  --twin             a second cart 1 um to the right of the first, same model (sensitivity)\n"
@@ -286,6 +287,17 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--plane-doubling") o.plane_doubling = true;
         else if (a == "--continue-here") o.continue_here = true;
         else if (a == "--basins") o.basins = true;
+        else if (a == "--basins-box") {
+            // x0 on the rail, v0 within 2 m/s (the session files' limits), each range not empty.
+            const std::string& t = value();
+            const auto c = t.find(':', t.find(':') + 1);
+            if (c == std::string::npos) throw OptionsError("--basins-box: '" + t + "' is not X0:X1:V0:V1 (m, m/s)");
+            const auto [x0, x1] = number_pair(a, t.substr(0, c), "X0:X1:V0:V1 (m, m/s)", -0.05, 0.05, -0.05, 0.05);
+            const auto [v0, v1] = number_pair(a, t.substr(c + 1), "X0:X1:V0:V1 (m, m/s)", -2.0, 2.0, -2.0, 2.0);
+            if (!(x0 < x1) || !(v0 < v1)) throw OptionsError("--basins-box: " + t + " is empty (X0 < X1 and V0 < V1 wanted)");
+            o.basins_box = {x0, x1, v0, v1};
+            o.basins = true;
+        }
         else if (a == "--session") o.session = value();
         else if (a == "--save-session") o.save_session = value();
         else if (a == "--clip-out") o.clip_out = value();

@@ -63,6 +63,7 @@ struct Options {
     bool continue_here = false;  // --continue-here: continue the running periodic orbit once the map settles
     bool plane_doubling = false; // --plane-doubling: the continued doubling over the plane, once it is there
     bool basins = false;         // --basins: the basins at --omega
+    std::vector<double> basins_box;   // --basins-box X0:X1:V0:V1 [m, m/s]: the basins over that box (implies --basins)
     // Sessions and clips.
     std::string session;         // --session FILE: load at start (validated before the window opens)
     std::string save_session;    // --save-session FILE: with --frames, written at the end

@@ -140,7 +140,8 @@ bool App::write_state_json(const std::string& path) {
     }
     j["poincare_points"] = std::move(pts);
     j["session_window"] = session_window_ ? json(session_saving_ ? "save" : "load") : json(nullptr);
-    j["plane"] = analysis_.plane.state();   // the plane shown and the doubling continued over it
+    j["plane"] = analysis_.plane.state();
+    j["basins"] = analysis_.basins.state();   // the basins shown: their box, grid and attractors   // the plane shown and the doubling continued over it
     if (const auto& ov = analysis_.overlay()) {   // the continued branches' special points, as the hover names them
         json bif_pts = json::array();
         for (const analysis::BifPoint& b : ov->points)

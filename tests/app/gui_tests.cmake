@@ -162,3 +162,12 @@ add_test(NAME gui_session_desk
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_session_desk.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_session_desk)
 set_tests_properties(gui_session_desk PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
+
+# Basins over a box (--basins-box, a right-drag) are the CLI's over --x-range and --v-range
+# (gui_basins_box.sh says what it checks).
+if(TARGET impactlab)
+  add_test(NAME gui_basins_box
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_basins_box.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_basins_box)
+  set_tests_properties(gui_basins_box PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
+endif()

@@ -2,6 +2,7 @@
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -20,9 +21,20 @@ namespace impactlab::gui {
 
 using namespace maps;
 
+void BasinsPanel::configure(const Options& opt) {
+    want_ = opt.basins;
+    if (opt.basins_box.size() == 4) box_ = Box{opt.basins_box[0], opt.basins_box[1], opt.basins_box[2], opt.basins_box[3]};
+}
+
 void BasinsPanel::start(const AnalysisContext& c) {
     const Params p = *c.params;
-    const analysis::BasinSpec spec = basin_request(p, c.omega, grid_, 2);
+    analysis::BasinSpec spec = basin_request(p, c.omega, grid_, 2);
+    if (box_) {   // as impactlab basins --x-range X0:X1 --v-range V0:V1
+        spec.x_min = box_->x0;
+        spec.x_max = box_->x1;
+        spec.v_min = box_->v0;
+        spec.v_max = box_->v1;
+    }
     job_.start([p, spec](Progress& prog) { return analysis::compute_basins(p, spec, &prog); });
     model_ = c.model;
 }
@@ -70,7 +82,16 @@ AnalysisAction BasinsPanel::draw(const AnalysisContext& c) {
         std::snprintf(label, sizeof label, "Compute at omega = %.2f", c.omega);
         if (ImGui::Button(label)) start(c);
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("Every (x0, v0) of the grid at φ = 0 run to its attractor on a worker (2 threads).");
+            ImGui::SetTooltip("Every (x0, v0) of the grid at φ = 0 run to its attractor on a worker (2 threads).\n"
+                              "Right-drag a box on the map: the basins over that box.");
+        if (box_) {
+            ImGui::SameLine();
+            if (ImGui::Button("Whole window")) {
+                box_.reset();
+                start(c);
+            }
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("Forget the box: the rail left of the bumper, |v0| <= 0.3 m/s.");
+        }
     }
     if (!basins_) {
         ImGui::TextDisabled("No basins yet: compute them at the current ω.");
@@ -113,11 +134,31 @@ AnalysisAction BasinsPanel::draw(const AnalysisContext& c) {
                 dl->AddCircleFilled(p, 2.5f, IM_COL32(255, 255, 255, 255));
             }
         const ImVec2 a = plot.area_min(), b = plot.area_max(), m = ImGui::GetIO().MousePos;
-        if (plot.hovered()) {
+        // A box dragged with the right button: the basins over it, at the same grid.
+        const double mx = plot.x_at(std::clamp(m.x, a.x, b.x)), mv = plot.y_at(std::clamp(m.y, a.y, b.y));
+        if (plot.hovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right)) {
+            dragging_ = true;
+            drag_x_ = mx;
+            drag_v_ = mv;
+        }
+        if (dragging_) {
+            const ImVec2 p0 = plot.to_px(drag_x_, drag_v_), p1 = plot.to_px(mx, mv);
+            const ImVec2 r0(std::min(p0.x, p1.x), std::min(p0.y, p1.y)), r1(std::max(p0.x, p1.x), std::max(p0.y, p1.y));
+            dl->AddRectFilled(r0, r1, IM_COL32(255, 255, 255, 40));
+            dl->AddRect(r0, r1, IM_COL32(255, 255, 255, 230), 0.0f, 0, 1.5f);
+            if (!ImGui::IsMouseDown(ImGuiMouseButton_Right)) {
+                dragging_ = false;
+                if (r1.x - r0.x >= 5.0f && r1.y - r0.y >= 5.0f) {
+                    box_ = Box{std::min(drag_x_, mx), std::max(drag_x_, mx), std::min(drag_v_, mv), std::max(drag_v_, mv)};
+                    start(c);
+                }
+            }
+        } else if (plot.hovered()) {
             const int i = std::clamp(static_cast<int>((m.x - a.x) / (b.x - a.x) * sp.nx), 0, sp.nx - 1);
             const int j = std::clamp(static_cast<int>((b.y - m.y) / (b.y - a.y) * sp.nv), 0, sp.nv - 1);
             const int l = r.label[static_cast<std::size_t>(j) * sp.nx + i];
-            ImGui::SetTooltip("x0 = %.2f mm, v0 = %.1f mm/s: attractor %d\n(click: start the simulation here at ω = %.3f)",
+            ImGui::SetTooltip("x0 = %.2f mm, v0 = %.1f mm/s: attractor %d\n(click: start the simulation here at ω = %.3f;\n"
+                              "right-drag: the basins over a box)",
                               1e3 * r.x0(i), 1e3 * r.v0(j), l, sp.omega);
             if (plot.clicked()) {
                 act.reset = std::make_pair(r.x0(i), r.v0(j));
@@ -147,6 +188,25 @@ AnalysisAction BasinsPanel::draw(const AnalysisContext& c) {
     ImGui::TextDisabled("click: run from there");
     ImGui::EndGroup();
     return act;
+}
+
+nlohmann::json BasinsPanel::state() const {
+    using nlohmann::json;
+    if (!basins_) return {{"computed", false}, {"running", job_.running()}};
+    const analysis::BasinResult& r = *basins_;
+    json ats = json::array();
+    for (const analysis::Attractor& at : r.attractors)
+        ats.push_back({{"kind", analysis::attractor_kind_name(at.kind)}, {"period", at.period}, {"cells", at.cells}});
+    return {{"computed", true},
+            {"running", job_.running()},
+            {"model", model_},
+            {"omega", r.spec.omega},
+            {"x_range", {r.spec.x_min, r.spec.x_max}},
+            {"v_range", {r.spec.v_min, r.spec.v_max}},
+            {"nx", r.spec.nx},
+            {"nv", r.spec.nv},
+            {"cancelled", r.cancelled},
+            {"attractors", std::move(ats)}};
 }
 
 }  // namespace impactlab::gui

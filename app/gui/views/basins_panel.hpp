@@ -20,8 +20,12 @@ public:
     BasinsPanel(const BasinsPanel&) = delete;
     BasinsPanel& operator=(const BasinsPanel&) = delete;
 
-    void configure(const Options& opt) { want_ = opt.basins; }   // --basins: begun at the first frame
+    // --basins, --basins-box: begun at the first frame.
+    void configure(const Options& opt);
+    // At the running omega, over the box dragged (or given), else over the default window (the rail left of
+    // the bumper, |v0| <= 0.3 m/s).
     void start(const AnalysisContext& c);
+    nlohmann::json state() const;   // for --state-json
     bool busy() const { return want_ || job_.running(); }
     // Every frame, drawn or not: starts what the command line asked for and takes the worker's result.
     AnalysisAction poll(const AnalysisContext& c, std::string& startup_error);
@@ -35,6 +39,12 @@ private:
     std::string model_;
     bool want_ = false;
     int grid_ = 80;
+    struct Box {
+        double x0, x1, v0, v1;   // [m], [m/s]
+    };
+    std::optional<Box> box_;     // the user's box (a right-drag, --basins-box)
+    bool dragging_ = false;
+    double drag_x_ = 0, drag_v_ = 0;   // where the drag began
     unsigned tex_ = 0;
     bool dirty_ = true;
 };
