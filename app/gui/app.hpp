@@ -237,6 +237,7 @@ private:
     bool controls_visible_ = true;
     std::optional<PanelId> maximised_;
     std::optional<PanelId> hovered_panel_;         // the panel under the mouse at the last frame (key Z)
+    std::optional<PanelId> focus_tab_;             // an analysis tile just opened: its tab comes to the front
     PanelId featured_ = PanelId::Phase;             // presentation mode's plot
     std::array<PanelId, kPanelCount> tile_tab_{};   // the active tab of the tile whose first panel is the index
     double magnify_[2] = {1.0, 3.0};                // the rig's displacement magnification: normal, presentation

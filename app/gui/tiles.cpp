@@ -86,8 +86,8 @@ void App::configure_layout() {
     if (opt_.magnify > 0) set_magnification(opt_.magnify);   // the starting mode's
     if (const auto p = panel_from_key(opt_.maximise)) maximised_ = *p;
     // The analysis tiles open with what the command line asks of them.
-    if (!opt_.plane.empty() || opt_.small_plane) panel_visible_[static_cast<std::size_t>(PanelId::Plane)] = true;
-    if (opt_.basins) panel_visible_[static_cast<std::size_t>(PanelId::Basins)] = true;
+    if (!opt_.plane.empty() || opt_.small_plane) set_panel_visible(PanelId::Plane, true);
+    if (opt_.basins) set_panel_visible(PanelId::Basins, true);
 }
 
 void App::toggle_maximised(PanelId p) {
@@ -188,14 +188,17 @@ void App::draw_tile(const Tile& tile) {
         if (tile.panels.size() == 1) {
             draw_panel(active);
         } else if (ImGui::BeginTabBar("##tabs", ImGuiTabBarFlags_FittingPolicyScroll)) {
+            const bool focus = focus_tab_ && std::find(tile.panels.begin(), tile.panels.end(), *focus_tab_) != tile.panels.end();
             for (PanelId p : tile.panels) {
-                if (ImGui::BeginTabItem((tab_label(p) + "###" + panel_key(p)).c_str())) {
+                const ImGuiTabItemFlags flags = focus && p == *focus_tab_ ? ImGuiTabItemFlags_SetSelected : 0;
+                if (ImGui::BeginTabItem((tab_label(p) + "###" + panel_key(p)).c_str(), nullptr, flags)) {
                     tile_tab_[key] = p;
                     draw_panel(p);
                     ImGui::EndTabItem();
                 }
             }
             ImGui::EndTabBar();
+            if (focus) focus_tab_.reset();
         }
     }
     ImGui::End();
@@ -246,6 +249,9 @@ void App::draw_controls() {
 void App::set_panel_visible(PanelId p, bool on) {
     panel_visible_[static_cast<std::size_t>(p)] = on;
     if (!on && maximised_ == p) maximised_.reset();
+    // An analysis tile opened where the layout has no room makes a tab: it comes to the front, or F2 would
+    // seem to do nothing.
+    if (on && on_demand(p)) focus_tab_ = p;
 }
 
 LayoutRequest App::layout_request(const Rect& area) const {
