@@ -68,6 +68,7 @@ const char* usage_text() {
            "                     EF: the ramp ends at W1)\n"
            "  --bif-box W0:W1    once the first diagram is done, compute [W0, W1] as a box dragged on it with\n"
            "                     the right mouse button does (the same steps over the narrower range)\n"
+           "  --bif-y x|v        the diagram's quantity at the sections: x (default) or v\n"
            "  --bif-lyapunov     the lambda_max(omega) strip under the diagram, computed with it (slow)\n"
            "  --lyap-steps N     omegas of that strip, 5..300 (default 60)\n"
            "  --bif-nowait       with --frames: count the frames while the diagram computes (a screenshot\n"
@@ -278,6 +279,10 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--bif-box") std::tie(o.bif_box_lo, o.bif_box_hi) = omega_range(a, value(), 0.02);
         else if (a == "--ramp")
             std::tie(o.ramp_to, o.ramp_rate) = number_pair(a, value(), "W1:RATE (target rad/s : rad/s per s)", 0.0, 30.0, 1e-3, 2.0);
+        else if (a == "--bif-y") {
+            o.bif_y = value();
+            if (o.bif_y != "x" && o.bif_y != "v") throw OptionsError("--bif-y: '" + o.bif_y + "' is not x or v");
+        }
         else if (a == "--bif-lyapunov") o.bif_lyapunov = true;
         else if (a == "--lyap-steps") o.lyap_steps = integer(a, value(), 5, 300);
         else if (a == "--bif-nowait") o.bif_nowait = true;

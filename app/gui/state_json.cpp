@@ -165,6 +165,8 @@ bool App::write_state_json(const std::string& path) {
                                {"stale", b.stale}, {"progress", number(b.progress)}}
                         : json{{"model", nullptr}, {"running", b.running}};
         d["view_omega"] = {number(b.view_omega.lo), number(b.view_omega.hi)};
+        d["y"] = b.y_is_v ? "v" : "x";
+        d["view_y"] = {number(b.view_y.lo), number(b.view_y.hi)};
         d["range_error"] = b.range_error;
         d["live_points"] = {{"total", b.live.total}, {"in_view", b.live.in_view}, {"beyond", b.live.beyond},
                             {"above", b.live.above}, {"below", b.live.below}};

@@ -171,3 +171,12 @@ if(TARGET impactlab)
                    $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_basins_box)
   set_tests_properties(gui_basins_box PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
 endif()
+
+# The bifurcation diagram over v as well as x, fitted to the CLI's section points of the same sweep
+# (gui_diagram_v.sh says what it checks).
+if(TARGET impactlab)
+  add_test(NAME gui_diagram_v
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_diagram_v.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_diagram_v)
+  set_tests_properties(gui_diagram_v PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
+endif()
