@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <string_view>
 #include <tuple>
 #include <utility>
@@ -17,6 +18,7 @@
 #include "layout.hpp"
 #include "param_edit.hpp"
 #include "presets.hpp"
+#include "model_file.hpp"
 #include "session.hpp"
 #include "views/strip_keys.hpp"
 
@@ -28,7 +30,9 @@ const char* usage_text() {
            "Interactive visualiser of the forced impact oscillator: the rig animated, phase portrait,\n"
            "Poincare map, potential well, x(t) and bifurcation diagrams, all live.\n"
            "\n"
-           "  --model NAME       model version: A1C, A1C1, A1G, A1H, A3C, A3C1, A3G, A3H (default A1H)\n"
+           "  --model NAME       model version: A1C, A1C1, A1G, A1H, A3C, A3C1, A3G, A3H (default A1H), or a\n"
+           "                     parameter file FILE.json as the CLI reads it (its version, the Parameters\n"
+           "                     panel's values and x_I; anything else it holds is refused, naming the key)\n"
            "  --omega W          forcing frequency [rad/s], 0..30 (default 9)\n"
            "  --xI X             bumper position [m], -0.02..0.02 (default 0)\n"
            "  --x0 X, --v0 V     initial state [m], [m/s] (default -0.011, 0: the left well)\n"
@@ -194,6 +198,8 @@ std::string version(const std::string& flag, const std::string& name) {
 
 Options parse_options(const std::vector<std::string>& args) {
     Options o;
+    std::optional<GuiModel> model_file;   // --model FILE.json
+    bool xI_given = false;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> const std::string& {
@@ -206,9 +212,27 @@ Options parse_options(const std::vector<std::string>& args) {
             if (a == f && std::find(args.begin(), args.begin() + static_cast<std::ptrdiff_t>(i), a) != args.begin() + static_cast<std::ptrdiff_t>(i))
                 throw OptionsError(a + ": given twice");
         if (a == "--help" || a == "-h") o.help = true;
-        else if (a == "--model") o.model = version(a, value());
+        else if (a == "--model") {
+            const std::string& v = value();
+            if (v.size() > 5 && v.substr(v.size() - 5) == ".json") {   // as every CLI --model: a parameter file
+                try {
+                    model_file = gui_model_from_file(v);
+                } catch (const ModelFileError& e) {
+                    throw OptionsError(std::string("--model: ") + e.what());
+                }
+                o.model = model_file->version;
+                o.model_file = v;
+            } else {
+                o.model = version(a, v);
+                model_file.reset();
+                o.model_file.clear();
+            }
+        }
         else if (a == "--omega") o.omega = number(a, value(), 0.0, 30.0);
-        else if (a == "--xI" || a == "--xi") o.xI = number(a, value(), -0.02, 0.02);
+        else if (a == "--xI" || a == "--xi") {
+            o.xI = number(a, value(), -0.02, 0.02);
+            xI_given = true;
+        }
         else if (a == "--x0") o.x0 = number(a, value(), -0.05, 0.05);
         else if (a == "--v0") o.v0 = number(a, value(), -2.0, 2.0);
         else if (a == "--speed") o.speed = number(a, value(), 0.01, 100.0);
@@ -377,6 +401,10 @@ Options parse_options(const std::vector<std::string>& args) {
         if (static_cast<std::size_t>(n) > count)
             throw OptionsError(std::string(flag) + ": " + std::to_string(n) + " is out of range [1, " +
                                std::to_string(count) + "] for " + o.model);
+    }
+    if (model_file) {   // the file's parameters first (a --param after them wins), its x_I unless --xI is given
+        o.params.insert(o.params.begin(), model_file->params.begin(), model_file->params.end());
+        if (!xI_given) o.xI = model_file->xI;
     }
     {   // --param: each value as the panel would take it, on the model given (--model may come after it)
         Params p = make_version(o.model);

@@ -23,6 +23,7 @@ bool App::write_state_json(const std::string& path) {
     using nlohmann::json;
     json j;
     j["model"] = model_name();
+    j["model_file"] = opt_.model_file.empty() ? json(nullptr) : json(opt_.model_file);   // --model FILE.json
     {   // The Poincare clicker's orbits: where each started, its section points, the last of them.
         json orbits = json::array();
         for (const ClickedOrbit& o : poincare_.orbits())

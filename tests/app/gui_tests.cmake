@@ -180,3 +180,11 @@ if(TARGET impactlab)
                    $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_diagram_v)
   set_tests_properties(gui_diagram_v PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
 endif()
+
+# --model FILE.json read by the core's parser as the CLI reads it (gui_model_json.sh says what it checks).
+if(TARGET impactlab)
+  add_test(NAME gui_model_json
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_model_json.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_model_json)
+  set_tests_properties(gui_model_json PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "gui")
+endif()
