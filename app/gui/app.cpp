@@ -194,6 +194,10 @@ bool App::init(std::string& error) {
     if (!opt_.ghost.empty()) ghost_impact_ = index_of_impact(make_version(opt_.ghost).impact);
     if (opt_.twin) set_companion(CompanionMode::Twin);
     else if (!opt_.ghost.empty()) set_companion(CompanionMode::Ghost);
+    if (!opt_.browse.empty()) {   // the Load session window, its browser on that folder
+        open_session_window(false);
+        session_browser_.open_dir(opt_.browse);
+    }
     if (!opt_.session.empty() && !load_session_file(opt_.session)) {
         if (opt_.frames > 0) {   // headless: checked before the window opened already
             error = session_error_;

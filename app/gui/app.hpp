@@ -27,6 +27,7 @@
 #include "poincare_map.hpp"
 #include "presets.hpp"
 #include "replay.hpp"
+#include "views/file_browser.hpp"
 #include "views/guide_panel.hpp"
 #include "views/params_panel.hpp"
 #include "views/phase_panel.hpp"
@@ -301,6 +302,7 @@ private:
     bool session_window_ = false, session_saving_ = true;
     int session_request_ = 0;   // 1 save, 2 load (after the panels drew)
     char session_path_[512] = "impactlab-session.json";
+    FileBrowser session_browser_{{".json"}};   // the session window's list of the folder's .json files
     std::string session_error_;
 };
 

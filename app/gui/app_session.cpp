@@ -188,7 +188,9 @@ void App::draw_session_window() {
         if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 24);
         const bool enter = ImGui::InputText("file", session_path_, sizeof session_path_, ImGuiInputTextFlags_EnterReturnsTrue);
-        if (ImGui::Button(session_saving_ ? "Save" : "Load") || enter) session_request_ = session_saving_ ? 1 : 2;
+        // The session files beside the path: a click picks one, a double-click also saves or loads it.
+        const bool picked = session_browser_.draw("##session_files", session_path_, sizeof session_path_);
+        if (ImGui::Button(session_saving_ ? "Save" : "Load") || enter || picked) session_request_ = session_saving_ ? 1 : 2;
         ImGui::SameLine();
         if (ImGui::Button("Close")) session_window_ = false;
         if (!session_error_.empty()) {

@@ -89,6 +89,7 @@ const char* usage_text() {
            "  --plane-doubling   continue the first period-1 doubling over the plane (--plane or --small-plane)\n"
            "  --basins           compute the basins of attraction at --omega at start (the Basins tile, F3)\n"
            "  --basins-box X0:X1:V0:V1  the basins over that box of (x0 [m], v0 [m/s]) (a right-drag on them)\n"
+           "  --browse DIR       open File > Load session on DIR: its folders and .json files, listed\n"
            "  --session FILE     load a session (File > Load session, Ctrl+O) at start; a bad file is refused\n"
            "                     naming the file, the key (or line) and the problem (exit 2)\n"
            "  --twin             a second cart 1 um to the right of the first, same model (sensitivity)\n"
@@ -328,6 +329,7 @@ Options parse_options(const std::vector<std::string>& args) {
             o.basins = true;
         }
         else if (a == "--session") o.session = value();
+        else if (a == "--browse") o.browse = value();
         else if (a == "--save-session") o.save_session = value();
         else if (a == "--clip-out") o.clip_out = value();
         else if (a == "--clip-seconds") o.clip_seconds = number(a, value(), 0.1, 60.0);

@@ -12,6 +12,7 @@ struct OptionsError : std::runtime_error { using std::runtime_error::runtime_err
 
 struct Options {
     std::string model = "A1H";
+    std::string browse;          // --browse DIR: the Load session window open on DIR's session files
     std::string model_file;      // --model FILE.json: the file (model is its version, params its values)
     double omega = 9.0;          // [rad/s]
     double xI = 0.0;             // [m]

@@ -141,6 +141,7 @@ bool App::write_state_json(const std::string& path) {
     }
     j["poincare_points"] = std::move(pts);
     j["session_window"] = session_window_ ? json(session_saving_ ? "save" : "load") : json(nullptr);
+    j["session_browser"] = session_window_ ? session_browser_.state() : json(nullptr);   // the files it lists
     j["plane"] = analysis_.plane.state();
     j["basins"] = analysis_.basins.state();   // the basins shown: their box, grid and attractors   // the plane shown and the doubling continued over it
     if (const auto& ov = analysis_.overlay()) {   // the continued branches' special points, as the hover names them

@@ -188,3 +188,9 @@ if(TARGET impactlab)
                    $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_model_json)
   set_tests_properties(gui_model_json PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "gui")
 endif()
+
+# The session window's file browser (gui_browser.sh says what it checks).
+add_test(NAME gui_browser
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_browser.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_browser)
+set_tests_properties(gui_browser PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "gui")
