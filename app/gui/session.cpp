@@ -285,23 +285,21 @@ Session session_from_json(const json& j, const Session& base, const std::string&
         // Each value as the Parameters panel would take it, on the session's model: the core's validate()
         // decides, and its words name the problem.
         if (!ps->is_object()) top.fail("params", std::string("expected an object of numbers, got ") + ps->type_name());
-        {
-            Params p = make_version(s.model);
-            std::vector<std::string> keys;
-            for (const EditableParam& e : editable_params(p)) keys.push_back(e.key);
-            s.params.clear();
-            for (const auto& item : ps->items()) {
-                const std::string key = "params." + item.key();
-                if (std::find(keys.begin(), keys.end(), item.key()) == keys.end()) {
-                    std::string all;
-                    for (const std::string& k : keys) all += (all.empty() ? "" : ", ") + k;
-                    top.fail_at(key, "not a parameter of " + s.model + " (one of " + all + ")");
-                }
-                if (!item.value().is_number()) top.fail_at(key, std::string("expected a number, got ") + item.value().type_name());
-                std::string error;
-                if (!set_param(p, item.key(), item.value().get<double>(), error)) top.fail_at(key, error);
-                s.params.emplace_back(item.key(), item.value().get<double>());
+        Params p = make_version(s.model);
+        std::vector<std::string> keys;
+        for (const EditableParam& e : editable_params(p)) keys.push_back(e.key);
+        s.params.clear();
+        for (const auto& item : ps->items()) {
+            const std::string key = "params." + item.key();
+            if (std::find(keys.begin(), keys.end(), item.key()) == keys.end()) {
+                std::string all;
+                for (const std::string& k : keys) all += (all.empty() ? "" : ", ") + k;
+                top.fail_at(key, "not a parameter of " + s.model + " (one of " + all + ")");
             }
+            if (!item.value().is_number()) top.fail_at(key, std::string("expected a number, got ") + item.value().type_name());
+            std::string error;
+            if (!set_param(p, item.key(), item.value().get<double>(), error)) top.fail_at(key, error);
+            s.params.emplace_back(item.key(), item.value().get<double>());
         }
     }
     if (const json* st = top.find("strip")) {
