@@ -169,6 +169,7 @@ AnalysisContext App::analysis_context() const {
         c.orbit = AnalysisContext::Orbit{m.x, m.v, pc_map_.period()};
     }
     c.chaotic = pc_map_.status() == PoincareMap::Status::Chaotic;
+    c.sim_time = have_last_ ? last_.t : 0.0;
     return c;
 }
 

@@ -5,8 +5,8 @@
 # point over the diagram's range; --state-json's `continuation` must name that start (period 1 at
 # omega = 14.5) and list the same special points (kind, period, omega to 1e-6) as `impactlab continue
 # --omega-start 14.5 --from X,V --period 1` from the same point, with a period-1 fold on each side of 14.5
-# rad/s (the window's two ends, 11.96 and 18.32). In chaos (A1G at 18 rad/s from rest) it exits 1 naming
-# the flag. Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
+# rad/s (the window's two ends, 11.96 and 18.32). In chaos (A1G at 18 rad/s from rest, a map that has said
+# chaos for 60 s of simulated time) it exits 1 naming the flag. Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
 # usage: gui_continue_here.sh IMPACTLAB_GUI IMPACTLAB OUT_DIR
 gui="$1"; cli="$2"; dir="$3"
 TEST=gui_continue_here
@@ -20,7 +20,7 @@ from=$(python3 -c "import json,sys; o=json.load(open(sys.argv[1]))['continuation
 "$cli" continue --model A1G --omega-min 0.5 --omega-max 25 --omega-start 14.5 --from "$from" --period 1 --out "$dir/cli" \
     >"$dir/cli.log" 2>&1 || { cat "$dir/cli.log"; echo "$TEST: impactlab continue failed"; exit 1; }
 
-gui_exec chaos --model A1G --omega 18 --warmup 200 --continue-here --frames 5
+gui_exec chaos --model A1G --omega 18 --warmup 200 --speed 100 --continue-here --frames 5
 if [ $rc -ne 1 ] || ! grep -q -- "--continue-here" "$dir/chaos.log"; then
     cat "$dir/chaos.log"; echo "$TEST: in chaos --continue-here should exit 1 naming the flag, got $rc"; exit 1
 fi

@@ -164,7 +164,12 @@ AnalysisAction AnalysisPanels::poll(const AnalysisContext& c) {
     AnalysisAction act;
     // Asked for on the command line: begun at the first frame, when the context exists.
     if (std::exchange(want_cont_, false)) start_continuation(c);
-    if (want_here_ && (c.orbit || c.chaotic || ++here_wait_ > 6000)) {   // about 100 s of frames to settle
+    // A map on its way to a periodic orbit may call its transient chaos first: chaos is the answer once it
+    // has lasted 60 s of simulated time (about a hundred forcing periods); 20000 frames at most in all.
+    if (!c.chaotic) here_chaos_since_ = -1;
+    else if (here_chaos_since_ < 0) here_chaos_since_ = c.sim_time;
+    const bool chaos_lasts = here_chaos_since_ >= 0 && c.sim_time - here_chaos_since_ > 60.0;
+    if (want_here_ && (c.orbit || chaos_lasts || ++here_wait_ > 20000)) {
         want_here_ = false;
         if (std::string err = start_continuation_here(c); !err.empty()) {
             act.toast = err;

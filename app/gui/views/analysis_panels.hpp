@@ -58,6 +58,7 @@ private:
     bool want_cont_ = false;   // asked for at start
     bool want_here_ = false;   // --continue-here: once the map has settled
     long here_wait_ = 0;       // frames waited for it
+    double here_chaos_since_ = -1;   // [s] simulated time since when the map has said chaos (-1: it has not)
     std::string startup_error_;
 };
 

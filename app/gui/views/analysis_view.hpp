@@ -27,6 +27,7 @@ struct AnalysisContext {
     };
     std::optional<Orbit> orbit;
     bool chaotic = false;
+    double sim_time = 0;   // [s] the newest sample's
 };
 
 // What a click asked for: the app sends it to the simulation thread, or opens and closes the tiles.
