@@ -16,6 +16,7 @@
 #include "common.hpp"
 #include "impactlab/analysis.hpp"
 #include "impactlab/input_file.hpp"
+#include "impactlab/plane_doubling.hpp"
 #include "impactlab/scan.hpp"
 
 #ifdef IMPACTLAB_HAVE_MPI
@@ -39,7 +40,8 @@ const char* kScanHelp =
     "  --out FILE          CSV: the axes, then one column per measure, x fastest (required)\n"
     "  --png FILE          one map per measure with its legend\n"
     "  --doubling-from W,X,V  a period-1 doubling at omega W with section point (X, V) [m, m/s], as `continue`\n"
-    "                      prints it: continued in the y axis (xI or m0e) and drawn over the maps (x: omega)\n"
+    "                      prints it: continued in the y axis (xI or m0e) and drawn over the maps (x: omega);\n"
+    "                      `auto`: the first one over the x axis's omega range, found by continuation\n"
     "  --grazing-from W,X,V[,K]  a grazing of the period-K orbit (default 1) at omega W with section point (X, V),\n"
     "                      as `continue` prints it: continued in the y axis (the omega where the orbit without\n"
     "                      the bumper reaches xI) and drawn over the maps, dashed\n"
@@ -95,6 +97,7 @@ int cmd_scan(const std::vector<std::string>& argv) {
     std::vector<double> doubling_from;   // omega, x, v of a period-1 doubling (--doubling-from)
     std::vector<double> grazing_from;    // omega, x, v, k of a grazing (--grazing-from)
     std::vector<double> fold_from;       // omega, x, v, k of a fold (--fold-from)
+    bool doubling_auto = false;          // --doubling-from auto: found by doubling_over_plane
     std::vector<std::vector<ScanPoint>> rows;
     std::vector<int> todo;
     int threads = 1;
@@ -153,11 +156,15 @@ int cmd_scan(const std::vector<std::string>& argv) {
                 throw UsageError("scan: --doubling-from needs --x omega:... and --y xI:... or m0e:...");
             const std::string v = a.str("--doubling-from", "");
             double w[3];
-            char tail = 0;
-            if (std::sscanf(v.c_str(), "%lf,%lf,%lf%c", &w[0], &w[1], &w[2], &tail) != 3 ||
-                !std::isfinite(w[0] + w[1] + w[2]) || !(w[0] > 0))
-                throw UsageError("scan: option '--doubling-from': expected OMEGA,X,V (a period-1 doubling, as continue prints it)");
-            doubling_from = {w[0], w[1], w[2]};
+            if (v == "auto") {   // the first period-1 doubling over the x axis's omega range, found by continuation
+                doubling_auto = true;
+            } else {
+                char tail = 0;
+                if (std::sscanf(v.c_str(), "%lf,%lf,%lf%c", &w[0], &w[1], &w[2], &tail) != 3 ||
+                    !std::isfinite(w[0] + w[1] + w[2]) || !(w[0] > 0))
+                    throw UsageError("scan: option '--doubling-from': expected OMEGA,X,V (a period-1 doubling, as continue prints it)");
+                doubling_from = {w[0], w[1], w[2]};
+            }
         }
         for (const char* flag : {"--grazing-from", "--fold-from"}) {
             if (!a.has(flag)) continue;
@@ -290,12 +297,22 @@ int cmd_scan(const std::vector<std::string>& argv) {
 #endif
     write_scan_csv(spec, rows, *out);
     std::vector<ScanCurve> curves;
-    if (!doubling_from.empty()) {
+    if (!doubling_from.empty() || doubling_auto) {
         // The doubling continued along the y axis at half its grid step, drawn over the maps.
         const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
         const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
-        const analysis::BifCurve c = analysis::continue_doubling_curve(
-            p, second, doubling_from[0], Vec2(doubling_from[1], doubling_from[2]), 1, spec.y.lo, spec.y.hi, step);
+        analysis::BifCurve c;
+        if (doubling_auto) {
+            const analysis::PlaneDoubling d =
+                analysis::doubling_over_plane(p, {second, spec.x.lo, spec.x.hi, spec.y.lo, spec.y.hi, step});
+            if (!d.found) std::fprintf(stderr, "doubling curve: %s\n", d.note.c_str());
+            else std::fprintf(stderr, "doubling curve: started at the period-1 doubling at omega = %.7f, (x, v) = (%.7f, %.7f)\n",
+                              d.omega0, d.y0[0], d.y0[1]);
+            c = d.curve;
+        } else {
+            c = analysis::continue_doubling_curve(p, second, doubling_from[0], Vec2(doubling_from[1], doubling_from[2]), 1,
+                                                  spec.y.lo, spec.y.hi, step);
+        }
         ScanCurve sc;
         sc.label = "period doubling, continued";
         for (const auto& q : c.points) {

@@ -6,6 +6,26 @@
 
 namespace impactlab::gui {
 
+namespace {
+
+// The result as the diagram overlays it.
+ContinuationOverlay overlay_of(const Params& p, const analysis::ContinuationSpec& spec, const analysis::ContinuationResult& r,
+                               std::chrono::steady_clock::time_point t0) {
+    ContinuationOverlay out;
+    out.model = p.name;
+    out.xI = p.xI;
+    out.omega_lo = spec.lo;
+    out.omega_hi = spec.hi;
+    out.points = r.points;
+    out.cancelled = r.cancelled;
+    out.curves = analysis::branch_curves(r);
+    if (!r.branches.empty()) out.end = r.branches.front().end;
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+}
+
+}  // namespace
+
 ContinuationOverlay compute_continuation(const Params& p, double omega_lo, double omega_hi, Progress& progress) {
     const auto t0 = std::chrono::steady_clock::now();
     analysis::ContinuationSpec spec;
@@ -18,16 +38,27 @@ ContinuationOverlay compute_continuation(const Params& p, double omega_lo, doubl
     spec.period = 1;
     spec.max_period = 8;
     const analysis::ContinuationResult r = analysis::continue_orbits(p, spec, &progress);
+    return overlay_of(p, spec, r, t0);
+}
 
-    ContinuationOverlay out;
-    out.model = p.name;
-    out.xI = p.xI;
-    out.omega_lo = spec.lo;
-    out.omega_hi = spec.hi;
-    out.points = r.points;
-    out.cancelled = r.cancelled;
-    out.curves = analysis::branch_curves(r);
-    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+ContinuationOverlay compute_continuation_from(const Params& p, double omega_lo, double omega_hi, double omega, double x,
+                                              double v, int period, Progress& progress) {
+    const auto t0 = std::chrono::steady_clock::now();
+    analysis::ContinuationSpec spec;
+    spec.param = analysis::ContParam::Omega;
+    spec.lo = std::max(omega_lo, 0.5);
+    spec.hi = std::max(omega_hi, spec.lo + 0.5);
+    spec.start = std::clamp(omega, spec.lo, spec.hi);
+    spec.guess = Vec2(x, v);
+    spec.period = period;
+    spec.max_period = std::max(8, 4 * period);   // its doublings, as from the left well
+    const analysis::ContinuationResult r = analysis::continue_orbits(p, spec, &progress);
+    ContinuationOverlay out = overlay_of(p, spec, r, t0);
+    out.from_orbit = true;
+    out.start_omega = spec.start;
+    out.start_x = x;
+    out.start_v = v;
+    out.start_period = period;
     return out;
 }
 

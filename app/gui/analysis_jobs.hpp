@@ -124,10 +124,20 @@ struct ContinuationOverlay {
     std::vector<analysis::BifPoint> points;
     bool cancelled = false;
     double seconds = 0;
+    // Started from the running orbit (else from the left well at omega_lo): its omega, section point, period.
+    bool from_orbit = false;
+    double start_omega = 0, start_x = 0, start_v = 0;
+    int start_period = 1;
+    std::string end;   // why the first branch ended, each way ("" when it did not start)
 };
 // The period-1 branch from the left well over [omega_lo, omega_hi] with its period doublings (up to period
 // 8), as curves; any thread (the job's worker).
 ContinuationOverlay compute_continuation(const Params& p, double omega_lo, double omega_hi, Progress& progress);
+// The same from a running orbit: the period-k orbit through the section point (x, v) at omega, continued
+// both ways over [omega_lo, omega_hi] with its doublings, as `impactlab continue --omega-start W --from X,V
+// --period K` does. Any thread.
+ContinuationOverlay compute_continuation_from(const Params& p, double omega_lo, double omega_hi, double omega, double x,
+                                              double v, int period, Progress& progress);
 
 // ---- A small parameter plane --------------------------------------------------------------------------------
 

@@ -194,6 +194,10 @@ bool App::init(std::string& error) {
     if (!opt_.ghost.empty()) ghost_impact_ = index_of_impact(make_version(opt_.ghost).impact);
     if (opt_.twin) set_companion(CompanionMode::Twin);
     else if (!opt_.ghost.empty()) set_companion(CompanionMode::Ghost);
+    if (!opt_.browse.empty()) {   // the Load session window, its browser on that folder
+        open_session_window(false);
+        session_browser_.open_dir(opt_.browse);
+    }
     if (!opt_.session.empty() && !load_session_file(opt_.session)) {
         if (opt_.frames > 0) {   // headless: checked before the window opened already
             error = session_error_;
@@ -345,7 +349,8 @@ void App::run_demo(int k) {
         case 5:   // basins: A1G's two attractors at 13 rad/s
             set_version("A1G");
             set_omega(13.0);
-            analysis_.start_basins(analysis_context());
+            analysis_.basins.start(analysis_context());
+            set_panel_visible(PanelId::Basins, true);
             break;
         default: demo_ = 0; return;
     }

@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "analysis_panels.hpp"
+#include "views/analysis_panels.hpp"
 #include "lyapunov_live.hpp"
 #include "omega_ramp.hpp"
-#include "bifurcation_panel.hpp"
+#include "views/bifurcation_panel.hpp"
 #include "clip_writer.hpp"
 #include "companion_track.hpp"
-#include "data_panel.hpp"
+#include "views/data_panel.hpp"
 #include "history.hpp"
 #include "layout.hpp"
 #include "impactlab/params.hpp"
@@ -27,6 +27,7 @@
 #include "poincare_map.hpp"
 #include "presets.hpp"
 #include "replay.hpp"
+#include "views/file_browser.hpp"
 #include "views/guide_panel.hpp"
 #include "views/params_panel.hpp"
 #include "views/phase_panel.hpp"
@@ -68,9 +69,8 @@ private:
     void poll_bifurcation();
     void handle_keys();
     void set_omega(double w);
-    void start_ramp(double target, double rate);   // ramp_hooks.cpp: the live omega ramp
-    void draw_ramp_controls();                      // ramp_hooks.cpp: its row under the omega slider
-    void draw_ramp_points(Plot& plot) const;        // ramp_hooks.cpp: its section points on the diagram
+    void start_ramp(double target, double rate);   // routing.cpp: the live omega ramp
+    void draw_ramp_controls();                      // controls.cpp: its row under the omega slider
     void set_xi(double xI);
     void set_model(int stiffness, int impact);
     void set_version(const std::string& name);   // "A1G": set_model by the version's name
@@ -100,15 +100,16 @@ private:
     void fill_bench_data(int points);
     void feed_bench_frame();   // appends one frame's worth of new samples (bench mode)
 
-    // panels.cpp: one function per window
+    // panels.cpp: the menu, the status bar, help, the toast; tiles.cpp: the layout drawn
     void layout_and_draw();
     bool nothing_shown() const { return layout_.controls.empty() && layout_.tiles.empty() && layout_.bar.empty(); }
     void draw_menu();
-    void draw_controls();         // tiles.cpp: the three groups below, stacked or as tabs
+    void draw_controls();         // tiles.cpp: the three groups below (controls.cpp), stacked or as tabs
     void draw_controls_run();     // model, forcing and bumper, run, presets
     void draw_controls_view();    // display settings
     void draw_controls_state();   // state, forces, energy
-    // views/: the live plots. The App hands them the shared history and routes what a click asks for.
+    // routing.cpp: the views (views/) get a context from the shared history and the App's settings, and what
+    // a click asks for is routed to the simulation thread here.
     ViewContext view_context() const;
     void apply_view(const ViewAction& a);
     void start_orbit(double x, double v);          // the Poincare clicker: a new orbit (--orbit as a click)
@@ -117,7 +118,7 @@ private:
     void draw_status();
     void draw_help();
     void draw_toast();
-    // companion_hooks.cpp: the mouse sets the state, the companion cart, the grazing monitor
+    // routing.cpp: the mouse sets the state, the companion cart; controls.cpp: their rows, the grazing monitor
     void set_state(double x, double v);                 // checked (rail, bumper; a toast says why it moved)
     void set_companion(CompanionMode mode);
     void draw_companion_controls();                     // Controls: the companion's mode and ghost law
@@ -147,9 +148,9 @@ private:
     void draw_session_window();
     void handle_session_request();
     DataPanelContext data_context() const;
-    AnalysisContext analysis_context() const;           // analysis_hooks.cpp
-    void apply_analysis(const AnalysisAction& a);       // analysis_hooks.cpp: a click's commands
-    BifurcationContext bifurcation_context();           // bifurcation_hooks.cpp
+    AnalysisContext analysis_context() const;           // routing.cpp
+    void apply_analysis(const AnalysisAction& a);       // routing.cpp: a click's commands
+    BifurcationContext bifurcation_context();           // routing.cpp
     std::size_t trail_first() const;   // the first sample of the phase portrait's trail
     // tiles.cpp: the layout (layout.hpp) drawn: tiles, tabs, hide and maximise, presentation mode
     void draw_tile(const Tile& tile);
@@ -233,10 +234,11 @@ private:
     // user's scale to go back to.
     LayoutMode mode_ = LayoutMode::Normal;
     float normal_scale_ = 1.0f;
-    std::array<bool, kPanelCount> panel_visible_{true, true, true, true, true, true};
+    std::array<bool, kPanelCount> panel_visible_ = default_visible();   // on-demand panels: open
     bool controls_visible_ = true;
     std::optional<PanelId> maximised_;
     std::optional<PanelId> hovered_panel_;         // the panel under the mouse at the last frame (key Z)
+    std::optional<PanelId> focus_tab_;             // an analysis tile just opened: its tab comes to the front
     PanelId featured_ = PanelId::Phase;             // presentation mode's plot
     std::array<PanelId, kPanelCount> tile_tab_{};   // the active tab of the tile whose first panel is the index
     double magnify_[2] = {1.0, 3.0};                // the rig's displacement magnification: normal, presentation
@@ -300,6 +302,7 @@ private:
     bool session_window_ = false, session_saving_ = true;
     int session_request_ = 0;   // 1 save, 2 load (after the panels drew)
     char session_path_[512] = "impactlab-session.json";
+    FileBrowser session_browser_{{".json"}};   // the session window's list of the folder's .json files
     std::string session_error_;
 };
 

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "app.hpp"
+#include "param_edit.hpp"
 #include "theme.hpp"
 
 namespace impactlab::gui {
@@ -38,8 +39,9 @@ Session App::current_session() const {
     s.ui_scale = mode_ == LayoutMode::Presentation ? normal_scale_ : ui_scale_;   // presenting raised it
     s.presentation = mode_ == LayoutMode::Presentation;
     if (!controls_visible_) s.hidden.push_back("controls");
-    for (int i = 0; i < kPanelCount; ++i)
-        if (!panel_visible_[static_cast<std::size_t>(i)]) s.hidden.push_back(panel_key(static_cast<PanelId>(i)));
+    for (int i = 0; i < kPanelCount; ++i)   // the analysis tiles are not saved (nor their results)
+        if (!panel_visible_[static_cast<std::size_t>(i)] && !on_demand(static_cast<PanelId>(i)))
+            s.hidden.push_back(panel_key(static_cast<PanelId>(i)));
     s.maximised = maximised_ ? panel_key(*maximised_) : "";
     s.presentation_plot = panel_key(featured_);
     s.magnify = magnify_[0];
@@ -54,6 +56,12 @@ Session App::current_session() const {
     s.data = data_panel_.loaded_path();
     s.companion = companion_mode_ == CompanionMode::Twin ? "twin" : companion_mode_ == CompanionMode::Ghost ? "ghost" : "off";
     s.ghost_impact = impact_models()[static_cast<std::size_t>(ghost_impact_)].id;
+    for (const EditableParam& e : editable_params(params_))
+        if (e.value != e.paper) s.params.emplace_back(e.key, e.value);
+    s.strip = {strip_key(strip_.first())};
+    if (const auto q = strip_.second()) s.strip.push_back(strip_key(*q));
+    s.clicker = poincare_.clicker();
+    for (const ClickedOrbit& o : poincare_.orbits()) s.orbits.push_back({o.x0, o.v0, o.pts});
     return s;
 }
 
@@ -67,6 +75,9 @@ void App::apply_session(const Session& s) {
         if (p.impact && std::string(impact_models()[i].id) == p.impact->id) impact = static_cast<int>(i);
     set_model(stiffness, impact);
     set_xi(s.xI);
+    // The session's edits on the version's own values (checked when the file was read).
+    if (params_edited(params_) || !s.params.empty()) reset_params();
+    for (const auto& [key, value] : s.params) set_param(key, value);
     set_omega(s.omega);
     set_speed(s.speed);
     // The run goes on from the saved instant; what the history held belongs to another run.
@@ -89,7 +100,8 @@ void App::apply_session(const Session& s) {
         fonts_dirty_ = true;
     }
     controls_visible_ = true;
-    panel_visible_.fill(true);
+    for (int i = 0; i < kPanelCount; ++i)
+        if (!on_demand(static_cast<PanelId>(i))) panel_visible_[static_cast<std::size_t>(i)] = true;
     for (const std::string& h : s.hidden) {
         if (h == "controls") controls_visible_ = false;
         else if (const auto panel = panel_from_key(h)) panel_visible_[static_cast<std::size_t>(*panel)] = false;
@@ -111,6 +123,19 @@ void App::apply_session(const Session& s) {
         if (s.bif_protocol == kProtocols[i]) bif_protocol_ = i;
     bif_steps_ = s.bif_steps;
     if (!s.data.empty() && s.data != data_panel_.loaded_path()) data_panel_.load(s.data, false);
+    const auto first = strip_from_key(s.strip.empty() ? "x" : s.strip[0]);
+    strip_.set_traces(first.value_or(StripQuantity::X), s.strip.size() > 1 ? strip_from_key(s.strip[1]) : std::nullopt);
+    // After the restart above: the orbits are shown as saved, not fed by the new run.
+    std::vector<ClickedOrbit> orbits;
+    for (const SessionOrbit& o : s.orbits) {
+        ClickedOrbit c;
+        c.x0 = o.x0;
+        c.v0 = o.v0;
+        c.pts = o.points;
+        orbits.push_back(std::move(c));
+    }
+    poincare_.restore_orbits(std::move(orbits));
+    poincare_.set_clicker(s.clicker);
 }
 
 bool App::save_session_file(const std::string& path) {
@@ -163,7 +188,9 @@ void App::draw_session_window() {
         if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 24);
         const bool enter = ImGui::InputText("file", session_path_, sizeof session_path_, ImGuiInputTextFlags_EnterReturnsTrue);
-        if (ImGui::Button(session_saving_ ? "Save" : "Load") || enter) session_request_ = session_saving_ ? 1 : 2;
+        // The session files beside the path: a click picks one, a double-click also saves or loads it.
+        const bool picked = session_browser_.draw("##session_files", session_path_, sizeof session_path_);
+        if (ImGui::Button(session_saving_ ? "Save" : "Load") || enter || picked) session_request_ = session_saving_ ? 1 : 2;
         ImGui::SameLine();
         if (ImGui::Button("Close")) session_window_ = false;
         if (!session_error_.empty()) {

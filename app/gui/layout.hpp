@@ -32,7 +32,7 @@ struct LayoutRequest {
     LayoutMode mode = LayoutMode::Normal;
     bool controls_visible = true;
     float controls_need_h = 0;        // [px] the controls' content, all sections stacked (0: not measured yet)
-    std::array<bool, kPanelCount> visible{true, true, true, true, true, true};
+    std::array<bool, kPanelCount> visible = default_visible();
     std::optional<PanelId> maximised; // fills the plot area
     PanelId featured = PanelId::Phase;   // presentation mode: the plot beside the rig
 };

@@ -7,6 +7,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <optional>
+#include <string_view>
 #include <tuple>
 #include <utility>
 
@@ -15,7 +18,9 @@
 #include "layout.hpp"
 #include "param_edit.hpp"
 #include "presets.hpp"
+#include "model_file.hpp"
 #include "session.hpp"
+#include "views/strip_keys.hpp"
 
 namespace impactlab::gui {
 
@@ -25,7 +30,9 @@ const char* usage_text() {
            "Interactive visualiser of the forced impact oscillator: the rig animated, phase portrait,\n"
            "Poincare map, potential well, x(t) and bifurcation diagrams, all live.\n"
            "\n"
-           "  --model NAME       model version: A1C, A1C1, A1G, A1H, A3C, A3C1, A3G, A3H (default A1H)\n"
+           "  --model NAME       model version: A1C, A1C1, A1G, A1H, A3C, A3C1, A3G, A3H (default A1H), or a\n"
+           "                     parameter file FILE.json as the CLI reads it (its version, the Parameters\n"
+           "                     panel's values and x_I; anything else it holds is refused, naming the key)\n"
            "  --omega W          forcing frequency [rad/s], 0..30 (default 9)\n"
            "  --xI X             bumper position [m], -0.02..0.02 (default 0)\n"
            "  --x0 X, --v0 V     initial state [m], [m/s] (default -0.011, 0: the left well)\n"
@@ -65,6 +72,7 @@ const char* usage_text() {
            "                     EF: the ramp ends at W1)\n"
            "  --bif-box W0:W1    once the first diagram is done, compute [W0, W1] as a box dragged on it with\n"
            "                     the right mouse button does (the same steps over the narrower range)\n"
+           "  --bif-y x|v        the diagram's quantity at the sections: x (default) or v\n"
            "  --bif-lyapunov     the lambda_max(omega) strip under the diagram, computed with it (slow)\n"
            "  --lyap-steps N     omegas of that strip, 5..300 (default 60)\n"
            "  --bif-nowait       with --frames: count the frames while the diagram computes (a screenshot\n"
@@ -73,10 +81,15 @@ const char* usage_text() {
            "                     and fit the model to it (with --frames: counted once the fit is done,\n"
            "                     and no model switch unless --switch-model is given)\n"
            "  --plane FILE       show a parameter plane (impactlab scan --out FILE) in the Parameter plane\n"
-           "                     window; a bad file is reported there naming its line (exit 1 with --frames)\n"
+           "                     tile; a bad file is reported there naming its line (exit 1 with --frames)\n"
            "  --continuation     continue the period-1 branch over the diagram's omega range at start (key O)\n"
-           "  --small-plane      compute a 60 x 30 (omega, xI) plane at start (Parameter plane window, F2)\n"
-           "  --basins           compute the basins of attraction at --omega at start (Basins window, F3)\n"
+           "  --continue-here    continue the running orbit over the diagram's range once the Poincare map has\n"
+           "                     settled on it (Shift+O); a chaotic map is an error (exit 1 with --frames)\n"
+           "  --small-plane      compute a 60 x 30 (omega, xI) plane at start (the Parameter plane tile, F2)\n"
+           "  --plane-doubling   continue the first period-1 doubling over the plane (--plane or --small-plane)\n"
+           "  --basins           compute the basins of attraction at --omega at start (the Basins tile, F3)\n"
+           "  --basins-box X0:X1:V0:V1  the basins over that box of (x0 [m], v0 [m/s]) (a right-drag on them)\n"
+           "  --browse DIR       open File > Load session on DIR: its folders and .json files, listed\n"
            "  --session FILE     load a session (File > Load session, Ctrl+O) at start; a bad file is refused\n"
            "                     naming the file, the key (or line) and the problem (exit 2)\n"
            "  --twin             a second cart 1 um to the right of the first, same model (sensitivity)\n"
@@ -186,6 +199,8 @@ std::string version(const std::string& flag, const std::string& name) {
 
 Options parse_options(const std::vector<std::string>& args) {
     Options o;
+    std::optional<GuiModel> model_file;   // --model FILE.json
+    bool xI_given = false;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> const std::string& {
@@ -198,9 +213,27 @@ Options parse_options(const std::vector<std::string>& args) {
             if (a == f && std::find(args.begin(), args.begin() + static_cast<std::ptrdiff_t>(i), a) != args.begin() + static_cast<std::ptrdiff_t>(i))
                 throw OptionsError(a + ": given twice");
         if (a == "--help" || a == "-h") o.help = true;
-        else if (a == "--model") o.model = version(a, value());
+        else if (a == "--model") {
+            const std::string& v = value();
+            if (v.size() > 5 && v.substr(v.size() - 5) == ".json") {   // as every CLI --model: a parameter file
+                try {
+                    model_file = gui_model_from_file(v);
+                } catch (const ModelFileError& e) {
+                    throw OptionsError(std::string("--model: ") + e.what());
+                }
+                o.model = model_file->version;
+                o.model_file = v;
+            } else {
+                o.model = version(a, v);
+                model_file.reset();
+                o.model_file.clear();
+            }
+        }
         else if (a == "--omega") o.omega = number(a, value(), 0.0, 30.0);
-        else if (a == "--xI" || a == "--xi") o.xI = number(a, value(), -0.02, 0.02);
+        else if (a == "--xI" || a == "--xi") {
+            o.xI = number(a, value(), -0.02, 0.02);
+            xI_given = true;
+        }
         else if (a == "--x0") o.x0 = number(a, value(), -0.05, 0.05);
         else if (a == "--v0") o.v0 = number(a, value(), -2.0, 2.0);
         else if (a == "--speed") o.speed = number(a, value(), 0.01, 100.0);
@@ -271,14 +304,32 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--bif-box") std::tie(o.bif_box_lo, o.bif_box_hi) = omega_range(a, value(), 0.02);
         else if (a == "--ramp")
             std::tie(o.ramp_to, o.ramp_rate) = number_pair(a, value(), "W1:RATE (target rad/s : rad/s per s)", 0.0, 30.0, 1e-3, 2.0);
+        else if (a == "--bif-y") {
+            o.bif_y = value();
+            if (o.bif_y != "x" && o.bif_y != "v") throw OptionsError("--bif-y: '" + o.bif_y + "' is not x or v");
+        }
         else if (a == "--bif-lyapunov") o.bif_lyapunov = true;
         else if (a == "--lyap-steps") o.lyap_steps = integer(a, value(), 5, 300);
         else if (a == "--bif-nowait") o.bif_nowait = true;
         else if (a == "--plane") o.plane = value();
         else if (a == "--continuation") o.continuation = true;
         else if (a == "--small-plane") o.small_plane = true;
+        else if (a == "--plane-doubling") o.plane_doubling = true;
+        else if (a == "--continue-here") o.continue_here = true;
         else if (a == "--basins") o.basins = true;
+        else if (a == "--basins-box") {
+            // x0 on the rail, v0 within 2 m/s (the session files' limits), each range not empty.
+            const std::string& t = value();
+            const auto c = t.find(':', t.find(':') + 1);
+            if (c == std::string::npos) throw OptionsError("--basins-box: '" + t + "' is not X0:X1:V0:V1 (m, m/s)");
+            const auto [x0, x1] = number_pair(a, t.substr(0, c), "X0:X1:V0:V1 (m, m/s)", -0.05, 0.05, -0.05, 0.05);
+            const auto [v0, v1] = number_pair(a, t.substr(c + 1), "X0:X1:V0:V1 (m, m/s)", -2.0, 2.0, -2.0, 2.0);
+            if (!(x0 < x1) || !(v0 < v1)) throw OptionsError("--basins-box: " + t + " is empty (X0 < X1 and V0 < V1 wanted)");
+            o.basins_box = {x0, x1, v0, v1};
+            o.basins = true;
+        }
         else if (a == "--session") o.session = value();
+        else if (a == "--browse") o.browse = value();
         else if (a == "--save-session") o.save_session = value();
         else if (a == "--clip-out") o.clip_out = value();
         else if (a == "--clip-seconds") o.clip_seconds = number(a, value(), 0.1, 60.0);
@@ -317,7 +368,7 @@ Options parse_options(const std::vector<std::string>& args) {
             for (std::size_t from = 0;;) {
                 const std::size_t c = list.find(',', from);
                 const std::string q = list.substr(from, c == std::string::npos ? std::string::npos : c - from);
-                if (q != "x" && q != "v" && q != "E" && q != "F" && q != "drive")
+                if (std::find(std::begin(kStripKeys), std::end(kStripKeys), std::string_view(q)) == std::end(kStripKeys))
                     throw OptionsError("--strip: '" + q + "' is not one of x, v, E, F, drive");
                 o.strip.push_back(q);
                 if (c == std::string::npos) break;
@@ -352,6 +403,10 @@ Options parse_options(const std::vector<std::string>& args) {
         if (static_cast<std::size_t>(n) > count)
             throw OptionsError(std::string(flag) + ": " + std::to_string(n) + " is out of range [1, " +
                                std::to_string(count) + "] for " + o.model);
+    }
+    if (model_file) {   // the file's parameters first (a --param after them wins), its x_I unless --xI is given
+        o.params.insert(o.params.begin(), model_file->params.begin(), model_file->params.end());
+        if (!xI_given) o.xI = model_file->xI;
     }
     {   // --param: each value as the panel would take it, on the model given (--model may come after it)
         Params p = make_version(o.model);

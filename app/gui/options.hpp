@@ -12,6 +12,8 @@ struct OptionsError : std::runtime_error { using std::runtime_error::runtime_err
 
 struct Options {
     std::string model = "A1H";
+    std::string browse;          // --browse DIR: the Load session window open on DIR's session files
+    std::string model_file;      // --model FILE.json: the file (model is its version, params its values)
     double omega = 9.0;          // [rad/s]
     double xI = 0.0;             // [m]
     double x0 = -0.011, v0 = 0;  // [m], [m/s]: the left well
@@ -45,6 +47,7 @@ struct Options {
     double ramp_to = -1, ramp_rate = 0;         // --ramp W1:RATE: a live omega ramp at start (-1: none)
     double bif_range_lo = 0, bif_range_hi = 0; // --bif-range W0:W1 [rad/s]: the omega range computed (0, 0: 0-25)
     double bif_box_lo = 0, bif_box_hi = 0;     // --bif-box W0:W1: a right-drag over it once the first diagram is done
+    std::string bif_y = "x";     // --bif-y x|v: the diagram's quantity at the sections
     bool bif_lyapunov = false;   // --bif-lyapunov: the lambda_max strip under the diagram
     int lyap_steps = 0;          // --lyap-steps N: its omegas (0: the panel's default)
     bool bif_nowait = false;     // --bif-nowait: --frames does not wait for the diagram
@@ -60,7 +63,10 @@ struct Options {
     std::string plane;           // --plane FILE
     bool continuation = false;   // --continuation: the continued branches over the diagram
     bool small_plane = false;    // --small-plane: a 60 x 30 (omega, xI) plane on a worker
+    bool continue_here = false;  // --continue-here: continue the running periodic orbit once the map settles
+    bool plane_doubling = false; // --plane-doubling: the continued doubling over the plane, once it is there
     bool basins = false;         // --basins: the basins at --omega
+    std::vector<double> basins_box;   // --basins-box X0:X1:V0:V1 [m, m/s]: the basins over that box (implies --basins)
     // Sessions and clips.
     std::string session;         // --session FILE: load at start (validated before the window opens)
     std::string save_session;    // --save-session FILE: with --frames, written at the end

@@ -1,6 +1,8 @@
 #include "session.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <cstdio>
 #include <fstream>
 #include <initializer_list>
@@ -11,6 +13,8 @@
 #include "impactlab/input_file.hpp"
 #include "impactlab/params.hpp"
 #include "layout.hpp"
+#include "param_edit.hpp"
+#include "views/strip_keys.hpp"
 
 namespace impactlab::gui {
 
@@ -42,6 +46,17 @@ json session_to_json(const Session& s) {
                    {"maximised", s.maximised.empty() ? json(nullptr) : json(s.maximised)},
                    {"presentation_plot", s.presentation_plot},
                    {"magnify", {s.magnify, s.magnify_presentation}}};
+    json params = json::object();
+    for (const auto& [k, v] : s.params) params[k] = v;
+    j["params"] = std::move(params);
+    j["strip"] = s.strip;
+    json orbits = json::array();
+    for (const SessionOrbit& o : s.orbits) {
+        json pts = json::array();
+        for (const auto& [x, v] : o.points) pts.push_back({x, v});
+        orbits.push_back({{"start", {o.x0, o.v0}}, {"points", std::move(pts)}});
+    }
+    j["clicker"] = {{"on", s.clicker}, {"orbits", std::move(orbits)}};
     return j;
 }
 
@@ -150,7 +165,7 @@ Session session_from_json(const json& j, const Session& base, const std::string&
                            "\" expected)");
     const Reader top(file, j, "",
                      {"format", "version", "model", "omega", "xI", "speed", "paused", "state", "view", "windows",
-                      "bifurcation", "data", "companion", "layout"});
+                      "bifurcation", "data", "companion", "layout", "params", "strip", "clicker"});
     if (!j["format"].is_string() || j["format"].get<std::string>() != kSessionFormat)
         top.fail("format", std::string("expected \"") + kSessionFormat + "\"");
     int version = kSessionVersion;
@@ -264,6 +279,73 @@ Session session_from_json(const json& j, const Session& base, const std::string&
                 r.fail("magnify", "[" + fmt(a) + ", " + fmt(b) + "] is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
             s.magnify = a;
             s.magnify_presentation = b;
+        }
+    }
+    if (const json* ps = top.find("params")) {
+        // Each value as the Parameters panel would take it, on the session's model: the core's validate()
+        // decides, and its words name the problem.
+        if (!ps->is_object()) top.fail("params", std::string("expected an object of numbers, got ") + ps->type_name());
+        Params p = make_version(s.model);
+        std::vector<std::string> keys;
+        for (const EditableParam& e : editable_params(p)) keys.push_back(e.key);
+        s.params.clear();
+        for (const auto& item : ps->items()) {
+            const std::string key = "params." + item.key();
+            if (std::find(keys.begin(), keys.end(), item.key()) == keys.end()) {
+                std::string all;
+                for (const std::string& k : keys) all += (all.empty() ? "" : ", ") + k;
+                top.fail_at(key, "not a parameter of " + s.model + " (one of " + all + ")");
+            }
+            if (!item.value().is_number()) top.fail_at(key, std::string("expected a number, got ") + item.value().type_name());
+            std::string error;
+            if (!set_param(p, item.key(), item.value().get<double>(), error)) top.fail_at(key, error);
+            s.params.emplace_back(item.key(), item.value().get<double>());
+        }
+    }
+    if (const json* st = top.find("strip")) {
+        if (!st->is_array() || st->empty() || st->size() > 2)
+            top.fail("strip", "expected one or two of x, v, E, F, drive");
+        s.strip.clear();
+        for (const json& e : *st) {
+            const bool known = e.is_string() && std::find_if(std::begin(kStripKeys), std::end(kStripKeys), [&](const char* k) {
+                                                    return e.get<std::string>() == k;
+                                                }) != std::end(kStripKeys);
+            if (!known) top.fail("strip", e.dump() + " is not one of x, v, E, F, drive");
+            s.strip.push_back(e.get<std::string>());
+        }
+    }
+    if (const json* c = top.find("clicker")) {
+        const Reader r(file, *c, "clicker", {"on", "orbits"});
+        r.boolean("on", s.clicker);
+        if (const json* os = r.find("orbits")) {
+            if (!os->is_array() || os->size() > kSessionMaxOrbits)
+                r.fail("orbits", "expected an array of at most " + std::to_string(kSessionMaxOrbits) + " orbits");
+            s.orbits.clear();
+            auto point = [&](const json& v, const std::string& key, double& x, double& xv) {
+                if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
+                    r.fail_at(key, "expected [x, v], two numbers");
+                x = v[0].get<double>();
+                xv = v[1].get<double>();
+                if (!(std::abs(x) <= 0.05) || !(std::abs(xv) <= 2.0))
+                    r.fail_at(key, "[" + fmt(x) + ", " + fmt(xv) + "] is off the rail (|x| <= 0.05 m, |v| <= 2 m/s)");
+            };
+            for (std::size_t i = 0; i < os->size(); ++i) {
+                const std::string key = "clicker.orbits." + std::to_string(i);
+                const Reader o(file, (*os)[i], key, {"start", "points"});
+                SessionOrbit orbit;
+                if (!o.find("start")) o.fail_at(key, "expected \"start\"");
+                point(*o.find("start"), o.path("start"), orbit.x0, orbit.v0);
+                if (const json* pts = o.find("points")) {
+                    if (!pts->is_array() || pts->size() > kSessionMaxOrbitPoints)
+                        o.fail("points", "expected an array of at most " + std::to_string(kSessionMaxOrbitPoints) + " [x, v]");
+                    for (std::size_t k = 0; k < pts->size(); ++k) {
+                        double x = 0, v = 0;
+                        point((*pts)[k], o.path("points") + "." + std::to_string(k), x, v);
+                        orbit.points.emplace_back(x, v);
+                    }
+                }
+                s.orbits.push_back(std::move(orbit));
+            }
         }
     }
     if (const json* d = top.find("data")) {

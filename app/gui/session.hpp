@@ -9,6 +9,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace impactlab::gui {
@@ -21,6 +22,14 @@ struct SessionView {
     double x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;   // data units (SI)
     bool operator==(const SessionView&) const = default;
 };
+
+// A Poincare clicker's orbit: where it was started and its section points [m, m/s].
+struct SessionOrbit {
+    double x0 = 0, v0 = 0;
+    std::vector<std::pair<double, double>> points;
+    bool operator==(const SessionOrbit&) const = default;
+};
+inline constexpr std::size_t kSessionMaxOrbits = 8, kSessionMaxOrbitPoints = 4000;
 
 struct Session {
     // Model and forcing (what the GUI changes of the parameters).
@@ -53,6 +62,13 @@ struct Session {
     std::string maximised;
     std::string presentation_plot = "phase";
     double magnify = 1.0, magnify_presentation = 3.0;
+    // The parameters edited in the Parameters panel (key, value), applied to the model's own after it.
+    std::vector<std::pair<std::string, double>> params;
+    // The time strip's traces: one or two of x, v, E, F, drive.
+    std::vector<std::string> strip{"x"};
+    // The Poincare clicker: on or off, and each orbit's start and section points as they were.
+    bool clicker = false;
+    std::vector<SessionOrbit> orbits;
     bool operator==(const Session&) const = default;
 };
 

@@ -23,6 +23,7 @@ bool App::write_state_json(const std::string& path) {
     using nlohmann::json;
     json j;
     j["model"] = model_name();
+    j["model_file"] = opt_.model_file.empty() ? json(nullptr) : json(opt_.model_file);   // --model FILE.json
     {   // The Poincare clicker's orbits: where each started, its section points, the last of them.
         json orbits = json::array();
         for (const ClickedOrbit& o : poincare_.orbits())
@@ -39,7 +40,7 @@ bool App::write_state_json(const std::string& path) {
                                }()}});
         j["clicker"] = {{"on", poincare_.clicker()}, {"orbits", std::move(orbits)}};
     }
-    j["guide"] = {{"open", show_guide_}, {"demo", demo_}, {"details", details_}, {"basins_open", analysis_.basins_shown()}};
+    j["guide"] = {{"open", show_guide_}, {"demo", demo_}, {"details", details_}, {"basins_open", panel_visible_[static_cast<std::size_t>(PanelId::Basins)]}};
     {   // The time strip's traces and their y ranges [SI units].
         json traces = json::array(), views = json::array();
         traces.push_back(strip_key(strip_.first()));
@@ -140,13 +141,20 @@ bool App::write_state_json(const std::string& path) {
     }
     j["poincare_points"] = std::move(pts);
     j["session_window"] = session_window_ ? json(session_saving_ ? "save" : "load") : json(nullptr);
+    j["session_browser"] = session_window_ ? session_browser_.state() : json(nullptr);   // the files it lists
+    j["plane"] = analysis_.plane.state();
+    j["basins"] = analysis_.basins.state();   // the basins shown: their box, grid and attractors   // the plane shown and the doubling continued over it
     if (const auto& ov = analysis_.overlay()) {   // the continued branches' special points, as the hover names them
         json bif_pts = json::array();
         for (const analysis::BifPoint& b : ov->points)
             bif_pts.push_back({{"kind", analysis::bif_kind_name(b.kind)}, {"omega", b.param}, {"x", b.y[0]}, {"v", b.y[1]},
                                {"period", b.period}, {"precision", b.precision}});
         j["continuation"] = {{"model", ov->model}, {"omega_lo", ov->omega_lo}, {"omega_hi", ov->omega_hi},
-                             {"cancelled", ov->cancelled}, {"curves", ov->curves.size()}, {"points", std::move(bif_pts)}};
+                             {"cancelled", ov->cancelled}, {"curves", ov->curves.size()}, {"points", std::move(bif_pts)},
+                             {"end", ov->end}};
+        if (ov->from_orbit)
+            j["continuation"]["from_orbit"] = {{"omega", ov->start_omega}, {"x", ov->start_x}, {"v", ov->start_v},
+                                               {"period", ov->start_period}};
     } else {
         j["continuation"] = nullptr;
     }
@@ -159,6 +167,8 @@ bool App::write_state_json(const std::string& path) {
                                {"stale", b.stale}, {"progress", number(b.progress)}}
                         : json{{"model", nullptr}, {"running", b.running}};
         d["view_omega"] = {number(b.view_omega.lo), number(b.view_omega.hi)};
+        d["y"] = b.y_is_v ? "v" : "x";
+        d["view_y"] = {number(b.view_y.lo), number(b.view_y.hi)};
         d["range_error"] = b.range_error;
         d["live_points"] = {{"total", b.live.total}, {"in_view", b.live.in_view}, {"beyond", b.live.beyond},
                             {"above", b.live.above}, {"below", b.live.below}};

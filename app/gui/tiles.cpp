@@ -85,6 +85,9 @@ void App::configure_layout() {
     if (opt_.presentation) set_presentation(true);
     if (opt_.magnify > 0) set_magnification(opt_.magnify);   // the starting mode's
     if (const auto p = panel_from_key(opt_.maximise)) maximised_ = *p;
+    // The analysis tiles open with what the command line asks of them.
+    if (!opt_.plane.empty() || opt_.small_plane) set_panel_visible(PanelId::Plane, true);
+    if (opt_.basins) set_panel_visible(PanelId::Basins, true);
 }
 
 void App::toggle_maximised(PanelId p) {
@@ -102,6 +105,8 @@ void App::draw_panel(PanelId p) {
         case PanelId::Poincare: apply_view(poincare_.draw(view_context(), phase_.view_x(), phase_.view_v())); break;
         case PanelId::Potential: apply_view(potential_.draw(view_context())); break;
         case PanelId::Strip: apply_view(strip_.draw(view_context())); break;
+        case PanelId::Plane: apply_analysis(analysis_.plane.draw(analysis_context())); break;
+        case PanelId::Basins: apply_analysis(analysis_.basins.draw(analysis_context())); break;
     }
     if (bench_.on)
         bench_.panel_s[static_cast<std::size_t>(slot)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -129,7 +134,9 @@ void App::draw_tile(const Tile& tile) {
     }
     const std::string id = title + "###tile_" + panel_key(tile.panels.front());
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(4.0f * ui_scale_, 4.0f * ui_scale_));
-    const bool rigish = active == PanelId::Rig || active == PanelId::Bifurcation;
+    // The wheel zooms these plots; it must not scroll their tile too.
+    const bool rigish = active == PanelId::Rig || active == PanelId::Bifurcation || active == PanelId::Plane ||
+                        active == PanelId::Basins;
     const bool open = begin_tile_at(id.c_str(), tile.rect,
                                     ImGuiWindowFlags_NoScrollbar | (rigish ? ImGuiWindowFlags_NoScrollWithMouse : 0));
     ImGui::PopStyleVar();
@@ -181,14 +188,17 @@ void App::draw_tile(const Tile& tile) {
         if (tile.panels.size() == 1) {
             draw_panel(active);
         } else if (ImGui::BeginTabBar("##tabs", ImGuiTabBarFlags_FittingPolicyScroll)) {
+            const bool focus = focus_tab_ && std::find(tile.panels.begin(), tile.panels.end(), *focus_tab_) != tile.panels.end();
             for (PanelId p : tile.panels) {
-                if (ImGui::BeginTabItem((tab_label(p) + "###" + panel_key(p)).c_str())) {
+                const ImGuiTabItemFlags flags = focus && p == *focus_tab_ ? ImGuiTabItemFlags_SetSelected : 0;
+                if (ImGui::BeginTabItem((tab_label(p) + "###" + panel_key(p)).c_str(), nullptr, flags)) {
                     tile_tab_[key] = p;
                     draw_panel(p);
                     ImGui::EndTabItem();
                 }
             }
             ImGui::EndTabBar();
+            if (focus) focus_tab_.reset();
         }
     }
     ImGui::End();
@@ -239,6 +249,9 @@ void App::draw_controls() {
 void App::set_panel_visible(PanelId p, bool on) {
     panel_visible_[static_cast<std::size_t>(p)] = on;
     if (!on && maximised_ == p) maximised_.reset();
+    // An analysis tile opened where the layout has no room makes a tab: it comes to the front, or F2 would
+    // seem to do nothing.
+    if (on && on_demand(p)) focus_tab_ = p;
 }
 
 LayoutRequest App::layout_request(const Rect& area) const {
@@ -313,7 +326,7 @@ void App::layout_and_draw() {
         if (pa.set) set_param(pa.set->first, pa.set->second);
         if (pa.reset) reset_params();
     }
-    apply_analysis(analysis_.draw(analysis_context()));
+    apply_analysis(analysis_.poll(analysis_context()));
     if (show_help_) draw_help();
     draw_toast();
 }
@@ -388,7 +401,8 @@ void App::draw_view_menu_panels() {
         }
         ImGui::Separator();
         if (ImGui::MenuItem("Show all")) {
-            panel_visible_.fill(true);
+            for (int i = 0; i < kPanelCount; ++i)   // the analysis tiles stay open or closed
+                if (!on_demand(static_cast<PanelId>(i))) panel_visible_[static_cast<std::size_t>(i)] = true;
             controls_visible_ = true;
         }
         ImGui::EndMenu();
@@ -428,8 +442,9 @@ nlohmann::json App::layout_json() const {
     else if (!controls_visible_) hidden.push_back("controls");
     for (const Tile& t : layout_.tiles)
         for (PanelId p : t.panels) shown.push_back(panel_key(p));
-    for (int i = 0; i < kPanelCount; ++i)
-        if (!panel_visible_[static_cast<std::size_t>(i)]) hidden.push_back(panel_key(static_cast<PanelId>(i)));
+    for (int i = 0; i < kPanelCount; ++i)   // a closed analysis tile is not a hidden one
+        if (!panel_visible_[static_cast<std::size_t>(i)] && !on_demand(static_cast<PanelId>(i)))
+            hidden.push_back(panel_key(static_cast<PanelId>(i)));
     j["visible_panels"] = std::move(shown);
     j["hidden_panels"] = std::move(hidden);
     j["nothing_shown_hint"] = nothing_shown();   // every panel hidden: the window says how to show them

@@ -137,3 +137,60 @@ add_test(NAME gui_clicker
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_clicker.sh $<TARGET_FILE:impactlab-gui>
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_clicker)
 set_tests_properties(gui_clicker PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
+
+# The parameter plane as a tile, and the core's continued doubling over it agreeing with the CLI's
+# (gui_plane.sh says what it checks).
+if(TARGET impactlab)
+  add_test(NAME gui_plane
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_plane.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_plane)
+  set_tests_properties(gui_plane PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
+endif()
+
+# Continuation from the running orbit (A1G's period-1 window at 14.5 rad/s) agrees with the CLI's from the same
+# point (gui_continue_here.sh says what it checks).
+if(TARGET impactlab)
+  add_test(NAME gui_continue_here
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_continue_here.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_continue_here)
+  set_tests_properties(gui_continue_here PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "gui")
+endif()
+
+# Session files keep the edited parameters, the strip's traces and the clicker's orbits
+# (gui_session_desk.sh says what it checks).
+add_test(NAME gui_session_desk
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_session_desk.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_session_desk)
+set_tests_properties(gui_session_desk PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
+
+# Basins over a box (--basins-box, a right-drag) are the CLI's over --x-range and --v-range
+# (gui_basins_box.sh says what it checks).
+if(TARGET impactlab)
+  add_test(NAME gui_basins_box
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_basins_box.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_basins_box)
+  set_tests_properties(gui_basins_box PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
+endif()
+
+# The bifurcation diagram over v as well as x, fitted to the CLI's section points of the same sweep
+# (gui_diagram_v.sh says what it checks).
+if(TARGET impactlab)
+  add_test(NAME gui_diagram_v
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_diagram_v.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_diagram_v)
+  set_tests_properties(gui_diagram_v PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
+endif()
+
+# --model FILE.json read by the core's parser as the CLI reads it (gui_model_json.sh says what it checks).
+if(TARGET impactlab)
+  add_test(NAME gui_model_json
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_model_json.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_model_json)
+  set_tests_properties(gui_model_json PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "gui")
+endif()
+
+# The session window's file browser (gui_browser.sh says what it checks).
+add_test(NAME gui_browser
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_browser.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_browser)
+set_tests_properties(gui_browser PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "gui")

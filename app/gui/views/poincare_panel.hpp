@@ -32,8 +32,17 @@ public:
     // A new orbit from (x, v); the App restarts the cart there (epoch: the App's now).
     void start_orbit(double x, double v, std::uint32_t epoch);
     void clear_orbits() { orbits_.clear(); }
+    // Orbits as a session saved them: shown as they ended, none of them fed again.
+    void restore_orbits(std::vector<ClickedOrbit> orbits) {
+        for (ClickedOrbit& o : orbits) {
+            o.waiting = false;
+            o.epoch = kNoEpoch;
+        }
+        orbits_ = std::move(orbits);
+    }
     const std::vector<ClickedOrbit>& orbits() const { return orbits_; }
     static constexpr std::size_t kMaxOrbits = 8, kMaxOrbitPoints = 4000;
+    static constexpr std::uint32_t kNoEpoch = 0xffffffffu;   // a restored orbit's: no run's epoch
 
 private:
     void feed_orbits(const ViewContext& ctx);

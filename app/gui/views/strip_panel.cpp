@@ -2,6 +2,7 @@
 // with the section points (and the bumper on x), and beside them, with a companion cart, their separation
 // log10 |dx| since the restart.
 #include "views/strip_panel.hpp"
+#include "views/strip_keys.hpp"
 
 #include <imgui.h>
 
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "plot2d.hpp"
@@ -39,6 +41,13 @@ constexpr QuantityInfo kQuantities[kStripQuantities] = {
     {"drive", "m0e ω² cos φ [N]", "drive [N]", "drive: the unbalance's force m0e ω² cos φ", 1.0, 0.1},
 };
 const QuantityInfo& info(StripQuantity q) { return kQuantities[static_cast<int>(q)]; }
+// The flag and the session files read strip_keys.hpp's list: the same keys in the same order.
+constexpr bool keys_match() {
+    for (int i = 0; i < kStripQuantities; ++i)
+        if (std::string_view(kQuantities[i].key) != kStripKeys[i]) return false;
+    return std::size(kStripKeys) == kStripQuantities;
+}
+static_assert(keys_match(), "strip_keys.hpp and kQuantities disagree");
 
 // The quantity of one record (a sample or a section point; m0e for the drive).
 double value_of(StripQuantity q, const SimMsg& m, double m0e) {

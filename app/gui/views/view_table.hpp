@@ -4,6 +4,7 @@
 // GL- and ImGui-free.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,16 +12,19 @@
 namespace impactlab::gui {
 
 // The plot tiles (the controls column is laid out apart), in the table's order.
-enum class PanelId : int { Rig, Bifurcation, Phase, Poincare, Potential, Strip };
-inline constexpr int kPanelCount = 6;
+enum class PanelId : int { Rig, Bifurcation, Phase, Poincare, Potential, Strip, Plane, Basins };
+inline constexpr int kPanelCount = 8;
 
 struct ViewInfo {
     PanelId id;
     const char* key;
     const char* titles[3];   // the tile's title, longest first (nullptr where there are fewer)
-    int row;                 // the default layout's row: 0 rig and diagram, 1 the three plots, 2 x(t)
+    int row;                 // the default layout's row: 0 rig and diagram, 1 the three plots, 2 the analysis
+                             // maps, 3 x(t)
     float width_share;       // of its row, against the other tiles'
     int presentation_order;  // 1, 2, ...: presentation mode may show it beside the rig, in this order (V); 0 never
+    bool on_demand = false;  // not in the default layout: opened (F2, F3, a job started) and closed, never
+                             // "hidden" (View > Panels > Show all leaves it as it is; sessions do not save it)
 };
 
 inline constexpr ViewInfo kViews[kPanelCount] = {
@@ -32,13 +36,24 @@ inline constexpr ViewInfo kViews[kPanelCount] = {
     {PanelId::Strip, "strip",
      {"Displacement x(t)        dots: Poincaré sections (φ = 2πn)    dashed: bumper x_I",
       "x(t)    dots: sections (φ = 2πn)    dashed: x_I", "x(t)"},
-     2, 1.0f, 4},
+     3, 1.0f, 4},
+    {PanelId::Plane, "plane", {"Parameter plane", "Plane", nullptr}, 2, 1.0f, 0, true},
+    {PanelId::Basins, "basins", {"Basins of attraction (φ = 0)", "Basins", nullptr}, 2, 1.0f, 0, true},
 };
-inline constexpr int kViewRows = 3;
-inline constexpr float kViewRowWeight[kViewRows] = {0.41f, 0.34f, 0.25f};   // shares of the height
+inline constexpr int kViewRows = 4;
+// Shares of the height; a row with no panel shown gives its share away (the analysis row is empty unless
+// a plane or the basins are open).
+inline constexpr float kViewRowWeight[kViewRows] = {0.41f, 0.34f, 0.5f, 0.25f};
 
 inline const ViewInfo& view_info(PanelId p) { return kViews[static_cast<int>(p)]; }
 inline const char* panel_key(PanelId p) { return view_info(p).key; }
+inline bool on_demand(PanelId p) { return view_info(p).on_demand; }
+// Which panels a fresh window shows: all but the on-demand ones.
+constexpr std::array<bool, kPanelCount> default_visible() {
+    std::array<bool, kPanelCount> v{};
+    for (int i = 0; i < kPanelCount; ++i) v[static_cast<std::size_t>(i)] = !kViews[i].on_demand;
+    return v;
+}
 std::optional<PanelId> panel_from_key(const std::string& key);
 // The panel keys joined with ", " (for error messages); presentable: only those presentation mode shows, in order.
 std::string panel_keys(bool presentable = false);

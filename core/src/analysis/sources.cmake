@@ -8,4 +8,5 @@ set(IMPACTLAB_ANALYSIS_SOURCES
   src/analysis/basins.cpp
   src/analysis/curves.cpp
   src/analysis/impacting.cpp
+  src/analysis/plane_doubling.cpp
 )

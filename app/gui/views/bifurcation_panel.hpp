@@ -17,6 +17,7 @@
 #include "impactlab/analysis.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/sweep.hpp"
+#include "omega_ramp.hpp"
 #include "options.hpp"
 #include "plot2d.hpp"
 #include "poincare_map.hpp"
@@ -30,6 +31,7 @@ struct BifurcationContext {
     const History<MapPoint>* live = nullptr; // the Poincare map's settled section points at omega (or null)
     int* protocol = nullptr;                 // the app's settings, which sessions save: 0 CF up, 1 CF down, 2 EF
     int* steps = nullptr;                    // CF omega levels
+    const OmegaRamp* ramp = nullptr;         // the live omega ramp: the section points it passed, in green
     std::function<void(Plot&)> overlay;      // drawn last inside the diagram (the continued branches)
 };
 
@@ -55,6 +57,8 @@ struct BifurcationState {
     bool running = false, cancelled = false, stale = false;
     double progress = 0;
     Range view_omega;                     // the omega range on screen
+    bool y_is_v = false;                  // the quantity over omega: v (else x) at the sections
+    Range view_y;                         // its range on screen [m] or [m/s]
     std::string range_error;              // the range inputs' complaint ("" when valid)
     bool lyap_on = false, lyap_running = false;
     int lyap_steps = 0, lyap_done = 0, lyap_positive = 0;   // omegas asked, done, with lambda_max > 0
@@ -97,6 +101,9 @@ private:
     void start_strip(const BifurcationContext& c);
     void grow_fit(std::size_t from);
     void snap_fit();
+    // x or v at the sections over omega; the y fit and the view follow.
+    void set_show_v(bool v);
+    double y_of(const DiagramPoint& p) const { return show_v_ ? p.v : p.x; }
     void update_texture(int w, int h);
     void draw_header(const BifurcationContext& c, std::string& toast);
     void draw_legend() const;   // the density colours, in the header
@@ -140,6 +147,7 @@ private:
 
     // The Lyapunov strip.
     bool lyap_on_ = false, lyap_want_ = false;
+    bool show_v_ = false;   // the diagram plots v at the sections (else x)
     int lyap_steps_ = 60;
     LyapunovStripJob lyap_job_;
     LyapunovStripRequest lyap_req_;

@@ -13,6 +13,7 @@
 
 #include "data_job.hpp"
 #include "plot2d.hpp"
+#include "views/file_browser.hpp"
 
 namespace impactlab::gui {
 
@@ -58,6 +59,8 @@ private:
 
     // Fields.
     char path_[512] = {};
+    FileBrowser browser_{{".csv", ".gz"}};   // the data files beside the path (Browse)
+    bool browsing_ = false;
     char t_col_[64] = {}, x_col_[64] = {}, f_col_[64] = {};
     bool f_is_u_ = false;
     float rate_ = 0.0f, x_scale_ = 1.0f;

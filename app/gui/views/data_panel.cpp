@@ -1,4 +1,4 @@
-#include "data_panel.hpp"
+#include "views/data_panel.hpp"
 
 #include <imgui.h>
 
@@ -177,6 +177,8 @@ void DataPanel::draw_file_row() {
     ImGui::SameLine();
     if ((ImGui::Button("Load") || enter) && path_[0]) load(path_, false);
     ImGui::SameLine();
+    if (ImGui::Button(browsing_ ? "Hide files" : "Browse...")) browsing_ = !browsing_;
+    ImGui::SameLine();
     if (data_) {
         const auto& d = *data_;
         ImGui::TextDisabled("%zu samples, %.1f s, forced by %s", d.size(), d.size() ? d.t.back() - d.t.front() : 0.0,
@@ -184,6 +186,7 @@ void DataPanel::draw_file_row() {
     } else {
         ImGui::TextDisabled("no data loaded");
     }
+    if (browsing_ && browser_.draw("##data_files", path_, sizeof path_, 6)) load(path_, false);   // a double-click loads
     if (ImGui::TreeNode("Column mapping (for files not in the t, x, phi layout)")) {
         const float w = fs * 7.0f;
         ImGui::SetNextItemWidth(w);

@@ -1,4 +1,4 @@
-#include "bifurcation_panel.hpp"
+#include "views/bifurcation_panel.hpp"
 
 #include <imgui.h>
 
@@ -18,6 +18,19 @@
 namespace impactlab::gui {
 
 namespace {
+
+// The section points a live omega ramp passed, over the diagram: the paper's EF protocol growing as it runs.
+void draw_ramp_points(Plot& plot, const OmegaRamp& ramp) {
+    const auto& pts = ramp.points();
+    if (pts.empty()) return;
+    // Green, apart from the density image's magma ramp and the live points' cyan.
+    const ImU32 col = IM_COL32(110, 235, 120, 255);
+    struct Dot { double x, y; };
+    plot.scatter(pts.size(), [&](std::size_t i) { return Dot{pts[i].omega, pts[i].x}; }, col, 3.0f);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s ramp: %zu points", ramp.active() ? "live" : "last", pts.size());
+    plot.text(plot.x_range().lo, plot.y_range().hi, buf, col, ImVec2(-0.05f, -1.4f));
+}
 
 double wall_s() {
     using namespace std::chrono;
@@ -46,6 +59,7 @@ const char* lambda_word(double l) {
 
 void BifurcationPanel::configure(const Options& opt) {
     want_start_ = !opt.bifurcation.empty();
+    show_v_ = opt.bif_y == "v";
     nowait_ = opt.bif_nowait;
     if (opt.bif_range_hi > opt.bif_range_lo) {
         lo_edit_ = opt.bif_range_lo;
@@ -126,7 +140,7 @@ void BifurcationPanel::grow_fit(std::size_t from) {
     double lo = fit_y_empty_ ? 1e300 : fit_y_.lo, hi = fit_y_empty_ ? -1e300 : fit_y_.hi;
     bool grew = false;
     for (std::size_t i = from; i < shown_.points.size(); ++i) {
-        const double x = shown_.points[i].x;
+        const double x = y_of(shown_.points[i]);
         const double pad = 0.06 * std::max(hi - lo, 1e-3);
         if (x < lo) lo = x - pad, grew = true;
         if (x > hi) hi = x + pad, grew = true;
@@ -137,12 +151,22 @@ void BifurcationPanel::grow_fit(std::size_t from) {
     }
 }
 
+void BifurcationPanel::set_show_v(bool v) {
+    if (v == show_v_) return;
+    show_v_ = v;
+    dirty_ = true;
+    fit_y_empty_ = true;
+    snap_fit();
+    // The user's zoom was in the other quantity's units: the view goes back to the whole diagram.
+    Plot::set_user_view("##bif", fit_x_, fit_y_);
+}
+
 void BifurcationPanel::snap_fit() {
     if (shown_.points.empty()) return;
     double lo = 1e300, hi = -1e300;
     for (const auto& p : shown_.points) {
-        lo = std::min(lo, p.x);
-        hi = std::max(hi, p.x);
+        lo = std::min(lo, y_of(p));
+        hi = std::max(hi, y_of(p));
     }
     const double pad = 0.06 * std::max(hi - lo, 1e-3);
     fit_y_ = {lo - pad, hi + pad};
@@ -221,6 +245,8 @@ BifurcationState BifurcationPanel::state(const BifurcationContext& c) const {
     s.stale = stale(c);
     s.progress = job_.progress();
     s.view_omega = view_x_;
+    s.y_is_v = show_v_;
+    s.view_y = view_y_;
     s.range_error = range_error_;
     s.lyap_on = lyap_on_;
     s.lyap_running = lyap_job_.running();
@@ -266,7 +292,7 @@ void BifurcationPanel::update_texture(int w, int h) {
     const double col_px = w * (shown_req_.omega_hi - shown_req_.omega_lo) / std::max(1, shown_req_.steps) / view_x_.span();
     const int splat = cf ? std::clamp(static_cast<int>(col_px), 1, 12) : 1;
     for (const auto& p : shown_.points) {
-        const double fx = (p.omega - view_x_.lo) / view_x_.span(), fy = (view_y_.hi - p.x) / view_y_.span();
+        const double fx = (p.omega - view_x_.lo) / view_x_.span(), fy = (view_y_.hi - y_of(p)) / view_y_.span();
         if (!(fx > -0.1 && fx < 1.1)) continue;
         const int ix = static_cast<int>(std::floor(fx * w)), iy = static_cast<int>(std::floor(fy * h));
         if (iy < 0 || iy >= h) continue;
@@ -346,6 +372,15 @@ void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toa
         ImGui::EndDisabled();
         tooltip("B: runs on a worker thread and fills in column by column; the animation goes on.");
     }
+    same_line_if(fs * 3.2f);
+    {
+        // x or v at the sections: the same points (the sweep records both), the y axis refitted.
+        static const char* kY[] = {"x", "v"};
+        int y = show_v_ ? 1 : 0;
+        ImGui::SetNextItemWidth(fs * 3.0f);
+        if (ImGui::Combo("##bif_y", &y, kY, 2)) set_show_v(y == 1);
+        tooltip("The section points' x or v over ω (the continued branches and the ramp's points: over x only).");
+    }
     same_line_if(fs * 5.5f);
     if (ImGui::Checkbox("λ strip", &lyap_on_)) {
         if (lyap_on_ && (lyap_.empty() || lyap_model_ != (have_ ? shown_.model : c.model))) start_strip(c);
@@ -405,9 +440,9 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
     Plot plot;
     Axes ax;
     ax.x_label = "ω [rad/s]";
-    ax.y_label = "x at sections [mm]";
-    ax.y_label_short = "x [mm]";
-    ax.y_scale = 1e3;
+    ax.y_label = show_v_ ? "v at sections [m/s]" : "x at sections [mm]";
+    ax.y_label_short = show_v_ ? "v [m/s]" : "x [mm]";
+    ax.y_scale = show_v_ ? 1.0 : 1e3;
     if (!zoom_applied_ && have_ && !job_.running() && !shown_.points.empty()) {
         // --bif-zoom: the omega range asked for, the auto-fit's x at sections.
         zoom_applied_ = true;
@@ -455,7 +490,8 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         const ImVec2 ts = ImGui::CalcTextSize(hint);
         plot.draw()->AddText(ImVec2(0.5f * (a.x + b.x - ts.x), 0.5f * (a.y + b.y - ts.y)), pal.axis_text, hint);
     }
-    if (!c.params || c.params->has_bumper()) plot.hline(c.xI, pal.bumper, 1.0f, true);   // "none": no bumper
+    // The bumper's x_I is a position: drawn over x only ("none": no bumper).
+    if (!show_v_ && (!c.params || c.params->has_bumper())) plot.hline(c.xI, pal.bumper, 1.0f, true);
     // The running omega: a line, its value (to 0.01 rad/s), and the Poincare map's settled points on it.
     plot.vline(c.omega, pal.cursor, 2.0f);
     live_ = {};
@@ -471,7 +507,7 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         const bool omega_in_view = c.omega >= vx.lo && c.omega <= vx.hi;
         live_.total = n;
         for (std::size_t i = first; i < h.size(); ++i) {
-            const ImVec2 p = plot.to_px(c.omega, h[i].x);
+            const ImVec2 p = plot.to_px(c.omega, show_v_ ? h[i].v : h[i].x);
             // A point off the view is counted and said, never drawn at an edge as if it were there.
             if (!omega_in_view) {
                 ++live_.beyond;
@@ -562,7 +598,9 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
                           w_mouse);
         if (plot.clicked()) act.omega = w_mouse;
     }
-    if (c.overlay) c.overlay(plot);   // continued branches and bifurcation points (named on hover)
+    // The ramp's points and the continued branches are x at the sections: drawn over the diagram of x only.
+    if (c.ramp && !show_v_) draw_ramp_points(plot, *c.ramp);
+    if (c.overlay && !show_v_) c.overlay(plot);   // continued branches and bifurcation points (named on hover)
     plot.end();
     if (lyap_on_) draw_strip(c, vx, act);
     return act;

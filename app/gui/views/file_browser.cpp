@@ -1,0 +1,68 @@
+#include "views/file_browser.hpp"
+
+#include <imgui.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+
+#include "theme.hpp"
+
+namespace impactlab::gui {
+
+namespace fs = std::filesystem;
+
+void FileBrowser::open_dir(const std::string& dir) {
+    std::error_code ec;
+    dir_ = fs::absolute(dir.empty() ? fs::path(".") : fs::path(dir), ec).lexically_normal().string();
+    refresh();
+}
+
+void FileBrowser::refresh() {
+    entries_ = list_files(dir_, extensions_, error_);
+    listed_at_ = ImGui::GetCurrentContext() ? ImGui::GetTime() : 0.0;
+}
+
+bool FileBrowser::draw(const char* id, char* path, std::size_t cap, float rows) {
+    if (dir_.empty()) {   // the folder of the path typed, else the working directory
+        std::error_code ec;
+        const fs::path p(path);
+        open_dir(!p.empty() && p.has_parent_path() && fs::is_directory(p.parent_path(), ec) ? p.parent_path().string() : ".");
+    }
+    if (ImGui::GetTime() - listed_at_ > 2.0) refresh();   // a file written meanwhile shows up
+    bool open = false;
+    ImGui::TextDisabled("%s", dir_.c_str());
+    if (!error_.empty()) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", error_.c_str());
+    const float h = rows * ImGui::GetTextLineHeightWithSpacing();
+    if (ImGui::BeginChild(id, ImVec2(ImGui::GetContentRegionAvail().x, h), true)) {
+        std::string go;   // a folder clicked: opened after the loop (the list is being walked)
+        for (const FileEntry& e : entries_) {
+            char label[300];
+            if (e.dir) std::snprintf(label, sizeof label, "%s/", e.name.c_str());
+            else std::snprintf(label, sizeof label, "%s  (%.1f kB)", e.name.c_str(), static_cast<double>(e.size) / 1024.0);
+            const std::string full = (fs::path(dir_) / e.name).lexically_normal().string();
+            const bool chosen = !e.dir && full == path;
+            if (ImGui::Selectable(label, chosen, ImGuiSelectableFlags_AllowDoubleClick)) {
+                if (e.dir) {
+                    go = full;
+                } else {
+                    std::snprintf(path, cap, "%s", full.c_str());
+                    open = ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
+                }
+            }
+        }
+        if (entries_.empty() && error_.empty()) ImGui::TextDisabled("(no matching files)");
+        if (!go.empty()) open_dir(go);
+    }
+    ImGui::EndChild();
+    return open;
+}
+
+nlohmann::json FileBrowser::state() const {
+    nlohmann::json names = nlohmann::json::array();
+    for (const FileEntry& e : entries_) names.push_back(e.dir ? e.name + "/" : e.name);
+    return {{"dir", dir_}, {"entries", std::move(names)}, {"error", error_}};
+}
+
+}  // namespace impactlab::gui

@@ -1,0 +1,36 @@
+// A simple file browser under a path field (the session window, the measured data): the folder of the path
+// typed, listed by file_list.hpp; a click on a folder opens it, a click on a file puts its path in the field,
+// a double-click also says "open". No dependency beyond Dear ImGui. UI thread only.
+#pragma once
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "file_list.hpp"
+
+namespace impactlab::gui {
+
+class FileBrowser {
+public:
+    explicit FileBrowser(std::vector<std::string> extensions) : extensions_(std::move(extensions)) {}
+    // Lists `dir` from now on (--browse DIR).
+    void open_dir(const std::string& dir);
+    // Draws the list, `rows` lines high, for the path in `path` (its folder when the browser has none of its
+    // own yet); true when a file was double-clicked (the caller loads `path`).
+    bool draw(const char* id, char* path, std::size_t cap, float rows = 8);
+    const std::string& dir() const { return dir_; }
+    nlohmann::json state() const;   // for --state-json: the folder and its entries ("name/" for folders)
+
+private:
+    void refresh();
+    std::vector<std::string> extensions_;
+    std::string dir_;                 // absolute, "" until first drawn
+    std::vector<FileEntry> entries_;
+    std::string error_;
+    double listed_at_ = -1;           // [s] ImGui time of the listing (refreshed every 2 s)
+};
+
+}  // namespace impactlab::gui
