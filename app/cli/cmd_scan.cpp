@@ -90,7 +90,7 @@ int cmd_scan(const std::vector<std::string>& argv) {
     const int rank = 0, ranks = 1;
 #endif
     // Every rank parses the same argv; only rank 0 touches files, and it tells the others whether to go on.
-    int ok = 1;
+    [[maybe_unused]] int ok = 1;   // told to the MPI workers (unread without MPI)
     ScanSpec spec;
     Params p;
     std::string out_path, png, log_path;
@@ -240,7 +240,7 @@ int cmd_scan(const std::vector<std::string>& argv) {
     }
 #endif
 
-    const std::size_t nx = static_cast<std::size_t>(spec.x.n);
+    [[maybe_unused]] const std::size_t nx = static_cast<std::size_t>(spec.x.n);   // a row's points, as MPI messages carry them
     auto record_row = [&](int row, const std::vector<ScanPoint>& pts) {   // rank 0, one call at a time
         rows[static_cast<std::size_t>(row)] = pts;
         log << scan_log_line(row, pts) << '\n';
