@@ -24,4 +24,5 @@ set(IMPACTLAB_APP_TEST_SOURCES
   app/layout_test.cpp
   app/input_files_test.cpp
   app/param_edit_test.cpp
+  app/program_assets_test.cpp
 )

@@ -10,6 +10,5 @@ set(IMPACTLAB_CORE_TEST_SOURCES
   core/impact_test.cpp
   core/sweep_test.cpp
   core/plot_test.cpp
-  core/assets_test.cpp
   core/input_file_test.cpp
 )
