@@ -98,3 +98,14 @@ TEST_CASE("stats: chi2_to_z and f_to_z map their distributions' quantiles onto t
     CHECK(dt::f_to_z(12.8325 / 5.0, 5, 1e9) == doctest::Approx(dt::chi2_to_z(12.8325, 5)).epsilon(0.01));
     CHECK(dt::f_to_z(-1.0, 1, 10) == 0.0);
 }
+
+TEST_CASE("stats: median_se is 1.2533 x 1.4826 MAD / sqrt(n), its scale floored, non-finite values left out") {
+    const std::vector<double> x{1, 2, 3, 4, 100};   // |x - 3| = 2, 1, 0, 1, 97: MAD 1, the outlier costs nothing
+    CHECK(dt::median_se(x, 3.0) == 1.2533 * 1.4826 / std::sqrt(5.0));
+    CHECK(dt::median_se(x, 3.0, 2.0) == 2.0 / std::sqrt(5.0));
+    CHECK(dt::median_se(x, 3.0, 1.0) == 1.2533 * 1.4826 / std::sqrt(5.0));   // the floor only from below
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    CHECK(dt::median_se({1, 2, nan, 3, 4, 100}, 3.0) == dt::median_se(x, 3.0));
+    CHECK(dt::median_se({}, 0.0, 1.0) == 0.0);
+    CHECK(dt::median_se({nan}, 0.0) == 0.0);
+}

@@ -195,6 +195,11 @@ double chi2_to_z(double W, int p);
 double f_to_z(double F, double d1, double d2);
 // Weighted quantile / median helpers.
 double median(std::vector<double> v);
+// The standard error of the median of x from its own spread: 1.2533 (a median's standard error over a
+// mean's, normal data) x 1.4826 MAD about `center` (the normal-consistent scale) / sqrt(n); the scale is
+// never taken below `floor` (what quantisation or too few values cannot show). Non-finite values are
+// left out; 0 for none.
+double median_se(const std::vector<double>& x, double center, double floor = 0.0);
 double quantile(std::vector<double> v, double q);
 
 // ---- shooting.cpp -------------------------------------------------------------------------------------

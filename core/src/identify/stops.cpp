@@ -92,10 +92,7 @@ std::vector<std::pair<std::string, double>> end_stop_values(const Prep& pr, cons
     if (lev.size() < 3) return out;
     if (kap.size() < 3) kap = kap_all;
     if (sigma_xS) {
-        const double med = median(lev);
-        std::vector<double> dev;
-        for (double x : lev) dev.push_back(std::abs(x - med));
-        *sigma_xS = std::max(1.2533 * 1.4826 * median(dev), pr.sigma_x) / std::sqrt(static_cast<double>(lev.size()));
+        *sigma_xS = median_se(lev, median(lev), pr.sigma_x);
     }
     const double e = std::clamp(median(kap), 0.02, 0.98);
     // First estimates from the reversals as the detector reads them: the contact lasts about its measured
