@@ -158,7 +158,7 @@ using StepFn = std::function<double(const Knob&, double)>;
 struct LsqOptions {
     int max_iterations = 30;
     double function_tolerance = 1e-9;   // stop when an iteration lowers the cost by less than this share
-    double huber_delta = 0;             // > 0: Huber loss with this scale (outliers, saturated samples)
+    double huber_delta = 0;             // > 0: Huber loss with this scale on each residual (outliers, saturated samples)
 };
 struct LsqSummary {
     double initial_cost = 0, final_cost = 0;   // |R|^2
