@@ -11,5 +11,6 @@ set(IMPACTLAB_CORE_TEST_SOURCES
   core/impact_test.cpp
   core/sweep_test.cpp
   core/plot_test.cpp
+  core/raster_test.cpp
   core/input_file_test.cpp
 )
