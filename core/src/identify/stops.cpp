@@ -204,8 +204,7 @@ void end_stop_stage(const Prep& pr, const FitOptions& o, const SentenceContext& 
     const EffectLaw* law = find_effect("end_stop");
     if (pr.stray.size() < 3 || !law || !law->fit.from_reversals) return;
     const std::string id = law->id;
-    if (std::find(o.exclude.begin(), o.exclude.end(), id) != o.exclude.end()) return;
-    if (!o.only.empty() && std::find(o.only.begin(), o.only.end(), id) == o.only.end()) return;
+    if (!o.wants(id)) return;
     for (const auto& e : after.p.effects)
         if (std::string(e.law->id) == "end_stop") return;   // the model given already has one
     double se = 0;
