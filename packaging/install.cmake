@@ -2,7 +2,7 @@
 #
 #   PREFIX/bin/impactlab, PREFIX/bin/impactlab-gui
 #   PREFIX/share/impactlab/fonts/    the font both programs draw text with (found at run time from the
-#                                    program's location: core's asset_path, impactlab/assets.hpp)
+#                                    program's location: asset_path, app/common/program_assets.hpp)
 #   PREFIX/share/impactlab/icons/    the window icon (likewise)
 #   PREFIX/share/impactlab/shaders/  the GLSL sources of the shaders (impactlab-gui carries them compiled in)
 #   PREFIX/share/applications/io.github.impactlab.impactlab.desktop, PREFIX/share/icons/hicolor/64x64/apps/impactlab.png,

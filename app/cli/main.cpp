@@ -10,6 +10,7 @@
 #include "impactlab/atomic_file.hpp"
 #include "impactlab/input_file.hpp"
 #include "impactlab/params.hpp"
+#include "program_assets.hpp"
 
 namespace impactlab::cli {
 
@@ -60,6 +61,7 @@ int main(int argc, char** argv) {
     }
     const std::vector<std::string> rest(argv + 2, argv + argc);
     impactlab::remove_partials_on_signal();
+    impactlab::use_program_fonts();   // the plots' text: the font installed beside this program
     for (const auto& c : commands()) {
         if (name != c.name) continue;
         int rc = 1;

@@ -15,7 +15,7 @@
 #include <numbers>
 
 #include "gl_util.hpp"
-#include "impactlab/assets.hpp"
+#include "program_assets.hpp"
 #include "opaque_image.hpp"
 #include "plot2d.hpp"
 #include "plot_gpu.hpp"
@@ -64,6 +64,7 @@ std::string timestamp() {
 }  // namespace
 
 App::App(const Options& opt) : opt_(opt) {
+    use_program_fonts();   // core's figures (the fit's report) draw text with the font found beside the program
     params_ = make_version(opt.model);
     stiffness_ = index_of_stiffness(params_.stiffness_id);
     impact_ = index_of_impact(params_.impact);

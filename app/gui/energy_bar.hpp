@@ -7,6 +7,7 @@
 #include <array>
 
 #include "impactlab/energy.hpp"
+#include "impactlab/equilibria.hpp"
 #include "impactlab/params.hpp"
 
 namespace impactlab::gui {
@@ -24,8 +25,7 @@ struct EnergyBars {
 // negative in the wells of the double-well stiffness).
 EnergyBars energy_bars(const EnergyBalance& b, double m, double V_min);
 
-// The lowest V(x) of the spring-magnet potential over the rail [J] (sampled every 0.1 mm, then refined).
-double potential_floor(const Params& p);
+// V_min is core's potential_floor(p) (impactlab/equilibria.hpp): the deepest well's floor on the rail.
 
 // energy_bar_view.cpp. UI thread, inside an ImGui window: the two bars, a legend in mJ and the closing error.
 void draw_energy_bars(const EnergyBars& bars, double t0, double t);

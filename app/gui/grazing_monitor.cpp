@@ -1,27 +1,11 @@
 #include "grazing_monitor.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include "impactlab/equilibria.hpp"
 
 namespace impactlab::gui {
-
-namespace {
-// Bisection for the instant in [a, b] where f changes sign (f(a), f(b) of opposite signs): 50 halvings
-// take a millisecond step below 1e-18 s, far under anything shown.
-template <class F>
-double root(F&& f, double a, double b) {
-    double fa = f(a);
-    for (int i = 0; i < 50; ++i) {
-        const double m = 0.5 * (a + b), fm = f(m);
-        if ((fm > 0) == (fa > 0)) {
-            a = m;
-            fa = fm;
-        } else {
-            b = m;
-        }
-    }
-    return 0.5 * (a + b);
-}
-}  // namespace
 
 void GrazingMonitor::reset() {
     started_ = false;
@@ -45,10 +29,7 @@ void GrazingMonitor::on_piece(const Piece& piece, double xI, bool compliant) {
     const Vec2 y0 = piece.at(piece.t0), y1 = piece.at(piece.t1);
     double top = std::max(y0[0], y1[0]);
     // A turning point inside the piece (v from + to -): the dense output's maximum of x.
-    if (y0[1] > 0 && y1[1] < 0) {
-        const double tm = root([&](double t) { return piece.at(t)[1]; }, piece.t0, piece.t1);
-        top = std::max(top, piece.at(tm)[0]);
-    }
+    if (const double tm = turning_point(piece); !std::isnan(tm)) top = std::max(top, piece.at(tm)[0]);
     x_max_ = std::max(x_max_, top);
     if (!compliant) return;
     // The compliant bumper: a contact begins where x rises through xI (the simulator restarts there, so
@@ -56,7 +37,8 @@ void GrazingMonitor::on_piece(const Piece& piece, double xI, bool compliant) {
     if (top > xI) {
         penetration_ = std::max(penetration_, top - xI);
         if (!in_contact_ && y0[0] <= xI) {
-            const double te = root([&](double t) { return piece.at(t)[0] - xI; }, piece.t0, piece.t1);
+            // The entry: x - xI from <= 0 to > 0 (a piece starting on the bumper's face enters at t0).
+            const double te = bisect([&](double t) { return !(piece.at(t)[0] - xI > 0); }, piece.t0, piece.t1);
             v_impact_ = piece.at(te)[1];
             ++impacts_;
         } else if (!in_contact_ && y0[0] > xI) {   // already inside at the start (moved there): count it

@@ -10,6 +10,7 @@
 #include <imgui_internal.h>   // SetItemUsingMouseWheel: the wheel zooms the plot, not the window
 
 #include "gl_util.hpp"
+#include "impactlab/plot.hpp"
 #include "opaque_image.hpp"
 #include "theme.hpp"
 #include "view_fit.hpp"
@@ -53,15 +54,6 @@ void add_text_vertical(ImDrawList* dl, ImVec2 center, ImU32 col, const char* tex
     }
 }
 }  // namespace
-
-double nice_step(double span, int wanted) {
-    if (!(span > 0) || wanted < 1) return 1.0;
-    const double raw = span / wanted;
-    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-    const double f = raw / mag;
-    const double m = f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0;
-    return m * mag;
-}
 
 void AutoRange::snap(Range target, double pad, double min_span) {
     init = false;
@@ -224,10 +216,12 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
     char buf[32];
     const int nx = std::max(2, static_cast<int>((max_.x - min_.x) / (fs * 5.0f)));
     const int ny = std::max(2, static_cast<int>((max_.y - min_.y) / (fs * 2.6f)));
-    const double sx = nice_step(x_.span() * axes.x_scale, nx) / axes.x_scale;
-    const double sy = nice_step(y_.span() * axes.y_scale, ny) / axes.y_scale;
+    // The PNG figures' tick rule (at most nx ticks on a 1-2-5 step, in the axis' shown unit); 0 for an
+    // empty or non-finite range, which gets no ticks.
+    const double sx = plot::nice_step(x_.lo * axes.x_scale, x_.hi * axes.x_scale, nx) / std::abs(axes.x_scale);
+    const double sy = plot::nice_step(y_.lo * axes.y_scale, y_.hi * axes.y_scale, ny) / std::abs(axes.y_scale);
     const int dx = decimals_for(sx * axes.x_scale), dy = decimals_for(sy * axes.y_scale);
-    for (double v = std::ceil(x_.lo / sx) * sx; v <= x_.hi + 1e-9 * sx; v += sx) {
+    for (double v = std::ceil(x_.lo / sx) * sx; sx > 0 && v <= x_.hi + 1e-9 * sx; v += sx) {
         const float px = std::round(to_px(v, 0).x) + 0.5f;
         if (grid) grid->segment({px, min_.y}, {px, max_.y}, 1.0f, 1.0f, 1.0f);
         else dl_->AddLine(ImVec2(px, min_.y), ImVec2(px, max_.y), pal.grid);
@@ -237,7 +231,7 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
         if (px - ts.x * 0.5f < p0.x || px + ts.x * 0.5f > p1.x) continue;   // a label would leave the plot
         dl_->AddText(ImVec2(px - ts.x * 0.5f, max_.y + fs * 0.35f), pal.axis_text, buf);
     }
-    for (double v = std::ceil(y_.lo / sy) * sy; v <= y_.hi + 1e-9 * sy; v += sy) {
+    for (double v = std::ceil(y_.lo / sy) * sy; sy > 0 && v <= y_.hi + 1e-9 * sy; v += sy) {
         const float py = std::round(to_px(0, v).y) + 0.5f;
         if (grid) grid->segment({min_.x, py}, {max_.x, py}, 1.0f, 1.0f, 1.0f);
         else dl_->AddLine(ImVec2(min_.x, py), ImVec2(max_.x, py), pal.grid);

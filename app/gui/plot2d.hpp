@@ -189,9 +189,6 @@ private:
 // Points handed to the renderer this frame (benchmark statistics).
 std::size_t& g_stat_points();
 
-// Nice tick step for a span and a wanted number of ticks (1, 2, 5 x 10^k).
-double nice_step(double span, int wanted);
-
 // ---- templates -------------------------------------------------------------------------------------
 
 template <class Get>

@@ -4,51 +4,22 @@
 #include <cmath>
 #include <cstring>
 
+#include "impactlab/raster.hpp"
+
 namespace impactlab::gui {
 
 namespace {
 
 // Calls cover(index, coverage, t) for every pixel of a w x h image within reach of segment a-b drawn
-// `width` px wide: coverage in [0, 1] from the distance to the segment (one pixel of antialiasing), t in
-// [0, 1] the position along it. Returns the rectangle visited (empty if off the image).
+// `width` px wide (core's capsule rasteriser, in float): coverage in [0, 1] from the distance to the
+// segment, t in [0, 1] the position along it. Returns the rectangle visited (empty if off the image).
 template <class Cover>
 PixelRect rasterize_segment(int w, int h, PxPoint a, PxPoint b, float width, Cover&& cover) {
-    const float hw = 0.5f * width;
-    PixelRect r;
-    r.x0 = std::max(0, static_cast<int>(std::floor(std::min(a.x, b.x) - hw - 1.0f)));
-    r.y0 = std::max(0, static_cast<int>(std::floor(std::min(a.y, b.y) - hw - 1.0f)));
-    r.x1 = std::min(w - 1, static_cast<int>(std::ceil(std::max(a.x, b.x) + hw + 1.0f)));
-    r.y1 = std::min(h - 1, static_cast<int>(std::ceil(std::max(a.y, b.y) + hw + 1.0f)));
-    if (r.empty()) return r;
-    const float dx = b.x - a.x, dy = b.y - a.y;
-    const float len2 = dx * dx + dy * dy;
-    const float inv = len2 > 1e-12f ? 1.0f / len2 : 0.0f;
-    const float outer = hw + 0.5f;
-    // Per row, only the pixels within `outer` of the segment's line can be covered: for a steep or
-    // diagonal segment that is a short run, not the whole bounding box.
-    const float len = std::sqrt(len2);
-    const float nx = len > 1e-6f ? -dy / len : 0.0f, ny = len > 1e-6f ? dx / len : 1.0f;
-    const bool clip_rows = std::abs(nx) > 0.2f;
-    for (int y = r.y0; y <= r.y1; ++y) {
-        const float py = static_cast<float>(y) + 0.5f - a.y;
-        int xa = r.x0, xb = r.x1;
-        if (clip_rows) {
-            // |nx * px + ny * py| < outer  with px = x + 0.5 - a.x
-            const float c = -ny * py / nx, rr = outer / std::abs(nx);
-            xa = std::max(r.x0, static_cast<int>(std::floor(a.x + c - rr - 0.5f)));
-            xb = std::min(r.x1, static_cast<int>(std::ceil(a.x + c + rr - 0.5f)));
-        }
-        const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(w);
-        // Branch-free so the compiler can vectorize it (this file is built with -fno-math-errno).
-        for (int x = xa; x <= xb; ++x) {
-            const float px = static_cast<float>(x) + 0.5f - a.x;
-            const float t = std::min(1.0f, std::max(0.0f, (px * dx + py * dy) * inv));
-            const float ex = px - t * dx, ey = py - t * dy;
-            const float cov = std::min(1.0f, std::max(0.0f, outer - std::sqrt(ex * ex + ey * ey)));
-            cover(row + static_cast<std::size_t>(x), cov, t);
-        }
-    }
-    return r;
+    const auto row = static_cast<std::size_t>(w);
+    const raster::PixelBox r = raster::capsule(a.x, a.y, b.x, b.y, 0.5f * width, 0, 0, w, h, [&](int x, int y, float cov, float t) {
+        cover(static_cast<std::size_t>(y) * row + static_cast<std::size_t>(x), cov, t);
+    });
+    return r.empty() ? PixelRect{} : PixelRect{r.x0, r.y0, r.x1, r.y1};
 }
 
 // The whole pixels an area [min, max) of display pixels spans: origin and size (at least 1 x 1).

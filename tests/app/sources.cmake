@@ -25,4 +25,5 @@ set(IMPACTLAB_APP_TEST_SOURCES
   app/input_files_test.cpp
   app/param_edit_test.cpp
   app/file_list_test.cpp
+  app/program_assets_test.cpp
 )

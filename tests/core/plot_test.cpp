@@ -88,6 +88,17 @@ TEST_CASE("plot: nice_ticks uses 1-2-5 steps that cover the range") {
     CHECK(plot::nice_ticks(1, 0, 3) == plot::nice_ticks(0, 1, 3));
 }
 
+TEST_CASE("plot: nice_step is the GUI's tick rule too: a step in the shown unit, 0 where no ticks are drawn") {
+    // The GUI's plots ask in their label unit (here mm over a 26 mm travel) for at most n ticks.
+    CHECK(plot::nice_step(-13.0, 13.0, 8) == 5.0);
+    CHECK(plot::nice_step(-13.0, 13.0, 3) == 10.0);   // -10, 0, 10
+    CHECK(plot::nice_step(0.0, 1.0, 6) == 0.2);
+    // The GUI steps through v += step: it must get 0 (and draw no ticks) for an empty or broken range.
+    CHECK(plot::nice_step(3, 3, 5) == 0.0);
+    CHECK(plot::nice_step(kNaN, 1, 5) == 0.0);
+    CHECK(plot::nice_step(0, kInf, 5) == 0.0);
+}
+
 TEST_CASE("plot: tick labels") {
     CHECK(plot::format_ticks({-1, -0.5, 0, 0.5, 1}, 0.5) == std::vector<std::string>{"-1.0", "-0.5", "0.0", "0.5", "1.0"});
     CHECK(plot::format_ticks({0, 0.01, 0.02}, 0.01) == std::vector<std::string>{"0.00", "0.01", "0.02"});

@@ -7,9 +7,10 @@ set(IMPACTLAB_CORE_TEST_SOURCES
   core/simulator_test.cpp
   core/integrator_order_test.cpp
   core/energy_test.cpp
+  core/equilibria_test.cpp
   core/impact_test.cpp
   core/sweep_test.cpp
   core/plot_test.cpp
-  core/assets_test.cpp
+  core/raster_test.cpp
   core/input_file_test.cpp
 )

@@ -59,11 +59,9 @@ TEST_CASE("least_squares: a bound holds where the unbounded optimum lies beyond 
     CHECK(R.squaredNorm() > 1e-3);
 }
 
-// Expected to fail today: least_squares hands Ceres all residuals as one block, so Ceres' HuberLoss acts on
-// their summed square (a monotone map of the cost, the same minimum) and never on one sample. The option
-// promises per-sample robustness (outliers, saturated samples); when it is applied per residual this test
-// passes and should_fail must go.
-TEST_CASE("least_squares: Huber loss keeps one outlier from pulling the fit" * doctest::should_fail()) {
+// The Huber option acts on each sample: one wild sample is down-weighted, not the summed square (a
+// monotone map of the plain cost, with the same minimum).
+TEST_CASE("least_squares: Huber loss keeps one outlier from pulling the fit") {
     Decay plain, robust;
     plain.outlier = robust.outlier = true;
     Eigen::VectorXd R;

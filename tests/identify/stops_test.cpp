@@ -62,3 +62,18 @@ TEST_CASE("stops: no reversal away from the bumper in a record without a second 
         CHECK(pr.stray_side == 0);
     }
 }
+
+TEST_CASE("FitOptions::wants: --exclude always wins; an --only list admits just its ids") {
+    impactlab::identify::FitOptions o;
+    CHECK(o.wants("end_stop"));
+    CHECK(o.wants("viscous_damping"));
+    o.only = {"end_stop", "viscous_damping"};
+    CHECK(o.wants("end_stop"));
+    CHECK(!o.wants("coulomb_friction"));
+    o.exclude = {"end_stop"};
+    CHECK(!o.wants("end_stop"));
+    CHECK(o.wants("viscous_damping"));
+    o.only.clear();
+    CHECK(!o.wants("end_stop"));
+    CHECK(o.wants("coulomb_friction"));
+}

@@ -12,6 +12,7 @@
 // effect is kept there only if it improves the simulation of the part of the record the fit did not use.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <stdexcept>
@@ -78,6 +79,13 @@ struct FitOptions {
     double omega_bin = 0.25;             // [rad/s] bins of the diagram distance
     double rtol = 1e-8;                  // integrator tolerance for the shooting
     bool plots = true;
+
+    // Whether `only` and `exclude` let effect `id` into the fit: never when excluded; with an `only` list,
+    // just the ids on it. The screening's candidate list and the end-stop stage both ask this.
+    bool wants(const std::string& id) const {
+        return std::find(exclude.begin(), exclude.end(), id) == exclude.end() &&
+               (only.empty() || std::find(only.begin(), only.end(), id) != only.end());
+    }
 };
 
 // Measured impacts against the same impacts simulated with the model and read by the same detector.

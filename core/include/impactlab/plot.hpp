@@ -101,9 +101,16 @@ Image render(const Figure& fig);
 void save_png(const Figure& fig, const std::string& path);
 void save_png(const Image& image, const std::string& path);
 
-// Path of the TrueType font in use: $IMPACTLAB_FONT if set, else asset_path("fonts/DejaVuSans.ttf") (assets.hpp),
-// else /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf. Throws std::runtime_error naming every path tried
-// when none can be read.
+// The TrueType font the text is drawn with. Core knows no path of its own: the program finds its font
+// (beside itself when installed, the source tree's assets/ in a build) and hands the files to try here, in
+// order, before the first text is drawn. The first that loads is kept for the process; a call after that
+// changes nothing.
+void set_font_files(std::vector<std::string> candidates);
+// Path of the font in use. Throws std::runtime_error naming every path tried when none of the files handed
+// in can be read (or that none was handed in).
 const std::string& font_path();
+// The first of `candidates` that loads as a TrueType font; throws as font_path() does. Loads nothing for
+// the process.
+std::string first_usable_font(const std::vector<std::string>& candidates);
 
 }  // namespace impactlab::plot

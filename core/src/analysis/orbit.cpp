@@ -6,6 +6,7 @@
 
 #include "analysis/tangent.hpp"
 #include "impactlab/analysis.hpp"
+#include "impactlab/equilibria.hpp"
 #include "impactlab/forces.hpp"
 
 namespace impactlab::analysis {
@@ -69,15 +70,11 @@ Floquet floquet(const Mat2& M) {
 }
 
 double left_well(const Params& p) {
-    // F_SA(x) = 0 for x < 0 by bisection between the hilltop and -0.1 m (A1: -10.88 mm); a double well has
-    // F_SA > 0 just left of the hilltop (the magnets push the cart away from it).
-    double a = -0.1, b = -1e-6;
-    if (spring_magnet(p, b).F <= 0 || spring_magnet(p, a).F >= 0) return 0.0;   // a single well at x = 0
-    for (int i = 0; i < 100; ++i) {
-        const double m = 0.5 * (a + b);
-        (spring_magnet(p, m).F < 0 ? a : b) = m;
-    }
-    return 0.5 * (a + b);
+    // The well of F_SA between -0.1 m and the hilltop (A1: -10.88 mm), taken as one cell: a double well has
+    // F_SA > 0 just left of the hilltop (the magnets push the cart away from it), so F_SA rises through
+    // zero there. None: a single well at x = 0.
+    const auto found = equilibria([&](double x) { return spring_magnet(p, x).F; }, -0.1, -1e-6, 1);
+    return !found.empty() && found[0].stable ? found[0].x : 0.0;
 }
 
 Vec2 settle(const Params& p, double omega, const Vec2& y0, int periods, const Tolerances& tol) {

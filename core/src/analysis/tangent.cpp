@@ -6,6 +6,7 @@
 
 #include <Eigen/LU>
 
+#include "impactlab/equilibria.hpp"
 #include "impactlab/forces.hpp"
 #include "impactlab/rig.hpp"
 
@@ -76,14 +77,7 @@ void TangentTracker::on_piece(const Piece& piece) {
     const Vec2 y1 = piece.at(piece.t1);
     max_x = std::max(max_x, y1[0]);
     const Vec2 y0 = piece.at(piece.t0);
-    if (y0[1] > 0 && y1[1] < 0) {   // a turning point inside: bisect v = 0 on the dense output
-        double a = piece.t0, b = piece.t1;
-        for (int i = 0; i < 60; ++i) {
-            const double m = 0.5 * (a + b);
-            (piece.at(m)[1] > 0 ? a : b) = m;
-        }
-        max_x = std::max(max_x, piece.at(0.5 * (a + b))[0]);
-    }
+    if (const double tm = turning_point(piece); !std::isnan(tm)) max_x = std::max(max_x, piece.at(tm)[0]);
     if (p_.compliant()) {
         const bool inside = piece.at(0.5 * (piece.t0 + piece.t1))[0] > p_.xI;
         if (inside && !inside_) ++impacts;
@@ -100,13 +94,7 @@ void TangentTracker::on_piece(const Piece& piece) {
         const double tb = piece.t0 + (piece.t1 - piece.t0) * k / kScan;
         const double vb = piece.at(tb)[1];
         if ((va < 0) != (vb < 0) && va != 0) {
-            double a = ta, b = tb;
-            for (int i = 0; i < 80 && b - a > 0; ++i) {
-                const double m = 0.5 * (a + b);
-                if (m <= a || m >= b) break;
-                ((piece.at(m)[1] < 0) == (va < 0) ? a : b) = m;
-            }
-            zeros[static_cast<std::size_t>(nz++)] = 0.5 * (a + b);
+            zeros[static_cast<std::size_t>(nz++)] = bisect([&](double t) { return (piece.at(t)[1] < 0) == (va < 0); }, ta, tb, 80);
         }
         ta = tb;
         va = vb;

@@ -193,8 +193,7 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
         const EffectFitHint& h = law.fit;
         const std::string id = law.id;
         if (h.n_free == 0) continue;
-        if (std::find(o.exclude.begin(), o.exclude.end(), id) != o.exclude.end()) continue;
-        if (!o.only.empty() && std::find(o.only.begin(), o.only.end(), id) == o.only.end()) continue;
+        if (!o.wants(id)) continue;
         if (h.generic && !o.generic) continue;
         if ((h.needs & FitNeeds::Phi) && !pr.phi_forced) continue;
         if ((h.needs & FitNeeds::SpeedChanges) && !(alpha_rms > 1e-3)) continue;
@@ -222,8 +221,7 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
     for (const auto& b : base_effects()) {
         if (!b.candidate) continue;
         const std::string& id = b.info.id;
-        if (std::find(o.exclude.begin(), o.exclude.end(), id) != o.exclude.end()) continue;
-        if (!o.only.empty() && std::find(o.only.begin(), o.only.end(), id) == o.only.end()) continue;
+        if (!o.wants(id)) continue;
         Candidate c;
         c.id = id;
         if (b.candidate(m, o, c)) out.push_back(std::move(c));

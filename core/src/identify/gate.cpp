@@ -249,10 +249,7 @@ GateCheck gate_check(const PrintedErrors& given, const PrintedErrors& cand, doub
         double rise = 0, scatter = 0;
         if (ref.kind == PrintedError::Kind::AbsMedian) {
             rise = std::abs(vc) - std::abs(vr);
-            std::vector<double> dev;
-            for (double x : rc.num)
-                if (std::isfinite(x)) dev.push_back(std::abs(x - vr));
-            scatter = dev.empty() ? 0.0 : 1.4826 * median(dev) * 1.2533 / std::sqrt(static_cast<double>(dev.size()));
+            scatter = median_se(rc.num, vr);
         } else {
             const double se_sum = std::sqrt(var * n);   // of the summed difference
             if (ref.kind == PrintedError::Kind::Rms) {

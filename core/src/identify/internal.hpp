@@ -164,7 +164,7 @@ using StepFn = std::function<double(const Knob&, double)>;
 struct LsqOptions {
     int max_iterations = 30;
     double function_tolerance = 1e-9;   // stop when an iteration lowers the cost by less than this share
-    double huber_delta = 0;             // > 0: Huber loss with this scale (outliers, saturated samples)
+    double huber_delta = 0;             // > 0: Huber loss with this scale on each residual (outliers, saturated samples)
 };
 struct LsqSummary {
     double initial_cost = 0, final_cost = 0;   // |R|^2
@@ -201,6 +201,11 @@ double chi2_to_z(double W, int p);
 double f_to_z(double F, double d1, double d2);
 // Weighted quantile / median helpers.
 double median(std::vector<double> v);
+// The standard error of the median of x from its own spread: 1.2533 (a median's standard error over a
+// mean's, normal data) x 1.4826 MAD about `center` (the normal-consistent scale) / sqrt(n); the scale is
+// never taken below `floor` (what quantisation or too few values cannot show). Non-finite values are
+// left out; 0 for none.
+double median_se(const std::vector<double>& x, double center, double floor = 0.0);
 double quantile(std::vector<double> v, double q);
 
 // ---- shooting.cpp -------------------------------------------------------------------------------------

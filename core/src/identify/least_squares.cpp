@@ -4,6 +4,7 @@
 // smoothers and simulations that have no analytic derivatives.
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "identify/internal.hpp"
@@ -12,10 +13,19 @@ namespace impactlab::identify::detail {
 
 namespace {
 
+// Huber's loss on one residual, written as a residual of its own: sign(r) sqrt(rho(r^2)) squares to
+// rho(r^2) = r^2 within delta, 2 delta |r| - delta^2 beyond. Summed over the samples that is the robust cost
+// itself, so plain least squares on these residuals minimises it sample by sample. (A Ceres LossFunction
+// would act on the whole block's summed square here: the residual function returns every sample at once.)
+double huber_residual(double r, double delta) {
+    const double a = std::abs(r);
+    return a <= delta ? r : std::copysign(std::sqrt(delta * (2.0 * a - delta)), r);
+}
+
 class KnobCost : public ceres::CostFunction {
 public:
-    KnobCost(std::vector<Knob>& knobs, const ResidualFn& eval, const StepFn& step_of, int m)
-        : knobs_(knobs), eval_(eval), step_of_(step_of) {
+    KnobCost(std::vector<Knob>& knobs, const ResidualFn& eval, const StepFn& step_of, int m, double huber_delta)
+        : knobs_(knobs), eval_(eval), step_of_(step_of), huber_(huber_delta) {
         set_num_residuals(m);
         mutable_parameter_block_sizes()->push_back(static_cast<int>(knobs.size()));
     }
@@ -25,6 +35,7 @@ public:
         const auto p = knobs_.size();
         for (std::size_t k = 0; k < p; ++k) *knobs_[k].value = x[k];
         if (!(eval_(R_) < INFINITY) || R_.size() != num_residuals()) return false;
+        robust(R_);
         Eigen::Map<Eigen::VectorXd>(residuals, num_residuals()) = R_;
         if (jacobians && jacobians[0]) {
             // Row-major num_residuals x p, as Ceres wants it.
@@ -36,16 +47,25 @@ public:
                 const bool ok = eval_(Rt_) < INFINITY && Rt_.size() == num_residuals();
                 *knobs_[k].value = x[k];
                 if (!ok) return false;
+                robust(Rt_);
                 J.col(static_cast<Eigen::Index>(k)) = (Rt_ - R_) / h;
             }
         }
         return true;
     }
+    // 0: the plain residuals (the Jacobian handed back to the caller is of those).
+    void set_huber(double delta) { huber_ = delta; }
 
 private:
+    void robust(Eigen::VectorXd& r) const {
+        if (huber_ > 0)
+            for (Eigen::Index i = 0; i < r.size(); ++i) r[i] = huber_residual(r[i], huber_);
+    }
+
     std::vector<Knob>& knobs_;
     const ResidualFn& eval_;
     const StepFn& step_of_;
+    double huber_;
     mutable Eigen::VectorXd R_, Rt_;
 };
 
@@ -67,9 +87,8 @@ LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const
     po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
     po.loss_function_ownership = ceres::TAKE_OWNERSHIP;
     ceres::Problem problem(po);
-    auto* cost = new KnobCost(knobs, eval, step_of, static_cast<int>(R.size()));
-    ceres::LossFunction* loss = o.huber_delta > 0 ? new ceres::HuberLoss(o.huber_delta) : nullptr;
-    problem.AddResidualBlock(cost, loss, x.data());
+    auto* cost = new KnobCost(knobs, eval, step_of, static_cast<int>(R.size()), o.huber_delta);
+    problem.AddResidualBlock(cost, nullptr, x.data());
     for (std::size_t k = 0; k < knobs.size(); ++k) {
         if (knobs[k].lo > -1e11) problem.SetParameterLowerBound(x.data(), static_cast<int>(k), knobs[k].lo);
         if (knobs[k].hi < 1e11) problem.SetParameterUpperBound(x.data(), static_cast<int>(k), knobs[k].hi);
@@ -91,6 +110,7 @@ LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const
     for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = x[k];
     out.final_cost = eval(R);
     if (J) {
+        cost->set_huber(0.0);
         const double* block[] = {x.data()};
         Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Jr(R.size(), static_cast<Eigen::Index>(knobs.size()));
         double* jac[] = {Jr.data()};

@@ -93,6 +93,14 @@ double chi2_to_z(double W, int p) {
     return (std::cbrt(W / p) - (1.0 - k)) / std::sqrt(k);
 }
 
+double median_se(const std::vector<double>& x, double center, double floor) {
+    std::vector<double> dev;
+    for (double v : x)
+        if (std::isfinite(v)) dev.push_back(std::abs(v - center));
+    if (dev.empty()) return 0.0;
+    return std::max(1.2533 * 1.4826 * median(dev), floor) / std::sqrt(static_cast<double>(dev.size()));
+}
+
 double f_to_z(double F, double d1, double d2) {
     if (!(F > 0) || !(d1 > 0) || !(d2 > 0)) return 0.0;
     const double a = 2.0 / (9.0 * d1), b = 2.0 / (9.0 * d2), f3 = std::cbrt(F);

@@ -92,10 +92,7 @@ std::vector<std::pair<std::string, double>> end_stop_values(const Prep& pr, cons
     if (lev.size() < 3) return out;
     if (kap.size() < 3) kap = kap_all;
     if (sigma_xS) {
-        const double med = median(lev);
-        std::vector<double> dev;
-        for (double x : lev) dev.push_back(std::abs(x - med));
-        *sigma_xS = std::max(1.2533 * 1.4826 * median(dev), pr.sigma_x) / std::sqrt(static_cast<double>(lev.size()));
+        *sigma_xS = median_se(lev, median(lev), pr.sigma_x);
     }
     const double e = std::clamp(median(kap), 0.02, 0.98);
     // First estimates from the reversals as the detector reads them: the contact lasts about its measured
@@ -207,8 +204,7 @@ void end_stop_stage(const Prep& pr, const FitOptions& o, const SentenceContext& 
     const EffectLaw* law = find_effect("end_stop");
     if (pr.stray.size() < 3 || !law || !law->fit.from_reversals) return;
     const std::string id = law->id;
-    if (std::find(o.exclude.begin(), o.exclude.end(), id) != o.exclude.end()) return;
-    if (!o.only.empty() && std::find(o.only.begin(), o.only.end(), id) == o.only.end()) return;
+    if (!o.wants(id)) return;
     for (const auto& e : after.p.effects)
         if (std::string(e.law->id) == "end_stop") return;   // the model given already has one
     double se = 0;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "identify/internal.hpp"
+#include "impactlab/equilibria.hpp"
 #include "impactlab/forces.hpp"
 
 namespace impactlab::identify::detail {
@@ -34,28 +35,11 @@ struct Shape {
 Shape shape(const Model& m, double lo, double hi) {
     Shape s;
     constexpr int kGrid = 4000;
-    const double h = (hi - lo) / kGrid;
     std::vector<double> roots;
     std::vector<bool> stable;
-    double xa = lo, Ra = restoring(m, lo);
-    for (int i = 1; i <= kGrid; ++i) {
-        const double xb = lo + h * i, Rb = restoring(m, xb);
-        if ((Ra < 0) != (Rb < 0)) {
-            double a = xa, b = xb, fa = Ra;
-            for (int it = 0; it < 60; ++it) {
-                const double c = 0.5 * (a + b), fc = restoring(m, c);
-                if ((fc < 0) == (fa < 0)) {
-                    a = c;
-                    fa = fc;
-                } else {
-                    b = c;
-                }
-            }
-            roots.push_back(0.5 * (a + b));
-            stable.push_back(Rb > Ra);
-        }
-        xa = xb;
-        Ra = Rb;
+    for (const Equilibrium& e : equilibria([&](double x) { return restoring(m, x); }, lo, hi, kGrid)) {
+        roots.push_back(e.x);
+        stable.push_back(e.stable);
     }
     auto integral = [&](double a, double b) {   // int_a^b R dx, Simpson
         constexpr int kN = 200;

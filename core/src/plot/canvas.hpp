@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "impactlab/plot.hpp"
+#include "impactlab/raster.hpp"
 #include "plot/font.hpp"
 
 namespace impactlab::plot::detail {
@@ -58,48 +59,14 @@ private:
 };
 
 // Calls plot(x, y, coverage) for the pixels within half_width + 0.5 px of the segment (x0,y0)-(x1,y1)
-// (image coordinates), coverage = clamp(half_width + 0.5 - distance, 0, 1): a 1-px line through pixel
-// centres covers exactly one pixel per step, and the ends are round. Only pixels inside `clip` are visited,
+// (image coordinates) that it covers, coverage = clamp(half_width + 0.5 - distance, 0, 1) > 0: the capsule
+// rasteriser the visualiser draws with too (impactlab/raster.hpp). Only pixels inside `clip` are visited,
 // each at most once. The coordinates must be finite and moderate (clip the segment first).
 template <class Plot>
 void raster_segment(double x0, double y0, double x1, double y1, double half_width, const Rect& clip, Plot&& plot) {
-    const double R = half_width + 0.5;
-    const bool steep = std::abs(y1 - y0) >= std::abs(x1 - x0);
-    // Work in (minor, major) coordinates: for a steep segment major = y, otherwise major = x.
-    const double a0 = steep ? y0 : x0, a1 = steep ? y1 : x1;   // major
-    const double b0 = steep ? x0 : y0, b1 = steep ? x1 : y1;   // minor
-    const int amin_clip = steep ? clip.y0 : clip.x0, amax_clip = steep ? clip.y1 : clip.x1;
-    const int bmin_clip = steep ? clip.x0 : clip.y0, bmax_clip = steep ? clip.x1 : clip.y1;
-    const double da = a1 - a0, db = b1 - b0, len2 = da * da + db * db;
-
-    const int alo = std::max(amin_clip, static_cast<int>(std::floor(std::min(a0, a1) - R)));
-    const int ahi = std::min(amax_clip - 1, static_cast<int>(std::floor(std::max(a0, a1) + R)));
-    for (int ia = alo; ia <= ahi; ++ia) {
-        const double ac = ia + 0.5;
-        double blo = std::min(b0, b1), bhi = std::max(b0, b1);
-        if (da != 0.0) {
-            double ta = std::clamp((ac - R - a0) / da, 0.0, 1.0), tb = std::clamp((ac + R - a0) / da, 0.0, 1.0);
-            const double ba = b0 + ta * db, bb = b0 + tb * db;
-            blo = std::min(ba, bb);
-            bhi = std::max(ba, bb);
-        }
-        const int ib0 = std::max(bmin_clip, static_cast<int>(std::floor(blo - R)));
-        const int ib1 = std::min(bmax_clip - 1, static_cast<int>(std::floor(bhi + R)));
-        for (int ib = ib0; ib <= ib1; ++ib) {
-            const double bc = ib + 0.5;
-            double t = len2 > 0.0 ? ((ac - a0) * da + (bc - b0) * db) / len2 : 0.0;
-            t = std::clamp(t, 0.0, 1.0);
-            const double ea = ac - (a0 + t * da), eb = bc - (b0 + t * db);
-            const double c = R - std::sqrt(ea * ea + eb * eb);
-            if (c > 0.0) {
-                const float cov = static_cast<float>(std::min(c, 1.0));
-                if (steep)
-                    plot(ib, ia, cov);
-                else
-                    plot(ia, ib, cov);
-            }
-        }
-    }
+    raster::capsule(x0, y0, x1, y1, half_width, clip.x0, clip.y0, clip.x1, clip.y1, [&](int x, int y, double cov, double) {
+        if (cov > 0.0) plot(x, y, static_cast<float>(cov));
+    });
 }
 
 // Liang-Barsky: clips the segment to the rectangle [xlo, xhi] x [ylo, yhi]; false if nothing is left.

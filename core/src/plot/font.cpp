@@ -1,8 +1,8 @@
 #include "plot/font.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -12,7 +12,6 @@
 
 #include <stb_truetype.h>   // libstb exports the implementation: no STB_TRUETYPE_IMPLEMENTATION here
 
-#include "impactlab/assets.hpp"
 #include "impactlab/plot.hpp"
 
 namespace impactlab::plot {
@@ -31,13 +30,7 @@ bool read_file(const std::string& path, std::vector<unsigned char>& out) {
     return !out.empty();
 }
 
-std::unique_ptr<FontFile> load_font() {
-    std::vector<std::string> candidates;
-    if (const char* env = std::getenv("IMPACTLAB_FONT"); env != nullptr && *env != '\0') candidates.emplace_back(env);
-    if (std::string installed = asset_path("fonts/DejaVuSans.ttf"); !installed.empty())   // share/impactlab, or assets/
-        candidates.push_back(std::move(installed));
-    candidates.emplace_back("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf");
-
+std::unique_ptr<FontFile> load_font(const std::vector<std::string>& candidates) {
     for (const auto& path : candidates) {
         auto font = std::make_unique<FontFile>();
         if (!read_file(path, font->data)) continue;
@@ -46,20 +39,41 @@ std::unique_ptr<FontFile> load_font() {
         font->path = path;
         return font;
     }
+    if (candidates.empty())
+        throw std::runtime_error("impactlab::plot: no font was handed in (the program calls plot::set_font_files)");
     std::string msg = "impactlab::plot: no usable TrueType font found; tried:";
     for (const auto& path : candidates) msg += " " + path;
     throw std::runtime_error(msg);
 }
 
+// The files the program handed in, and the font once loaded. The loaded font is never replaced: the glyph
+// cache and every GlyphSet point into it. Text is drawn from many threads (scan tiles), so the loaded
+// font is published through an atomic and read without the lock.
+std::mutex g_font_mutex;
+std::vector<std::string> g_font_files;
+std::unique_ptr<const FontFile> g_font;
+std::atomic<const FontFile*> g_font_loaded{nullptr};
+
 const FontFile& font_file() {
-    // A throwing initialiser leaves the static uninitialised, so a later call tries again.
-    static const std::unique_ptr<FontFile> font = load_font();
-    return *font;
+    if (const FontFile* f = g_font_loaded.load(std::memory_order_acquire)) return *f;
+    const std::lock_guard<std::mutex> lock(g_font_mutex);
+    if (!g_font) {   // a failed load leaves nothing behind, so a later call tries again
+        g_font = load_font(g_font_files);
+        g_font_loaded.store(g_font.get(), std::memory_order_release);
+    }
+    return *g_font;
 }
 
 }  // namespace
 
+void set_font_files(std::vector<std::string> candidates) {
+    const std::lock_guard<std::mutex> lock(g_font_mutex);
+    if (!g_font) g_font_files = std::move(candidates);
+}
+
 const std::string& font_path() { return font_file().path; }
+
+std::string first_usable_font(const std::vector<std::string>& candidates) { return load_font(candidates)->path; }
 
 namespace detail {
 

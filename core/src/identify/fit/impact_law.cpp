@@ -22,9 +22,7 @@ void impact_law_stage(FitSession& fs) {
         const std::size_t ni = dlev.size();
         if (ni >= 3) {
             const double med = median(dlev);
-            std::vector<double> dev;
-            for (double l : dlev) dev.push_back(std::abs(l - med));
-            const double se = std::max(1.2533 * 1.4826 * median(dev), 0.3 * pr.sigma_x) / std::sqrt(static_cast<double>(ni));
+            const double se = median_se(dlev, med, 0.3 * pr.sigma_x);
             const double delta = med;
             if (std::abs(delta) / se >= o.z_threshold && std::abs(delta) > 2.0 * pr.sigma_x + 1e-7) {
                 double sb = 0, sa = 0;

@@ -1,7 +1,10 @@
-#include "impactlab/assets.hpp"
+#include "program_assets.hpp"
 
+#include <cstdlib>
 #include <filesystem>
 #include <system_error>
+
+#include "impactlab/plot.hpp"
 
 namespace impactlab {
 
@@ -19,5 +22,15 @@ std::string asset_path(const std::string& relative) {
 #endif
     return "";
 }
+
+std::vector<std::string> font_files() {
+    std::vector<std::string> files;
+    if (const char* env = std::getenv("IMPACTLAB_FONT"); env != nullptr && *env != '\0') files.emplace_back(env);
+    if (std::string own = asset_path("fonts/DejaVuSans.ttf"); !own.empty()) files.push_back(std::move(own));
+    files.emplace_back("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf");
+    return files;
+}
+
+void use_program_fonts() { plot::set_font_files(font_files()); }
 
 }  // namespace impactlab
