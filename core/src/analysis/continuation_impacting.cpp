@@ -1,0 +1,294 @@
+// The continuation near a rigid grazing: an orbit written from impact to impact (the impact phase and the
+// impact speed as unknowns, smooth through v- = 0), the hand-over to and from the stroboscopic map, and
+// what a grazing crossed is reported with (its scenario, the measured scaling of the impacting orbit).
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <string>
+
+
+#include "analysis/continuer.hpp"
+#include "impactlab/analysis.hpp"
+
+namespace impactlab::analysis::detail {
+
+bool Continuer::shot(const Vec3& z, int k, Vec2& G, Eigen::Matrix<double, 2, 3>& J, Vec2& section) {
+    const double q = q_of(z);
+    if (spec_.param == ContParam::Omega && !(q > 0)) return false;
+    try {
+        const double omega = apply(q);
+        ++evaluations_;
+        const ImpactShot a = impact_shot(work_, omega, z[0], z[1] * kVScale, k, true, spec_.sim);
+        const double dq = 1e-6;
+        const double omega_q = apply(q + dq * q_scale_);
+        ++evaluations_;
+        const ImpactShot b = impact_shot(work_, omega_q, z[0], z[1] * kVScale, k, false, spec_.sim);
+        apply(q);
+        G = a.residual;
+        J.leftCols<2>() = a.J;
+        J.col(2) = (b.residual - a.residual) / dq;
+        section = a.section;
+        return G.allFinite() && J.allFinite();
+    } catch (const std::exception&) {
+        apply(q);
+        return false;
+    }
+}
+
+bool Continuer::correct_impacting(const Vec3& z_pred, const Vec3& n, int k, Vec3& z, Eigen::Matrix<double, 2, 3>& J,
+                                  Vec2& section) {
+    z = z_pred;
+    for (int it = 0; it <= kMaxCorrector; ++it) {
+        Vec2 G;
+        if (!shot(z, k, G, J, section)) return false;
+        const double h = n.dot(z - z_pred);
+        if (G.cwiseAbs().maxCoeff() < res_tol_ && std::abs(h) < 1e-9) return true;
+        if (it == kMaxCorrector) break;
+        Mat3 A;
+        A.topRows<2>() = J;
+        A.row(2) = n.transpose();
+        const Vec3 dz = A.fullPivLu().solve(-Vec3(G[0], G[1], h));
+        if (!dz.allFinite() || dz.norm() > 1.0) return false;
+        z += dz;
+    }
+    return false;
+}
+
+void Continuer::follow_impacting(const Job& job, Branch& br) {
+    const int k = job.period;
+    const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
+    Vec3 z, t;
+    Eigen::Matrix<double, 2, 3> J;
+    Vec2 section;
+    if (job.mode == 1) {
+        if (!grazing_start(q_of(job.u), y_of(job.u), k, z, t, section)) {
+            br.end = "the grazing orbit did not converge from impact to impact";
+            return;
+        }
+        for (BifPoint& b : result_.points)
+            if (b.kind == BifKind::Grazing && b.param == q_of(job.u) && b.scenario.empty()) describe_grazing(b, job.t[2], z, t, k);
+        // Its impacting branch already followed to here from another grazing: not again.
+        for (double qr : reached_)
+            if (std::abs(qr - q_of(job.u)) < 1e-5 * q_scale_) {
+                br.end = "reached";
+                return;
+            }
+    } else {
+        // From an impacting orbit of the stroboscopic branch whose impacts are slow (mode 3).
+        double theta = 0, vm = 0;
+        if (!first_impact(work_, apply(q_of(job.u)), y_of(job.u), k, spec_.sim, theta, vm) ||
+            !correct_impacting(Vec3(theta, vm / kVScale, job.u[2]), Vec3(0, 0, 1), k, z, J, section)) {
+            br.end = "the impacting orbit did not converge from impact to impact";
+            return;
+        }
+        t = Vec3(J.row(0).transpose()).cross(Vec3(J.row(1).transpose()));
+        if (!(t.norm() > 0) || !t.allFinite()) {
+            br.end = "singular impact-to-impact equations";
+            return;
+        }
+        t.normalize();
+        if (t[2] * job.t[2] < 0) t = -t;   // the way the stroboscopic branch was going in the parameter
+    }
+    double ds = 0.01;
+    std::string end;
+    bool handed = false, have_prev = false;
+    Sol prev;
+    while (true) {
+        if (cancelled()) { end = "cancelled"; break; }
+        if (static_cast<int>(br.points.size()) >= spec_.max_points) { end = "point limit"; break; }
+        Vec3 zn;
+        Vec2 sec;
+        Eigen::Matrix<double, 2, 3> Jn;
+        if (!correct_impacting(z + ds * t, t, k, zn, Jn, sec)) {
+            ds *= 0.5;
+            if (ds < spec_.ds_min) {
+                end = "Newton failed (impact to impact) near " + std::string(cont_param_name(spec_.param)) + " = " +
+                      std::to_string(q_of(z));
+                break;
+            }
+            continue;
+        }
+        if (zn[1] <= 0 && z[1] > 0) {
+            // The impacts end: v- passes zero between z and zn, a grazing, located by a secant on v- along
+            // the step (the equations are smooth there).
+            double sa = 0, sb = ds, va = z[1], vb = zn[1];
+            Vec3 zm = zn;
+            Vec2 secm = sec;
+            for (int it = 0; it < 60 && std::abs(vb - va) > 0; ++it) {
+                const double sm = sb - vb * (sb - sa) / (vb - va);
+                Eigen::Matrix<double, 2, 3> Jm;
+                if (!correct_impacting(z + sm * t, t, k, zm, Jm, secm)) break;
+                sa = sb; va = vb; sb = sm; vb = zm[1];
+                if (std::abs(vb) * kVScale < 1e-12) break;
+            }
+            BifPoint bp{BifKind::Grazing, q_of(zm), secm, k, br.id, std::abs(sb - sa) * q_scale_, {}, NAN, NAN};
+            bp.precision = std::max(bp.precision, 1e-9 * q_scale_);
+            bool known = false;
+            for (const BifPoint& q : result_.points)
+                if (q.kind == BifKind::Grazing && std::abs(q.param - bp.param) < 1e-5 * q_scale_) known = true;
+            if (!known) result_.points.push_back(bp);
+            reached_.push_back(bp.param);
+            end = "grazing at " + std::string(cont_param_name(spec_.param)) + " = " + std::to_string(bp.param) +
+                  " (the impacts end)";
+            break;
+        }
+        const double q = q_of(zn);
+        if (q < lo || q > hi) { end = std::string(cont_param_name(spec_.param)) + " range"; break; }
+        // The same orbit on the real map: one impact per k periods and a fixed point of P^k. Otherwise the
+        // flight crosses xI in between (a second impact) and the orbit is not the rig's.
+        Sol sp;
+        sp.u = u_of(sec, q);
+        sp.r = map(sp.u, k, true);
+        if (sp.r.impacts != 1 || scaled_norm(sp.r.y - sec) > 1e-5) {
+            end = "the impacting orbit is no longer admissible near " + std::string(cont_param_name(spec_.param)) +
+                  " = " + std::to_string(q) + " (its flight crosses xI)";
+            break;
+        }
+        Vec3 tn = Vec3(Jn.row(0).transpose()).cross(Vec3(Jn.row(1).transpose()));
+        if (tn.norm() > 0 && tn.allFinite()) {
+            tn.normalize();
+            if (tn.dot(t) < 0) tn = -tn;
+        } else {
+            tn = t;
+        }
+        if (have_prev)
+            for (BifKind kind : {BifKind::Fold, BifKind::PeriodDoubling, BifKind::NeimarkSacker}) {
+                const double fa = test(kind, prev), fb = test(kind, sp);
+                if (!std::isfinite(fa) || !std::isfinite(fb) || (fa > 0) == (fb > 0)) continue;
+                if (kind == BifKind::NeimarkSacker && !(complex_pair(prev.r.M) && complex_pair(sp.r.M))) continue;
+                locate_impacting(kind, z, t, ds, prev, sp, k, br.id);
+            }
+        prev = sp;
+        have_prev = true;
+        z = zn;
+        t = tn;
+        section = sec;
+        br.points.push_back(point_of(sp, k));
+        ds = std::min(ds * 1.5, 0.1);
+        // Fast enough for the stroboscopic map (and growing): on with it.
+        if (zn[1] * kVScale > kHandover && t[1] > 0) {
+            handed = true;
+            break;
+        }
+    }
+    if (!handed) {
+        br.end = (job.mode == 1 ? "grazing / " : "slow impacts / ") + end;
+        return;
+    }
+    Branch onward;
+    onward.id = br.id;
+    follow({k, job.parent, u_of(section, q_of(z)), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, 2}, onward);
+    br.points.insert(br.points.end(), onward.points.begin(), onward.points.end());
+    br.end = (job.mode == 1 ? "grazing / " : "slow impacts / ") + onward.end;
+}
+
+void Continuer::locate_impacting(BifKind kind, const Vec3& z, const Vec3& t, double ds, const Sol& a, const Sol& b,
+                                 int k, int branch) {
+    double s_lo = 0, s_hi = ds, f_lo = test(kind, a), f_hi = test(kind, b);
+    Sol lo = a, hi = b;
+    for (int it = 0; it < 80 && std::abs(q_of(hi.u) - q_of(lo.u)) > spec_.locate_tol; ++it) {
+        const double sm = 0.5 * (s_lo + s_hi);
+        Vec3 zm;
+        Eigen::Matrix<double, 2, 3> Jm;
+        Vec2 sec;
+        if (!correct_impacting(z + sm * t, t, k, zm, Jm, sec)) break;
+        Sol m;
+        m.u = u_of(sec, q_of(zm));
+        m.r = map(m.u, k, true);
+        const double fm = test(kind, m);
+        if ((fm > 0) == (f_hi > 0)) { s_hi = sm; hi = m; f_hi = fm; }
+        else { s_lo = sm; lo = m; f_lo = fm; }
+    }
+    // A crossing of the multiplier it names, near +1, -1 or the unit circle on both sides (see locate()).
+    const double target = 1.0 * (kind == BifKind::PeriodDoubling ? -1.0 : 1.0);
+    const double m_lo = crossing_multiplier(kind, lo.r.M), m_hi = crossing_multiplier(kind, hi.r.M);
+    if (!std::isfinite(m_lo) || !std::isfinite(m_hi)) return;
+    if (std::abs(m_lo - target) > kNearCrossing || std::abs(m_hi - target) > kNearCrossing) return;
+    const Sol& best = std::abs(f_lo) < std::abs(f_hi) ? lo : hi;
+    BifPoint bp{kind, q_of(best.u), y_of(best.u), k, branch, std::abs(q_of(hi.u) - q_of(lo.u)), {}, NAN, NAN};
+    for (const BifPoint& q : result_.points)
+        if (q.kind == kind && q.period == k && std::abs(q.param - bp.param) < std::max(1e-5 * q_scale_, 3 * (q.precision + bp.precision)))
+            return;
+    result_.points.push_back(bp);
+}
+
+bool Continuer::grazing_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section) {
+    // The grazing orbit written from impact to impact touches xI at the peak of the bumperless orbit, v- = 0.
+    Eigen::Matrix<double, 2, 3> J;
+    const double theta_g = peak_phase(work_, apply(q_g), y_g, k, spec_.sim);
+    if (!correct_impacting(Vec3(theta_g, 0.0, q_g / q_scale_), Vec3(0, 0, 1), k, z, J, section)) return false;
+    t = Vec3(J.row(0).transpose()).cross(Vec3(J.row(1).transpose()));
+    if (!(t.norm() > 0) || !t.allFinite()) return false;
+    t.normalize();
+    if (t[1] < 0) t = -t;   // onto the impacting side: v- grows
+    return true;
+}
+
+void Continuer::describe_grazing(BifPoint& gp, double free_dir, const Vec3& z, const Vec3& t, int k) {
+    // The free orbits' side: where the bumperless orbit stays below xI, 1e-4 (scaled) either side of the
+    // grazing. The way the branch was going (free_dir) is the fallback: it is not reliable, since a corrector
+    // that steps across a nonsmooth fold turns back in the parameter there.
+    double free_side = free_dir >= 0 ? -1.0 : 1.0;
+    const ImpactModel* law = work_.impact;
+    work_.impact = find_impact("none");
+    int below = 0;
+    double side_below = 0;
+    for (double sgn : {-1.0, 1.0}) {
+        const double q = gp.param + sgn * 1e-4 * q_scale_;
+        OrbitOptions oo;
+        oo.period = k;
+        oo.sim = spec_.sim;
+        const double omega = apply(q);
+        const Orbit o = find_orbit(work_, omega, gp.y, oo);
+        double x_max = 0;
+        if (!o.converged) continue;
+        peak_phase(work_, omega, o.y, k, spec_.sim, &x_max);
+        if (x_max < work_.xI) {
+            ++below;
+            side_below = sgn;
+        }
+    }
+    work_.impact = law;
+    apply(gp.param);
+    if (below == 1) free_side = side_below;
+    gp.scenario = (t[2] >= 0) == (free_side >= 0) ? "nonsmooth fold" : "persistence";
+    measure_scaling(gp, z, t, k);
+}
+
+void Continuer::measure_scaling(BifPoint& gp, const Vec3& z, const Vec3& t, int k) {
+    const double side = t[2] >= 0 ? 1.0 : -1.0;
+    // The scaling: orbits at fixed q whose impacts are 1e-4, 3e-4 and 1e-3 m/s fast (d from the tangent).
+    // Slower impacts are below what the Simulator resolves on the real map (an impact of 1e-7 m/s comes
+    // out at 3e-6: the event is located to about 1e-12 m); faster ones are no longer near the grazing.
+    if (std::abs(t[2]) > 1e-9 && t[1] > 0) {
+        double sx = 0, sy_mu = 0, sy_v = 0, sxx = 0, sxm = 0, sxv = 0;
+        int n = 0;
+        const double dv_dd = t[1] * kVScale / std::abs(t[2]);   // [m/s] per scaled q
+        for (double v_target : {1e-4, 3e-4, 1e-3}) {
+            const double d = v_target / dv_dd;
+            if (!(d < 0.5)) continue;
+            Vec3 zd;
+            Eigen::Matrix<double, 2, 3> Jd;
+            Vec2 sec;
+            const Vec3 pred = z + (side * d / t[2]) * t;
+            if (!correct_impacting(pred, Vec3(0, 0, 1), k, zd, Jd, sec) || !(zd[1] > 0)) continue;
+            const MapResult m = map(u_of(sec, q_of(zd)), k, true);
+            if (m.impacts != 1) continue;   // the orbit is not admissible there
+            const double mu = std::abs(floquet(m.M).mu[0]);
+            const double lx = std::log(d), lm = std::log(mu), lv = std::log(zd[1] * kVScale);
+            sx += lx; sxx += lx * lx; sy_mu += lm; sy_v += lv; sxm += lx * lm; sxv += lx * lv;
+            ++n;
+        }
+        if (n == 3) {
+            const double den = n * sxx - sx * sx;
+            gp.mu_exponent = (n * sxm - sx * sy_mu) / den;
+            gp.speed_exponent = (n * sxv - sx * sy_v) / den;
+        }
+    }
+}
+
+}  // namespace impactlab::analysis::detail

@@ -1,0 +1,285 @@
+// The continuation's engine (continuation.cpp): its constants, a converged point and the Continuer, which
+// follows branches on the stroboscopic map (continuation.cpp) and, near a rigid grazing, from impact to
+// impact (continuation_impacting.cpp).
+#pragma once
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <string>
+
+#include "impactlab/analysis.hpp"
+
+namespace impactlab::analysis::detail {
+
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+constexpr double kResidualTol = 1e-9;   // scaled |P^k(y) - y| of a converged point (at rtol <= 1e-10)
+constexpr int kMaxCorrector = 10;
+// A crossing multiplier must lie this close to +1, -1 or the unit circle at both ends of its bracket.
+constexpr double kNearCrossing = 0.5;
+// |d mu / ds| (scaled arclength) above this is a jump, not a crossing (a smooth one is O(1..100)).
+constexpr double kSteepCrossing = 1e4;
+// Penetration of a compliant bumper below which an orbit is still grazing it [m] (C: a force under 0.3 N).
+constexpr double kGrazingLayer = 1e-6;
+// A step whose multipliers move more than this is retried shorter: it may have jumped onto another
+// segment of the branch (across a fold onto the impacting orbit) and a crossing would go unseen.
+constexpr double kMaxMultiplierStep = 0.3;
+// Rigid impacts slower than this are followed from impact to impact, faster ones on the stroboscopic map,
+// whose corrector handles them (A1G's window from 16 rad/s, whose slowest impacts are near 0.1 m/s) [m/s].
+constexpr double kHandover = 0.05;
+
+// A converged point of a branch and what the test functions need.
+struct Sol {
+    Vec3 u = Vec3::Zero();          // scaled (x / kXScale, v / kVScale, q / q_scale)
+    MapResult r;                    // at u, with the monodromy
+    Eigen::Matrix<double, 2, 3> J = Eigen::Matrix<double, 2, 3>::Zero();  // scaled d G / d u (G = scaled P^k(y) - y)
+    int iterations = 0;
+};
+
+class Continuer {
+public:
+    Continuer(const Params& p, const ContinuationSpec& spec, Progress* progress)
+        : base_(p), work_(p), spec_(spec), progress_(progress) {
+        q_scale_ = spec.param == ContParam::Omega ? 1.0 : spec.param == ContParam::XI ? 1e-3 : 1e-3;
+        // The map is known only to about rtol: a corrector asked for less than that never converges.
+        res_tol_ = std::max(kResidualTol, 10 * spec.sim.rtol);
+    }
+
+    ContinuationResult run();
+
+private:
+    // mode 0: a start (both_ways) or a doubling's switch; 1: a rigid grazing to cross (u: the grazing orbit,
+    // t[2]: the free branch's direction there); 2: onward from a converged point along t, one way.
+    struct Job { int period; int parent; Vec3 u; Vec3 t; bool both_ways; int mode = 0; };
+
+    double q_of(const Vec3& u) const { return u[2] * q_scale_; }
+    Vec2 y_of(const Vec3& u) const { return Vec2(u[0] * kXScale, u[1] * kVScale); }
+    Vec3 u_of(const Vec2& y, double q) const { return Vec3(y[0] / kXScale, y[1] / kVScale, q / q_scale_); }
+
+    // Puts the parameter value q into work_; returns the omega to run at.
+    double apply(double q) {
+        if (spec_.param == ContParam::Omega) return q;
+        if (spec_.param == ContParam::XI) work_.xI = q;
+        else work_.m0e = q;
+        return spec_.omega;
+    }
+
+    MapResult map(const Vec3& u, int k, bool tangent) {
+        const double omega = apply(q_of(u));
+        ++evaluations_;
+        return poincare_map(work_, omega, y_of(u), k, tangent, spec_.sim);
+    }
+
+    Vec2 residual(const MapResult& r, const Vec3& u) const {
+        return Vec2(r.y[0] / kXScale - u[0], r.y[1] / kVScale - u[1]);
+    }
+
+    // Newton on G(u) = 0 and n . (u - u_pred) = 0.
+    bool correct(const Vec3& u_pred, const Vec3& n, int k, Sol& out) {
+        Vec3 u = u_pred;
+        for (int it = 0; it <= kMaxCorrector; ++it) {
+            // A step past omega = 0 (a range that starts near it) has no forcing period: a failed step, which
+            // the step control shortens until the point lands in (0, lo) and the branch ends at the range.
+            if (spec_.param == ContParam::Omega && !(q_of(u) > 0)) return false;
+            MapResult r = map(u, k, true);
+            const Vec2 G = residual(r, u);
+            if (!G.allFinite()) return false;
+            Eigen::Matrix<double, 2, 3> J;
+            J(0, 0) = r.M(0, 0) - 1.0;
+            J(0, 1) = r.M(0, 1) * kVScale / kXScale;
+            J(1, 0) = r.M(1, 0) * kXScale / kVScale;
+            J(1, 1) = r.M(1, 1) - 1.0;
+            // d P / d q by a forward difference (one more map; the tangent in the parameter would need the
+            // section time's dependence on omega and the law's on xI).
+            const double dq = 1e-6;
+            Vec3 uq = u;
+            uq[2] += dq;
+            const MapResult rq = map(uq, k, false);
+            J(0, 2) = (rq.y[0] - r.y[0]) / kXScale / dq;
+            J(1, 2) = (rq.y[1] - r.y[1]) / kVScale / dq;
+            const double h = n.dot(u - u_pred);
+            if (G.cwiseAbs().maxCoeff() < res_tol_ && std::abs(h) < 1e-9) {
+                out.u = u;
+                out.r = std::move(r);
+                out.J = J;
+                out.iterations = it;
+                return true;
+            }
+            if (it == kMaxCorrector) break;
+            Mat3 A;
+            A.topRows<2>() = J;
+            A.row(2) = n.transpose();
+            const Vec3 rhs(G[0], G[1], h);
+            const Vec3 du = A.fullPivLu().solve(-rhs);
+            if (!du.allFinite() || du.norm() > 1.0) return false;   // left the neighbourhood of the branch
+            u += du;
+        }
+        return false;
+    }
+
+    static Vec3 tangent_of(const Sol& s, const Vec3& prev) {
+        Vec3 t = Vec3(s.J.row(0).transpose()).cross(Vec3(s.J.row(1).transpose()));
+        if (t.norm() == 0 || !t.allFinite()) return prev;
+        t.normalize();
+        if (t.dot(prev) < 0) t = -t;
+        return t;
+    }
+
+    // Test functions: each changes sign at its bifurcation.
+    double test(BifKind kind, const Sol& s) const {
+        const Mat2& M = s.r.M;
+        switch (kind) {
+            case BifKind::Fold: return (M - Mat2::Identity()).determinant();
+            case BifKind::PeriodDoubling: return (M + Mat2::Identity()).determinant();
+            case BifKind::NeimarkSacker: return M.determinant() - 1.0;
+            case BifKind::Grazing:
+                if (!base_.has_bumper()) return -1.0;
+                if (!work_.has_bumper()) return (s.r.max_x - work_.xI) / kXScale;   // locating a rigid grazing
+                if (work_.rigid() && s.r.impacts > 0) return s.r.min_impact_speed / kVScale;
+                return (s.r.max_x - work_.xI) / kXScale;
+        }
+        return 0;
+    }
+    // Scaled distance between the section point and the one k/2 periods later (0: the orbit has period k/2).
+    double half_gap(const Sol& s, int k) const {
+        if (s.r.sections.size() < static_cast<std::size_t>(k)) return 1.0;
+        return scaled_norm(s.r.sections[static_cast<std::size_t>(k / 2 - 1)] - y_of(s.u));
+    }
+    static bool complex_pair(const Mat2& M) {
+        const double tr = M.trace(), det = M.determinant();
+        return 0.25 * tr * tr - det < 0;
+    }
+    // The multiplier a kind is about: the real one nearest +1 (fold) or -1 (period doubling), the modulus
+    // of a complex pair (Neimark-Sacker, which crosses |mu| = 1). NaN when the multipliers are not of that
+    // sort (complex for a fold or a doubling, real for Neimark-Sacker).
+    static double crossing_multiplier(BifKind kind, const Mat2& M) {
+        const Floquet f = floquet(M);
+        if (kind == BifKind::NeimarkSacker) return complex_pair(M) ? std::abs(f.mu[0]) : NAN;
+        if (complex_pair(M)) return NAN;
+        const double c = kind == BifKind::Fold ? 1.0 : -1.0;
+        const double a = f.mu[0].real(), b = f.mu[1].real();
+        return std::abs(a - c) < std::abs(b - c) ? a : b;
+    }
+    // The crossing multiplier of the orbit at parameter q near y, found with the integrator's rtol scaled by
+    // `factor`: the orbit moves with the integrator's error too, and the multiplier is steep in it (A1C at
+    // the first doubling: 3e3 per metre of x). NaN if that run stalls or does not converge.
+    double crossing_at(BifKind kind, double q, const Vec2& y, int k, double factor) {
+        OrbitOptions oo;
+        oo.period = k;
+        oo.sim = spec_.sim;
+        oo.sim.rtol = std::max(oo.sim.rtol * factor, 1e-13);
+        oo.max_iterations = 8;
+        const double omega = apply(q);
+        ++evaluations_;
+        try {
+            const Orbit o = find_orbit(work_, omega, y, oo);
+            return o.converged && scaled_norm(o.y - y) < 1e-2 ? crossing_multiplier(kind, o.M) : NAN;
+        } catch (const std::exception&) {
+            return NAN;
+        }
+    }
+    // The largest change of a multiplier between two points (matched the closer way round).
+    static double multiplier_change(const Mat2& A, const Mat2& B) {
+        const Floquet a = floquet(A), b = floquet(B);
+        const double same = std::max(std::abs(a.mu[0] - b.mu[0]), std::abs(a.mu[1] - b.mu[1]));
+        const double swapped = std::max(std::abs(a.mu[0] - b.mu[1]), std::abs(a.mu[1] - b.mu[0]));
+        return std::min(same, swapped);
+    }
+
+    BranchPoint point_of(const Sol& s, int k) const {
+        BranchPoint b;
+        b.param = q_of(s.u);
+        b.y = y_of(s.u);
+        b.period = k;
+        b.floquet = floquet(s.r.M);
+        b.stable = b.floquet.stable;
+        b.impacts = s.r.impacts;
+        b.max_x = s.r.max_x;
+        b.sections.push_back(b.y);
+        for (std::size_t i = 0; i + 1 < s.r.sections.size(); ++i) b.sections.push_back(s.r.sections[i]);
+        return b;
+    }
+
+    // Natural-parameter restart past a corrector failure on a near-neutral orbit (see follow()); on success
+    // cur, t and ds are the restarted point, its tangent and the initial step, and the jump is noted.
+    bool restart(Sol& cur, Vec3& t, int k, double& ds, std::string& skipped) {
+        const Floquet f = floquet(cur.r.M);
+        if (std::abs(f.mu[0].imag()) > 0 || f.mu[0].real() < 0.99) return false;
+        const double dir = t[2] >= 0 ? 1.0 : -1.0;
+        for (double jump : {0.01, 0.03, 0.1}) {
+            Vec3 u = cur.u;
+            u[2] += dir * jump;
+            const double q = q_of(u);
+            if (q < std::min(spec_.lo, spec_.hi) || q > std::max(spec_.lo, spec_.hi)) return false;
+            OrbitOptions oo;
+            oo.period = k;
+            oo.sim = spec_.sim;
+            const double omega = apply(q);
+            ++evaluations_;
+            const Orbit o = find_orbit(work_, omega, y_of(cur.u), oo);
+            if (!o.converged || scaled_norm(o.y - y_of(cur.u)) > 0.1) continue;   // not the same branch
+            Sol next;
+            const Vec3 n(0, 0, 1);
+            if (!correct(u_of(o.y, q), n, k, next)) continue;
+            char buf[96];
+            std::snprintf(buf, sizeof buf, "%s%.6g..%.6g", skipped.empty() ? "" : ", ", std::min(q_of(cur.u), q),
+                          std::max(q_of(cur.u), q));
+            skipped += buf;
+            cur = std::move(next);
+            t = tangent_of(cur, Vec3(0, 0, dir));
+            ds = spec_.ds;
+            return true;
+        }
+        return false;
+    }
+
+    // Bisection along the step from a (with tangent t) to the point at arclength ds.
+    // off_bumper: a grazing the corrector cannot cross is located on the bumperless orbit (rigid bumpers,
+    // and compliant ones too stiff for it, as C1's).
+    void locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch,
+                bool off_bumper = false);
+    void follow(const Job& job, Branch& br);
+    // From a rigid grazing onto the impacting branch, written from impact to impact (impact_shot) while the
+    // impacts are slow, then on with the stroboscopic map (follow, mode 2).
+    void follow_impacting(const Job& job, Branch& br);
+    // The exponents of a crossed grazing (BifPoint::mu_exponent, speed_exponent) from the impacting orbits
+    // near it; z, t: the grazing orbit from impact to impact and the impacting branch's tangent there.
+    void measure_scaling(BifPoint& gp, const Vec3& z, const Vec3& t, int k);
+    // The grazing orbit at (q_g, y_g) from impact to impact (z) and the impacting branch's tangent there (t).
+    bool grazing_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section);
+    // Its scenario (persistence or nonsmooth fold) and exponents.
+    void describe_grazing(BifPoint& gp, double free_dir, const Vec3& z, const Vec3& t, int k);
+    // A fold, doubling or Neimark-Sacker between two impact-to-impact points (z + s t, s in [0, ds]), located
+    // by bisection on the test function of the stroboscopic monodromy; a and b are the two ends' orbits.
+    void locate_impacting(BifKind kind, const Vec3& z, const Vec3& t, double ds, const Sol& a, const Sol& b, int k,
+                          int branch);
+    // The impact-to-impact equations at z = (theta, v- / kVScale, q / q_scale), with d/dz (q by a forward
+    // difference). False if the flight stalls.
+    bool shot(const Vec3& z, int k, Vec2& G, Eigen::Matrix<double, 2, 3>& J, Vec2& section);
+    bool correct_impacting(const Vec3& z_pred, const Vec3& n, int k, Vec3& z, Eigen::Matrix<double, 2, 3>& J, Vec2& section);
+
+    bool cancelled() const { return progress_ && progress_->cancel.load(std::memory_order_relaxed); }
+
+    const Params& base_;
+    Params work_;
+    ContinuationSpec spec_;
+    Progress* progress_;
+    double q_scale_ = 1;
+    double res_tol_ = kResidualTol;
+    std::uint64_t evaluations_ = 0;
+    ContinuationResult result_;
+    std::deque<Job> jobs_;
+    double branch_fraction_ = 0;
+    int last_located_ = -1;   // index in result_.points of what locate() last found (new or met again)
+    int handoffs_ = 0;   // stroboscopic -> impact to impact switches in this run (bounded against a ping-pong)
+    std::vector<double> reached_;   // grazings reached from the impacting side (where the impacts end)
+};
+
+}  // namespace impactlab::analysis::detail
