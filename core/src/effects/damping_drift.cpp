@@ -12,31 +12,16 @@ EffectForce force(const double* p, const ForceContext& c) {
     return {-p[0] * (c.t - p[2]) * p[1] * c.v, 0.0, -p[0] * (c.t - p[2]) * p[1], -p[0] * p[1] * c.v};
 }
 
-void adapt(double* p, const Params& m) { p[1] = m.c; }
-void start(double* p, const EffectStartContext& c) {
-    p[0] = 0.0;
-    adapt(p, *c.model);
-}
 std::string describe(const double* p, const double* s, const EffectReportContext&) {
-    return "the viscous damping c drifts by " + pm(p[0], s[0], 100.0) + " % per second over the record (" +
-           fmt("%+.2g", 100.0 * p[0] * 60.0) + " % a minute; a bearing's oil warming, or wear)";
+    return drift_sentence("the viscous damping c", "a bearing's oil warming, or wear", p, s);
 }
 }  // namespace
 
 const EffectLaw& damping_drift_law() {
-    static const EffectLaw law = [] {
-        EffectLaw l{"damping_drift",
-                    "the viscous damping drifts over the record: c scales by 1 + r (t - t0)",
-                    {"r", "c", "t0", nullptr},
-                    {"1/s", "N s/m", "s", nullptr},
-                    {0.0, 12.373, 0.0},
-                    force};
-        l.fit = hint({0}, {1e-5});
-        l.describe = describe;
-        l.start = start;
-        l.adapt = adapt;
-        return l;
-    }();
+    static const EffectLaw law =
+        base_drift_law<&Params::c>("damping_drift",
+                                   "the viscous damping drifts over the record: c scales by 1 + r (t - t0)",
+                                   "c", "N s/m", 12.373, force, describe);
     return law;
 }
 }  // namespace impactlab::effects

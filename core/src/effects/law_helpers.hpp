@@ -81,4 +81,33 @@ inline EffectLaw magnet_effect_law(const char* id, const char* meaning, const ch
     return l;
 }
 
+// A parameter scaled by 1 + r (t - t0) over the record (the drifts): the sentence naming it and its rate.
+inline std::string drift_sentence(const char* what, const char* why, const double* p, const double* s) {
+    return std::string(what) + " drifts by " + pm(p[0], s[0], 100.0) + " % per second over the record (" +
+           fmt("%+.2g", 100.0 * p[0] * 60.0) + " % a minute; " + why + ")";
+}
+// The drift of the base parameter P: copies the model's P into p[1] (an EffectAdaptFn), and starts r at 0.
+template <double Params::*P>
+void adapt_base(double* p, const Params& m) {
+    p[1] = m.*P;
+}
+template <double Params::*P>
+void start_base(double* p, const EffectStartContext& c) {
+    p[0] = 0.0;
+    adapt_base<P>(p, *c.model);
+}
+// Its registry row: r [1/s] fitted alone from 0, then P (`name`, `unit`, copied; default A1's), then t0 [s],
+// the record's start (the fit sets it).
+template <double Params::*P>
+EffectLaw base_drift_law(const char* id, const char* meaning, const char* name, const char* unit, double a1_value, EffectForceFn force,
+                         EffectDescribeFn describe, unsigned needs = 0) {
+    EffectLaw l{id, meaning, {"r", name, "t0", nullptr}, {"1/s", unit, "s", nullptr}, {0.0, a1_value, 0.0}, force};
+    l.fit = hint({0}, {1e-5});
+    l.fit.needs = needs;
+    l.describe = describe;
+    l.start = start_base<P>;
+    l.adapt = adapt_base<P>;
+    return l;
+}
+
 }  // namespace impactlab::effects

@@ -12,31 +12,16 @@ EffectForce force(const double* p, const ForceContext& c) {
     return {-p[0] * (c.t - p[2]) * p[1] * c.x, -p[0] * (c.t - p[2]) * p[1], 0.0, -p[0] * p[1] * c.x};
 }
 
-void adapt(double* p, const Params& m) { p[1] = m.k; }
-void start(double* p, const EffectStartContext& c) {
-    p[0] = 0.0;
-    adapt(p, *c.model);
-}
 std::string describe(const double* p, const double* s, const EffectReportContext&) {
-    return "the spring rate k drifts by " + pm(p[0], s[0], 100.0) + " % per second over the record (" + fmt("%+.2g", 100.0 * p[0] * 60.0) +
-           " % a minute; springs warming or relaxing)";
+    return drift_sentence("the spring rate k", "springs warming or relaxing", p, s);
 }
 }  // namespace
 
 const EffectLaw& stiffness_drift_law() {
-    static const EffectLaw law = [] {
-        EffectLaw l{"stiffness_drift",
-                    "the spring rate drifts over the record: k scales by 1 + r (t - t0)",
-                    {"r", "k", "t0", nullptr},
-                    {"1/s", "N/m", "s", nullptr},
-                    {0.0, 1115.2, 0.0},
-                    force};
-        l.fit = hint({0}, {1e-5});
-        l.describe = describe;
-        l.start = start;
-        l.adapt = adapt;
-        return l;
-    }();
+    static const EffectLaw law =
+        base_drift_law<&Params::k>("stiffness_drift",
+                                   "the spring rate drifts over the record: k scales by 1 + r (t - t0)",
+                                   "k", "N/m", 1115.2, force, describe);
     return law;
 }
 }  // namespace impactlab::effects

@@ -15,8 +15,7 @@ EffectForce force(const double* p, const ForceContext& c) {
 }
 
 std::string describe(const double* p, const double* s, const EffectReportContext&) {
-    return "the unbalance m0e drifts by " + pm(p[0], s[0], 100.0) + " % per second over the record (" + fmt("%+.2g", 100.0 * p[0] * 60.0) +
-           " % a minute; a mass shifting or loosening on its arm)";
+    return drift_sentence("the unbalance m0e", "a mass shifting or loosening on its arm", p, s);
 }
 }  // namespace
 
