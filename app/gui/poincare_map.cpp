@@ -13,7 +13,9 @@ std::size_t confirmations(std::size_t k) { return std::max<std::size_t>(2 * k + 
 
 PoincareMap::PoincareMap(const PoincareConfig& cfg)
     : cfg_(cfg),
-      window_(std::max<std::size_t>(3 * static_cast<std::size_t>(cfg.max_period) + 2,
+      // dying_alternation needs a recurring stretch of four cycles behind the first k points: 5k in all,
+      // or the longest periods (15 and 16) could never be said and a stable period 16 read as chaos.
+      window_(std::max<std::size_t>(5 * static_cast<std::size_t>(cfg.max_period) + 2,
                                     static_cast<std::size_t>(cfg.chaos_after)) + 8),
       points_(cfg.capacity),
       inputs_(cfg.capacity) {
@@ -150,7 +152,7 @@ void PoincareMap::push(const MapInput& in) {
     ++seen_;
     ++unsettled_;
     recent_.push_back(in);
-    if (recent_.size() > window_) recent_.erase(recent_.begin());   // ~60 elements, once a forcing period
+    if (recent_.size() > window_) recent_.erase(recent_.begin());   // ~90 elements, once a forcing period
     update_tolerance();
     const std::size_t n = recent_.size();
 

@@ -127,6 +127,25 @@ TEST_CASE("poincare map: chaos is said after enough points without recurrence, a
     CHECK(worst_miss(map, kP2) < 3.0);
 }
 
+TEST_CASE("poincare map: every period up to max_period is said, also after a slow transient was called chaos") {
+    // A1G at 12.8493 rad/s has a stable period-16 orbit (multiplier -0.59) that the map once called chaos for
+    // ever: the alternation check wanted a longer recurring stretch than the map kept.
+    const PoincareConfig cfg;
+    for (int k = 1; k <= cfg.max_period; ++k) {
+        CAPTURE(k);
+        std::vector<Centre> centres;
+        for (int i = 0; i < k; ++i) centres.push_back({-0.0145 + 0.0009 * i, 0.09 * std::sin(1.9 * i)});
+        for (const double lambda : {0.7, 0.97}) {   // settles before chaos_after points, or only long after
+            CAPTURE(lambda);
+            PoincareMap map;
+            for (int n = 0; n < 700; ++n) map.push(orbit_point(centres, n, 0.004, lambda));
+            CHECK(map.status() == PoincareMap::Status::Periodic);
+            CHECK(map.period() == k);
+            CHECK(worst_miss(map, centres) < 3.0);
+        }
+    }
+}
+
 TEST_CASE("poincare map: a reset starts over; a cycle that breaks goes back to settling") {
     PoincareMap map;
     for (int n = 0; n < 80; ++n) map.push(orbit_point(kP2, n, 0.003, 0.6));
