@@ -100,3 +100,21 @@ TEST_CASE("analysis: A1C's impacting period-1 multipliers at 16 rad/s do not dep
     // And they are the map's: central differences at rtol 1e-12 give 1.8535655 (h = 1e-4 and 1e-5 agree to 1e-7).
     CHECK(found[0].floquet.mu[0].real() == doctest::Approx(1.8535655).epsilon(3e-5));
 }
+
+TEST_CASE("analysis: Newton started on a slow orbit's noise floor (multiplier -0.992) says converged, not stalled") {
+    // A1H at 22.1973 rad/s, just above the period-1 doubling at 22.1473: started from where the simulator
+    // settled (the visualiser's section point), the map's residual there is noise (1.1e-9 > 10 rtol) that
+    // no step lowers, and Newton used to give up on an orbit it already stood on.
+    const Params p = make_version("A1H");
+    const Vec2 start(-0.010985787804280073, -0.10007011373026983);
+    const Orbit o = find_orbit(p, 22.1973, start);
+    CHECK(o.message == "");
+    REQUIRE(o.converged);
+    CHECK(o.floquet.stable);
+    CHECK(o.floquet.mu[0].real() == doctest::Approx(-0.99236).epsilon(1e-4));
+    CHECK(scaled_norm(o.y - start) < 1e-6);
+    // A start far off still ends at the same orbit, through steps that lower the residual.
+    const Orbit far = find_orbit(p, 22.1973, start + Vec2(5e-4, -5e-3));
+    REQUIRE(far.converged);
+    CHECK(scaled_norm(far.y - o.y) < 1e-7);
+}
