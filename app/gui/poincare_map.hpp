@@ -21,7 +21,8 @@
 namespace impactlab::gui {
 
 struct PoincareConfig {
-    int max_period = 16;          // the largest period recognised; beyond it an orbit reads as chaos
+    int max_period = 32;          // the largest period recognised; beyond it an orbit reads as chaos
+                                  // (A3C at 18.1608 rad/s has a stable period 24, lambda_max < 0)
     double rel_tol = 1e-3;        // recurrence: |dx| / size_x and |dv| / size_v both below this
     double break_factor = 10;     // a settled orbit breaks when a point misses by break_factor * rel_tol
     int chaos_after = 64;         // section points without any recurrence before "chaos" is said
@@ -58,6 +59,7 @@ public:
     void push(const MapInput& in);
 
     Status status() const { return status_; }
+    const PoincareConfig& config() const { return cfg_; }
     // Settling, but showing the newest undecided points (the transient has had provisional_after periods).
     bool provisional() const { return status_ == Status::Settling && !points_.empty(); }
     // The period k while Periodic; 0 while Chaotic; -1 while settling.

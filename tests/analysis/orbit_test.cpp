@@ -118,3 +118,19 @@ TEST_CASE("analysis: Newton started on a slow orbit's noise floor (multiplier -0
     REQUIRE(far.converged);
     CHECK(scaled_norm(far.y - o.y) < 1e-7);
 }
+
+TEST_CASE("analysis: a long period (A3C's stable period 24 at 18.1608 rad/s) is found from where the simulator settled") {
+    // Over 24 forcing periods (8.3 s) the integrator's error lifts the map's residual noise to ~1.4e-8 at
+    // rtol 1e-10, far above Newton's 1e-9: it stalled until the map was sharpened for it.
+    const Params p = make_version("A3C");
+    OrbitOptions opt;
+    opt.period = 24;
+    const Orbit o = find_orbit(p, 18.1608, Vec2(-0.0033572361275552146, -0.054075077098791016), opt);
+    CHECK(o.message == "");
+    REQUIRE(o.converged);
+    CHECK(o.residual <= 1e-9);
+    CHECK(o.floquet.stable);
+    CHECK(o.floquet.mu[0].real() == doctest::Approx(-0.831).epsilon(2e-3));
+    CHECK(o.impacts == 0);
+    CHECK(o.y[0] == doctest::Approx(-0.00335650323).epsilon(1e-7));
+}

@@ -1,7 +1,7 @@
 #!/bin/sh
 # What the Poincare view tells a class is what the core finds, on both sides of every bifurcation the core's
-# continuation reports for A1G and A1H over 5..25 rad/s (period doublings, folds, grazings), not only at the
-# presets. At omega = omega* -/+ 0.05 rad/s the GUI runs from its default start with --warmup 300, and its
+# continuation reports for A1G, A1H and A3C (rigid, rigid with an impact duration, compliant) over 5..25
+# rad/s (period doublings, folds, grazings), not only at the presets. At omega = omega* -/+ 0.05 rad/s the GUI runs from its default start with --warmup 300, and its
 # label is checked against the core from the GUI's own last section point:
 #  - period k: `impactlab orbit --period k` converges to a stable orbit within 2 tolerances of the GUI's
 #    points; the points do not recur after any proper divisor of k (k is the least period); one cycle of
@@ -17,7 +17,7 @@ gui_need xvfb-run python3
 rm -rf "$dir"
 mkdir -p "$dir/labels"
 
-for m in A1G A1H; do
+for m in A1G A1H A3C; do
     "$cli" continue --model "$m" --omega-min 5 --omega-max 25 --out "$dir/$m" >"$dir/$m.log" 2>&1 ||
         { cat "$dir/$m.log"; echo "$TEST: impactlab continue --model $m failed"; exit 1; }
     omegas=$(python3 - "$dir/$m/points.csv" <<'PY'

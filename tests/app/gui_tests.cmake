@@ -36,8 +36,8 @@ if(TARGET impactlab)
   set_tests_properties(gui_continuation PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "gui")
 endif()
 
-# The Poincare view's label beside every bifurcation of A1G's and A1H's continuation agrees with the core's
-# orbit and Lyapunov exponent from the GUI's own section point (gui_bifurcations.sh says what it checks).
+# The Poincare view's label beside every bifurcation of A1G's, A1H's and A3C's continuation agrees with the
+# core's orbit and Lyapunov exponent from the GUI's own section point (gui_bifurcations.sh says what it checks).
 if(TARGET impactlab)
   add_test(NAME gui_bifurcations
            COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_bifurcations.sh $<TARGET_FILE:impactlab-gui>

@@ -109,7 +109,7 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
     else if (status == PoincareMap::Status::Settling)
         std::snprintf(label, sizeof label, "settling...  %llu period%s, the transient is not drawn", seen, seen == 1 ? "" : "s");
     else if (periodic) std::snprintf(label, sizeof label, "period %d", map.period());
-    else std::snprintf(label, sizeof label, "chaos: no period <= 16   %zu points", n);
+    else std::snprintf(label, sizeof label, "chaos: no period <= %d   %zu points", map.config().max_period, n);
     static const char* kNames[4] = {"0", "1", "2", "3+"};
     const char* legend_title = "impacts/period";
     const float fs = ImGui::GetFontSize();

@@ -86,12 +86,14 @@ Orbit find_orbit(const Params& p, double omega, const Vec2& guess, const OrbitOp
     o.omega = omega;
     o.period = opt.period;
     Vec2 y = guess;
-    MapResult r = poincare_map(p, omega, y, opt.period, true, opt.sim);
+    Tolerances sim = opt.sim;
+    MapResult r = poincare_map(p, omega, y, opt.period, true, sim);
     double res = scaled_norm(r.y - y);
     // The map is known only to about the integrator's tolerance: a residual below that is noise, and a
     // Newton asked for it stalls (rtol 1e-8 stops near 3e-9).
     const double tol = std::max(opt.tol, 10 * opt.sim.rtol);
     bool within_step = false;
+    int sharpened = 0;
     for (o.iterations = 0; o.iterations < opt.max_iterations && res > tol; ++o.iterations) {
         const Mat2 J = r.M - Mat2::Identity();
         if (!std::isfinite(J.determinant()) || std::abs(J.determinant()) < 1e-300) {
@@ -104,7 +106,7 @@ Orbit find_orbit(const Params& p, double omega, const Vec2& guess, const OrbitOp
         bool improved = false;
         for (int h = 0; h < 12; ++h, lam *= 0.5) {
             const Vec2 yn = y + lam * step;
-            MapResult rn = poincare_map(p, omega, yn, opt.period, true, opt.sim);
+            MapResult rn = poincare_map(p, omega, yn, opt.period, true, sim);
             const double rn_res = scaled_norm(rn.y - yn);
             if (rn_res < res || scaled_norm(lam * step) < 1e-13) {
                 y = yn;
@@ -117,8 +119,20 @@ Orbit find_orbit(const Params& p, double omega, const Vec2& guess, const OrbitOp
         if (!improved) {
             // At the map's noise floor (slow, |mu| near 1, where the residual's noise exceeds 10 rtol) no step
             // lowers the residual, yet a full step below the tolerance puts the fixed point within it of y.
-            if (scaled_norm(step) <= tol) within_step = true;
-            else o.message = "Newton stalled (no step lowers the residual)";
+            if (scaled_norm(step) <= tol) {
+                within_step = true;
+                break;
+            }
+            // A long period (A3C's period 24: 8.3 s) carries the integrator's error far above 10 rtol: the
+            // map is sharpened, twice at most, and Newton goes on to the tolerance asked for.
+            if (sim.rtol > 1e-13 && sharpened < 2) {
+                ++sharpened;
+                sim.rtol = std::max(sim.rtol * 1e-2, 1e-13);
+                r = poincare_map(p, omega, y, opt.period, true, sim);
+                res = scaled_norm(r.y - y);
+                continue;
+            }
+            o.message = "Newton stalled (no step lowers the residual)";
             break;
         }
     }
