@@ -271,12 +271,20 @@ TEST_CASE("a cancelled Lyapunov strip stops within a level and keeps the omegas 
     CHECK(result->size() < 60);
 }
 
+namespace {
+// small_cf over xI in [-xI_max, xI_max] [m] at omega = 18 rad/s.
+BifRequest small_xI(BifProtocol proto, double xI_max) {
+    BifRequest r = small_cf(proto);
+    r.over = SweepParam::XI;
+    r.lo = -xI_max;
+    r.hi = xI_max;
+    r.omega = 18.0;
+    return r;
+}
+}  // namespace
+
 TEST_CASE("a diagram over xI at fixed omega arrives level by level, each point at its level's xI, as the core's sweep") {
-    BifRequest req = small_cf(BifProtocol::CfDown);
-    req.over = SweepParam::XI;
-    req.lo = -0.004;
-    req.hi = 0.004;
-    req.omega = 18.0;
+    BifRequest req = small_xI(BifProtocol::CfDown, 0.004);
     req.steps = 9;
     BifurcationJob job;
     job.start(req);
@@ -303,11 +311,7 @@ TEST_CASE("a diagram over xI at fixed omega arrives level by level, each point a
 }
 
 TEST_CASE("a box over an xI diagram: the same request over the box's xI, clamped to the rail, narrow drags refused") {
-    BifRequest req = small_cf(BifProtocol::CfUp);
-    req.over = SweepParam::XI;
-    req.lo = -0.01;
-    req.hi = 0.01;
-    req.omega = 18.0;
+    const BifRequest req = small_xI(BifProtocol::CfUp, 0.01);
     const auto box = box_request(req, 0.003, -0.002);
     REQUIRE(box.has_value());
     CHECK(box->lo == -0.002);
