@@ -411,7 +411,8 @@ void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toa
     if (edited) {
         lo_edit_ = lo_shown / oax.scale;
         hi_edit_ = hi_shown / oax.scale;
-        range_error_ = over_ == SweepParam::Omega ? check_omega_range(lo_edit_, hi_edit_) : "";
+        if (over_ == SweepParam::Omega) range_error_ = check_omega_range(lo_edit_, hi_edit_);
+        else range_error_ = c.params ? check_sweep(*c.params, param_sweep(request(c, lo_edit_, hi_edit_))) : "";
     }
     ImGui::SameLine(0, fs * 0.2f);
     if (ImGui::SmallButton(reset)) {
