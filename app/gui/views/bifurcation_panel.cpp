@@ -33,17 +33,19 @@ void draw_ramp_points(Plot& plot, const OmegaRamp& ramp) {
     plot.text(plot.x_range().lo, plot.y_range().hi, buf, col, ImVec2(-0.05f, -1.4f));
 }
 
-// The swept parameter on the axis: its symbol, its label with the unit shown (xI in mm) and that scale.
+// The swept parameter on the axis: its symbol and its label, in the unit and scale plots show it in (the
+// core's sweep_param_axis: xI in mm).
 struct OverAxis { const char* symbol; const char* label; double scale; };
 OverAxis over_axis(SweepParam s) {
+    const double scale = sweep_param_axis(s).scale;
     switch (s) {
-        case SweepParam::Omega: return {"ω", "ω [rad/s]", 1.0};
-        case SweepParam::XI: return {"xI", "xI [mm]", 1e3};
-        case SweepParam::M0e: return {"m0e", "m0e [kg m]", 1.0};
+        case SweepParam::Omega: return {"ω", "ω [rad/s]", scale};
+        case SweepParam::XI: return {"xI", "xI [mm]", scale};
+        case SweepParam::M0e: return {"m0e", "m0e [kg m]", scale};
     }
     return {"?", "?", 1.0};
 }
-const char* over_unit(SweepParam s) { return s == SweepParam::XI ? "mm" : sweep_param_unit(s); }
+const char* over_unit(SweepParam s) { return sweep_param_axis(s).unit; }
 
 // The live section points: a colour the density map does not use, with a dark rim.
 constexpr ImU32 kLiveColor = IM_COL32(90, 230, 255, 255);
