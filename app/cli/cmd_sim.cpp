@@ -2,7 +2,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
+#include <tuple>
 
 #include "commands.hpp"
 #include "common.hpp"
@@ -153,6 +155,50 @@ int cmd_poincare(const std::vector<std::string>& argv) {
     return 0;
 }
 
+namespace {
+
+// The CF sweep the flags ask for: over omega (--omega-min, --omega-max or --range) or over xI or m0e at --omega.
+ParamSweep param_sweep_from(const Args& a, const Params& p, const std::string& sweep) {
+    constexpr double kAny = std::numeric_limits<double>::infinity();   // check_sweep says which range applies
+    ParamSweep s;
+    const std::string over = a.str("--over", "omega");
+    const auto which = parse_sweep_param(over);
+    if (!which) throw UsageError("bifurcation: option '--over': '" + over + "' is not one of omega, xI, m0e");
+    s.over = *which;
+    s.direction = sweep == "up" ? SweepDirection::Up : SweepDirection::Down;
+    s.steps = a.integer("--steps", s.steps, 1, 100000);
+    if (s.over == SweepParam::Omega) {
+        if (a.has("--omega")) throw UsageError("bifurcation: --omega is the fixed frequency of an xI or m0e sweep; over omega "
+                                               "give --range or --omega-min, --omega-max");
+        if (a.has("--range") && (a.has("--omega-min") || a.has("--omega-max")))
+            throw UsageError("bifurcation: --range and --omega-min/--omega-max say the same: give one");
+        s.lo = a.num("--omega-min", 25.0 / s.steps, 1e-3, 1000.0);
+        s.hi = a.num("--omega-max", 25.0, 1e-3, 1000.0);
+        if (s.hi < s.lo) throw UsageError("bifurcation: --omega-max is below --omega-min");
+        std::tie(s.lo, s.hi) = a.range("--range", -kAny, kAny, {s.lo, s.hi});
+    } else {
+        for (const char* f : {"--omega-min", "--omega-max"})
+            if (a.has(f)) throw UsageError(std::string("bifurcation: ") + f + " goes with --over omega; over " + over +
+                                           " give --range A:B and the fixed --omega");
+        if (!a.has("--range")) throw UsageError("bifurcation: --over " + over + " needs --range A:B [" +
+                                                sweep_param_unit(s.over) + "]");
+        if (!a.has("--omega")) throw UsageError("bifurcation: --over " + over + " needs the fixed forcing frequency --omega W [rad/s]");
+        s.omega = a.num("--omega", 0.0, 1e-3, 1000.0);
+        std::tie(s.lo, s.hi) = a.range("--range", -kAny, kAny, {0.0, 0.0});
+    }
+    if (const std::string why = check_sweep(p, s); !why.empty()) {
+        // Names the flag at fault: the fixed omega, a model without a bumper, or the range.
+        const char* flag = why.rfind("omega ", 0) == 0 && s.over != SweepParam::Omega ? "--omega"
+                           : why.rfind("xI: ", 0) == 0                                 ? "--over"
+                           : a.has("--range")                                          ? "--range"
+                                                                                       : "--omega-min/--omega-max";
+        throw UsageError(std::string("bifurcation: ") + flag + ": " + why);
+    }
+    return s;
+}
+
+}  // namespace
+
 int cmd_bifurcation(const std::vector<std::string>& argv) {
     if (show_help_if_asked(argv,
                    "usage: impactlab bifurcation --model A1H --sweep up|down|ramp --out diag.csv [--png diag.png] [options]\n\n"
@@ -162,16 +208,24 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
                    "  --sweep ramp     EF ramp: omega = 25.1 t/2800 for 0 <= t <= 2800 s, x at every phi = 2 pi i\n"
                    "  --omega-min W, --omega-max W, --steps N, --transient N, --record N   override the CF defaults\n"
                    "                   (for ramp: --omega-max is the final omega, --ramp-time T its duration)\n"
-                   "  --out FILE       CSV output with columns omega,x,v (required)\n"
+                   "  --over xI|m0e|omega   the parameter the CF sweep moves (default omega); xI or m0e are moved\n"
+                   "                   quasi-statically at the fixed --omega, from the start of --range to its end\n"
+                   "  --range A:B      the swept parameter's range in its SI units: xI [m] (a model with a bumper,\n"
+                   "                   within [-0.1, 0.1]), m0e [kg m] (in (0, 10]), omega [rad/s] (as --omega-min:--omega-max)\n"
+                   "  --omega W        the forcing frequency [rad/s] of an xI or m0e sweep (required with them)\n"
+                   "  --out FILE       CSV output with columns omega,x,v (required; xI,x,v or m0e,x,v for those sweeps)\n"
                    "  --png FILE       also plot the diagram\n", kModelHelp))
         return 0;
     const Args a("bifurcation", argv,
                  with_model_flags({"--sweep", "--out", "--png", "--omega-min", "--omega-max", "--steps", "--transient",
-                                   "--record", "--ramp-time"}));
+                                   "--record", "--ramp-time", "--over", "--range", "--omega"}));
     const Params p = model_from(a);
     const std::string sweep = a.str("--sweep", "up");
     if (sweep != "up" && sweep != "down" && sweep != "ramp")
         throw UsageError("bifurcation: option '--sweep': '" + sweep + "' is not one of up, down, ramp");
+    if (sweep == "ramp")
+        for (const char* f : {"--over", "--range", "--omega"})
+            if (a.has(f)) throw UsageError(std::string("bifurcation: ") + f + " is for the CF sweeps (up, down), not the ramp");
     const std::string out_path = a.required("--out");
     auto out = open_out(out_path);
     if (a.has("--png")) check_writable(a.str("--png", ""), "--png");
@@ -187,22 +241,18 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
             check_rows("bifurcation", spec.omega_max * spec.t_ramp / (2 * kTwoPi), "--omega-max x --ramp-time / 4 pi");
             d = run_ef_ramp(p, spec, &progress, tolerances_from(a));
         } else {
+            const ParamSweep ps = param_sweep_from(a, p, sweep);
             CfSpec spec;
-            spec.steps = a.integer("--steps", spec.steps, 1, 100000);
-            spec.omega_min = a.num("--omega-min", 25.0 / spec.steps, 1e-3, 1000.0);
-            spec.omega_max = a.num("--omega-max", spec.omega_max, 1e-3, 1000.0);
-            if (spec.omega_max < spec.omega_min) throw UsageError("bifurcation: --omega-max is below --omega-min");
             spec.transient = a.integer("--transient", spec.transient, 0, 1000000);
             spec.record = a.integer("--record", spec.record, 1, 1000000);
-            check_rows("bifurcation", static_cast<double>(spec.steps) * spec.record, "--steps x --record");
-            spec.direction = sweep == "up" ? SweepDirection::Up : SweepDirection::Down;
-            d = run_cf_sweep(p, spec, &progress, tolerances_from(a));
+            check_rows("bifurcation", static_cast<double>(ps.steps) * spec.record, "--steps x --record");
+            d = run_cf_param_sweep(p, ps, spec.transient, spec.record, &progress, tolerances_from(a));
         }
     }
     write_diagram_csv(d, out);   // renamed into place when the command succeeds, the PNG included
     std::fprintf(stderr, "%s %s: %zu points, %.0f s simulated, %llu steps -> %s\n", p.name.c_str(), d.protocol.c_str(),
                  d.points.size(), d.simulated_seconds, static_cast<unsigned long long>(d.steps), out_path.c_str());
-    if (sweep != "ramp") {
+    if (sweep != "ramp" && d.over == SweepParam::Omega) {   // Fig. 3's transitions are of omega, from the hilltop
         const Transitions tr = find_transitions(d);
         // A transition the sweep did not meet is NaN: say "none" rather than print "nan".
         const auto at = [](double w, const char* fmt) {

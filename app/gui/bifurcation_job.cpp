@@ -91,14 +91,43 @@ std::string check_omega_range(double lo, double hi) {
     return "";
 }
 
+SweepLimits sweep_limits(SweepParam over) {
+    switch (over) {
+        case SweepParam::Omega: return {0.0, kMaxOmega, kMinBoxSpan};
+        case SweepParam::XI: return {-kRailHalfTravel, kRailHalfTravel, 1e-4};   // 0.1 mm
+        case SweepParam::M0e: return {1e-4, 10.0, 1e-4};
+    }
+    return {0.0, kMaxOmega, kMinBoxSpan};
+}
+
 std::optional<BifRequest> box_request(const BifRequest& base, double w0, double w1) {
     if (!std::isfinite(w0) || !std::isfinite(w1)) return std::nullopt;
-    const double lo = std::clamp(std::min(w0, w1), 0.0, kMaxOmega), hi = std::clamp(std::max(w0, w1), 0.0, kMaxOmega);
-    if (hi - lo < kMinBoxSpan) return std::nullopt;
+    const SweepLimits lim = sweep_limits(base.over);
+    const double lo = std::clamp(std::min(w0, w1), lim.lo, lim.hi), hi = std::clamp(std::max(w0, w1), lim.lo, lim.hi);
+    if (hi - lo < lim.min_box) return std::nullopt;
     BifRequest r = base;
-    r.omega_lo = lo;
-    r.omega_hi = hi;
+    if (base.over == SweepParam::Omega) {
+        r.omega_lo = lo;
+        r.omega_hi = hi;
+    } else {
+        r.lo = lo;
+        r.hi = hi;
+    }
     return r;
+}
+
+ParamSweep param_sweep(const BifRequest& r) {
+    if (r.over == SweepParam::Omega) {
+        const CfSpec spec = cf_spec(r);
+        return {SweepParam::Omega, spec.omega_min, spec.omega_max, spec.steps, spec.direction, 0.0};
+    }
+    return {r.over, r.lo, r.hi, r.steps, r.protocol == BifProtocol::CfDown ? SweepDirection::Down : SweepDirection::Up,
+            r.omega};
+}
+
+std::pair<double, double> swept_range(const BifRequest& r) {
+    if (r.over != SweepParam::Omega) return {r.lo, r.hi};
+    return {r.protocol == BifProtocol::Ef ? 0.0 : r.omega_lo, r.omega_hi};
 }
 
 void BifurcationJob::start(const BifRequest& req) {
@@ -113,8 +142,8 @@ void BifurcationJob::start(const BifRequest& req) {
             pub.flush();
             return d;
         }
-        LevelPublisher pub(*feed, req.transient);
-        return run_cf_sweep(req.params, cf_spec(req), &prog, {}, &pub);
+        LevelPublisher pub(*feed, req.transient, req.over);
+        return run_cf_param_sweep(req.params, param_sweep(req), req.transient, req.record, &prog, {}, &pub);
     });
 }
 

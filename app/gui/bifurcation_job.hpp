@@ -33,7 +33,16 @@ struct BifRequest {
     // for [0, 25]: never omega = 0, where a period is infinite). EF: the ramp from rest to omega_hi.
     double omega_lo = 0.0, omega_hi = 25.0;
     double ef_rate = 25.0 / 2800.0;   // EF: d omega / dt [rad/s^2] (the paper's 25 rad/s in 2800 s)
+    // CF over xI [m] or m0e [kg m] instead of omega: `steps` levels from lo to hi (both included, as the CLI's
+    // --range) at the fixed omega [rad/s]; omega_lo, omega_hi are then unused.
+    SweepParam over = SweepParam::Omega;
+    double lo = 0, hi = 0;
+    double omega = 0;
 };
+// The CF sweep a request runs (its omega levels as cf_spec's; those of xI or m0e from lo to hi).
+ParamSweep param_sweep(const BifRequest& r);
+// The request's range of its swept parameter, in SI units: [omega_lo, omega_hi] (EF: from 0), or [lo, hi].
+std::pair<double, double> swept_range(const BifRequest& r);
 
 // The core's specs for a request (what the job runs, and what a test compares with).
 CfSpec cf_spec(const BifRequest& r);
@@ -43,8 +52,14 @@ EfSpec ef_spec(const BifRequest& r);
 std::string check_omega_range(double lo, double hi);
 // The smallest omega span a box may ask for [rad/s]: narrower drags are clicks or slips.
 inline constexpr double kMinBoxSpan = 0.02;
-// A box dragged on the diagram between omega w0 and w1 (either order, clamped to [0, kMaxOmega]): the same
-// request (model, protocol, steps, periods) over the box's omega range. nullopt if narrower than kMinBoxSpan.
+// The range a diagram of `over` may span in the GUI [SI units]: omega in [0, kMaxOmega], xI within the
+// rail's travel, m0e in (0, 10] (its lower end: the smallest unbalance that still forces the cart), and the
+// smallest span a box may ask for.
+struct SweepLimits { double lo, hi, min_box; };
+SweepLimits sweep_limits(SweepParam over);
+// A box dragged on the diagram between w0 and w1 of its swept parameter (either order, clamped to
+// sweep_limits): the same request (model, protocol, steps, periods, fixed omega) over the box's range.
+// nullopt if narrower than the limits' min_box.
 std::optional<BifRequest> box_request(const BifRequest& base, double w0, double w1);
 
 // Results published by a worker as it goes and taken by the UI as they come. The worker builds each chunk
@@ -74,16 +89,17 @@ private:
 };
 
 // A LevelObserver that publishes each finished CF level's recorded section points (exactly those the
-// sweep keeps: n > transient, with the level's omega) to a Feed. Simulating thread.
+// sweep keeps: n > transient, with the level's value of the swept parameter) to a Feed. Simulating thread.
 class LevelPublisher : public LevelObserver {
 public:
-    LevelPublisher(Feed<DiagramPoint>& feed, int transient) : feed_(feed), transient_(transient) {}
+    LevelPublisher(Feed<DiagramPoint>& feed, int transient, SweepParam over = SweepParam::Omega)
+        : feed_(feed), transient_(transient), over_(over) {}
     void begin_level(std::size_t, const CfLevel& lv) override {
-        omega_ = lv.omega;
+        at_ = level_value(lv, over_);
         chunk_.clear();
     }
     void on_section(const SectionPoint& sp) override {
-        if (sp.n > transient_) chunk_.push_back({omega_, sp.x, sp.v});
+        if (sp.n > transient_) chunk_.push_back({at_, sp.x, sp.v});
     }
     void end_level(std::size_t j, const Params&, const State&) override {
         feed_.publish(chunk_, static_cast<int>(j + 1));
@@ -92,7 +108,8 @@ public:
 private:
     Feed<DiagramPoint>& feed_;
     int transient_;
-    double omega_ = 0;
+    SweepParam over_;
+    double at_ = 0;   // the level's value of the swept parameter
     std::vector<DiagramPoint> chunk_;
 };
 

@@ -8,13 +8,16 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <optional>
 #include <string_view>
 #include <tuple>
 #include <utility>
 
+#include "bifurcation_job.hpp"
 #include "impactlab/input_file.hpp"
 #include "impactlab/params.hpp"
+#include "impactlab/sweep.hpp"
 #include "layout.hpp"
 #include "param_edit.hpp"
 #include "presets.hpp"
@@ -73,6 +76,9 @@ const char* usage_text() {
            "  --bif-box W0:W1    once the first diagram is done, compute [W0, W1] as a box dragged on it with\n"
            "                     the right mouse button does (the same steps over the narrower range)\n"
            "  --bif-y x|v        the diagram's quantity at the sections: x (default) or v\n"
+           "  --bif-over P       the diagram's swept parameter: omega (default), xI or m0e, the latter two moved\n"
+           "                     at the fixed --omega (CF only); --bif-range, --bif-box and --bif-zoom are then\n"
+           "                     in its SI units: xI in [-0.1, 0.1] m, m0e in (0, 10] kg m\n"
            "  --bif-lyapunov     the lambda_max(omega) strip under the diagram, computed with it (slow)\n"
            "  --lyap-steps N     omegas of that strip, 5..300 (default 60)\n"
            "  --bif-nowait       with --frames: count the frames while the diagram computes (a screenshot\n"
@@ -174,6 +180,20 @@ std::pair<double, double> omega_range(const std::string& flag, const std::string
     return r;
 }
 
+// --bif-range, --bif-box (at least a box's smallest span wide) or --bif-zoom over the swept parameter `over`:
+// omega as omega_range; xI or m0e within sweep_limits [m, kg m], A < B.
+std::pair<double, double> bif_range(const std::string& over, const std::string& flag, const std::string& text) {
+    const SweepParam s = *parse_sweep_param(over);
+    const double min_width = flag == "--bif-box" ? sweep_limits(s).min_box : 0.0;
+    if (s == SweepParam::Omega) return omega_range(flag, text, min_width);
+    const SweepLimits lim = sweep_limits(s);
+    const auto r = number_pair(flag, text, "A:B", lim.lo, lim.hi, lim.lo, lim.hi);
+    if (!(r.second - r.first > 0 && r.second - r.first >= min_width))
+        throw OptionsError(flag + ": " + text + " is empty or too narrow (A < B wanted, in " + over + "'s " +
+                           sweep_param_unit(s) + ")");
+    return r;
+}
+
 int integer(const std::string& flag, const std::string& text, int lo, int hi) {
     errno = 0;
     char* end = nullptr;
@@ -201,6 +221,7 @@ Options parse_options(const std::vector<std::string>& args) {
     Options o;
     std::optional<GuiModel> model_file;   // --model FILE.json
     bool xI_given = false;
+    std::map<std::string, std::string> bif_ranges;   // --bif-range, --bif-box, --bif-zoom: in --bif-over's units
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> const std::string& {
@@ -299,9 +320,11 @@ Options parse_options(const std::vector<std::string>& args) {
                 throw OptionsError("--bifurcation: '" + p + "' is not one of cf-up, cf-down, ef");
             o.bifurcation = p;
         } else if (a == "--bif-steps") o.bif_steps = integer(a, value(), 10, 2000);
-        else if (a == "--bif-zoom") std::tie(o.bif_zoom_lo, o.bif_zoom_hi) = omega_range(a, value(), 0.0);
-        else if (a == "--bif-range") std::tie(o.bif_range_lo, o.bif_range_hi) = omega_range(a, value(), 0.0);
-        else if (a == "--bif-box") std::tie(o.bif_box_lo, o.bif_box_hi) = omega_range(a, value(), 0.02);
+        else if (a == "--bif-zoom" || a == "--bif-range" || a == "--bif-box") bif_ranges[a] = value();   // once --bif-over is known
+        else if (a == "--bif-over") {
+            o.bif_over = value();
+            if (!parse_sweep_param(o.bif_over)) throw OptionsError("--bif-over: '" + o.bif_over + "' is not one of omega, xI, m0e");
+        }
         else if (a == "--ramp")
             std::tie(o.ramp_to, o.ramp_rate) = number_pair(a, value(), "W1:RATE (target rad/s : rad/s per s)", 0.0, 30.0, 1e-3, 2.0);
         else if (a == "--bif-y") {
@@ -395,6 +418,14 @@ Options parse_options(const std::vector<std::string>& args) {
         }
         else throw OptionsError("unknown option '" + a + "' (see impactlab-gui --help)");
     }
+    for (const auto& [flag, text] : bif_ranges) {
+        const auto r = bif_range(o.bif_over, flag, text);
+        if (flag == "--bif-zoom") std::tie(o.bif_zoom_lo, o.bif_zoom_hi) = r;
+        else if (flag == "--bif-range") std::tie(o.bif_range_lo, o.bif_range_hi) = r;
+        else std::tie(o.bif_box_lo, o.bif_box_hi) = r;
+    }
+    if (o.bif_over != "omega" && o.bifurcation == "ef")
+        throw OptionsError("--bifurcation ef: the EF ramp is a ramp of omega, not of " + o.bif_over + " (--bif-over): use cf-up or cf-down");
     if (!o.screenshot.empty() && o.frames == 0 && !o.bench_plot) throw OptionsError("--screenshot needs --frames N or --bench-plot");
     if (!o.state_json.empty() && o.frames == 0) throw OptionsError("--state-json needs --frames N");
     // Checked once the model is known (--model may come after --preset).

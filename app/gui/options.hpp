@@ -45,9 +45,11 @@ struct Options {
     int bif_steps = 300;
     double bif_zoom_lo = 0, bif_zoom_hi = 0;   // --bif-zoom W0:W1: the diagram's view starts zoomed to it
     double ramp_to = -1, ramp_rate = 0;         // --ramp W1:RATE: a live omega ramp at start (-1: none)
-    double bif_range_lo = 0, bif_range_hi = 0; // --bif-range W0:W1 [rad/s]: the omega range computed (0, 0: 0-25)
+    double bif_range_lo = 0, bif_range_hi = 0; // --bif-range W0:W1 [rad/s]: the range computed (0, 0: the default)
     double bif_box_lo = 0, bif_box_hi = 0;     // --bif-box W0:W1: a right-drag over it once the first diagram is done
     std::string bif_y = "x";     // --bif-y x|v: the diagram's quantity at the sections
+    std::string bif_over = "omega";   // --bif-over omega|xI|m0e: the diagram's swept parameter (the ranges above
+                                      // are then in its SI units: m, kg m)
     bool bif_lyapunov = false;   // --bif-lyapunov: the lambda_max strip under the diagram
     int lyap_steps = 0;          // --lyap-steps N: its omegas (0: the panel's default)
     bool bif_nowait = false;     // --bif-nowait: --frames does not wait for the diagram

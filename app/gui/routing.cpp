@@ -132,6 +132,7 @@ BifurcationContext App::bifurcation_context() {
     c.steps = &bif_steps_;
     c.ramp = &ramp_;
     c.overlay = [this](Plot& plot) { analysis_.overlay_diagram(plot); };
+    if (const auto& ov = analysis_.overlay()) c.branches = &*ov;
     return c;
 }
 

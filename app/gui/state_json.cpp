@@ -152,6 +152,10 @@ bool App::write_state_json(const std::string& path) {
         j["continuation"] = {{"model", ov->model}, {"omega_lo", ov->omega_lo}, {"omega_hi", ov->omega_hi},
                              {"cancelled", ov->cancelled}, {"curves", ov->curves.size()}, {"points", std::move(bif_pts)},
                              {"end", ov->end}};
+        double lo = 1e300, hi = -1e300;   // the branches' x [m]: what the diagram's y range must hold
+        for (const BranchCurve& cv : ov->curves)
+            for (const double x : cv.x) lo = std::min(lo, x), hi = std::max(hi, x);
+        j["continuation"]["x_range"] = hi >= lo ? json{number(lo), number(hi)} : json(nullptr);
         if (ov->from_orbit)
             j["continuation"]["from_orbit"] = {{"omega", ov->start_omega}, {"x", ov->start_x}, {"v", ov->start_v},
                                                {"period", ov->start_period}};
@@ -166,6 +170,15 @@ bool App::write_state_json(const std::string& path) {
                                {"points", b.points}, {"running", b.running}, {"cancelled", b.cancelled},
                                {"stale", b.stale}, {"progress", number(b.progress)}}
                         : json{{"model", nullptr}, {"running", b.running}};
+        d["over"] = sweep_param_name(b.over);   // the horizontal axis: omega, xI or m0e
+        if (b.have) {
+            d["lo"] = number(b.lo);   // its range [rad/s, m or kg m]
+            d["hi"] = number(b.hi);
+            d["omega"] = b.over == SweepParam::Omega ? json(nullptr) : json(number(b.omega));
+            json lv = json::array();
+            for (const auto& l : b.level_x) lv.push_back({number(l.at), number(l.x_min), number(l.x_max)});
+            d["level_x"] = std::move(lv);   // each level's value, least and greatest x [m]
+        }
         d["view_omega"] = {number(b.view_omega.lo), number(b.view_omega.hi)};
         d["y"] = b.y_is_v ? "v" : "x";
         d["view_y"] = {number(b.view_y.lo), number(b.view_y.hi)};

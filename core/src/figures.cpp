@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <thread>
 
 namespace impactlab {
@@ -55,7 +56,8 @@ Figure3Data compute_figure3(int cf_steps, const Tolerances& tol, Progress* progr
 plot::Panel diagram_panel(const Diagram& d, const std::string& title) {
     plot::Panel panel;
     panel.title = title;
-    panel.xlabel = "omega [rad/s]";
+    const SweepParamAxis axis = sweep_param_axis(d.over);
+    panel.xlabel = std::string(sweep_param_name(d.over)) + " [" + axis.unit + "]";
     panel.ylabel = "x [mm]";
     plot::Series s;
     s.kind = plot::Series::Kind::Points;
@@ -64,7 +66,7 @@ plot::Panel diagram_panel(const Diagram& d, const std::string& title) {
     s.x.reserve(d.points.size());
     s.y.reserve(d.points.size());
     for (const auto& p : d.points) {
-        s.x.push_back(p.omega);
+        s.x.push_back(p.omega * axis.scale);
         s.y.push_back(p.x * 1e3);
     }
     panel.series.push_back(std::move(s));
@@ -75,7 +77,14 @@ void save_diagram_png(const Diagram& d, const std::string& path) {
     plot::Figure fig;
     fig.width = 1200;
     fig.panel_height = 500;
-    fig.panels.push_back(diagram_panel(d, "Model " + d.model + " - " + d.protocol + " bifurcation diagram (x at phi = 2 pi i)"));
+    std::string over;
+    if (d.over != SweepParam::Omega) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, " over %s at omega = %g rad/s", sweep_param_name(d.over), d.omega);
+        over = buf;
+    }
+    fig.panels.push_back(diagram_panel(d, "Model " + d.model + " - " + d.protocol + " bifurcation diagram" + over +
+                                              " (x at phi = 2 pi i)"));
     plot::save_png(fig, path);
 }
 

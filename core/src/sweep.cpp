@@ -5,6 +5,8 @@
 #include <functional>
 #include <ostream>
 #include <numbers>
+#include <sstream>
+#include <string>
 
 namespace impactlab {
 
@@ -56,24 +58,103 @@ std::vector<SectionPoint> poincare_section(const Params& p, double omega, int pe
     return std::move(col.points);
 }
 
-Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress, const Tolerances& tol, LevelObserver* extra) {
-    std::vector<CfLevel> levels(static_cast<std::size_t>(spec.steps));
-    for (int j = 0; j < spec.steps; ++j) {
-        const double w = spec.steps == 1 ? spec.omega_min
-                                         : spec.omega_min + (spec.omega_max - spec.omega_min) * j / (spec.steps - 1);
-        levels[static_cast<std::size_t>(j)] = {w, p.xI, p.m0e};
+const char* sweep_param_name(SweepParam s) {
+    switch (s) {
+        case SweepParam::Omega: return "omega";
+        case SweepParam::XI: return "xI";
+        case SweepParam::M0e: return "m0e";
     }
-    if (spec.direction == SweepDirection::Down) std::reverse(levels.begin(), levels.end());
-    Diagram diag = run_cf_levels(p, levels, spec.transient, spec.record, progress, tol, extra);
-    diag.protocol = spec.direction == SweepDirection::Up ? "cf-up" : "cf-down";
+    return "?";
+}
+
+const char* sweep_param_unit(SweepParam s) {
+    switch (s) {
+        case SweepParam::Omega: return "rad/s";
+        case SweepParam::XI: return "m";
+        case SweepParam::M0e: return "kg m";
+    }
+    return "?";
+}
+
+SweepParamAxis sweep_param_axis(SweepParam s) {
+    return s == SweepParam::XI ? SweepParamAxis{"mm", 1e3} : SweepParamAxis{sweep_param_unit(s), 1.0};
+}
+
+std::optional<SweepParam> parse_sweep_param(const std::string& name) {
+    for (const SweepParam s : {SweepParam::Omega, SweepParam::XI, SweepParam::M0e})
+        if (name == sweep_param_name(s)) return s;
+    return std::nullopt;
+}
+
+double level_value(const CfLevel& lv, SweepParam s) {
+    return s == SweepParam::Omega ? lv.omega : s == SweepParam::XI ? lv.xI : lv.m0e;
+}
+
+std::vector<CfLevel> sweep_levels(const Params& p, const ParamSweep& s) {
+    std::vector<CfLevel> levels(static_cast<std::size_t>(std::max(s.steps, 0)));
+    for (int j = 0; j < s.steps; ++j) {
+        const double u = s.steps == 1 ? s.lo : s.lo + (s.hi - s.lo) * j / (s.steps - 1);
+        CfLevel& lv = levels[static_cast<std::size_t>(j)];
+        lv = {s.omega, p.xI, p.m0e};
+        if (s.over == SweepParam::Omega) lv.omega = u;
+        else if (s.over == SweepParam::XI) lv.xI = u;
+        else lv.m0e = u;
+    }
+    if (s.direction == SweepDirection::Down) std::reverse(levels.begin(), levels.end());
+    return levels;
+}
+
+std::string check_sweep(const Params& p, const ParamSweep& s) {
+    const auto num = [](double v) {
+        std::ostringstream o;
+        o << v;
+        return o.str();
+    };
+    const std::string name = sweep_param_name(s.over), unit = sweep_param_unit(s.over);
+    if (!std::isfinite(s.lo) || !std::isfinite(s.hi)) return name + " range: not a finite number";
+    if (s.steps < 1) return "steps: " + std::to_string(s.steps) + " is below 1";
+    // omega > 0 (a period is infinite at 0) up to the CLI's omega flags' 1000 rad/s.
+    constexpr double kOmegaHi = 1000.0;
+    double lo_ok = 0, hi_ok = kOmegaHi;
+    bool lo_open = true;
+    if (s.over == SweepParam::XI) {
+        if (!p.has_bumper()) return "xI: model " + p.name + " has no bumper to move (impact law 'none')";
+        lo_ok = -kRailHalfTravel;
+        hi_ok = kRailHalfTravel;
+        lo_open = false;
+    } else if (s.over == SweepParam::M0e) {
+        for (const ParamRange& r : param_ranges())
+            if (std::string(r.key) == "m0e") hi_ok = r.hi;
+    }
+    const std::string range = (lo_open ? "(" : "[") + num(lo_ok) + ", " + num(hi_ok) + "] " + unit;
+    if (s.lo < lo_ok || (lo_open && s.lo <= lo_ok) || s.hi > hi_ok)
+        return name + " range " + num(s.lo) + ".." + num(s.hi) + " " + unit + " is outside " + range;
+    if (s.hi < s.lo) return name + " range: the end " + num(s.hi) + " is below the start " + num(s.lo) + " " + unit;
+    if (s.over != SweepParam::Omega && !(s.omega > 0 && s.omega <= kOmegaHi))
+        return "omega " + num(s.omega) + " rad/s (fixed during the " + name + " sweep) is outside (0, " + num(kOmegaHi) +
+               "] rad/s";
+    return "";
+}
+
+Diagram run_cf_param_sweep(const Params& p, const ParamSweep& s, int transient, int record, Progress* progress,
+                           const Tolerances& tol, LevelObserver* extra) {
+    Diagram diag = run_cf_levels(p, sweep_levels(p, s), transient, record, progress, tol, extra, s.over);
+    diag.protocol = s.direction == SweepDirection::Up ? "cf-up" : "cf-down";
+    if (s.over != SweepParam::Omega) diag.omega = s.omega;
     return diag;
 }
 
+Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress, const Tolerances& tol, LevelObserver* extra) {
+    const ParamSweep s{SweepParam::Omega, spec.omega_min, spec.omega_max, spec.steps, spec.direction, 0.0};
+    return run_cf_param_sweep(p, s, spec.transient, spec.record, progress, tol, extra);
+}
+
 Diagram run_cf_levels(const Params& p0, const std::vector<CfLevel>& levels, int transient, int record, Progress* progress,
-                      const Tolerances& tol, LevelObserver* extra) {
+                      const Tolerances& tol, LevelObserver* extra, SweepParam over) {
     Diagram diag;
     diag.model = p0.name;
     diag.protocol = "cf";
+    diag.over = over;
     // Progress counted in levels: the work per level is roughly constant (steps go with periods).
     const double total = static_cast<double>(levels.size());
     double done = 0;
@@ -111,7 +192,8 @@ Diagram run_cf_levels(const Params& p0, const std::vector<CfLevel>& levels, int 
             diag.cancelled = true;
             break;
         }
-        for (const auto& sp : col.points) diag.points.push_back({lv.omega, sp.x, sp.v});
+        const double at = level_value(lv, over);
+        for (const auto& sp : col.points) diag.points.push_back({at, sp.x, sp.v});
         if (extra) extra->end_level(j, p, s);
         done += 1.0;
     }
@@ -221,7 +303,7 @@ Transitions find_transitions(const Diagram& d, double cluster_tol) {
 
 void write_diagram_csv(const Diagram& d, std::ostream& out) {
     const auto old = out.precision(10);
-    out << "omega,x,v\n";
+    out << sweep_param_name(d.over) << ",x,v\n";
     for (const auto& pt : d.points) out << pt.omega << ',' << pt.x << ',' << pt.v << '\n';
     out.precision(old);
 }

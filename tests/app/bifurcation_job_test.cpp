@@ -270,3 +270,54 @@ TEST_CASE("a cancelled Lyapunov strip stops within a level and keeps the omegas 
     REQUIRE(result.has_value());
     CHECK(result->size() < 60);
 }
+
+namespace {
+// small_cf over xI in [-xI_max, xI_max] [m] at omega = 18 rad/s.
+BifRequest small_xI(BifProtocol proto, double xI_max) {
+    BifRequest r = small_cf(proto);
+    r.over = SweepParam::XI;
+    r.lo = -xI_max;
+    r.hi = xI_max;
+    r.omega = 18.0;
+    return r;
+}
+}  // namespace
+
+TEST_CASE("a diagram over xI at fixed omega arrives level by level, each point at its level's xI, as the core's sweep") {
+    BifRequest req = small_xI(BifProtocol::CfDown, 0.004);
+    req.steps = 9;
+    BifurcationJob job;
+    job.start(req);
+    const Polled p = poll_until_done(job);
+    const auto result = job.take_result();
+    REQUIRE(result.has_value());
+    CHECK(result->over == SweepParam::XI);
+    CHECK(p.levels.back() == 9);
+    CHECK(same(p.points, result->points));
+    const ParamSweep s = param_sweep(req);
+    CHECK(s.omega == 18.0);
+    CHECK(s.direction == SweepDirection::Down);
+    CHECK(same(run_cf_param_sweep(req.params, s, req.transient, req.record).points, result->points));
+    // Down from hi to lo, both included (the CLI's --range), record points per level.
+    REQUIRE(result->points.size() == 9u * static_cast<std::size_t>(req.record));
+    CHECK(result->points.front().omega == 0.004);
+    CHECK(result->points.back().omega == -0.004);
+    CHECK(swept_range(req) == std::pair{-0.004, 0.004});
+    // Over omega the request's levels are cf_spec's: the same sweep as before.
+    const BifRequest w = small_cf(BifProtocol::CfUp);
+    const ParamSweep sw = param_sweep(w);
+    CHECK(sw.lo == cf_spec(w).omega_min);
+    CHECK(sw.hi == cf_spec(w).omega_max);
+}
+
+TEST_CASE("a box over an xI diagram: the same request over the box's xI, clamped to the rail, narrow drags refused") {
+    const BifRequest req = small_xI(BifProtocol::CfUp, 0.01);
+    const auto box = box_request(req, 0.003, -0.002);
+    REQUIRE(box.has_value());
+    CHECK(box->lo == -0.002);
+    CHECK(box->hi == 0.003);
+    CHECK(box->omega == 18.0);
+    CHECK(box->omega_lo == req.omega_lo);   // the omega range is not the box's
+    CHECK(box_request(req, -0.5, 0.0)->lo == -kRailHalfTravel);
+    CHECK_FALSE(box_request(req, 0.001, 0.00105).has_value());   // 0.05 mm: a click
+}

@@ -190,6 +190,15 @@ if(TARGET impactlab)
   set_tests_properties(gui_diagram_v PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
 endif()
 
+# The bifurcation diagram over xI, equal to the CLI's sweep, and its y range holding the continued branches
+# (gui_diagram_over.sh says what it checks).
+if(TARGET impactlab)
+  add_test(NAME gui_diagram_over
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_diagram_over.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_diagram_over)
+  set_tests_properties(gui_diagram_over PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
+endif()
+
 # --model FILE.json read by the core's parser as the CLI reads it (gui_model_json.sh says what it checks).
 if(TARGET impactlab)
   add_test(NAME gui_model_json

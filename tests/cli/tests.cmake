@@ -99,6 +99,37 @@ impactlab_cli_test(bifurcation_csv --rc 0 --csv B.csv "omega,x,v" 9 9
                       --out B.csv)
 impactlab_cli_test(bifurcation_ramp_csv --rc 0 --csv R.csv "omega,x,v" 9 9
                    -- bifurcation --model A1G --sweep ramp --omega-max 2 --ramp-time 60 --out R.csv)
+# The CF sweep over xI or m0e at a fixed omega: the CSV's first column is the parameter, every error names
+# its flag and the range that applies, and nothing is written.
+impactlab_cli_test(bifurcation_over_xI --rc 0 --csv X.csv "xI,x,v" 6 6 --match "plot -> X\\.png"
+                   -- bifurcation --model A1H --over xI --range -0.005:0.005 --omega 18 --steps 3 --transient 2
+                      --record 2 --out X.csv --png X.png)
+impactlab_cli_test(bifurcation_over_m0e_down --rc 0 --csv M.csv "m0e,x,v" 6 6
+                   -- bifurcation --model A1G --sweep down --over m0e --range 0.01:0.03 --omega 12 --steps 2
+                      --transient 2 --record 3 --out M.csv)
+impactlab_cli_test(bifurcation_over_bogus --rc 2 --match "'--over'" --match "not one of omega, xI, m0e" --absent d.csv
+                   -- bifurcation --over xi --range 0:0.01 --omega 18 --steps 2 --out d.csv)
+impactlab_cli_test(bifurcation_over_xI_outside --rc 2 --match "--range: xI range -0\\.2\\.\\.0\\.01 m is outside \\[-0\\.1, 0\\.1\\] m"
+                   --absent d.csv -- bifurcation --over xI --range -0.2:0.01 --omega 18 --steps 2 --out d.csv)
+impactlab_cli_test(bifurcation_over_m0e_zero --rc 2 --match "--range: m0e range 0\\.\\.0\\.03 kg m is outside \\(0, 10. kg m"
+                   --absent d.csv -- bifurcation --over m0e --range 0:0.03 --omega 18 --steps 2 --out d.csv)
+impactlab_cli_test(bifurcation_over_xI_no_bumper --rc 2 --match "--over: xI: model A1none has no bumper" --absent d.csv
+                   -- bifurcation --model A1none --over xI --range 0:0.01 --omega 18 --steps 2 --out d.csv)
+impactlab_cli_test(bifurcation_over_xI_no_omega --rc 2 --match "--over xI needs the fixed forcing frequency --omega"
+                   --absent d.csv -- bifurcation --over xI --range 0:0.01 --steps 2 --out d.csv)
+impactlab_cli_test(bifurcation_over_xI_no_range --rc 2 --match "--over xI needs --range A:B \\[m\\]" --absent d.csv
+                   -- bifurcation --over xI --omega 18 --steps 2 --out d.csv)
+impactlab_cli_test(bifurcation_over_xI_range_reversed --rc 2 --match "'--range': the end is not above the start"
+                   --absent d.csv -- bifurcation --over xI --range 0.01:0 --omega 18 --steps 2 --out d.csv)
+impactlab_cli_test(bifurcation_over_xI_omega_min --rc 2 --match "--omega-min goes with --over omega" --absent d.csv
+                   -- bifurcation --over xI --range 0:0.01 --omega 18 --omega-min 3 --steps 2 --out d.csv)
+impactlab_cli_test(bifurcation_over_ramp --rc 2 --match "--over is for the CF sweeps" --absent d.csv
+                   -- bifurcation --sweep ramp --over xI --range 0:0.01 --out d.csv)
+impactlab_cli_test(bifurcation_omega_without_over --rc 2 --match "--omega is the fixed frequency of an xI or m0e sweep"
+                   --absent d.csv -- bifurcation --omega 18 --steps 2 --out d.csv)
+# --range over omega is --omega-min:--omega-max: the same file.
+impactlab_cli_test(bifurcation_over_omega_range --rc 0 --csv W.csv "omega,x,v" 9 9
+                   -- bifurcation --over omega --range 5:6 --steps 3 --transient 2 --record 3 --out W.csv)
 
 # Every simulating command's --help should document the model flags it accepts (--model, --xI, --m0e,
 # --rtol).

@@ -1,5 +1,5 @@
 // Sweeps and sections: convergence of section points with the tolerance, the CF diagram of A1H (short and
-// full), the EF ramp, count_period, progress and cancellation, the CSV writer.
+// full), the EF ramp, count_period, progress and cancellation, the CSV writer, sweeps over xI and m0e.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -240,4 +240,78 @@ TEST_CASE("write_diagram_csv: header omega,x,v and one row per point, 10 signifi
     write_diagram_csv(d, out);
     CHECK(out.str() == "omega,x,v\n1.5,-0.0123456789,0.25\n2,0.001,-0.3333333333\n");
     CHECK(out.precision() == 3);   // the stream's precision is restored
+}
+
+TEST_CASE("sweep_levels: the swept parameter from lo to hi, the others the model's and the fixed omega") {
+    const Params p = make_version("A1H");
+    ParamSweep s;
+    s.over = SweepParam::XI;
+    s.lo = -0.004;
+    s.hi = 0.006;
+    s.steps = 6;
+    s.omega = 18.0;
+    const auto up = sweep_levels(p, s);
+    REQUIRE(up.size() == 6);
+    CHECK(up.front().xI == -0.004);
+    CHECK(up.back().xI == doctest::Approx(0.006).epsilon(1e-15));
+    for (std::size_t j = 0; j < up.size(); ++j) {
+        CHECK(up[j].omega == 18.0);
+        CHECK(up[j].m0e == p.m0e);
+        if (j > 0) CHECK(up[j].xI > up[j - 1].xI);
+    }
+    s.direction = SweepDirection::Down;
+    const auto down = sweep_levels(p, s);
+    REQUIRE(down.size() == 6);
+    for (std::size_t j = 0; j < 6; ++j) CHECK(down[j].xI == up[5 - j].xI);
+    // Over omega: run_cf_sweep's levels, the model's xI and m0e.
+    const ParamSweep w{SweepParam::Omega, 2.0, 10.0, 5, SweepDirection::Up, 0.0};
+    const auto ws = sweep_levels(p, w);
+    REQUIRE(ws.size() == 5);
+    for (std::size_t j = 0; j < 5; ++j) {
+        CHECK(ws[j].omega == 2.0 + 8.0 * static_cast<double>(j) / 4);
+        CHECK(ws[j].xI == p.xI);
+        CHECK(ws[j].m0e == p.m0e);
+    }
+    // One step: the start of the range.
+    s.steps = 1;
+    REQUIRE(sweep_levels(p, s).size() == 1);
+    CHECK(sweep_levels(p, s)[0].xI == -0.004);
+}
+
+TEST_CASE("a CF sweep over xI at fixed omega is run_cf_levels over hand-made levels, its points carrying xI") {
+    const Params p = make_version("A1G");
+    const ParamSweep s{SweepParam::XI, -0.003, 0.003, 4, SweepDirection::Up, 17.0};
+    const Diagram d = run_cf_param_sweep(p, s, 3, 4);
+    std::vector<CfLevel> hand;   // xI_j = lo + (hi - lo) j / (steps - 1), written out
+    for (int j = 0; j < 4; ++j) hand.push_back({17.0, -0.003 + (0.003 - -0.003) * j / 3, p.m0e});
+    const Diagram e = run_cf_levels(p, hand, 3, 4);
+    CHECK(d.over == SweepParam::XI);
+    CHECK(d.omega == 17.0);
+    CHECK(d.protocol == "cf-up");
+    REQUIRE(d.points.size() == 16);
+    REQUIRE(e.points.size() == 16);
+    for (std::size_t i = 0; i < d.points.size(); ++i) {
+        CAPTURE(i);
+        CHECK(d.points[i].omega == doctest::Approx(hand[i / 4].xI).epsilon(1e-15));   // xI, not omega
+        CHECK(d.points[i].x == e.points[i].x);
+        CHECK(d.points[i].v == e.points[i].v);
+    }
+    std::ostringstream csv;
+    write_diagram_csv(d, csv);
+    CHECK(csv.str().rfind("xI,x,v\n-0.003,", 0) == 0);
+}
+
+TEST_CASE("check_sweep: each parameter's range, the bumper, the fixed omega") {
+    const Params h = make_version("A1H");
+    CHECK(check_sweep(h, {SweepParam::XI, -0.01, 0.01, 10, SweepDirection::Up, 18.0}).empty());
+    CHECK(check_sweep(h, {SweepParam::M0e, 0.01, 0.04, 10, SweepDirection::Up, 18.0}).empty());
+    CHECK(check_sweep(h, {SweepParam::Omega, 1.0, 25.0, 10, SweepDirection::Up, 0.0}).empty());
+    CHECK(check_sweep(h, {SweepParam::XI, -0.2, 0.01, 10, SweepDirection::Up, 18.0}).find("outside [-0.1, 0.1] m") != std::string::npos);
+    CHECK(check_sweep(h, {SweepParam::M0e, 0.0, 0.04, 10, SweepDirection::Up, 18.0}).find("outside (0, 10] kg m") != std::string::npos);
+    CHECK(check_sweep(h, {SweepParam::XI, 0.01, -0.01, 10, SweepDirection::Up, 18.0}).find("below the start") != std::string::npos);
+    CHECK(check_sweep(h, {SweepParam::XI, -0.01, 0.01, 10, SweepDirection::Up, 0.0}).find("omega 0 rad/s") == 0);
+    CHECK(check_sweep(make_version("A1none"), {SweepParam::XI, -0.01, 0.01, 10, SweepDirection::Up, 18.0}).find("no bumper") !=
+          std::string::npos);
+    CHECK(parse_sweep_param("xI") == SweepParam::XI);
+    CHECK(!parse_sweep_param("xi"));
 }

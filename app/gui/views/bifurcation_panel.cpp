@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -32,27 +33,26 @@ void draw_ramp_points(Plot& plot, const OmegaRamp& ramp) {
     plot.text(plot.x_range().lo, plot.y_range().hi, buf, col, ImVec2(-0.05f, -1.4f));
 }
 
-double wall_s() {
-    using namespace std::chrono;
-    return duration<double>(steady_clock::now().time_since_epoch()).count();
+// The swept parameter on the axis: its symbol and its label, in the unit and scale plots show it in (the
+// core's sweep_param_axis: xI in mm).
+struct OverAxis { const char* symbol; const char* label; double scale; };
+OverAxis over_axis(SweepParam s) {
+    const double scale = sweep_param_axis(s).scale;
+    switch (s) {
+        case SweepParam::Omega: return {"ω", "ω [rad/s]", scale};
+        case SweepParam::XI: return {"xI", "xI [mm]", scale};
+        case SweepParam::M0e: return {"m0e", "m0e [kg m]", scale};
+    }
+    return {"?", "?", 1.0};
 }
-
-ImU32 density_u32(float t) {
-    unsigned char c[4];
-    density_color(palette().dark, t, c);
-    return IM_COL32(c[0], c[1], c[2], c[3]);
-}
+const char* over_unit(SweepParam s) { return sweep_param_axis(s).unit; }
 
 // The live section points: a colour the density map does not use, with a dark rim.
 constexpr ImU32 kLiveColor = IM_COL32(90, 230, 255, 255);
-// The Lyapunov strip: chaos (lambda > 0), periodic orbits (lambda < 0), and a band around zero where the
-// estimate of 40 periods cannot tell (a cart creeping off the hilltop: about 1e-3 1/s).
-constexpr ImU32 kChaosColor = IM_COL32(240, 80, 70, 255), kOrderColor = IM_COL32(80, 150, 255, 255),
-                kZeroColor = IM_COL32(170, 170, 170, 255);
-constexpr double kLambdaZero = 0.02;   // [1/s]
-ImU32 lambda_color(double l) { return l > kLambdaZero ? kChaosColor : l < -kLambdaZero ? kOrderColor : kZeroColor; }
-const char* lambda_word(double l) {
-    return l > kLambdaZero ? "chaos" : l < -kLambdaZero ? "periodic" : "about zero: neither settles nor separates";
+
+double wall_s() {
+    using namespace std::chrono;
+    return duration<double>(steady_clock::now().time_since_epoch()).count();
 }
 
 }  // namespace
@@ -61,6 +61,7 @@ void BifurcationPanel::configure(const Options& opt) {
     want_start_ = !opt.bifurcation.empty();
     show_v_ = opt.bif_y == "v";
     nowait_ = opt.bif_nowait;
+    if (const auto over = parse_sweep_param(opt.bif_over)) set_over(*over);
     if (opt.bif_range_hi > opt.bif_range_lo) {
         lo_edit_ = opt.bif_range_lo;
         hi_edit_ = opt.bif_range_hi;
@@ -82,15 +83,42 @@ BifRequest BifurcationPanel::request(const BifurcationContext& c, double lo, dou
     req.params = *c.params;
     req.protocol = static_cast<BifProtocol>(std::clamp(c.protocol ? *c.protocol : 0, 0, 2));
     req.steps = c.steps ? *c.steps : 300;
-    req.omega_lo = lo;
-    req.omega_hi = hi;
+    req.over = over_;
+    if (over_ == SweepParam::Omega) {
+        req.omega_lo = lo;
+        req.omega_hi = hi;
+    } else {
+        // At the omega the simulation runs: the diagram's vertical line through the running attractor.
+        req.lo = lo;
+        req.hi = hi;
+        req.omega = c.omega;
+        req.omega_lo = kept_[0].lo;   // kept for the omega axis the continuation follows
+        req.omega_hi = kept_[0].hi;
+    }
     return req;
 }
 
+void BifurcationPanel::set_over(SweepParam over) {
+    if (over == over_) return;
+    kept_[static_cast<int>(over_)] = {lo_edit_, hi_edit_};
+    over_ = over;
+    lo_edit_ = kept_[static_cast<int>(over)].lo;
+    hi_edit_ = kept_[static_cast<int>(over)].hi;
+    range_error_.clear();
+}
+
 std::string BifurcationPanel::start(const BifurcationContext& c) {
-    range_error_ = check_omega_range(lo_edit_, hi_edit_);
+    const BifRequest req = request(c, lo_edit_, hi_edit_);
+    if (over_ == SweepParam::Omega) {
+        range_error_ = check_omega_range(lo_edit_, hi_edit_);
+    } else if (req.protocol == BifProtocol::Ef) {
+        range_error_ = std::string("the EF ramp is a ramp of ω: choose CF up or down for a diagram over ") + sweep_param_name(over_);
+    } else {
+        range_error_ = check_sweep(req.params, param_sweep(req));
+        if (range_error_.empty() && !(hi_edit_ > lo_edit_)) range_error_ = std::string(sweep_param_name(over_)) + " range is empty";
+    }
     if (!range_error_.empty()) return "bifurcation diagram not started: " + range_error_;
-    begin(c, request(c, lo_edit_, hi_edit_));
+    begin(c, req);
     return "";
 }
 
@@ -112,28 +140,16 @@ void BifurcationPanel::begin(const BifurcationContext& c, const BifRequest& req)
     shown_req_ = req;
     have_ = true;
     levels_done_ = 0;
-    fit_x_ = req.protocol == BifProtocol::Ef ? Range{0.0, req.omega_hi} : Range{req.omega_lo, req.omega_hi};
+    shown_.over = req.over;
+    const auto [lo, hi] = swept_range(req);
+    fit_x_ = {lo, hi};
     fit_y_empty_ = true;   // the y fit keeps its old range until the first points (no jump to nothing)
     dirty_ = true;
-    lo_edit_ = req.omega_lo;
-    hi_edit_ = req.omega_hi;
+    set_over(req.over);
+    if (req.protocol != BifProtocol::Ef) lo_edit_ = lo;   // EF: the ramp starts at 0 whatever the input says
+    hi_edit_ = hi;
     range_error_.clear();
-    if (lyap_on_) start_strip(c);
-}
-
-void BifurcationPanel::start_strip(const BifurcationContext& c) {
-    LyapunovStripRequest r;
-    r.params = have_ ? shown_req_.params : *c.params;
-    // The diagram's sweep: the same direction and omega range (the EF ramp's range swept up).
-    r.direction = have_ && shown_req_.protocol == BifProtocol::CfDown ? SweepDirection::Down : SweepDirection::Up;
-    r.omega_lo = have_ ? shown_req_.omega_lo : lo_edit_;
-    r.omega_hi = have_ ? shown_req_.omega_hi : hi_edit_;
-    r.steps = lyap_steps_;
-    lyap_req_ = r;
-    lyap_.clear();
-    lyap_done_ = 0;
-    lyap_model_ = have_ ? shown_.model : c.model;
-    lyap_job_.start(r);
+    if (lyap_on_ && req.over == SweepParam::Omega) start_strip(c);
 }
 
 void BifurcationPanel::grow_fit(std::size_t from) {
@@ -194,10 +210,13 @@ std::string BifurcationPanel::poll(const BifurcationContext& c) {
         shown_.model = model;
         snap_fit();
         dirty_ = true;
+        shown_.over = shown_req_.over;
         char buf[160];
-        std::snprintf(buf, sizeof buf, "bifurcation diagram %s%s: %zu points over ω %.3g-%.3g rad/s in %.0f s",
+        const OverAxis ax = over_axis(shown_req_.over);
+        const auto [lo, hi] = swept_range(shown_req_);
+        std::snprintf(buf, sizeof buf, "bifurcation diagram %s%s: %zu points over %s %.3g-%.3g %s in %.0f s",
                       shown_.model.c_str(), shown_.cancelled ? " (cancelled, partial)" : " done", shown_.points.size(),
-                      shown_req_.omega_lo, shown_req_.omega_hi, wall_s() - started_);
+                      ax.symbol, ax.scale * lo, ax.scale * hi, over_unit(shown_req_.over), wall_s() - started_);
         toast = buf;
     }
     // The strip.
@@ -211,7 +230,7 @@ std::string BifurcationPanel::poll(const BifurcationContext& c) {
     }
     if (lyap_want_ && (have_ || !want_start_)) {   // --bif-lyapunov: with the first diagram, if one is asked for
         lyap_want_ = false;
-        if (!lyap_job_.running() && lyap_.empty()) start_strip(c);
+        if (!lyap_job_.running() && lyap_.empty() && shown_req_.over == SweepParam::Omega) start_strip(c);
     }
     if (dark_ != palette().dark) {
         dark_ = palette().dark;
@@ -227,7 +246,12 @@ bool BifurcationPanel::busy() const {
 }
 
 bool BifurcationPanel::stale(const BifurcationContext& c) const {
-    return have_ && (shown_.model != c.model || std::abs(shown_req_.params.xI - c.xI) > 1e-9);
+    if (!have_) return false;
+    if (shown_.model != c.model) return true;
+    // The parameters held fixed along the sweep: xI over omega or m0e; omega over xI or m0e.
+    const SweepParam over = shown_req_.over;
+    if (over != SweepParam::XI && std::abs(shown_req_.params.xI - c.xI) > 1e-9) return true;
+    return over != SweepParam::Omega && std::abs(shown_req_.omega - c.omega) > 1e-9;
 }
 
 BifurcationState BifurcationPanel::state(const BifurcationContext& c) const {
@@ -235,8 +259,18 @@ BifurcationState BifurcationPanel::state(const BifurcationContext& c) const {
     s.have = have_;
     s.model = shown_.model;
     s.protocol = shown_.protocol;
-    s.omega_lo = have_ ? (shown_req_.protocol == BifProtocol::Ef ? 0.0 : shown_req_.omega_lo) : 0.0;
-    s.omega_hi = have_ ? shown_req_.omega_hi : 0.0;
+    s.over = have_ ? shown_req_.over : over_;
+    if (have_) {
+        std::tie(s.lo, s.hi) = swept_range(shown_req_);
+        if (s.over == SweepParam::Omega) std::tie(s.omega_lo, s.omega_hi) = std::pair{s.lo, s.hi};
+        else s.omega = shown_req_.omega;
+    }
+    for (const DiagramPoint& p : shown_.points) {   // consecutive points of one value form a CF level
+        if (shown_req_.protocol == BifProtocol::Ef) break;
+        if (s.level_x.empty() || s.level_x.back().at != p.omega) s.level_x.push_back({p.omega, p.x, p.x});
+        s.level_x.back().x_min = std::min(s.level_x.back().x_min, p.x);
+        s.level_x.back().x_max = std::max(s.level_x.back().x_max, p.x);
+    }
     s.steps = have_ && shown_req_.protocol != BifProtocol::Ef ? shown_req_.steps : 0;
     s.levels_done = have_ && shown_req_.protocol != BifProtocol::Ef ? levels_done_ : 0;
     s.points = shown_.points.size();
@@ -286,11 +320,15 @@ void BifurcationPanel::update_texture(int w, int h) {
     tex_w_ = w;
     tex_h_ = h;
     std::vector<float> count(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0.0f);
-    // Each omega level of a CF sweep is splatted over its share of the width (the request's span over its
-    // steps, in the pixels of the view shown), so the diagram has no gaps between columns.
-    const bool cf = shown_.protocol != "ef";
-    const double col_px = w * (shown_req_.omega_hi - shown_req_.omega_lo) / std::max(1, shown_req_.steps) / view_x_.span();
+    // Each level of a CF sweep is splatted over its share of the width (the request's span over its
+    // steps, in the pixels of the view shown), so the diagram has no gaps between columns. Over omega a level
+    // stands for the band below it; over xI or m0e (levels from lo to hi, both included) for the band around it.
+    const bool cf = shown_.protocol != "ef", centred = shown_req_.over != SweepParam::Omega;
+    const auto [range_lo, range_hi] = swept_range(shown_req_);
+    const int bands = centred ? std::max(1, shown_req_.steps - 1) : std::max(1, shown_req_.steps);
+    const double col_px = w * (range_hi - range_lo) / bands / view_x_.span();
     const int splat = cf ? std::clamp(static_cast<int>(col_px), 1, 12) : 1;
+    const int first = centred ? -(splat / 2) : 0;
     for (const auto& p : shown_.points) {
         const double fx = (p.omega - view_x_.lo) / view_x_.span(), fy = (view_y_.hi - y_of(p)) / view_y_.span();
         if (!(fx > -0.1 && fx < 1.1)) continue;
@@ -298,7 +336,7 @@ void BifurcationPanel::update_texture(int w, int h) {
         if (iy < 0 || iy >= h) continue;
         // A CF level stands for the band of omega below it (omega_j - span/steps, omega_j] up to the
         // next: the splat covers the pixels to its left, so the last column ends at omega_hi.
-        for (int k = 0; k < splat; ++k) {
+        for (int k = first; k < first + splat; ++k) {
             const int x = cf ? ix - k : ix;
             if (x < 0 || x >= w) continue;
             count[static_cast<std::size_t>(iy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] += 1.0f;
@@ -323,45 +361,76 @@ void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toa
         ImGui::SameLine();
         if (ImGui::GetContentRegionAvail().x < width) ImGui::NewLine();
     };
+    {
+        // The swept parameter: omega (the paper's diagram), or xI or m0e at the omega the simulation runs.
+        static const char* kOver[] = {"over ω", "over xI", "over m0e"};
+        int o = static_cast<int>(over_);
+        ImGui::SetNextItemWidth(fs * 6.4f);
+        if (ImGui::Combo("##bif_over", &o, kOver, 3)) set_over(static_cast<SweepParam>(o));
+        tooltip("The parameter on the diagram's horizontal axis. xI (the bumper) or m0e (the unbalance) are moved "
+                "step by step at the ω the simulation runs (set it first); CF sweeps only. The continued branches, "
+                "the ramp's points, the λ strip and a click that sets ω belong to diagrams over ω.");
+        same_line_if(fs * 6.2f);
+    }
     const char* protos[] = {"CF up", "CF down", "EF ramp"};
     ImGui::SetNextItemWidth(fs * 6.2f);
     if (c.protocol) ImGui::Combo("##proto", c.protocol, protos, 3);
-    tooltip("CF: constant ω steps, 20 transient + 70 recorded periods each, every step starting where the last "
-            "ended. EF: the experiment's slow ramp of ω (25 rad/s in 2800 s) from rest up to ω max.");
+    tooltip("CF: constant steps of the swept parameter, 20 transient + 70 recorded periods each, every step "
+            "starting where the last ended. EF: the experiment's slow ramp of ω (25 rad/s in 2800 s) from rest up "
+            "to ω max (over ω only).");
     const bool ef = c.protocol && *c.protocol == 2;
     same_line_if(fs * 6.0f);
     ImGui::BeginDisabled(ef);
     ImGui::SetNextItemWidth(fs * 6.0f);
     if (c.steps) ImGui::SliderInt("##steps", c.steps, 25, 600, "%d steps");
-    tooltip("CF: the number of ω levels over the range (a box dragged on the diagram keeps it: finer columns).");
+    tooltip("CF: the number of levels over the range (a box dragged on the diagram keeps it: finer columns).");
     ImGui::EndDisabled();
-    // The omega range: typed, or dragged on the diagram with the right mouse button.
-    // The two fields and the "0-25" button stay on one line: the button is not cut to "0-2".
-    same_line_if(fs * 9.6f + button_width("0-25") + fs * 0.2f);
+    // The swept range: typed (xI in mm), or dragged on the diagram with the right mouse button.
+    // The two fields and the reset button stay on one line: the button is not cut.
+    const OverAxis oax = over_axis(over_);
+    const char* reset = over_ == SweepParam::Omega ? "0-25" : "reset";
+    same_line_if(fs * 9.6f + button_width(reset) + fs * 0.2f);
     bool edited = false;
+    double lo_shown = oax.scale * lo_edit_, hi_shown = oax.scale * hi_edit_;
+    const char* num_fmt = over_ == SweepParam::M0e ? "%.4f" : "%.2f";
     ImGui::SetNextItemWidth(fs * 4.6f);
-    edited |= ImGui::InputDouble("##wlo", &lo_edit_, 0, 0, "%.2f");
-    tooltip("ω min [rad/s] of the next diagram (0 ≤ min < max ≤ 30). Or drag a box on the diagram with the "
-            "right mouse button: that range is computed at once.");
+    edited |= ImGui::InputDouble("##wlo", &lo_shown, 0, 0, num_fmt);
+    char tip_lo[200];
+    if (over_ == SweepParam::Omega)
+        std::snprintf(tip_lo, sizeof tip_lo, "ω min [rad/s] of the next diagram (0 ≤ min < max ≤ 30). Or drag a box on "
+                      "the diagram with the right mouse button: that range is computed at once.");
+    else
+        std::snprintf(tip_lo, sizeof tip_lo, "%s min [%s] of the next diagram. Or drag a box on the diagram with the "
+                      "right mouse button: that range is computed at once.", oax.symbol, over_unit(over_));
+    tooltip(tip_lo);
     ImGui::SameLine(0, fs * 0.2f);
     ImGui::SetNextItemWidth(fs * 4.6f);
-    edited |= ImGui::InputDouble("##whi", &hi_edit_, 0, 0, "%.2f");
-    tooltip("ω max [rad/s] of the next diagram (EF: where the ramp ends).");
-    if (edited) range_error_ = check_omega_range(lo_edit_, hi_edit_);
+    edited |= ImGui::InputDouble("##whi", &hi_shown, 0, 0, num_fmt);
+    char tip_hi[96];
+    std::snprintf(tip_hi, sizeof tip_hi, "%s max [%s] of the next diagram%s", oax.symbol, over_unit(over_),
+                  over_ == SweepParam::Omega ? " (EF: where the ramp ends)." : ".");
+    tooltip(tip_hi);
+    if (edited) {
+        lo_edit_ = lo_shown / oax.scale;
+        hi_edit_ = hi_shown / oax.scale;
+        if (over_ == SweepParam::Omega) range_error_ = check_omega_range(lo_edit_, hi_edit_);
+        else range_error_ = c.params ? check_sweep(*c.params, param_sweep(request(c, lo_edit_, hi_edit_))) : "";
+    }
     ImGui::SameLine(0, fs * 0.2f);
-    if (ImGui::SmallButton("0-25")) {
-        lo_edit_ = 0;
-        hi_edit_ = 25;
+    if (ImGui::SmallButton(reset)) {
+        const Range r = BifurcationPanel{}.kept_[static_cast<int>(over_)];   // the panel's defaults
+        lo_edit_ = r.lo;
+        hi_edit_ = r.hi;
         range_error_.clear();
     }
-    tooltip("The paper's range, ω from 0 to 25 rad/s.");
+    tooltip(over_ == SweepParam::Omega ? "The paper's range, ω from 0 to 25 rad/s." : "The default range of this parameter.");
     if (job_.running()) {
         same_line_if(fs * 10.0f);
         if (ImGui::Button("Cancel")) job_.cancel();
         ImGui::SameLine();
         char over[48];
         if (shown_req_.protocol == BifProtocol::Ef) std::snprintf(over, sizeof over, "%.0f%%", 100.0 * job_.progress());
-        else std::snprintf(over, sizeof over, "%d / %d ω", levels_done_, shown_req_.steps);
+        else std::snprintf(over, sizeof over, "%d / %d %s", levels_done_, shown_req_.steps, over_axis(shown_req_.over).symbol);
         ImGui::ProgressBar(static_cast<float>(job_.progress()), ImVec2(std::max(fs * 5.0f, ImGui::GetContentRegionAvail().x - fs * 5.5f), 0), over);
     } else {
         char label[48];
@@ -379,57 +448,28 @@ void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toa
         int y = show_v_ ? 1 : 0;
         ImGui::SetNextItemWidth(fs * 3.0f);
         if (ImGui::Combo("##bif_y", &y, kY, 2)) set_show_v(y == 1);
-        tooltip("The section points' x or v over ω (the continued branches and the ramp's points: over x only).");
+        tooltip("The section points' x or v over the swept parameter (the continued branches and the ramp's "
+                "points: over x only).");
     }
     same_line_if(fs * 5.5f);
+    // The strip is lambda_max(omega): it belongs under a diagram over omega.
+    const bool strip_ok = (have_ ? shown_req_.over : over_) == SweepParam::Omega;
+    ImGui::BeginDisabled(!strip_ok);
     if (ImGui::Checkbox("λ strip", &lyap_on_)) {
         if (lyap_on_ && (lyap_.empty() || lyap_model_ != (have_ ? shown_.model : c.model))) start_strip(c);
         if (!lyap_on_) lyap_job_.cancel();
     }
-    char tip[320];
+    ImGui::EndDisabled();
+    char tip[400];
     std::snprintf(tip, sizeof tip,
                   "The largest Lyapunov exponent λmax(ω) along the same CF sweep, in a strip under the diagram "
                   "(positive: chaos; negative: a periodic orbit, however long). Slow: %d ω of 20 + 40 periods take "
-                  "about 2 s with a rigid bumper (G, H) and several minutes with a compliant one (C, C1).",
-                  lyap_steps_);
-    tooltip(tip);
+                  "about 2 s with a rigid bumper (G, H) and several minutes with a compliant one (C, C1).%s",
+                  lyap_steps_, strip_ok ? "" : " Over ω only: this diagram is over another parameter.");
+    if (strip_ok) tooltip(tip);
+    else if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", tip);
     draw_legend();
     if (!range_error_.empty()) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", range_error_.c_str());
-}
-
-void BifurcationPanel::draw_legend() const {
-    // The density colours in the header, from one point in a pixel to the densest pixel, on the image's log
-    // scale (the colour of n points is log(1 + n) / log(1 + max)), so it never covers the diagram.
-    if (!have_ || shown_.points.empty() || max_count_ <= 0) return;
-    const Palette& pal = palette();
-    const float fs = ImGui::GetFontSize();
-    char top[32];
-    std::snprintf(top, sizeof top, "%.0f", static_cast<double>(max_count_));
-    const float bar_w = fs * 5.0f, bar_h = fs * 0.75f;
-    const float need = ImGui::CalcTextSize("1").x + bar_w + ImGui::CalcTextSize(top).x + ImGui::CalcTextSize(" points/pixel").x + fs;
-    ImGui::SameLine(0, fs * 0.8f);
-    if (ImGui::GetContentRegionAvail().x < need) ImGui::NewLine();
-    ImGui::TextUnformatted("1");
-    ImGui::SameLine(0, fs * 0.25f);
-    const ImVec2 p = ImGui::GetCursorScreenPos();
-    const float y0 = p.y + 0.5f * (ImGui::GetTextLineHeight() - bar_h);
-    ImDrawList* dl = ImGui::GetWindowDrawList();
-    constexpr int kBands = 24;
-    for (int i = 0; i < kBands; ++i) {
-        const float t0 = static_cast<float>(i) / kBands, t1 = static_cast<float>(i + 1) / kBands;
-        const ImU32 c0 = density_u32(t0), c1 = density_u32(t1);
-        dl->AddRectFilledMultiColor(ImVec2(p.x + t0 * bar_w, y0), ImVec2(p.x + t1 * bar_w, y0 + bar_h), c0, c1, c1, c0);
-    }
-    dl->AddRect(ImVec2(p.x - 0.5f, y0 - 0.5f), ImVec2(p.x + bar_w + 0.5f, y0 + bar_h + 0.5f), pal.plot_frame);
-    ImGui::Dummy(ImVec2(bar_w, ImGui::GetTextLineHeight()));
-    if (ImGui::IsItemHovered()) {
-        const double mid = std::expm1(0.5 * std::log1p(static_cast<double>(max_count_)));
-        ImGui::SetTooltip("Colour: section points falling in one pixel of the image, on a log scale "
-                          "(1 point: darkest, %.0f: the middle, %.0f: the densest pixel of this view).",
-                          mid, static_cast<double>(max_count_));
-    }
-    ImGui::SameLine(0, fs * 0.25f);
-    ImGui::Text("%s points/pixel", top);
 }
 
 BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
@@ -439,7 +479,11 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
 
     Plot plot;
     Axes ax;
-    ax.x_label = "ω [rad/s]";
+    const SweepParam over = have_ ? shown_req_.over : over_;
+    const bool over_omega = over == SweepParam::Omega;
+    const OverAxis oax = over_axis(over);
+    ax.x_label = oax.label;
+    ax.x_scale = oax.scale;
     ax.y_label = show_v_ ? "v at sections [m/s]" : "x at sections [mm]";
     ax.y_label_short = show_v_ ? "v [m/s]" : "x [mm]";
     ax.y_scale = show_v_ ? 1.0 : 1e3;
@@ -454,9 +498,10 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         apply_box(c, script_box_x_.lo, script_box_x_.hi, fit_y_);
     }
     ImVec2 avail = ImGui::GetContentRegionAvail();
-    const float strip_h = lyap_on_ ? std::max(ImGui::GetFontSize() * 6.0f, 0.3f * avail.y) : 0.0f;
+    const bool strip = lyap_on_ && over_omega;
+    const float strip_h = strip ? std::max(ImGui::GetFontSize() * 6.0f, 0.3f * avail.y) : 0.0f;
     avail.y -= strip_h;
-    if (!plot.begin("##bif", avail, fit_x_, fit_y_, ax)) return act;
+    if (!plot.begin("##bif", avail, fit_x_, fit_y_with_branches(c), ax)) return act;
     const ImVec2 a = plot.area_min(), b = plot.area_max();
     const Range vx = plot.x_range(), vy = plot.y_range();
     if (vx.lo != view_x_.lo || vx.hi != view_x_.hi || vy.lo != view_y_.lo || vy.hi != view_y_.hi) {
@@ -469,20 +514,9 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         update_texture(static_cast<int>(b.x - a.x), static_cast<int>(b.y - a.y));
         // A diagram of another model (or bumper position) stays, dimmed, until B computes the new one.
         if (tex_) plot.image(image_.data(), tex_w_, tex_h_, static_cast<GLuint>(tex_), is_stale ? 90.0f / 255.0f : 1.0f);
-        char info[160];
-        const char* cut = shown_.cancelled ? " (cancelled)" : "";
-        if (shown_req_.protocol == BifProtocol::Ef)
-            std::snprintf(info, sizeof info, "%s  EF ramp to %.3g rad/s%s  %zu points", shown_.model.c_str(),
-                          shown_req_.omega_hi, cut, shown_.points.size());
-        else
-            std::snprintf(info, sizeof info, "%s  %s  ω %.3g-%.3g: %d/%d levels%s  %zu points", shown_.model.c_str(),
-                          shown_.protocol.c_str(), shown_req_.omega_lo, shown_req_.omega_hi, levels_done_, shown_req_.steps,
-                          cut, shown_.points.size());
-        if (ImGui::CalcTextSize(info).x + 20 > b.x - a.x)   // a narrow tile: the levels and the model only
-            std::snprintf(info, sizeof info, "%s  %d/%d%s", shown_.model.c_str(), levels_done_, shown_req_.steps, cut);
-        plate_text(plot.draw(), ImVec2(a.x + 6, b.y - ImGui::GetTextLineHeight() - 6), info, pal.axis_text);
+        draw_info(plot, b.x - a.x);
         if (shown_.points.empty() && job_.running())
-            plate_text(plot.draw(), ImVec2(0.5f * (a.x + b.x), 0.5f * (a.y + b.y)), "computing the first ω level...",
+            plate_text(plot.draw(), ImVec2(0.5f * (a.x + b.x), 0.5f * (a.y + b.y)), "computing the first level...",
                   pal.axis_text, ImVec2(0.5f, 0.5f));
     } else {
         const char* hint = "press B (or Compute) for a diagram";
@@ -490,10 +524,14 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         const ImVec2 ts = ImGui::CalcTextSize(hint);
         plot.draw()->AddText(ImVec2(0.5f * (a.x + b.x - ts.x), 0.5f * (a.y + b.y - ts.y)), pal.axis_text, hint);
     }
-    // The bumper's x_I is a position: drawn over x only ("none": no bumper).
-    if (!show_v_ && (!c.params || c.params->has_bumper())) plot.hline(c.xI, pal.bumper, 1.0f, true);
-    // The running omega: a line, its value (to 0.01 rad/s), and the Poincare map's settled points on it.
-    plot.vline(c.omega, pal.cursor, 2.0f);
+    // The bumper's x_I is a position: drawn over x only ("none": no bumper); over xI it is the diagonal x = xI.
+    if (!show_v_ && (!c.params || c.params->has_bumper())) {
+        if (over != SweepParam::XI) plot.hline(c.xI, pal.bumper, 1.0f, true);
+        else plot.draw()->AddLine(plot.to_px(vx.lo, vx.lo), plot.to_px(vx.hi, vx.hi), pal.bumper, 1.0f);
+    }
+    // Where the simulation runs (omega, xI or m0e): a line, its value, and the Poincare map's settled points on it.
+    const double cur = over == SweepParam::Omega ? c.omega : over == SweepParam::XI ? c.xI : c.params ? c.params->m0e : 0.0;
+    plot.vline(cur, pal.cursor, 2.0f);
     live_ = {};
     if (c.live && !is_stale) {
         const History<MapPoint>& h = *c.live;
@@ -504,10 +542,10 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         const float step = 0.5f * r;
         std::vector<std::uint8_t> taken(static_cast<std::size_t>(std::max(1.0f, (b.y - a.y) / step)) + 2, 0);
         std::vector<ImVec2> dots;
-        const bool omega_in_view = c.omega >= vx.lo && c.omega <= vx.hi;
+        const bool omega_in_view = cur >= vx.lo && cur <= vx.hi;
         live_.total = n;
         for (std::size_t i = first; i < h.size(); ++i) {
-            const ImVec2 p = plot.to_px(c.omega, show_v_ ? h[i].v : h[i].x);
+            const ImVec2 p = plot.to_px(cur, show_v_ ? h[i].v : h[i].x);
             // A point off the view is counted and said, never drawn at an edge as if it were there.
             if (!omega_in_view) {
                 ++live_.beyond;
@@ -531,11 +569,12 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
     }
     {
         char buf[48];
-        // Beyond the diagram's omega range (30 rad/s over 0..25) the line is off the plot: the label says
+        // Beyond the diagram's range (30 rad/s over 0..25) the line is off the plot: the label says
         // where it is, at the edge it lies beyond, inside the plot.
-        const bool beyond_hi = c.omega > vx.hi, beyond_lo = c.omega < vx.lo;
-        std::snprintf(buf, sizeof buf, beyond_hi ? "ω = %.2f >>" : beyond_lo ? "<< ω = %.2f" : "ω = %.2f", c.omega);
-        ImVec2 p = plot.to_px(std::clamp(c.omega, vx.lo, vx.hi), vy.hi);
+        const bool beyond_hi = cur > vx.hi, beyond_lo = cur < vx.lo;
+        std::snprintf(buf, sizeof buf, "%s%s = %.*f%s%s%s", beyond_lo ? "<< " : "", oax.symbol, over == SweepParam::M0e ? 4 : 2,
+                      oax.scale * cur, over_omega ? "" : " ", over_omega ? "" : over_unit(over), beyond_hi ? " >>" : "");
+        ImVec2 p = plot.to_px(std::clamp(cur, vx.lo, vx.hi), vy.hi);
         p.x = std::clamp(p.x, a.x, b.x);
         // The label sits right of the line, or left of it near the right edge, so it is never cut off.
         const bool left = beyond_hi || (!beyond_lo && p.x + ImGui::CalcTextSize(buf).x + 12 > b.x);
@@ -557,6 +596,9 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         char what[120], now[160];
         if (shown_.model != c.model) {
             std::snprintf(what, sizeof what, "%s diagram — model is now %s;", shown_.model.c_str(), c.model.c_str());
+        } else if (over != SweepParam::Omega && std::abs(shown_req_.omega - c.omega) > 1e-9) {
+            std::snprintf(what, sizeof what, "%s diagram at ω = %.2f rad/s — ω is now %.2f;", shown_.model.c_str(),
+                          shown_req_.omega, c.omega);
         } else {
             std::snprintf(what, sizeof what, "%s diagram at xI = %.1f mm — xI is now %.1f mm;", shown_.model.c_str(),
                           1e3 * shown_req_.params.xI, 1e3 * c.xI);
@@ -572,9 +614,10 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
                   ImVec2(0.5f, 0));
         }
     }
-    // The mouse: a click sets omega; a box dragged with the right button computes its omega range.
+    // The mouse: a click sets omega (over omega); a box dragged with the right button computes its range.
     const ImGuiIO& io = ImGui::GetIO();
-    const double w_mouse = std::clamp(plot.x_at(std::clamp(io.MousePos.x, a.x, b.x)), 0.0, kMaxOmega);
+    const SweepLimits lim = sweep_limits(over);
+    const double w_mouse = std::clamp(plot.x_at(std::clamp(io.MousePos.x, a.x, b.x)), lim.lo, lim.hi);
     if (plot.hovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right)) {
         box_active_ = true;
         box_w0_ = w_mouse;
@@ -585,7 +628,8 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         plot.draw()->AddRectFilled(r0, r1, IM_COL32(90, 230, 255, 40));
         plot.draw()->AddRect(r0, r1, kLiveColor, 0.0f, 0, 1.5f);
         char buf[96];
-        std::snprintf(buf, sizeof buf, "ω %.3f - %.3f: release to compute", std::min(box_w0_, w_mouse), std::max(box_w0_, w_mouse));
+        std::snprintf(buf, sizeof buf, "%s %.3f - %.3f: release to compute", oax.symbol, oax.scale * std::min(box_w0_, w_mouse),
+                      oax.scale * std::max(box_w0_, w_mouse));
         plate_text(plot.draw(), ImVec2(0.5f * (r0.x + r1.x), a.y + ImGui::GetFontSize() * 3.0f), buf, pal.title_text, ImVec2(0.5f, 0));
         if (!ImGui::IsMouseDown(ImGuiMouseButton_Right)) {
             box_active_ = false;
@@ -593,17 +637,61 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         }
     } else if (plot.hovered()) {
         plot.vline(w_mouse, pal.trace, 1.0f, true);
-        ImGui::SetTooltip("ω = %.3f rad/s: click to set it\nright-drag: compute the ω range of the box\n"
-                          "wheel: zoom, drag: pan, double-click: whole diagram",
-                          w_mouse);
-        if (plot.clicked()) act.omega = w_mouse;
+        if (over_omega) {
+            ImGui::SetTooltip("ω = %.3f rad/s: click to set it\nright-drag: compute the ω range of the box\n"
+                              "wheel: zoom, drag: pan, double-click: whole diagram",
+                              w_mouse);
+            if (plot.clicked()) act.omega = w_mouse;
+        } else {
+            ImGui::SetTooltip("%s = %.*f %s (a click sets nothing: %s is set in the controls)\nright-drag: compute the "
+                              "%s range of the box\nwheel: zoom, drag: pan, double-click: whole diagram",
+                              oax.symbol, over == SweepParam::M0e ? 5 : 3, oax.scale * w_mouse, over_unit(over), oax.symbol,
+                              oax.symbol);
+        }
     }
-    // The ramp's points and the continued branches are x at the sections: drawn over the diagram of x only.
-    if (c.ramp && !show_v_) draw_ramp_points(plot, *c.ramp);
-    if (c.overlay && !show_v_) c.overlay(plot);   // continued branches and bifurcation points (named on hover)
+    // The ramp's points and the continued branches are x at the sections over omega: drawn over the diagram of
+    // x over omega only.
+    if (c.ramp && !show_v_ && over_omega) draw_ramp_points(plot, *c.ramp);
+    if (c.overlay && !show_v_ && over_omega) c.overlay(plot);   // continued branches and bifurcation points
     plot.end();
-    if (lyap_on_) draw_strip(c, vx, act);
+    if (strip) draw_strip(c, vx, act);
     return act;
+}
+
+Range BifurcationPanel::fit_y_with_branches(const BifurcationContext& c) const {
+    if (!c.branches || show_v_ || (have_ ? shown_req_.over : over_) != SweepParam::Omega) return fit_y_;
+    double lo = 1e300, hi = -1e300;
+    for (const BranchCurve& cv : c.branches->curves)
+        for (std::size_t i = 0; i < cv.param.size() && i < cv.x.size(); ++i)
+            if (cv.param[i] >= fit_x_.lo && cv.param[i] <= fit_x_.hi) {
+                lo = std::min(lo, cv.x[i]);
+                hi = std::max(hi, cv.x[i]);
+            }
+    if (!(hi >= lo) || (lo >= fit_y_.lo && hi <= fit_y_.hi)) return fit_y_;
+    // Branches beyond the points' fit: the fit grows to hold them, padded as the points' fit is.
+    const double pad = 0.06 * std::max(std::max(hi, fit_y_.hi) - std::min(lo, fit_y_.lo), 1e-3);
+    return {std::min(fit_y_.lo, lo - pad), std::max(fit_y_.hi, hi + pad)};
+}
+
+void BifurcationPanel::draw_info(Plot& plot, float width) const {
+    const ImVec2 a = plot.area_min(), b = plot.area_max();
+    char info[160];
+    const char* cut = shown_.cancelled ? " (cancelled)" : "";
+    const OverAxis ax = over_axis(shown_req_.over);
+    const auto [lo, hi] = swept_range(shown_req_);
+    if (shown_req_.protocol == BifProtocol::Ef)
+        std::snprintf(info, sizeof info, "%s  EF ramp to %.3g rad/s%s  %zu points", shown_.model.c_str(), shown_req_.omega_hi,
+                      cut, shown_.points.size());
+    else if (shown_req_.over == SweepParam::Omega)
+        std::snprintf(info, sizeof info, "%s  %s  ω %.3g-%.3g: %d/%d levels%s  %zu points", shown_.model.c_str(),
+                      shown_.protocol.c_str(), lo, hi, levels_done_, shown_req_.steps, cut, shown_.points.size());
+    else
+        std::snprintf(info, sizeof info, "%s  %s  %s %.3g-%.3g %s at ω = %.3g rad/s: %d/%d levels%s  %zu points",
+                      shown_.model.c_str(), shown_.protocol.c_str(), ax.symbol, ax.scale * lo, ax.scale * hi,
+                      over_unit(shown_req_.over), shown_req_.omega, levels_done_, shown_req_.steps, cut, shown_.points.size());
+    if (ImGui::CalcTextSize(info).x + 20 > width)   // a narrow tile: the levels and the model only
+        std::snprintf(info, sizeof info, "%s  %d/%d%s", shown_.model.c_str(), levels_done_, shown_req_.steps, cut);
+    plate_text(plot.draw(), ImVec2(a.x + 6, b.y - ImGui::GetTextLineHeight() - 6), info, palette().axis_text);
 }
 
 void BifurcationPanel::apply_box(const BifurcationContext& c, double w0, double w1, Range view_y) {
@@ -611,82 +699,8 @@ void BifurcationPanel::apply_box(const BifurcationContext& c, double w0, double 
     if (!req) return;
     begin(c, *req);
     // The view follows the new range (a double-click gives it back to the auto-fit: the same range).
-    Plot::set_user_view("##bif", {req->omega_lo, req->omega_hi}, view_y);
-}
-
-void BifurcationPanel::draw_strip(const BifurcationContext& c, Range view_x, BifurcationAction& act) {
-    const Palette& pal = palette();
-    // The auto-fit: zero and the exponents found; a resting cart's very negative values are cut at -4 1/s.
-    double lo = -0.5, hi = 0.5;
-    for (const auto& q : lyap_) {
-        if (!std::isfinite(q.lambda_max)) continue;
-        lo = std::min(lo, std::max(q.lambda_max, -4.0));
-        hi = std::max(hi, q.lambda_max);
-    }
-    const double pad = 0.08 * (hi - lo);
-    const Range fit_y{lo - pad, hi + pad};
-    // The strip shares the diagram's omega axis: it is drawn over the diagram's view, and a zoom or pan on
-    // the strip is handed to the diagram (both show it from the next frame) while lambda's axis keeps the
-    // user's zoom; a double-click on the strip gives both back to their auto-fits.
-    const Range y_in = lyap_y_user_ ? lyap_view_y_ : fit_y;
-    Plot plot;
-    Axes ax;
-    ax.x_label = "ω [rad/s]";
-    ax.y_label = "λmax [1/s]";
-    if (!plot.begin("##lyap", ImGui::GetContentRegionAvail(), view_x, y_in, ax)) return;
-    const Range vx = plot.x_range(), vy = plot.y_range();
-    if (plot.zoomed()) {
-        if (vx.lo != view_x.lo || vx.hi != view_x.hi) Plot::set_user_view("##bif", vx, view_y_);
-        if (vy.lo != y_in.lo || vy.hi != y_in.hi) {
-            lyap_y_user_ = true;
-            lyap_view_y_ = vy;
-        }
-        Plot::clear_user_view("##lyap");
-    }
-    if (plot.hovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
-        lyap_y_user_ = false;
-        Plot::clear_user_view("##bif");
-    }
-    const ImVec2 a = plot.area_min();
-    plot.hline(0.0, pal.axis_text, 1.0f, true);
-    plot.text(vx.lo, 0.0, " λ = 0", pal.axis_text, ImVec2(0, 1.0f));
-    const bool is_stale = lyap_model_ != c.model || std::abs(lyap_req_.params.xI - c.xI) > 1e-9;
-    if (!lyap_.empty()) {
-        plot.series(lyap_.size(), [&](std::size_t i) {
-            struct P { double x, y; };
-            return P{lyap_[i].omega, std::max(lyap_[i].lambda_max, vy.lo)};
-        }, is_stale ? pal.grid : pal.trace2, 1.2f);
-        for (const auto& q : lyap_) {
-            const ImVec2 p = plot.to_px(q.omega, std::max(q.lambda_max, vy.lo));
-            ImU32 col = lambda_color(q.lambda_max);
-            if (is_stale) col = (col & 0x00FFFFFFu) | (90u << 24);
-            plot.draw()->AddCircleFilled(p, 2.6f, col, 8);
-        }
-    }
-    char info[200];
-    if (lyap_job_.running())
-        std::snprintf(info, sizeof info, "%s λmax: %d / %d ω (%d + %d periods each) computing...", lyap_model_.c_str(),
-                      lyap_done_, lyap_req_.steps, lyap_req_.transient, lyap_req_.record);
-    else if (lyap_.empty())
-        std::snprintf(info, sizeof info, "λmax: none yet (tick λ again, or B, to compute)");
-    else
-        std::snprintf(info, sizeof info, "%s λmax at %zu ω%s  (red: > 0, chaos; blue: < 0, periodic; grey: about 0)", lyap_model_.c_str(),
-                      lyap_.size(), is_stale ? " — another model or xI: press B" : "");
-    plate_text(plot.draw(), ImVec2(a.x + 6, a.y + 4), info, is_stale ? pal.warn : pal.axis_text);
-    plot.vline(c.omega, pal.cursor, 1.5f);
-    if (plot.hovered()) {
-        const double w = std::clamp(plot.x_at(ImGui::GetIO().MousePos.x), 0.0, kMaxOmega);
-        // The nearest computed omega, named.
-        const analysis::LyapunovPoint* near = nullptr;
-        for (const auto& q : lyap_)
-            if (!near || std::abs(q.omega - w) < std::abs(near->omega - w)) near = &q;
-        if (near && std::abs(plot.to_px(near->omega, 0).x - ImGui::GetIO().MousePos.x) < 8)
-            ImGui::SetTooltip("ω = %.3f rad/s: λmax = %+.3f 1/s (%s, %d section values)", near->omega, near->lambda_max,
-                              lambda_word(near->lambda_max), near->period);
-        else ImGui::SetTooltip("ω = %.3f rad/s (click to set)", w);
-        if (plot.clicked()) act.omega = w;
-    }
-    plot.end();
+    const auto [lo, hi] = swept_range(*req);
+    Plot::set_user_view("##bif", {lo, hi}, view_y);
 }
 
 }  // namespace impactlab::gui

@@ -1,8 +1,9 @@
 // The bifurcation diagram's view, with the Lyapunov curve under it: the density image of the
-// section points over omega, filling column by column while its worker runs (BifurcationJob); the omega
-// range typed in or dragged as a box (right mouse button) on the diagram; the live section points of the
-// running omega over it; a note when the model or xI has changed since; a legend of the density colours;
-// and an optional strip of lambda_max(omega) under it on the same omega axis (LyapunovStripJob).
+// section points over omega (or over xI or m0e at the running omega), filling column by column while its
+// worker runs (BifurcationJob); the range typed in or dragged as a box (right mouse button) on the diagram;
+// the live section points of the running attractor over it; a note when the model or a parameter held fixed
+// has changed since; a legend of the density colours; and, over omega, an optional strip of
+// lambda_max(omega) under it on the same omega axis (LyapunovStripJob; bifurcation_strip.cpp).
 // The app hands it what it shows (BifurcationContext) and applies what a click asks for (BifurcationAction);
 // nothing here talks to the simulation thread. UI thread only.
 #pragma once
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis_jobs.hpp"
 #include "bifurcation_job.hpp"
 #include "history.hpp"
 #include "impactlab/analysis.hpp"
@@ -33,6 +35,7 @@ struct BifurcationContext {
     int* steps = nullptr;                    // CF omega levels
     const OmegaRamp* ramp = nullptr;         // the live omega ramp: the section points it passed, in green
     std::function<void(Plot&)> overlay;      // drawn last inside the diagram (the continued branches)
+    const ContinuationOverlay* branches = nullptr;   // what `overlay` draws (or null): the y fit includes it
 };
 
 // What a click asked for: the app applies it.
@@ -51,12 +54,18 @@ struct LivePoints {
 struct BifurcationState {
     bool have = false;                    // a diagram is shown (computing or done)
     std::string model, protocol;          // of the diagram shown
-    double omega_lo = 0, omega_hi = 0;    // its omega range [rad/s]
+    SweepParam over = SweepParam::Omega;  // the parameter on its horizontal axis
+    double omega_lo = 0, omega_hi = 0;    // its omega range [rad/s] (a diagram over omega)
+    double lo = 0, hi = 0;                // its range of `over` [rad/s, m or kg m]
+    double omega = 0;                     // [rad/s] the fixed omega of a diagram over xI or m0e
+    // Each level's value of `over`, with the least and greatest x of its section points [m], in sweep order.
+    struct Level { double at, x_min, x_max; };
+    std::vector<Level> level_x;
     int steps = 0, levels_done = 0;       // CF levels asked for and finished (EF: 0, 0)
     std::size_t points = 0;
     bool running = false, cancelled = false, stale = false;
     double progress = 0;
-    Range view_omega;                     // the omega range on screen
+    Range view_omega;                     // the horizontal range on screen (of `over`)
     bool y_is_v = false;                  // the quantity over omega: v (else x) at the sections
     Range view_y;                         // its range on screen [m] or [m/s]
     std::string range_error;              // the range inputs' complaint ("" when valid)
@@ -86,8 +95,9 @@ public:
     // with --bif-nowait), or the strip asked for at start still computing.
     bool busy() const;
     double progress() const { return job_.progress(); }
-    // The diagram's omega axis (the auto-fit, not the zoom): what the continuation follows.
-    Range omega_axis() const { return fit_x_; }
+    // The diagram's omega axis (the auto-fit, not the zoom): what the continuation follows. A diagram over
+    // xI or m0e gives the omega range last typed for one over omega.
+    Range omega_axis() const { return shown_req_.over == SweepParam::Omega ? fit_x_ : kept_[0]; }
     BifurcationState state(const BifurcationContext& c) const;
     // The look changed (theme, fonts): the image is drawn again.
     void mark_dirty() { dirty_ = true; }
@@ -97,6 +107,12 @@ public:
 
 private:
     BifRequest request(const BifurcationContext& c, double lo, double hi) const;
+    // The parameter the next diagram sweeps (the view's combo): its range inputs swap with it.
+    void set_over(SweepParam over);
+    // The y fit, widened to hold the continued branches drawn over it (those within the omega axis).
+    Range fit_y_with_branches(const BifurcationContext& c) const;
+    // Says what the diagram shown is: the model, protocol, range and levels (narrow: levels and model).
+    void draw_info(Plot& plot, float width) const;
     void begin(const BifurcationContext& c, const BifRequest& req);
     void start_strip(const BifurcationContext& c);
     void grow_fit(std::size_t from);
@@ -121,7 +137,9 @@ private:
     Range fit_x_{0, 25}, fit_y_{-0.02, 0.005};   // the auto-fit: the request's omega range, the points' x
     bool fit_y_empty_ = true;
 
-    double lo_edit_ = 0, hi_edit_ = 25;           // the range inputs [rad/s]
+    double lo_edit_ = 0, hi_edit_ = 25;           // the range inputs, of over_ [SI units: rad/s, m, kg m]
+    SweepParam over_ = SweepParam::Omega;         // the parameter the next diagram sweeps
+    Range kept_[3] = {{0, 25}, {-0.01, 0.01}, {0.01, 0.04}};   // each parameter's range inputs, kept on a switch
     std::string range_error_;
 
     // The density image, for the view shown.

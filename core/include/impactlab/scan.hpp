@@ -20,7 +20,7 @@ namespace impactlab {
 
 struct ScanError : std::runtime_error { using std::runtime_error::runtime_error; };
 
-enum class ScanParam { Omega, XI, M0e };
+using ScanParam = SweepParam;   // an axis is one of the parameters a CF sweep can move
 struct ScanAxis {
     ScanParam param = ScanParam::Omega;
     double lo = 0, hi = 0;   // [rad/s], [m] or [kg m]

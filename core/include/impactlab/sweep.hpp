@@ -8,6 +8,7 @@
 #include <utility>
 #include <cstdint>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,11 +24,26 @@ struct Progress {
     std::atomic<bool> cancel{false};     // written by any thread, read by the job thread
 };
 
+// The parameter a CF diagram sweeps: the forcing frequency (the paper's diagram), or the bumper position or
+// the unbalance at a fixed omega, each moved quasi-statically from level to level.
+enum class SweepParam { Omega, XI, M0e };
+const char* sweep_param_name(SweepParam s);   // "omega", "xI", "m0e": the CSV column and the flags' word
+const char* sweep_param_unit(SweepParam s);   // its SI unit: "rad/s", "m", "kg m"
+std::optional<SweepParam> parse_sweep_param(const std::string& name);   // the name above; nullopt otherwise
+// How a plot's axis shows it: xI in mm (the bumper moves by millimetres), omega and m0e in SI units;
+// value shown = scale * value in SI units.
+struct SweepParamAxis { const char* unit; double scale; };
+SweepParamAxis sweep_param_axis(SweepParam s);
+
+// A section point of the diagram. `omega` is the value of the swept parameter at the point's level: omega
+// [rad/s] for the paper's diagram and the EF ramp (omega(t)), xI [m] or m0e [kg m] when Diagram::over says so.
 struct DiagramPoint { double omega, x, v; };
 
 struct Diagram {
     std::string model;
     std::string protocol;                // "cf-up", "cf-down", "ef"
+    SweepParam over = SweepParam::Omega; // what the points' first coordinate is
+    double omega = 0;                    // [rad/s] the fixed forcing frequency of an xI or m0e sweep
     std::vector<DiagramPoint> points;
     bool cancelled = false;
     double simulated_seconds = 0;
@@ -52,6 +68,24 @@ struct EfSpec {
 
 // One level of a CF-style sweep: the forcing frequency and the parameters a parameter plane varies.
 struct CfLevel { double omega, xI, m0e; };
+double level_value(const CfLevel& lv, SweepParam s);   // lv.omega, lv.xI or lv.m0e
+
+// A CF sweep of one parameter from lo to hi (in its SI units) over `steps` levels: value_j = lo + (hi - lo)
+// j / (steps - 1), j = 0..steps-1 (reversed going down); the other two are the model's, and omega is `omega`
+// when the sweep is of xI or m0e.
+struct ParamSweep {
+    SweepParam over = SweepParam::Omega;
+    double lo = 25.0 / 300.0, hi = 25.0;
+    int steps = 300;
+    SweepDirection direction = SweepDirection::Up;
+    double omega = 0;                    // [rad/s] the fixed forcing frequency of an xI or m0e sweep
+};
+// The levels run_cf_levels takes for `s`, in sweep order.
+std::vector<CfLevel> sweep_levels(const Params& p, const ParamSweep& s);
+// "" when s can be swept for model p, else what is wrong, naming the parameter and its range: omega in
+// (0, 1000] rad/s; xI within the rail's travel (param_ranges) and only with a bumper; m0e in (0, 10] kg m
+// (an unbalance of zero forces nothing); an xI or m0e sweep's fixed omega in (0, 1000] rad/s; lo <= hi; steps >= 1.
+std::string check_sweep(const Params& p, const ParamSweep& s);
 // Watches a CF-style sweep beside its section collector (the scan's measures): every piece, impact and
 // section of every level in time order, plus where each level begins and ends. Simulating thread.
 class LevelObserver : public Observer {
@@ -62,9 +96,13 @@ public:
 // The CF loop itself: from rest at x = 0, each level sets its omega (phi continuous, restarted at a section
 // instant), its m0e and its bumper position (moved quasi-statically, Simulator::move_bumper) and runs
 // transient + record periods from the previous level's final state; the diagram holds the recorded section
-// points, with each level's omega. run_cf_sweep is this with xI and m0e fixed.
+// points, with each level's value of `over` (omega unless said). run_cf_sweep is this with xI and m0e fixed.
 Diagram run_cf_levels(const Params& p, const std::vector<CfLevel>& levels, int transient, int record,
-                      Progress* progress = nullptr, const Tolerances& tol = {}, LevelObserver* extra = nullptr);
+                      Progress* progress = nullptr, const Tolerances& tol = {}, LevelObserver* extra = nullptr,
+                      SweepParam over = SweepParam::Omega);
+// The CF diagram of a ParamSweep: run_cf_levels over sweep_levels, its points carrying s.over's value.
+Diagram run_cf_param_sweep(const Params& p, const ParamSweep& s, int transient, int record, Progress* progress = nullptr,
+                           const Tolerances& tol = {}, LevelObserver* extra = nullptr);
 // Starts at rest at x = 0 (made consistent with the bumper), as MODEL.md prescribes. `extra` as run_cf_levels's.
 Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress = nullptr, const Tolerances& tol = {},
                      LevelObserver* extra = nullptr);
@@ -95,7 +133,7 @@ struct Transitions {
 };
 Transitions find_transitions(const Diagram& d, double cluster_tol = 1e-5);
 
-// omega,x,v rows with a header; the format the CLI writes and the GUI exports.
+// omega,x,v rows with a header (xI,x,v or m0e,x,v for those sweeps); the format the CLI writes and the GUI exports.
 void write_diagram_csv(const Diagram& d, std::ostream& out);
 
 }  // namespace impactlab

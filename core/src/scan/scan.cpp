@@ -19,14 +19,7 @@
 
 namespace impactlab {
 
-const char* ScanAxis::name() const {
-    switch (param) {
-        case ScanParam::Omega: return "omega";
-        case ScanParam::XI: return "xI";
-        case ScanParam::M0e: return "m0e";
-    }
-    return "?";
-}
+const char* ScanAxis::name() const { return sweep_param_name(param); }
 
 namespace {
 
@@ -131,9 +124,7 @@ ScanAxis parse_scan_axis(const std::string& spec) {
     const auto parts = split(spec, ':');
     if (parts.size() != 4) throw ScanError("'" + spec + "': expected NAME:LO:HI:N (e.g. omega:0:25:400)");
     ScanAxis a;
-    if (parts[0] == "omega") a.param = ScanParam::Omega;
-    else if (parts[0] == "xI") a.param = ScanParam::XI;
-    else if (parts[0] == "m0e") a.param = ScanParam::M0e;
+    if (const auto which = parse_sweep_param(parts[0])) a.param = *which;
     else throw ScanError("'" + spec + "': '" + parts[0] + "' is not one of omega, xI, m0e");
     a.lo = number(spec, parts[1]);
     a.hi = number(spec, parts[2]);
