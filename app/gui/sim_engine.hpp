@@ -21,6 +21,9 @@ class MsgSink {
 public:
     virtual ~MsgSink() = default;
     virtual void put(const SimMsg& m) = 0;
+    // False while the reader is behind: the engine ends its slice after the current piece instead of
+    // having records dropped (a lost Poincare section would break the map's sequence of periods).
+    virtual bool has_room() { return true; }
 };
 
 struct EngineConfig {

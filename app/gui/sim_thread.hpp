@@ -73,6 +73,9 @@ private:
             if (ring_.unpublished() >= kPublishEvery) ring_.publish();
         }
         void publish() { ring_.publish(); }   // sim thread
+        // Sim thread. Room for the largest piece the engine can publish after asking (a slice's span of
+        // 1 ms samples, ~10 s at 100x behind the clock) and for the companion's share of the slice.
+        bool has_room() override { return ring_.has_room(ring_.capacity() / 4); }
         static constexpr std::size_t kPublishEvery = 256;
     private:
         SpscRing<SimMsg>& ring_;

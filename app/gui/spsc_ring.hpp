@@ -16,7 +16,8 @@
 // overwriting it.
 //
 // When the ring is full, try_push drops the new item and counts it (dropped()): a real-time producer
-// must never wait for a slow reader.
+// must never wait for a slow reader. A producer that must not lose items asks has_room() first and
+// defers its work instead.
 #pragma once
 
 #include <atomic>
@@ -81,6 +82,14 @@ public:
 
     // Producer thread only. Items staged but not yet published.
     std::size_t unpublished() const noexcept { return static_cast<std::size_t>(staged_ - published_); }
+
+    // Producer thread only. Whether n more items would fit now. Reads the consumer's counter only when its
+    // cached copy says no, so a producer asking once per batch costs nothing while the reader keeps up.
+    bool has_room(std::size_t n) noexcept {
+        if (capacity_ - (staged_ - tail_cache_) >= n) return true;
+        tail_cache_ = tail_.load(std::memory_order_acquire);
+        return capacity_ - (staged_ - tail_cache_) >= n;
+    }
 
     // Consumer thread only. Moves the oldest item into `out`; returns false if the ring is empty.
     bool try_pop(T& out) noexcept {

@@ -111,6 +111,20 @@ TEST_CASE("ring: staged items stay hidden until publish, then arrive in order") 
     CHECK(r.pushed() == 4);
 }
 
+TEST_CASE("ring: has_room counts staged items and sees the consumer's releases") {
+    SpscRing<int> r(8);
+    CHECK(r.has_room(8));
+    CHECK_FALSE(r.has_room(9));
+    for (int i = 0; i < 6; ++i) CHECK(r.try_stage(i));
+    CHECK(r.has_room(2));            // staged but unpublished items take their slots
+    CHECK_FALSE(r.has_room(3));
+    r.publish();
+    r.drain([](int) {}, 4);          // the consumer frees four
+    CHECK(r.has_room(6));            // seen at once, though the producer's cache still said full
+    CHECK_FALSE(r.has_room(7));
+    CHECK(r.dropped() == 0);
+}
+
 TEST_CASE("ring: the sample record is one cache line and the counters sit on separate lines") {
     CHECK(sizeof(impactlab::gui::SimMsg) == 64);
     CHECK(alignof(SpscRing<int>) >= 64);
