@@ -251,6 +251,30 @@ void select_effects(FitSession& fs) {
             }
         }
         if (picks.empty()) break;
+        // The generic term set aside: the one that explains most, if it stands out at all (the selection's
+        // z bar is for naming; the held-out judge decides between it and the named effects).
+        const Eval* rival = nullptr;
+        for (const auto& e : evals)
+            if (cands[groups[e.g].cand].generic && e.gain_cv >= o.min_gain && e.gain_in > 0 && e.z >= 3.0) {
+                rival = &e;
+                break;
+            }
+        if (rival && std::find(picks.begin(), picks.end(), rival) == picks.end()) {
+            // With its coefficients fitted in the named effects' place.
+            const Group& g = groups[rival->g];
+            const Candidate& c = cands[g.cand];
+            std::vector<int> cols = cur;
+            cols.insert(cols.end(), g.cols.begin(), g.cols.end());
+            double cv, in;
+            Eigen::VectorXd beta;
+            cv_sse(folds, cols, cv, in, &beta);
+            Rival rv{{}, rival->g, g.inst, rival->z};
+            for (const Eval* pick : picks) rv.named.push_back(pick->g);
+            for (std::size_t li = 0; li < c.linear.size(); ++li)
+                rv.generic_inst.p[static_cast<std::size_t>(c.free[static_cast<std::size_t>(c.linear[li])])] +=
+                    beta[static_cast<Eigen::Index>(cur.size() + li)];
+            sel.rivals.push_back(std::move(rv));
+        }
         const bool pair = picks.size() == 2;
         for (const Eval* pick : picks) {
             const Group& g = groups[pick->g];

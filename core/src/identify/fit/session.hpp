@@ -62,10 +62,19 @@ struct Screen {
     Eigen::MatrixXd X;
     Folds folds;
 };
+// A generic term set aside for named effects that explained about as much on the equation error (named
+// physics before curve fits): the held-out judge decides between them in the validation.
+struct Rival {
+    std::vector<std::size_t> named;    // group indices of the named effect (or pair) chosen
+    std::size_t generic = 0;           // group index of the generic term set aside
+    EffectInstance generic_inst;       // its coefficients fitted in their place
+    double z = 0;                      // its significance there
+};
 struct Selection {
     std::vector<std::size_t> chosen;   // group indices, in the order chosen
     std::vector<double> step_gain;     // the in-sample share each one added
     double in_base = 0;                // in-sample SSE with the base columns alone
+    std::vector<Rival> rivals;
 };
 
 // One fit in progress: the data, the model given and the options, then what each stage leaves for the next.

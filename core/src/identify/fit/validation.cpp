@@ -246,6 +246,64 @@ void validate_effects(FitSession& fs) {
     rep.effects_rejected.erase(std::remove_if(rep.effects_rejected.begin(), rep.effects_rejected.end(),
                                               [](const RejectedEffect& r) { return r.id.empty(); }),
                                rep.effects_rejected.end());
+    // Named physics before curve fits, judged on held-out data too: a named force kept over a generic term
+    // that explained about as much must also predict about as well. Where the generic in its place is better
+    // beyond the noise, the data do not single out the named law (an x^3 spring read as an even stiffness):
+    // the generic stands, and no physics is named for what it follows.
+    const std::vector<Group>& groups = fs.screen.groups;
+    for (const Rival& rv : fs.sel.rivals) {
+        if (e_cur.empty()) break;
+        const Candidate& cg = cands[groups[rv.generic].cand];
+        auto found_at = [&](const std::string& id) {
+            return std::find_if(rep.effects_found.begin(), rep.effects_found.end(), [&](const FoundEffect& f) { return f.id == id; });
+        };
+        if (found_at(cg.id) != rep.effects_found.end()) continue;
+        std::vector<std::string> ids;
+        bool swappable = true;
+        for (std::size_t gi : rv.named) {
+            const Candidate& c = cands[groups[gi].cand];
+            // Only force effects kept as instances can give way (a base change or a sensor calibration is
+            // no curve fit's rival in the model).
+            swappable = swappable && !c.base && !c.sensor && found_at(c.id) != rep.effects_found.end();
+            ids.push_back(c.id);
+        }
+        if (!swappable) continue;
+        Model alt = cur;
+        auto& fx = alt.p.effects;
+        fx.erase(std::remove_if(fx.begin(), fx.end(),
+                                [&](const EffectInstance& e) { return std::find(ids.begin(), ids.end(), e.law->id) != ids.end(); }),
+                 fx.end());
+        fx.push_back(rv.generic_inst);
+        if (!unphysical(alt).empty()) continue;
+        const std::vector<double> e_alt = held_out(alt);
+        const Compare c = compare(e_cur, e_alt);
+        if (!better_beyond_noise(pr, wins, c)) continue;
+        FoundEffect g;
+        g.id = cg.id;
+        g.evidence = Evidence::EquationError;
+        g.parameters = named(rv.generic_inst);
+        g.z = rv.z;
+        g.validation_gain = c.gain;
+        g.validation_z = c.z;
+        std::string names;
+        for (const std::string& id : ids) {
+            const auto it = found_at(id);
+            g.explained_fraction += it->explained_fraction;
+            char buf[240];
+            std::snprintf(buf, sizeof buf, "the generic %s in its place predicts held-out data better (error lowered by %.2f %%, paired z = %.1f): "
+                          "the data do not single out this law", cg.id.c_str(), 100.0 * c.gain, c.z);
+            rep.effects_rejected.push_back({id, buf, it->validation_gain, it->validation_z, it->parameters});
+            rep.effects_found.erase(it);
+            names += (names.empty() ? "" : " and ") + id;
+        }
+        g.sentence = sentence(g.id, base, g.parameters, g.sigma, sc);
+        rep.effects_found.push_back(g);
+        rep.notes.push_back(names + " explained about as much of the equation error as the generic " + cg.id +
+                            ", which predicts held-out data better: the generic stands and no physics is named for it");
+        cur = std::move(alt);
+        e_cur = e_alt;
+        kept.push_back({step_name(names + " replaced by " + cg.id, c), cur, rep.effects_found, total(e_cur), false});
+    }
     if (!rep.effects_found.empty()) {
         const Compare c = compare(e_base, e_cur);
         if (!(c.sum_new < c.sum_cur)) {   // never a worse model than the baseline
