@@ -47,6 +47,7 @@ const char* kScanHelp =
     "                      the bumper reaches xI) and drawn over the maps, dashed\n"
     "  --fold-from W,X,V[,K]  a fold of the period-K orbit (default 1) at omega W with section point (X, V), as\n"
     "                      `continue` prints it: continued in the y axis and drawn over the maps, dotted\n"
+    "  --curves-out FILE   the continued curves' points as CSV: curve (doubling, grazing, fold), omega, the y axis\n"
     "  --omega W           forcing frequency [rad/s] when neither axis is omega\n"
     "  --start continue|fresh   (default continue)\n"
     "  --transient N, --record N   periods per point (default 20, 70: the CF sweep's)\n"
@@ -93,7 +94,7 @@ int cmd_scan(const std::vector<std::string>& argv) {
     [[maybe_unused]] int ok = 1;   // told to the MPI workers (unread without MPI)
     ScanSpec spec;
     Params p;
-    std::string out_path, png, log_path;
+    std::string out_path, png, log_path, curves_path;
     std::vector<double> doubling_from;   // omega, x, v of a period-1 doubling (--doubling-from)
     std::vector<double> grazing_from;    // omega, x, v, k of a grazing (--grazing-from)
     std::vector<double> fold_from;       // omega, x, v, k of a fold (--fold-from)
@@ -107,7 +108,8 @@ int cmd_scan(const std::vector<std::string>& argv) {
     try {
         const Args a("scan", argv,
                      with_model_flags({"--x", "--y", "--measure", "--out", "--png", "--threads", "--transient", "--record",
-                                       "--start", "--omega", "--doubling-from", "--grazing-from", "--fold-from"}),
+                                       "--start", "--omega", "--doubling-from", "--grazing-from", "--fold-from",
+                                       "--curves-out"}),
                      {"--resume"});
         p = model_from(a);
         tol = tolerances_from(a);
@@ -186,11 +188,15 @@ int cmd_scan(const std::vector<std::string>& argv) {
         }
         out_path = a.required("--out");
         png = a.str("--png", "");
+        curves_path = a.str("--curves-out", "");
+        if (!curves_path.empty() && !a.has("--doubling-from") && !a.has("--grazing-from") && !a.has("--fold-from"))
+            throw UsageError("scan: --curves-out writes the continued curves: give --doubling-from, --grazing-from or --fold-from");
         log_path = out_path + ".tiles";
         rows = empty_rows(spec);
         if (rank == 0) {
             out.emplace(out_path, "--out");
             if (!png.empty()) check_writable(png, "--png");
+            if (!curves_path.empty()) check_writable(curves_path, "--curves-out");
             std::vector<bool> done(static_cast<std::size_t>(spec.y.n), false);
             const std::string header = scan_log_header(p, spec, tol);
             std::size_t resumed = 0;
@@ -297,10 +303,24 @@ int cmd_scan(const std::vector<std::string>& argv) {
 #endif
     write_scan_csv(spec, rows, *out);
     std::vector<ScanCurve> curves;
+    std::vector<std::pair<const char*, analysis::BifCurve>> followed;   // for --curves-out
+    // Each curve continued along the y axis at half its grid step, drawn over the maps.
+    const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
+    const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
+    auto add_curve = [&](const char* what, const char* label, analysis::BifCurve c, bool dashed, bool dotted) {
+        ScanCurve sc;
+        sc.label = label;
+        sc.dashed = dashed;
+        sc.dotted = dotted;
+        for (const auto& q : c.points) {
+            sc.x.push_back(q.omega);
+            sc.y.push_back(q.q);
+        }
+        std::fprintf(stderr, "%s curve: %zu points, ends: %s\n", what, c.points.size(), c.end.c_str());
+        curves.push_back(std::move(sc));
+        followed.emplace_back(what, std::move(c));
+    };
     if (!doubling_from.empty() || doubling_auto) {
-        // The doubling continued along the y axis at half its grid step, drawn over the maps.
-        const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
-        const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
         analysis::BifCurve c;
         if (doubling_auto) {
             const analysis::PlaneDoubling d =
@@ -313,45 +333,29 @@ int cmd_scan(const std::vector<std::string>& argv) {
             c = analysis::continue_doubling_curve(p, second, doubling_from[0], Vec2(doubling_from[1], doubling_from[2]), 1,
                                                   spec.y.lo, spec.y.hi, step);
         }
-        ScanCurve sc;
-        sc.label = "period doubling, continued";
-        for (const auto& q : c.points) {
-            sc.x.push_back(q.omega);
-            sc.y.push_back(q.q);
-        }
-        std::fprintf(stderr, "doubling curve: %zu points, ends: %s\n", c.points.size(), c.end.c_str());
-        curves.push_back(std::move(sc));
+        add_curve("doubling", "period doubling, continued", std::move(c), false, false);
     }
-    if (!grazing_from.empty()) {
-        // The grazing continued along the y axis at half its grid step.
-        const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
-        const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
-        const analysis::BifCurve c = analysis::continue_grazing_curve(p, second, grazing_from[0], Vec2(grazing_from[1], grazing_from[2]),
-                                                                      static_cast<int>(grazing_from[3]), spec.y.lo, spec.y.hi, step);
-        ScanCurve sc;
-        sc.label = "grazing, continued (dashed)";
-        sc.dashed = true;
-        for (const auto& q : c.points) {
-            sc.x.push_back(q.omega);
-            sc.y.push_back(q.q);
-        }
-        std::fprintf(stderr, "grazing curve: %zu points, ends: %s\n", c.points.size(), c.end.c_str());
-        curves.push_back(std::move(sc));
-    }
-    if (!fold_from.empty()) {
-        const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
-        const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
-        const analysis::BifCurve c = analysis::continue_fold_curve(p, second, fold_from[0], Vec2(fold_from[1], fold_from[2]),
-                                                                   static_cast<int>(fold_from[3]), spec.y.lo, spec.y.hi, step);
-        ScanCurve sc;
-        sc.label = "fold, continued (dotted)";
-        sc.dotted = true;
-        for (const auto& q : c.points) {
-            sc.x.push_back(q.omega);
-            sc.y.push_back(q.q);
-        }
-        std::fprintf(stderr, "fold curve: %zu points, ends: %s\n", c.points.size(), c.end.c_str());
-        curves.push_back(std::move(sc));
+    if (!grazing_from.empty())
+        add_curve("grazing", "grazing, continued (dashed)",
+                  analysis::continue_grazing_curve(p, second, grazing_from[0], Vec2(grazing_from[1], grazing_from[2]),
+                                                   static_cast<int>(grazing_from[3]), spec.y.lo, spec.y.hi, step),
+                  true, false);
+    if (!fold_from.empty())
+        add_curve("fold", "fold, continued (dotted)",
+                  analysis::continue_fold_curve(p, second, fold_from[0], Vec2(fold_from[1], fold_from[2]),
+                                                static_cast<int>(fold_from[3]), spec.y.lo, spec.y.hi, step),
+                  false, true);
+    if (!curves_path.empty()) {
+        // Full precision: the visualiser's test compares its own curves with these.
+        OutputFile cf(curves_path, "--curves-out");
+        cf << "curve,omega," << spec.y.name() << "\n";
+        char line[96];
+        for (const auto& [what, c] : followed)
+            for (const auto& q : c.points) {
+                std::snprintf(line, sizeof line, "%s,%.17g,%.17g\n", what, q.omega, q.q);
+                cf << line;
+            }
+        cf.commit();
     }
     if (!png.empty()) save_scan_png(spec, rows, p.name, png, curves);   // first: a PNG that fails leaves the old CSV
     out->commit();
