@@ -60,7 +60,7 @@ std::string PlanePanel::start_doubling(const AnalysisContext& c) {
     const PlaneData& pl = *plane_;
     if (pl.x_name != "omega" || (pl.y_name != "xI" && pl.y_name != "m0e") || pl.nx() < 2 || pl.ny() < 2)
         return "doubling curve: the plane's axes must be omega and xI or m0e";
-    analysis::PlaneDoublingSpec spec;
+    analysis::PlaneCurveSpec spec;
     spec.second = pl.y_name == "xI" ? analysis::ContParam::XI : analysis::ContParam::M0e;
     spec.omega_lo = pl.xs.front();
     spec.omega_hi = pl.xs.back();
@@ -70,7 +70,7 @@ std::string PlanePanel::start_doubling(const AnalysisContext& c) {
     const Params p = *c.params;
     doubling_model_ = c.model;
     doubling_second_ = pl.y_name;
-    doubling_job_.start([p, spec](Progress& prog) { return analysis::doubling_over_plane(p, spec, &prog); });
+    doubling_job_.start([p, spec](Progress& prog) { return analysis::curve_over_plane(p, spec, &prog); });
     return "";
 }
 
@@ -163,7 +163,7 @@ AnalysisAction PlanePanel::draw(const AnalysisContext& c) {
         if (std::string err = start_doubling(c); !err.empty()) act.toast = err;
     }, "The first period-1 doubling over the plane's ω range (continued in ω at the running model's own\n"
        "x_I or m0e), then followed along the plane's other axis, on a worker: the core's\n"
-       "doubling_over_plane, as impactlab scan --doubling-from auto.");
+       "curve_over_plane, as impactlab scan --doubling-from auto.");
     if (!error_.empty()) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", error_.c_str());
     if (!plane_) {
         ImGui::TextDisabled("No plane: load a scan CSV (impactlab scan ... --out plane.csv) or compute one.");
@@ -312,7 +312,7 @@ nlohmann::json PlanePanel::state() const {
     j["running"] = job_.running();
     json d = nullptr;
     if (doubling_) {
-        const analysis::PlaneDoubling& r = doubling_->result;
+        const analysis::PlaneCurve& r = doubling_->result;
         json pts = json::array();
         for (const analysis::CurvePoint& q : r.curve.points) pts.push_back({q.omega, q.q});
         d = {{"model", doubling_->model}, {"second", doubling_->second}, {"found", r.found}, {"omega0", r.omega0},

@@ -1,7 +1,7 @@
 // The parameter plane's view (a tile, F2): a scan CSV loaded or a small (omega, xI) plane computed on a
 // worker, drawn as period classes (or impacts, lambda, x range) with a legend; the white line is where the
 // bifurcation diagram cuts the plane, the dot the running (omega, xI), and a click sets omega and xI live.
-// Over it, the core's continued period doubling (analysis::doubling_over_plane, on a worker): the first
+// Over it, the core's continued period doubling (analysis::curve_over_plane, on a worker): the first
 // period-1 doubling over the plane's omega range, followed along its second axis. UI thread only.
 #pragma once
 
@@ -20,7 +20,7 @@ namespace impactlab::gui {
 
 // The doubling curve as the view shows it: which plane and model it was computed for.
 struct PlaneDoublingShown {
-    analysis::PlaneDoubling result;
+    analysis::PlaneCurve result;
     std::string model, second;   // "A1C", "xI" or "m0e"
 };
 
@@ -49,7 +49,7 @@ public:
 
 private:
     Job<PlaneData> job_;
-    Job<analysis::PlaneDoubling> doubling_job_;
+    Job<analysis::PlaneCurve> doubling_job_;
     std::optional<PlaneData> plane_;
     std::optional<PlaneDoublingShown> doubling_;
     std::string doubling_model_, doubling_second_;   // of the job running
