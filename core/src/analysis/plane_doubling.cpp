@@ -36,11 +36,13 @@ PlaneCurve follow(const Params& base, const PlaneCurveSpec& spec, double omega0,
     if (progress) progress->fraction.store(0.0, std::memory_order_relaxed);
     out.curve = continue_curve(spec.kind, base, spec.second, omega0, y0, period, lo, hi, spec.step, analysis_tolerances(), progress);
     out.cancelled = out.curve.cancelled;
-    // A side that starts at the axis' end says so (the curve functions would call it the range's end).
+    // A side that starts at the axis' end says so (the curve functions would call it the range's end); a
+    // point lost there, or a cancel, keeps its own words.
     const std::size_t k = out.curve.end.find(" / ");
+    const std::string range = std::string(cont_param_name(spec.second)) + " range";
     if (k != std::string::npos) {
-        if (!(q0 > lo) && out.curve.end.substr(0, k) != "cancelled") out.curve.end = "at the axis' end" + out.curve.end.substr(k);
-        if (!(hi > q0) && out.curve.end.substr(k + 3) != "cancelled") out.curve.end = out.curve.end.substr(0, k + 3) + "at the axis' end";
+        if (!(q0 > lo) && out.curve.end.substr(0, k) == range) out.curve.end = "at the axis' end" + out.curve.end.substr(k);
+        if (!(hi > q0) && out.curve.end.substr(k + 3) == range) out.curve.end = out.curve.end.substr(0, k + 3) + "at the axis' end";
     }
     out.note += out.curve.end;
     return out;
