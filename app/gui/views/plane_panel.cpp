@@ -250,7 +250,7 @@ void PlanePanel::draw_curves(Plot& plot, bool legend) {
     for (int i = 0; i < kPlaneCurves; ++i) {
         const auto& shown = curves_.shown(i);
         // A curve is drawn where it is the plane's own second parameter (omega across).
-        if (!shown || shown->second != plane_->y_name || plane_->x_name != "omega") continue;
+        if (!shown || shown->second != plane_->y_name || plane_->x_name != "omega" || shown->result.curve.points.empty()) continue;
         std::vector<ImVec2> px;
         for (const analysis::CurvePoint& q : shown->result.curve.points) px.push_back(plot.to_px(q.omega, q.q));
         float on, off;
@@ -300,7 +300,7 @@ void PlanePanel::draw_legend(const std::vector<double>& vals, bool classes, doub
     // The curves as scan's PNG names them, each after a sample of its stroke.
     const float fs = ImGui::GetFontSize();
     for (int i = 0; i < kPlaneCurves; ++i) {
-        if (!curves_.shown(i)) continue;
+        if (!curves_.shown(i) || curves_.shown(i)->result.curve.points.empty()) continue;   // none found: the toast said why
         const ImVec2 p = ImGui::GetCursorScreenPos();
         stroke_sample(ImGui::GetWindowDrawList(), ImVec2(p.x, p.y + 0.5f * ImGui::GetTextLineHeight()), 1.6f * fs, i, fs / 13.0f);
         ImGui::Dummy(ImVec2(1.8f * fs, ImGui::GetTextLineHeight()));
