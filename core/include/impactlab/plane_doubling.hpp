@@ -2,7 +2,8 @@
 // (omega, m0e), found and followed without a starting point from the user: the period-1 branch is
 // continued in omega at the model's own second parameter until its first point of that kind, which
 // continue_doubling_curve (continue_fold_curve, continue_grazing_curve) then follows along the plane's
-// second axis. The visualiser's plane view and `impactlab scan --doubling-from auto` both call it.
+// second axis. The visualiser's plane view and `impactlab scan --doubling-from auto` (--grazing-from,
+// --fold-from) both call it.
 #pragma once
 
 #include <string>
