@@ -44,9 +44,12 @@ const char* kScanHelp =
     "                      `auto`: the first one over the x axis's omega range, found by continuation\n"
     "  --grazing-from W,X,V[,K]  a grazing of the period-K orbit (default 1) at omega W with section point (X, V),\n"
     "                      as `continue` prints it: continued in the y axis (the omega where the orbit without\n"
-    "                      the bumper reaches xI) and drawn over the maps, dashed\n"
+    "                      the bumper reaches xI) and drawn over the maps, dashed; `auto`: the first period-1\n"
+    "                      grazing over the x axis's omega range, found by continuation\n"
     "  --fold-from W,X,V[,K]  a fold of the period-K orbit (default 1) at omega W with section point (X, V), as\n"
-    "                      `continue` prints it: continued in the y axis and drawn over the maps, dotted\n"
+    "                      `continue` prints it: continued in the y axis and drawn over the maps, dotted;\n"
+    "                      `auto`: the first period-1 fold over the x axis's omega range\n"
+    "  --curves-out FILE   the continued curves' points as CSV: curve (doubling, grazing, fold), omega, the y axis\n"
     "  --omega W           forcing frequency [rad/s] when neither axis is omega\n"
     "  --start continue|fresh   (default continue)\n"
     "  --transient N, --record N   periods per point (default 20, 70: the CF sweep's)\n"
@@ -93,11 +96,12 @@ int cmd_scan(const std::vector<std::string>& argv) {
     [[maybe_unused]] int ok = 1;   // told to the MPI workers (unread without MPI)
     ScanSpec spec;
     Params p;
-    std::string out_path, png, log_path;
-    std::vector<double> doubling_from;   // omega, x, v of a period-1 doubling (--doubling-from)
+    std::string out_path, png, log_path, curves_path;
+    std::vector<double> doubling_from;   // omega, x, v, 1 of a period-1 doubling (--doubling-from)
     std::vector<double> grazing_from;    // omega, x, v, k of a grazing (--grazing-from)
     std::vector<double> fold_from;       // omega, x, v, k of a fold (--fold-from)
-    bool doubling_auto = false;          // --doubling-from auto: found by doubling_over_plane
+    // --doubling-from auto (--grazing-from, --fold-from): found by curve_over_plane
+    bool doubling_auto = false, grazing_auto = false, fold_auto = false;
     std::vector<std::vector<ScanPoint>> rows;
     std::vector<int> todo;
     int threads = 1;
@@ -107,7 +111,8 @@ int cmd_scan(const std::vector<std::string>& argv) {
     try {
         const Args a("scan", argv,
                      with_model_flags({"--x", "--y", "--measure", "--out", "--png", "--threads", "--transient", "--record",
-                                       "--start", "--omega", "--doubling-from", "--grazing-from", "--fold-from"}),
+                                       "--start", "--omega", "--doubling-from", "--grazing-from", "--fold-from",
+                                       "--curves-out"}),
                      {"--resume"});
         p = model_from(a);
         tol = tolerances_from(a);
@@ -163,7 +168,7 @@ int cmd_scan(const std::vector<std::string>& argv) {
                 if (std::sscanf(v.c_str(), "%lf,%lf,%lf%c", &w[0], &w[1], &w[2], &tail) != 3 ||
                     !std::isfinite(w[0] + w[1] + w[2]) || !(w[0] > 0))
                     throw UsageError("scan: option '--doubling-from': expected OMEGA,X,V (a period-1 doubling, as continue prints it)");
-                doubling_from = {w[0], w[1], w[2]};
+                doubling_from = {w[0], w[1], w[2], 1};
             }
         }
         for (const char* flag : {"--grazing-from", "--fold-from"}) {
@@ -175,6 +180,10 @@ int cmd_scan(const std::vector<std::string>& argv) {
                 throw UsageError("scan: " + f + " needs --x omega:... and --y xI:... or m0e:...");
             if (what == "grazing" && !p.has_bumper()) throw UsageError("scan: --grazing-from needs a model with a bumper");
             const std::string v = a.str(flag, "");
+            if (v == "auto") {
+                (what == "fold" ? fold_auto : grazing_auto) = true;
+                continue;
+            }
             double w[4] = {0, 0, 0, 1};
             char tail = 0;
             const int n = std::sscanf(v.c_str(), "%lf,%lf,%lf,%lf%c", &w[0], &w[1], &w[2], &w[3], &tail);
@@ -186,11 +195,15 @@ int cmd_scan(const std::vector<std::string>& argv) {
         }
         out_path = a.required("--out");
         png = a.str("--png", "");
+        curves_path = a.str("--curves-out", "");
+        if (!curves_path.empty() && !a.has("--doubling-from") && !a.has("--grazing-from") && !a.has("--fold-from"))
+            throw UsageError("scan: --curves-out writes the continued curves: give --doubling-from, --grazing-from or --fold-from");
         log_path = out_path + ".tiles";
         rows = empty_rows(spec);
         if (rank == 0) {
             out.emplace(out_path, "--out");
             if (!png.empty()) check_writable(png, "--png");
+            if (!curves_path.empty()) check_writable(curves_path, "--curves-out");
             std::vector<bool> done(static_cast<std::size_t>(spec.y.n), false);
             const std::string header = scan_log_header(p, spec, tol);
             std::size_t resumed = 0;
@@ -297,61 +310,62 @@ int cmd_scan(const std::vector<std::string>& argv) {
 #endif
     write_scan_csv(spec, rows, *out);
     std::vector<ScanCurve> curves;
-    if (!doubling_from.empty() || doubling_auto) {
-        // The doubling continued along the y axis at half its grid step, drawn over the maps.
-        const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
-        const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
-        analysis::BifCurve c;
-        if (doubling_auto) {
-            const analysis::PlaneDoubling d =
-                analysis::doubling_over_plane(p, {second, spec.x.lo, spec.x.hi, spec.y.lo, spec.y.hi, step});
-            if (!d.found) std::fprintf(stderr, "doubling curve: %s\n", d.note.c_str());
-            else std::fprintf(stderr, "doubling curve: started at the period-1 doubling at omega = %.7f, (x, v) = (%.7f, %.7f)\n",
-                              d.omega0, d.y0[0], d.y0[1]);
-            c = d.curve;
-        } else {
-            c = analysis::continue_doubling_curve(p, second, doubling_from[0], Vec2(doubling_from[1], doubling_from[2]), 1,
-                                                  spec.y.lo, spec.y.hi, step);
-        }
+    std::vector<std::pair<const char*, analysis::BifCurve>> followed;   // for --curves-out
+    // Each curve continued along the y axis at half its grid step, drawn over the maps.
+    const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
+    const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
+    auto add_curve = [&](const char* what, const char* label, analysis::BifCurve c, bool dashed, bool dotted) {
         ScanCurve sc;
-        sc.label = "period doubling, continued";
+        sc.label = label;
+        sc.dashed = dashed;
+        sc.dotted = dotted;
         for (const auto& q : c.points) {
             sc.x.push_back(q.omega);
             sc.y.push_back(q.q);
         }
-        std::fprintf(stderr, "doubling curve: %zu points, ends: %s\n", c.points.size(), c.end.c_str());
+        std::fprintf(stderr, "%s curve: %zu points, ends: %s\n", what, c.points.size(), c.end.c_str());
         curves.push_back(std::move(sc));
+        followed.emplace_back(what, std::move(c));
+    };
+    // `auto`: the first period-1 point of the kind over the x axis's omega range, found by continuation.
+    auto found = [&](analysis::BifKind kind, const char* what) {
+        const analysis::PlaneCurve d =
+            analysis::curve_over_plane(p, {second, spec.x.lo, spec.x.hi, spec.y.lo, spec.y.hi, step, kind});
+        if (!d.found) std::fprintf(stderr, "%s curve: %s\n", what, d.note.c_str());
+        else std::fprintf(stderr, "%s curve: started at the period-1 %s at omega = %.7f, (x, v) = (%.7f, %.7f)\n", what, what,
+                          d.omega0, d.y0[0], d.y0[1]);
+        return d.curve;
+    };
+    struct Asked {
+        analysis::BifKind kind;
+        const char *what, *label;
+        bool dashed, dotted, is_auto;
+        const std::vector<double>& from;   // omega, x, v, k
+    };
+    const Asked asked[] = {
+        {analysis::BifKind::PeriodDoubling, "doubling", "period doubling, continued", false, false, doubling_auto, doubling_from},
+        {analysis::BifKind::Grazing, "grazing", "grazing, continued (dashed)", true, false, grazing_auto, grazing_from},
+        {analysis::BifKind::Fold, "fold", "fold, continued (dotted)", false, true, fold_auto, fold_from}};
+    for (const Asked& k : asked) {
+        if (k.is_auto)
+            add_curve(k.what, k.label, found(k.kind, k.what), k.dashed, k.dotted);
+        else if (!k.from.empty())
+            add_curve(k.what, k.label,
+                      analysis::continue_curve(k.kind, p, second, k.from[0], Vec2(k.from[1], k.from[2]), static_cast<int>(k.from[3]),
+                                               spec.y.lo, spec.y.hi, step),
+                      k.dashed, k.dotted);
     }
-    if (!grazing_from.empty()) {
-        // The grazing continued along the y axis at half its grid step.
-        const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
-        const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
-        const analysis::BifCurve c = analysis::continue_grazing_curve(p, second, grazing_from[0], Vec2(grazing_from[1], grazing_from[2]),
-                                                                      static_cast<int>(grazing_from[3]), spec.y.lo, spec.y.hi, step);
-        ScanCurve sc;
-        sc.label = "grazing, continued (dashed)";
-        sc.dashed = true;
-        for (const auto& q : c.points) {
-            sc.x.push_back(q.omega);
-            sc.y.push_back(q.q);
-        }
-        std::fprintf(stderr, "grazing curve: %zu points, ends: %s\n", c.points.size(), c.end.c_str());
-        curves.push_back(std::move(sc));
-    }
-    if (!fold_from.empty()) {
-        const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
-        const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
-        const analysis::BifCurve c = analysis::continue_fold_curve(p, second, fold_from[0], Vec2(fold_from[1], fold_from[2]),
-                                                                   static_cast<int>(fold_from[3]), spec.y.lo, spec.y.hi, step);
-        ScanCurve sc;
-        sc.label = "fold, continued (dotted)";
-        sc.dotted = true;
-        for (const auto& q : c.points) {
-            sc.x.push_back(q.omega);
-            sc.y.push_back(q.q);
-        }
-        std::fprintf(stderr, "fold curve: %zu points, ends: %s\n", c.points.size(), c.end.c_str());
-        curves.push_back(std::move(sc));
+    if (!curves_path.empty()) {
+        // Full precision: the visualiser's test compares its own curves with these.
+        OutputFile cf(curves_path, "--curves-out");
+        cf << "curve,omega," << spec.y.name() << "\n";
+        char line[96];
+        for (const auto& [what, c] : followed)
+            for (const auto& q : c.points) {
+                std::snprintf(line, sizeof line, "%s,%.17g,%.17g\n", what, q.omega, q.q);
+                cf << line;
+            }
+        cf.commit();
     }
     if (!png.empty()) save_scan_png(spec, rows, p.name, png, curves);   // first: a PNG that fails leaves the old CSV
     out->commit();

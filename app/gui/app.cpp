@@ -302,7 +302,7 @@ void App::set_model(int stiffness, int impact) {
 bool App::set_param(const std::string& key, double value) {
     std::string error;
     const bool ok = gui::set_param(params_, key, value, error);
-    params_panel_.set_error(error);
+    params_panel_.set_error(ok ? std::string() : key + ": " + error);
     if (!ok) return false;
     ++params_rev_;
     sim_->send(SimCommand::set_param(key, value));

@@ -31,7 +31,7 @@ GuiModel gui_model_from_file(const std::string& path) {
         for (const EditableParam& w : want)
             if (w.key == e.key && w.value != e.value) {
                 std::string error;
-                if (!set_param(v, w.key, w.value, error)) throw ModelFileError(path + ": " + error);
+                if (!set_param(v, w.key, w.value, error)) throw ModelFileError(path + ": key '" + w.key + "': " + error);
                 g.params.emplace_back(w.key, w.value);
             }
     }

@@ -20,6 +20,7 @@
 #include "impactlab/sweep.hpp"
 #include "layout.hpp"
 #include "param_edit.hpp"
+#include "plane_curves.hpp"
 #include "presets.hpp"
 #include "model_file.hpp"
 #include "session.hpp"
@@ -93,6 +94,10 @@ const char* usage_text() {
            "                     settled on it (Shift+O); a chaotic map is an error (exit 1 with --frames)\n"
            "  --small-plane      compute a 60 x 30 (omega, xI) plane at start (the Parameter plane tile, F2)\n"
            "  --plane-doubling   continue the first period-1 doubling over the plane (--plane or --small-plane)\n"
+           "  --plane-grazing auto|W,X,V[,K]  continue a grazing over the plane (dashed): the first period-1\n"
+           "                     one over its omega range, or the period-K orbit's at omega W through (X, V) [m,\n"
+           "                     m/s], as impactlab continue prints it (impactlab scan --grazing-from)\n"
+           "  --plane-fold auto|W,X,V[,K]  the same for a fold (dotted; impactlab scan --fold-from)\n"
            "  --basins           compute the basins of attraction at --omega at start (the Basins tile, F3)\n"
            "  --basins-box X0:X1:V0:V1  the basins over that box of (x0 [m], v0 [m/s]) (a right-drag on them)\n"
            "  --browse DIR       open File > Load session on DIR: its folders and .json files, listed\n"
@@ -338,6 +343,12 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--continuation") o.continuation = true;
         else if (a == "--small-plane") o.small_plane = true;
         else if (a == "--plane-doubling") o.plane_doubling = true;
+        else if (a == "--plane-grazing" || a == "--plane-fold") {
+            const std::string& v = value();
+            if (!parse_curve_start(v))
+                throw OptionsError(a + ": '" + v + "' is neither auto nor OMEGA,X,V[,K] (a point as impactlab continue prints it)");
+            (a == "--plane-fold" ? o.plane_fold : o.plane_grazing) = v;
+        }
         else if (a == "--continue-here") o.continue_here = true;
         else if (a == "--basins") o.basins = true;
         else if (a == "--basins-box") {

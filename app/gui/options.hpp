@@ -67,6 +67,8 @@ struct Options {
     bool small_plane = false;    // --small-plane: a 60 x 30 (omega, xI) plane on a worker
     bool continue_here = false;  // --continue-here: continue the running periodic orbit once the map settles
     bool plane_doubling = false; // --plane-doubling: the continued doubling over the plane, once it is there
+    std::string plane_grazing;   // --plane-grazing auto|W,X,V[,K]: the continued grazing over the plane
+    std::string plane_fold;      // --plane-fold auto|W,X,V[,K]: the continued fold over it
     bool basins = false;         // --basins: the basins at --omega
     std::vector<double> basins_box;   // --basins-box X0:X1:V0:V1 [m, m/s]: the basins over that box (implies --basins)
     // Sessions and clips.

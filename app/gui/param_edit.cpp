@@ -44,7 +44,11 @@ bool set_param(Params& p, const std::string& key, double value, std::string& err
         else set_impact_param(np, key, value);
         validate(np, "parameters");
     } catch (const ParamError& e) {
+        // The core's reason alone: each caller names the key in its own words (the file's key, the flag), so
+        // its "parameters: key 'KEY': " would say it twice. Another key's limit keeps that key's name.
         error = e.what();
+        for (const std::string& lead : {std::string("parameters: "), "key '" + key + "': "})
+            if (error.compare(0, lead.size(), lead) == 0) error.erase(0, lead.size());
         return false;
     }
     p = std::move(np);

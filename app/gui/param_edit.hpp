@@ -19,8 +19,9 @@ struct EditableParam {
 
 // The keys the panel offers for p, in order: the rig's six, then the impact law's.
 std::vector<EditableParam> editable_params(const Params& p);
-// Sets key to value in p if the result validates; else p is unchanged and error says why (the core's
-// message: the key, the range and what it means).
+// Sets key to value in p if the result validates; else p is unchanged and error says why: the core's
+// reason (the range and what it means), without the key, which the caller names ("key 'k': " is kept
+// where another key's limit refused the value).
 bool set_param(Params& p, const std::string& key, double value, std::string& error);
 // True when p differs from its version's values in any editable parameter.
 bool params_edited(const Params& p);

@@ -1,12 +1,15 @@
 // Two-parameter continuation: the period doubling of A1C followed in (omega, xI) against the brute-force
-// period map of the plane.
+// period map of the plane; the grazing and fold of A1G; a cancel between the curve's steps.
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <string>
+#include <thread>
 #include <vector>
 
 #include "impactlab/analysis.hpp"
 #include "impactlab/params.hpp"
+#include "impactlab/plane_doubling.hpp"
 #include "impactlab/scan.hpp"
 
 using namespace impactlab;
@@ -143,4 +146,62 @@ TEST_CASE("curves: A1G's fold of the impacting period-1 orbit followed in xI is 
         ++checked;
     }
     CHECK(checked == 1);
+}
+
+TEST_CASE("curves: a cancel is seen between the curve's steps, and the curve comes back marked cancelled") {
+    const Params p = make_version("A1C");
+    const Vec2 y0(-0.0142521, -0.0499209);
+    const BifCurve whole = continue_doubling_curve(p, ContParam::XI, 10.8613339, y0, 1, -3e-3, 1e-3, 2e-4);
+    REQUIRE(whole.points.size() == 21);
+    CHECK_FALSE(whole.cancelled);
+
+    // Cancelled before it starts: no step taken, both sides say why.
+    Progress before;
+    before.cancel = true;
+    const BifCurve none = continue_grazing_curve(make_version("A1G"), ContParam::XI, 9.60049627, Vec2(-0.0156163, -0.00744857),
+                                                 1, -0.0045, -0.004, 2.5e-4, analysis_tolerances(), &before);
+    CHECK(none.cancelled);
+    CHECK(none.points.empty());
+    CHECK(none.end == "cancelled / cancelled");
+
+    // Cancelled once the first step has reported its progress: it stops early with the points found so far,
+    // the whole run's own.
+    Progress prog;
+    std::thread watcher([&] {
+        while (prog.fraction.load() <= 0.0) std::this_thread::yield();
+        prog.cancel = true;
+    });
+    const BifCurve part = continue_doubling_curve(p, ContParam::XI, 10.8613339, y0, 1, -3e-3, 1e-3, 2e-4,
+                                                  analysis_tolerances(), &prog);
+    watcher.join();
+    CHECK(part.cancelled);
+    CHECK(part.end.find("cancelled") != std::string::npos);
+    REQUIRE(part.points.size() < whole.points.size());
+    for (const CurvePoint& q : part.points) {
+        bool in_whole = false;
+        for (const CurvePoint& w : whole.points) in_whole = in_whole || (w.q == q.q && w.omega == q.omega);
+        CHECK(in_whole);
+    }
+}
+
+TEST_CASE("curves: the plane's automatic start finds A1G's grazing and fold, and a cancel stops it while it looks") {
+    Params p = make_version("A1G");
+    p.xI = -0.004;
+    PlaneCurveSpec spec{ContParam::XI, 8.5, 10.5, -0.007, -0.004, 5e-4, BifKind::Grazing};
+    const PlaneCurve g = curve_over_plane(p, spec);
+    REQUIRE(g.found);
+    CHECK(std::abs(g.omega0 - 9.60049626) < 1e-6);   // `impactlab continue`'s grazing at xI = -4 mm
+    CHECK(g.curve.kind == BifKind::Grazing);
+    CHECK(g.curve.points.size() == 7);
+    CHECK(g.curve.end == "xI range / at the axis' end");
+    spec.kind = BifKind::Fold;
+    const PlaneCurve f = curve_over_plane(p, spec);
+    REQUIRE(f.found);
+    CHECK(std::abs(f.omega0 - 9.548943) < 1e-6);      // and its fold
+    Progress cancelled;
+    cancelled.cancel = true;
+    const PlaneCurve c = curve_over_plane(p, spec, &cancelled);
+    CHECK(c.cancelled);
+    CHECK(c.curve.cancelled);
+    CHECK(c.curve.points.empty());
 }

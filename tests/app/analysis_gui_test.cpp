@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../../app/gui/analysis_jobs.hpp"
+#include "../../app/gui/plane_curves.hpp"
 #include "../../app/gui/plane_data.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/scan.hpp"
@@ -238,4 +239,40 @@ TEST_CASE("the continued branches over the diagram carry the first period doubli
     CHECK(p1 >= 1);
     CHECK(p2 >= 2);
     CHECK(p2 % 2 == 0);   // a period-2 branch is drawn as its two section points
+}
+
+TEST_CASE("a curve's start reads as auto or as a point continue prints, and anything else is refused") {
+    auto a = parse_curve_start("auto");
+    REQUIRE(a);
+    CHECK(a->from == CurveStart::From::Auto);
+    auto p = parse_curve_start("9.60049626,-0.0156163,-0.00744857");
+    REQUIRE(p);
+    CHECK(p->from == CurveStart::From::Point);
+    CHECK(p->omega == 9.60049626);
+    CHECK(p->period == 1);
+    CHECK(curve_start_text(*p) == "9.60049626,-0.0156163,-0.00744857,1");
+    auto k = parse_curve_start("9.6,-0.0156,-0.0074,2");
+    REQUIRE(k);
+    CHECK(k->period == 2);
+    for (const char* bad : {"", "9.6,abc", "9.6,-0.0156", "9.6,-0.0156,-0.0074,0.5", "-1,0,0", "9.6,0,0,1,2", "9.6,0,0x"})
+        CHECK_MESSAGE(!parse_curve_start(bad), bad);
+}
+
+TEST_CASE("the plane's curves refuse a plane without omega across, and a grazing without a bumper") {
+    PlaneData pl;
+    pl.x_name = "xI";
+    pl.y_name = "m0e";
+    pl.xs = {-0.01, 0.0};
+    pl.ys = {0.02, 0.03};
+    PlaneCurves curves;
+    CHECK(curves.start(analysis::BifKind::Fold, pl, make_version("A1G"), "A1G", CurveStart{}) ==
+          "fold curve: the plane's axes must be omega and xI or m0e");
+    pl.x_name = "omega";
+    pl.y_name = "xI";
+    pl.xs = {8.5, 10.5};
+    pl.ys = {-0.007, -0.004};
+    Params free = make_version("A1G");
+    free.impact = find_impact("none");
+    CHECK(curves.start(analysis::BifKind::Grazing, pl, free, "A1G", CurveStart{}) == "grazing curve: A1G has no bumper");
+    CHECK_FALSE(curves.any_running());
 }

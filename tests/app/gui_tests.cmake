@@ -154,6 +154,11 @@ if(TARGET impactlab)
            COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_plane.sh $<TARGET_FILE:impactlab-gui>
                    $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_plane)
   set_tests_properties(gui_plane PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
+  # The grazing and fold curves over the plane agreeing with the CLI's (gui_plane_curves.sh says how).
+  add_test(NAME gui_plane_curves
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_plane_curves.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_plane_curves)
+  set_tests_properties(gui_plane_curves PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
 endif()
 
 # Continuation from the running orbit (A1G's period-1 window at 14.5 rad/s) agrees with the CLI's from the same

@@ -139,3 +139,9 @@ TEST_CASE("session: bad files are refused naming the file, the key or line, and 
                          doctest::Contains("/nonexistent/session.json: cannot read it"), SessionError);
     CHECK(error_of(session_text(sample())).empty());
 }
+
+TEST_CASE("session: a refused parameter names the file and its key once, then the core's reason") {
+    const std::string e = error_of(R"({"format": "impactlab-gui session", "model": "A1C", "params": {"c": -5}})");
+    CHECK(e == "s.json: key 'params.c': must lie in [0, 1e+06] N s/m (viscous resistance), got -5");
+}
+

@@ -232,6 +232,16 @@ impactlab_cli_test(scan_grazing_bad --rc 2 --match "expected OMEGA,X,V\\[,K\\]" 
 impactlab_cli_test(scan_grazing_curve --rc 0 --match "grazing curve: 3 points, ends: xI range / xI range" --csv p.csv "omega,xI,period" 6 6
                    -- scan --model A1G --xI -0.004 --x omega:9.5:9.7:3 --y xI:-0.0045:-0.004:2 --transient 2 --record 4 --threads 1
                       --grazing-from 9.60049627,-0.0156163,-0.00744857 --png p.png --out p.csv)
+# --curves-out: the grazing curve's points, for the visualiser's test (gui_plane_curves.sh reads them).
+impactlab_cli_test(scan_curves_out --rc 0 --match "grazing curve: 3 points" --no-match "curves-out"
+                   -- scan --model A1G --xI -0.004 --x omega:9.5:9.7:3 --y xI:-0.0045:-0.004:2 --transient 2 --record 4 --threads 1
+                      --grazing-from 9.60049627,-0.0156163,-0.00744857 --png p.png --out p.csv --curves-out c.csv)
+impactlab_cli_test(scan_grazing_fold_auto --rc 0 --match "grazing curve: started at the period-1 grazing at omega = 9.6004962"
+                   --match "fold curve: started at the period-1 fold at omega = 9.5489430"
+                   -- scan --model A1G --xI -0.004 --x omega:8.5:10.5:3 --y xI:-0.005:-0.004:2 --transient 2 --record 4 --threads 1
+                      --grazing-from auto --fold-from auto --png p.png --out p.csv)
+impactlab_cli_test(scan_curves_out_alone --rc 2 --match "--curves-out writes the continued curves" --absent p.csv
+                   -- scan --model A1G --x omega:9.5:9.7:3 --y xI:-0.0045:-0.004:2 --out p.csv --curves-out c.csv)
 impactlab_cli_test(scan_fold_curve --rc 0 --match "fold curve: [0-9]+ points, ends: xI range / xI range" --csv p.csv "omega,xI,period" 6 6
                    -- scan --model A1G --xI -0.004 --x omega:9.4:9.6:3 --y xI:-0.0045:-0.004:2 --transient 2 --record 4 --threads 1
                       --fold-from 9.548943,-0.0157368,0.00230387 --png p.png --out p.csv)

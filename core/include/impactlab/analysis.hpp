@@ -200,7 +200,9 @@ ContinuationResult continue_orbits(const Params& p, const ContinuationSpec& spec
 // parameter, stepped by `step` from the model's own value to each end of [lo, hi], the doubling's omega is
 // found again by a secant on the multiplier nearest -1 of the period-k orbit (Newton from the previous
 // point's orbit, both extrapolated from the last two points). The curve ends where the orbit or the secant
-// is lost (the multiplier turns complex, or the orbit is no longer found).
+// is lost (the multiplier turns complex, or the orbit is no longer found). The three curves take a Progress:
+// its fraction is the share of [lo, hi] covered, and its cancel is seen before every step (the curve comes
+// back marked cancelled).
 struct CurvePoint {
     double omega = 0;            // [rad/s]
     double q = 0;                // the second parameter [m] or [kg m]
@@ -211,22 +213,32 @@ struct BifCurve {
     ContParam second = ContParam::XI;
     int period = 1;
     std::vector<CurvePoint> points;   // ordered by q
-    std::string end;                  // why it ended at each end
+    std::string end;                  // why it ended at each end ("cancelled" where a cancel stopped it)
+    bool cancelled = false;           // stopped by a cancel: the points are only those found before it
 };
 BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
-                                 double lo, double hi, double step, const Tolerances& sim = analysis_tolerances());
+                                 double lo, double hi, double step, const Tolerances& sim = analysis_tolerances(),
+                                 Progress* progress = nullptr);
 
 // A grazing followed in two parameters the same way: at each value of the second parameter the omega where
 // the period-k orbit of the rig without its bumper reaches xI with its largest x (a secant on that x minus xI,
 // which is smooth through the grazing). (omega0, y0): a grazing and its orbit's section point, as continue
 // reports it. The curve ends where that orbit is lost.
 BifCurve continue_grazing_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
-                                double lo, double hi, double step, const Tolerances& sim = analysis_tolerances());
+                                double lo, double hi, double step, const Tolerances& sim = analysis_tolerances(),
+                                Progress* progress = nullptr);
 
 // A fold (a multiplier at +1) followed the same way: at each value of the second parameter, Newton on the
 // extended system P^k(y) = y, det(M - I) = 0 in (x, v, omega), from the last two points extrapolated.
 BifCurve continue_fold_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
-                             double lo, double hi, double step, const Tolerances& sim = analysis_tolerances());
+                             double lo, double hi, double step, const Tolerances& sim = analysis_tolerances(),
+                             Progress* progress = nullptr);
+
+// The curve of `kind` (PeriodDoubling, Grazing or Fold; throws std::invalid_argument for another) from its
+// known point: continue_doubling_curve, continue_grazing_curve or continue_fold_curve.
+BifCurve continue_curve(BifKind kind, const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
+                        double lo, double hi, double step, const Tolerances& sim = analysis_tolerances(),
+                        Progress* progress = nullptr);
 
 // One curve of a branch in a bifurcation diagram's coordinates: a period-k branch gives k curves, one per
 // section point of its orbit (a diagram shows all k of them at each parameter value).

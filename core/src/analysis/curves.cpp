@@ -3,29 +3,33 @@
 // multiplier, or the bumperless orbit's largest x minus xI).
 #include <Eigen/Dense>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
 #include "impactlab/analysis.hpp"
+#include "impactlab/sweep.hpp"
 
 namespace impactlab::analysis {
 
 namespace {
 
+// A curve's test at one omega (NaN where the orbit is lost) and the orbit's section point there.
+struct Test { double value = NAN; Vec2 y = Vec2::Zero(); };
+
 // The real multiplier nearest -1 of the period-k orbit at omega near y (NaN when complex or not found).
-struct Probe { double mu = NAN; Vec2 y = Vec2::Zero(); };
-Probe probe(const Params& p, double omega, const Vec2& guess, int period, const Tolerances& sim) {
+Test probe(const Params& p, double omega, const Vec2& guess, int period, const Tolerances& sim) {
     OrbitOptions oo;
     oo.period = period;
     oo.sim = sim;
     oo.max_iterations = 12;
-    Probe r;
+    Test r;
     try {
         const Orbit o = find_orbit(p, omega, guess, oo);
         if (!o.converged || scaled_norm(o.y - guess) > 0.2) return r;
         if (o.floquet.mu[0].imag() != 0.0) return r;
         const double a = o.floquet.mu[0].real(), b = o.floquet.mu[1].real();
-        r.mu = std::abs(a + 1) < std::abs(b + 1) ? a : b;
+        r.value = std::abs(a + 1) < std::abs(b + 1) ? a : b;
         r.y = o.y;
     } catch (const std::exception&) {
     }
@@ -34,21 +38,20 @@ Probe probe(const Params& p, double omega, const Vec2& guess, int period, const 
 
 // The period-k orbit of the rig without its bumper at omega near y, and its largest x minus xI (NaN if not
 // found): zero at a grazing, smooth through it (the bumper's law never enters).
-struct GapProbe { double gap = NAN; Vec2 y = Vec2::Zero(); };
-GapProbe gap_probe(const Params& p, double omega, const Vec2& guess, int period, const Tolerances& sim) {
+Test gap_probe(const Params& p, double omega, const Vec2& guess, int period, const Tolerances& sim) {
     Params f = p;
     f.impact = find_impact("none");
     OrbitOptions oo;
     oo.period = period;
     oo.sim = sim;
     oo.max_iterations = 12;
-    GapProbe r;
+    Test r;
     try {
         const Orbit o = find_orbit(f, omega, guess, oo);
         if (!o.converged || scaled_norm(o.y - guess) > 0.2) return r;
         double x_max = 0;
         peak_phase(f, omega, o.y, period, sim, &x_max);
-        r.gap = (x_max - p.xI) / kXScale;
+        r.value = (x_max - p.xI) / kXScale;
         r.y = o.y;
     } catch (const std::exception&) {
     }
@@ -58,9 +61,11 @@ GapProbe gap_probe(const Params& p, double omega, const Vec2& guess, int period,
 // The fold's extended system at fixed second parameter: (P^k(y) - y scaled, det(M - I)) = 0 in (x, v, omega),
 // by Newton with the derivatives by forward differences of the map (its own monodromy gives d/dy of the
 // first two; det(M - I) needs the map's second derivative, which differences of M give).
-struct FoldSolve { bool ok = false; double omega = 0; Vec2 y = Vec2::Zero(); };
-FoldSolve fold_newton(const Params& p, double omega, Vec2 y, int period, const Tolerances& sim) {
-    FoldSolve r;
+// Where a curve's point lies at one value of the second parameter (a fold, a grazing, a doubling).
+struct Located { bool ok = false; double omega = 0; Vec2 y = Vec2::Zero(); };
+
+Located fold_newton(const Params& p, double omega, Vec2 y, int period, const Tolerances& sim) {
+    Located r;
     auto eval = [&](double w, const Vec2& yy, Eigen::Vector3d& F, Mat2& M) {
         const MapResult m = poincare_map(p, w, yy, period, true, sim);
         M = m.M;
@@ -101,147 +106,33 @@ FoldSolve fold_newton(const Params& p, double omega, Vec2 y, int period, const T
     return r;
 }
 
-}  // namespace
-
-BifCurve continue_fold_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period, double lo,
-                             double hi, double step, const Tolerances& sim) {
-    if (second == ContParam::Omega) throw std::invalid_argument("a fold curve needs a second parameter besides omega");
-    if (!(step > 0) || !(hi > lo)) throw std::invalid_argument("a fold curve needs lo < hi and a positive step");
-    BifCurve c;
-    c.kind = BifKind::Fold;
-    c.second = second;
-    c.period = period;
-    Params work = p;
-    double& q_ref = second == ContParam::XI ? work.xI : work.m0e;
-    const double q0 = q_ref;
-    std::vector<CurvePoint> sides[2];
-    std::string ends[2];
-    for (int side = 0; side < 2; ++side) {
-        const double dir = side == 0 ? 1.0 : -1.0;
-        std::vector<CurvePoint>& pts = sides[side];
-        CurvePoint prev{omega0, q0, y0}, before = prev;
-        int have = 1;
-        double h = step;
-        bool first = side == 0;
-        while (true) {
-            const double q = first ? q0 : prev.q + dir * h;
-            if (q > hi + 1e-12 * std::abs(hi) || q < lo - 1e-12 * std::abs(lo)) {
-                ends[side] = std::string(cont_param_name(second)) + " range";
-                break;
-            }
-            q_ref = q;
-            double w = prev.omega;
-            Vec2 y = prev.y;
-            if (have >= 2 && prev.q != before.q) {
-                const double f = (q - prev.q) / (prev.q - before.q);
-                w = prev.omega + f * (prev.omega - before.omega);
-                y = prev.y + f * (prev.y - before.y);
-            }
-            const FoldSolve fs = fold_newton(work, w, y, period, sim);
-            if (!fs.ok || scaled_norm(fs.y - y) > 0.5) {
-                if (!first && h > step / 64) {
-                    h *= 0.5;
-                    continue;
-                }
-                ends[side] = "fold lost near " + std::string(cont_param_name(second)) + " = " + std::to_string(q);
-                break;
-            }
-            pts.push_back({fs.omega, q, fs.y});
-            if (!first) {
-                before = prev;
-                ++have;
-                h = std::min(step, 2 * h);
-            }
-            prev = {fs.omega, q, fs.y};
-            first = false;
-        }
+// A secant in omega on test(omega) = target from w and w + 1e-3, each orbit started from the last one's;
+// it gives up after `iterations` or where it runs more than `run_off` [rad/s] from w.
+template <class TestFn>
+Located secant(double w, const Vec2& y, double target, int iterations, double run_off, double tol, const TestFn& test) {
+    double wa = w, wb = w + 1e-3;
+    Test a = test(wa, y), b = test(wb, std::isfinite(a.value) ? a.y : y);
+    for (int it = 0; it < iterations && std::isfinite(a.value) && std::isfinite(b.value) && b.value != a.value; ++it) {
+        const double wn = wb - (b.value - target) * (wb - wa) / (b.value - a.value);
+        if (!std::isfinite(wn) || std::abs(wn - w) > run_off) break;   // ran off: none near here
+        a = b;
+        wa = wb;
+        wb = wn;
+        b = test(wb, a.y);
+        if (std::abs(wb - wa) < tol && std::isfinite(b.value)) return Located{true, wb, b.y};
     }
-    c.points.assign(sides[1].rbegin(), sides[1].rend());
-    c.points.insert(c.points.end(), sides[0].begin(), sides[0].end());
-    c.end = ends[1] + " / " + ends[0];
-    return c;
+    return Located{};
 }
 
-BifCurve continue_grazing_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period, double lo,
-                                double hi, double step, const Tolerances& sim) {
-    if (second == ContParam::Omega) throw std::invalid_argument("a grazing curve needs a second parameter besides omega");
-    if (!(step > 0) || !(hi > lo)) throw std::invalid_argument("a grazing curve needs lo < hi and a positive step");
-    if (!p.has_bumper()) throw std::invalid_argument("a grazing curve needs a bumper");
-    BifCurve c;
-    c.kind = BifKind::Grazing;
-    c.second = second;
-    c.period = period;
-    Params work = p;
-    double& q_ref = second == ContParam::XI ? work.xI : work.m0e;
-    const double q0 = q_ref;
-    std::vector<CurvePoint> sides[2];
-    std::string ends[2];
-    for (int side = 0; side < 2; ++side) {
-        const double dir = side == 0 ? 1.0 : -1.0;
-        std::vector<CurvePoint>& pts = sides[side];
-        CurvePoint prev{omega0, q0, y0}, before = prev;
-        int have = 1;
-        double h = step;
-        bool first = side == 0;
-        while (true) {
-            const double q = first ? q0 : prev.q + dir * h;
-            if (q > hi + 1e-12 * std::abs(hi) || q < lo - 1e-12 * std::abs(lo)) {
-                ends[side] = std::string(cont_param_name(second)) + " range";
-                break;
-            }
-            q_ref = q;
-            double w = prev.omega;
-            Vec2 y = prev.y;
-            if (have >= 2 && prev.q != before.q) {
-                const double f = (q - prev.q) / (prev.q - before.q);
-                w = prev.omega + f * (prev.omega - before.omega);
-                y = prev.y + f * (prev.y - before.y);
-            }
-            // Secant on the gap in omega, from w and w + 1e-3.
-            double wa = w, wb = w + 1e-3;
-            GapProbe a = gap_probe(work, wa, y, period, sim), b = gap_probe(work, wb, std::isfinite(a.gap) ? a.y : y, period, sim);
-            bool ok = false;
-            for (int it = 0; it < 30 && std::isfinite(a.gap) && std::isfinite(b.gap) && b.gap != a.gap; ++it) {
-                const double wn = wb - b.gap * (wb - wa) / (b.gap - a.gap);
-                if (!std::isfinite(wn) || std::abs(wn - w) > 1.0) break;   // ran off: no grazing near here
-                a = b;
-                wa = wb;
-                wb = wn;
-                b = gap_probe(work, wb, a.y, period, sim);
-                if (std::abs(wb - wa) < 1e-8 && std::isfinite(b.gap)) {
-                    ok = true;
-                    break;
-                }
-            }
-            if (!ok) {
-                if (!first && h > step / 64) {
-                    h *= 0.5;
-                    continue;
-                }
-                ends[side] = "grazing lost near " + std::string(cont_param_name(second)) + " = " + std::to_string(q);
-                break;
-            }
-            pts.push_back({wb, q, b.y});
-            if (!first) {
-                before = prev;
-                ++have;
-                h = std::min(step, 2 * h);
-            }
-            prev = {wb, q, b.y};
-            first = false;
-        }
-    }
-    c.points.assign(sides[1].rbegin(), sides[1].rend());
-    c.points.insert(c.points.end(), sides[0].begin(), sides[0].end());
-    c.end = ends[1] + " / " + ends[0];
-    return c;
-}
+using Locate = std::function<Located(const Params& work, double omega, const Vec2& y)>;
 
-BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
-                                 double lo, double hi, double step, const Tolerances& sim) {
-    if (second == ContParam::Omega) throw std::invalid_argument("a doubling curve needs a second parameter besides omega");
-    if (!(step > 0) || !(hi > lo)) throw std::invalid_argument("a doubling curve needs lo < hi and a positive step");
+// The curves' one following loop: natural-parameter steps in the second parameter from its model value to
+// each end of [lo, hi], the point located again at each from the last two points extrapolated. A step the
+// predictor cannot bridge is halved, down to step / 64. The cancel is looked at before every step.
+BifCurve follow_curve(const Params& p, BifKind kind, const char* what, ContParam second, double omega0, const Vec2& y0,
+                      int period, double lo, double hi, double step, Progress* progress, const Locate& locate) {
     BifCurve c;
+    c.kind = kind;
     c.second = second;
     c.period = period;
     Params work = p;
@@ -249,7 +140,8 @@ BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega
     const double q0 = q_ref;
     std::vector<CurvePoint> sides[2];
     std::string ends[2];
-    for (int side = 0; side < 2; ++side) {
+    double covered[2] = {0, 0};   // how far each side has come [the second parameter's unit]
+    for (int side = 0; side < 2 && !c.cancelled; ++side) {
         const double dir = side == 0 ? 1.0 : -1.0;
         std::vector<CurvePoint>& pts = sides[side];
         // The known point starts both sides (it is kept once, on the upward side).
@@ -258,6 +150,11 @@ BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega
         double h = step;
         bool first = side == 0;   // the known point is located again once, on the upward side
         while (true) {
+            if (progress && progress->cancel.load(std::memory_order_relaxed)) {
+                c.cancelled = true;
+                ends[side] = "cancelled";
+                break;
+            }
             const double q = first ? q0 : prev.q + dir * h;
             if (q > hi + 1e-12 * std::abs(hi) || q < lo - 1e-12 * std::abs(lo)) {
                 ends[side] = std::string(cont_param_name(second)) + " range";
@@ -272,45 +169,89 @@ BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega
                 w = prev.omega + f * (prev.omega - before.omega);
                 y = prev.y + f * (prev.y - before.y);
             }
-            // Secant on mu(omega) + 1 = 0, from w and w + 1e-3.
-            double wa = w, wb = w + 1e-3;
-            Probe a = probe(work, wa, y, period, sim), b = probe(work, wb, std::isfinite(a.mu) ? a.y : y, period, sim);
-            bool ok = false;
-            for (int it = 0; it < 20 && std::isfinite(a.mu) && std::isfinite(b.mu) && b.mu != a.mu; ++it) {
-                const double wn = wb - (b.mu + 1.0) * (wb - wa) / (b.mu - a.mu);
-                if (!std::isfinite(wn) || std::abs(wn - w) > 0.5) break;   // ran off: no doubling near here
-                a = b;
-                wa = wb;
-                wb = wn;
-                b = probe(work, wb, a.y, period, sim);
-                if (std::abs(wb - wa) < 1e-7 && std::isfinite(b.mu)) {
-                    ok = true;
-                    break;
-                }
-            }
-            if (!ok) {
-                // A step too long for the predictor (the doubling moves fast in m0e): shorter, down to step / 64.
+            const Located at = locate(work, w, y);
+            if (!at.ok) {
+                // A step too long for the predictor (a doubling moves fast in m0e): shorter.
                 if (!first && h > step / 64) {
                     h *= 0.5;
                     continue;
                 }
-                ends[side] = "doubling lost near " + std::string(cont_param_name(second)) + " = " + std::to_string(q);
+                ends[side] = std::string(what) + " lost near " + cont_param_name(second) + " = " + std::to_string(q);
                 break;
             }
-            pts.push_back({wb, q, b.y});
+            pts.push_back({at.omega, q, at.y});
             if (!first) {
                 before = prev;
                 ++have;
                 h = std::min(step, 2 * h);
             }
-            prev = {wb, q, b.y};
+            prev = {at.omega, q, at.y};
             first = false;
+            covered[side] = std::abs(q - q0);
+            if (progress && hi > lo)
+                progress->fraction.store(std::min(1.0, (covered[0] + covered[1]) / (hi - lo)), std::memory_order_relaxed);
         }
     }
+    if (c.cancelled)   // the side a cancel kept from starting
+        for (std::string& e : ends)
+            if (e.empty()) e = "cancelled";
     c.points.assign(sides[1].rbegin(), sides[1].rend());
     c.points.insert(c.points.end(), sides[0].begin(), sides[0].end());
     c.end = ends[1] + " / " + ends[0];
     return c;
+}
+
+void check_curve(const char* what, ContParam second, double lo, double hi, double step) {
+    if (second == ContParam::Omega)
+        throw std::invalid_argument(std::string("a ") + what + " curve needs a second parameter besides omega");
+    if (!(step > 0) || !(hi > lo)) throw std::invalid_argument(std::string("a ") + what + " curve needs lo < hi and a positive step");
+}
+
+}  // namespace
+
+BifCurve continue_fold_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period, double lo,
+                             double hi, double step, const Tolerances& sim, Progress* progress) {
+    check_curve("fold", second, lo, hi, step);
+    return follow_curve(p, BifKind::Fold, "fold", second, omega0, y0, period, lo, hi, step, progress,
+                        [&](const Params& work, double w, const Vec2& y) {
+                            const Located at = fold_newton(work, w, y, period, sim);
+                            return at.ok && scaled_norm(at.y - y) <= 0.5 ? at : Located{};
+                        });
+}
+
+BifCurve continue_grazing_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period, double lo,
+                                double hi, double step, const Tolerances& sim, Progress* progress) {
+    check_curve("grazing", second, lo, hi, step);
+    if (!p.has_bumper()) throw std::invalid_argument("a grazing curve needs a bumper");
+    return follow_curve(p, BifKind::Grazing, "grazing", second, omega0, y0, period, lo, hi, step, progress,
+                        [&](const Params& work, double w, const Vec2& y) {
+                            // Zero gap: the bumperless orbit's largest x at xI.
+                            return secant(w, y, 0.0, 30, 1.0, 1e-8, [&](double wt, const Vec2& yt) {
+                                return gap_probe(work, wt, yt, period, sim);
+                            });
+                        });
+}
+
+BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
+                                 double lo, double hi, double step, const Tolerances& sim, Progress* progress) {
+    check_curve("doubling", second, lo, hi, step);
+    return follow_curve(p, BifKind::PeriodDoubling, "doubling", second, omega0, y0, period, lo, hi, step, progress,
+                        [&](const Params& work, double w, const Vec2& y) {
+                            // The multiplier nearest -1 at -1.
+                            return secant(w, y, -1.0, 20, 0.5, 1e-7, [&](double wt, const Vec2& yt) {
+                                return probe(work, wt, yt, period, sim);
+                            });
+                        });
+}
+
+BifCurve continue_curve(BifKind kind, const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
+                        double lo, double hi, double step, const Tolerances& sim, Progress* progress) {
+    switch (kind) {
+    case BifKind::PeriodDoubling: return continue_doubling_curve(p, second, omega0, y0, period, lo, hi, step, sim, progress);
+    case BifKind::Grazing: return continue_grazing_curve(p, second, omega0, y0, period, lo, hi, step, sim, progress);
+    case BifKind::Fold: return continue_fold_curve(p, second, omega0, y0, period, lo, hi, step, sim, progress);
+    default: throw std::invalid_argument(std::string("no two-parameter curve of a ") + bif_kind_name(kind));
+    }
 }
 
 }  // namespace impactlab::analysis

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace impactlab::analysis {
 
@@ -11,25 +12,71 @@ namespace {
 
 double second_of(const Params& p, ContParam c) { return c == ContParam::M0e ? p.m0e : p.xI; }
 
+const char* kind_word(BifKind k) {
+    if (k == BifKind::NeimarkSacker) throw std::invalid_argument("no two-parameter curve of a Neimark-Sacker point");
+    return k == BifKind::Fold ? "fold" : k == BifKind::Grazing ? "grazing" : "doubling";
+}
+
+// The model at its own second parameter, moved onto the plane's axis if it lies off it.
+Params on_plane(const Params& p, const PlaneCurveSpec& spec, PlaneCurve& out) {
+    const double lo = std::min(spec.lo, spec.hi), hi = std::max(spec.lo, spec.hi);
+    const double q = second_of(p, spec.second), q0 = std::clamp(q, lo, hi);
+    Params base = p;
+    (spec.second == ContParam::M0e ? base.m0e : base.xI) = q0;
+    if (q0 != q) out.note = "the model's value lies off the plane: the curve starts at its edge; ";
+    return base;
+}
+
+PlaneCurve follow(const Params& base, const PlaneCurveSpec& spec, double omega0, const Vec2& y0, int period,
+                  Progress* progress, PlaneCurve out) {
+    const double lo = std::min(spec.lo, spec.hi), hi = std::max(spec.lo, spec.hi);
+    const double q0 = second_of(base, spec.second);
+    out.omega0 = omega0;
+    out.y0 = y0;
+    if (progress) progress->fraction.store(0.0, std::memory_order_relaxed);
+    out.curve = continue_curve(spec.kind, base, spec.second, omega0, y0, period, lo, hi, spec.step, analysis_tolerances(), progress);
+    out.cancelled = out.curve.cancelled;
+    // A side that starts at the axis' end says so (the curve functions would call it the range's end); a
+    // point lost there, or a cancel, keeps its own words.
+    const std::size_t k = out.curve.end.find(" / ");
+    const std::string range = std::string(cont_param_name(spec.second)) + " range";
+    if (k != std::string::npos) {
+        if (!(q0 > lo) && out.curve.end.substr(0, k) == range) out.curve.end = "at the axis' end" + out.curve.end.substr(k);
+        if (!(hi > q0) && out.curve.end.substr(k + 3) == range) out.curve.end = out.curve.end.substr(0, k + 3) + "at the axis' end";
+    }
+    out.note += out.curve.end;
+    return out;
+}
+
 }  // namespace
 
-PlaneDoubling doubling_over_plane(const Params& p, const PlaneDoublingSpec& spec, Progress* progress) {
+PlaneCurve curve_over_plane_from(const Params& p, const PlaneCurveSpec& spec, double omega0, const Vec2& y0, int period,
+                                 Progress* progress) {
     const auto t0 = std::chrono::steady_clock::now();
-    PlaneDoubling out;
+    PlaneCurve out;
     out.curve.second = spec.second;
+    out.curve.kind = spec.kind;
+    const Params base = on_plane(p, spec, out);
+    out.found = true;
+    out = follow(base, spec, omega0, y0, period, progress, std::move(out));
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (progress) progress->fraction.store(1.0, std::memory_order_relaxed);
+    return out;
+}
+
+PlaneCurve curve_over_plane(const Params& p, const PlaneCurveSpec& spec, Progress* progress) {
+    const auto t0 = std::chrono::steady_clock::now();
+    PlaneCurve out;
+    out.curve.second = spec.second;
+    out.curve.kind = spec.kind;
     auto done = [&] {
         out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (progress) progress->fraction.store(1.0, std::memory_order_relaxed);
         return out;
     };
-    auto cancelled = [&] { return progress && progress->cancel.load(std::memory_order_relaxed); };
-    // The model at its own second parameter, moved onto the plane's axis if it lies off it.
-    const double lo = std::min(spec.lo, spec.hi), hi = std::max(spec.lo, spec.hi);
-    const double q0 = std::clamp(second_of(p, spec.second), lo, hi);
-    Params base = p;
-    (spec.second == ContParam::M0e ? base.m0e : base.xI) = q0;
-    if (q0 != second_of(p, spec.second)) out.note = "the model's value lies off the plane: the curve starts at its edge; ";
-    // The period-1 branch alone (no switching at the doublings): its first doubling is the start.
+    const char* word = kind_word(spec.kind);   // before the continuation: a kind without a curve throws
+    const Params base = on_plane(p, spec, out);
+    // The period-1 branch alone (no switching at the doublings): its first point of the kind is the start.
     ContinuationSpec cs;
     cs.param = ContParam::Omega;
     cs.lo = std::max(spec.omega_lo, 0.5);   // near omega = 0 the arclength steps crawl (as the GUI's overlay)
@@ -38,39 +85,23 @@ PlaneDoubling doubling_over_plane(const Params& p, const PlaneDoublingSpec& spec
     cs.period = 1;
     cs.max_period = 1;
     const ContinuationResult r = continue_orbits(base, cs, progress);
-    if (r.cancelled || cancelled()) {
+    if (r.cancelled || (progress && progress->cancel.load(std::memory_order_relaxed))) {
         out.cancelled = true;
+        out.curve.cancelled = true;
+        out.note += "cancelled while looking for the start";
         return done();
     }
-    const BifPoint* pd = nullptr;
+    const BifPoint* first = nullptr;
     for (const BifPoint& q : r.points)
-        if (q.kind == BifKind::PeriodDoubling && q.period == 1 && (!pd || q.param < pd->param)) pd = &q;
-    if (!pd) {
+        if (q.kind == spec.kind && q.period == 1 && (!first || q.param < first->param)) first = &q;
+    if (!first) {
         char buf[128];
-        std::snprintf(buf, sizeof buf, "no period-1 doubling for omega in [%.3g, %.3g] rad/s", cs.lo, cs.hi);
+        std::snprintf(buf, sizeof buf, "no period-1 %s for omega in [%.3g, %.3g] rad/s", word, cs.lo, cs.hi);
         out.note += buf;
         return done();
     }
     out.found = true;
-    out.omega0 = pd->param;
-    out.y0 = pd->y;
-    // Each side of q0 apart, so that a cancel is seen between them; each call locates q0 again on its way up.
-    BifCurve up, down;
-    if (hi > q0) up = continue_doubling_curve(base, spec.second, out.omega0, out.y0, 1, q0, hi, spec.step);
-    if (cancelled()) out.cancelled = true;
-    else if (q0 > lo) down = continue_doubling_curve(base, spec.second, out.omega0, out.y0, 1, lo, q0, spec.step);
-    out.curve.points = up.points;
-    for (const CurvePoint& c : down.points)
-        if (up.points.empty() || c.q < q0) out.curve.points.push_back(c);   // q0 once
-    std::sort(out.curve.points.begin(), out.curve.points.end(), [](const CurvePoint& a, const CurvePoint& b) { return a.q < b.q; });
-    // continue_doubling_curve says "<why the lower side ended> / <why the upper side ended>".
-    auto side = [](const std::string& e, bool upper) {
-        const std::size_t k = e.find(" / ");
-        return k == std::string::npos ? e : upper ? e.substr(k + 3) : e.substr(0, k);
-    };
-    out.curve.end = (q0 > lo ? side(down.end, false) : std::string("at the axis' end")) + " / " +
-                    (hi > q0 ? side(up.end, true) : std::string("at the axis' end"));
-    out.note += out.curve.end;
+    out = follow(base, spec, first->param, first->y, 1, progress, std::move(out));
     return done();
 }
 
