@@ -254,3 +254,24 @@ TEST_CASE("poincare_section at phi0: n after the transient, the instants, the st
     State d;
     CHECK_THROWS_AS(poincare_section(p, omega, 1, 0, d, {}, nullptr, -1.0), std::invalid_argument);
 }
+
+TEST_CASE("a phase changed mid-run with sync_sections: the running revolution's new section is not lost") {
+    const Params p = make_version("A1H");
+    const Drive d(9.0);
+    Simulator sim;
+    sim.set_section_phase(1.0);
+    State s;
+    s.x = -0.011;
+    Simulator::make_consistent(p, d, s);
+    Sections rec;
+    sim.advance(p, d, s, 3.0, &rec);   // phi(3) = 27 rad: the section at 1 + 8 pi = 26.1 rad was taken
+    REQUIRE(rec.pts.size() == 5);
+    sim.set_section_phase(4.0);
+    Simulator::sync_sections(d, s);
+    rec.pts.clear();
+    sim.advance(p, d, s, 6.0, &rec);   // 4 + 8 pi = 29.1 rad, in the revolution running at the change, then 3 more
+    REQUIRE(rec.pts.size() == 4);
+    CHECK(rec.pts[0].n == 5);
+    CHECK(rec.pts[0].t == d.time_of_phase(sim.section_phi(5)));
+    CHECK(d.phi(rec.pts[0].t) == doctest::Approx(4.0 + 8 * kPi).epsilon(1e-14));
+}

@@ -72,6 +72,7 @@ public:
     // The Poincare section phase phi0 [rad], 0 <= phi0 <= 2 pi (2 pi is 0): sections at phi = phi0 + 2 pi k.
     // An analysis setting, not physics: it changes which instants on_section reports, never the
     // trajectory. Throws std::invalid_argument outside the range. Default 0: the stroboscopic phi = 2 pi n.
+    // Changed mid-run, sync_sections(d, s) must follow: the revolution running may have its new section ahead.
     void set_section_phase(double phi0);
     double section_phase() const { return phi0_; }
     // The phase of section n: 2 pi n for phi0 = 0 (or 2 pi), else 2 pi (n - 1) + phi0; either way the
