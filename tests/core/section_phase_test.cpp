@@ -14,8 +14,10 @@
 #include "impactlab/params.hpp"
 #include "impactlab/simulator.hpp"
 #include "impactlab/sweep.hpp"
+#include "coasting.hpp"
 
 using namespace impactlab;
+using impactlab::testing::harmonic;
 
 namespace {
 
@@ -114,15 +116,7 @@ TEST_CASE("sections at phi0 are where the cart is at phi = phi0 + 2 pi k: rigid 
 TEST_CASE("a section taken during a sticking impact (regime II) at a chosen phase") {
     // A linear oscillator (omega0 = 10 rad/s) from x = -A at rest hits the bumper at 0 after a quarter period
     // and sticks there for T_imp: phi0 puts section 1 2 ms into it.
-    Params p = make_version("A1H");
-    p.m = 1.0;
-    p.k = 100.0;
-    p.a = {};
-    p.b = {};
-    p.c = 0;
-    p.T = 0;
-    p.m0e = 0;
-    p.xI = 0.0;
+    const Params p = harmonic("A1H");
     const double omega = 7.0, t_hit = kPi / 20.0;
     const double phi0 = omega * (t_hit + 2e-3);
     const Drive d(omega);
