@@ -125,20 +125,23 @@ int cmd_simulate(const std::vector<std::string>& argv) {
 
 int cmd_poincare(const std::vector<std::string>& argv) {
     if (show_help_if_asked(argv, "usage: impactlab poincare --model A1H --omega 18 --periods 200 --out sec.csv [options]\n\n"
-                         "Samples (x, v) once per revolution of the unbalance (phi = 2 pi n) and writes n,x,v.\n"
+                         "Samples (x, v) once per revolution of the unbalance (phi = phi0 + 2 pi n) and writes n,x,v.\n"
                          "  --omega W        forcing frequency [rad/s] (required)\n"
                          "  --periods N      section points to record (required)\n"
                          "  --transient N    periods discarded first (default 0)\n"
+                         "  --phi0 RAD       section phase, 0 <= RAD <= 2 pi (default 0; phi = 0 at the start)\n"
                          "  --out FILE       CSV output (required)\n"
                          "  --x0 X, --v0 V   initial state (default 0, 0)\n", kModelHelp))
         return 0;
-    const Args a("poincare", argv, with_model_flags({"--omega", "--periods", "--transient", "--out", "--x0", "--v0"}));
+    const Args a("poincare", argv,
+                 with_model_flags({"--omega", "--periods", "--transient", "--phi0", "--out", "--x0", "--v0"}));
     const Params p = model_from(a);
     if (!a.has("--omega")) throw UsageError("poincare: missing required option '--omega'");
     if (!a.has("--periods")) throw UsageError("poincare: missing required option '--periods'");
     const double omega = a.num("--omega", 0, 1e-3, 1000.0);
     const int periods = a.integer("--periods", 0, 1, 10000000);
     const int transient = a.integer("--transient", 0, 0, 10000000);
+    const double phi0 = a.num("--phi0", 0.0, 0.0, kTwoPi);
     auto out = open_out(a.required("--out"));
     State s;
     s.x = a.num("--x0", 0.0, -0.1, 0.1);
@@ -146,7 +149,7 @@ int cmd_poincare(const std::vector<std::string>& argv) {
     check_start(p, s.x, "poincare", "--x0");
     Progress progress;
     ProgressBar bar("poincare " + p.name, progress);
-    const auto pts = poincare_section(p, omega, periods, transient, s, tolerances_from(a), &progress);
+    const auto pts = poincare_section(p, omega, periods, transient, s, tolerances_from(a), &progress, phi0);
     bar.finish();
     out << "n,x,v\n";
     for (const auto& sp : pts) out << sp.n - transient << ',' << sp.x << ',' << sp.v << '\n';

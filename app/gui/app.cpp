@@ -182,6 +182,7 @@ bool App::init(std::string& error) {
     cfg.xI = xI_;
     cfg.x0 = x0_;
     cfg.v0 = opt_.preset > 0 ? 0.0 : opt_.v0;
+    cfg.phi0 = section_phase_ = opt_.phi0;
     warming_ = opt_.warmup > 0 && !bench_.on;
     if (warming_) {
         speed_ = kMaxSpeed;

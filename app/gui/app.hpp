@@ -114,6 +114,7 @@ private:
     void apply_view(const ViewAction& a);
     void start_orbit(double x, double v);          // the Poincare clicker: a new orbit (--orbit as a click)
     void restart_at_section(double x, double v);   // the cart from (x, v) at the next section
+    void set_section_phase(double phi0);            // the Poincare section at phi = phi0 + 2 pi k [rad]
     void draw_bifurcation();
     void draw_status();
     void draw_help();
@@ -249,6 +250,7 @@ private:
     bool fonts_dirty_ = true;
     bool show_help_ = false;
     float trail_periods_ = 8.0f;
+    double section_phase_ = 0;   // [rad] the Poincare section's phase phi0, as last sent
     float strip_window_ = 6.0f;
     double last_frame_time_ = 0, fps_ = 0, frame_dt_ = 1.0 / 60;
 

@@ -48,6 +48,7 @@ Session App::current_session() const {
     s.magnify_presentation = magnify_[1];
     s.trail_periods = trail_periods_;
     s.strip_window = strip_window_;
+    s.poincare_phi0 = section_phase_;
     for (const Plot::NamedView& v : Plot::user_views()) s.views.push_back({v.id, v.x.lo, v.x.hi, v.y.lo, v.y.hi});
     s.show_data = show_data_;
     s.show_help = show_help_;
@@ -80,6 +81,7 @@ void App::apply_session(const Session& s) {
     for (const auto& [key, value] : s.params) set_param(key, value);
     set_omega(s.omega);
     set_speed(s.speed);
+    set_section_phase(s.poincare_phi0);   // before the restart: its sections are at the session's phase
     // The run goes on from the saved instant; what the history held belongs to another run.
     restart_sim(s.x, s.v, s.t, s.phi, s.omega, true);
     set_paused(s.paused);

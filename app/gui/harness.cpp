@@ -152,6 +152,10 @@ bool App::script_step() {
         switched_ = true;   // --then-xI: what dragging the x_I slider there does
         set_xi(opt_.then_xI);
     }
+    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_phase) {
+        switched_ = true;   // --then-phi0: what moving the Poincare view's phase slider there does
+        set_section_phase(opt_.then_phi0);
+    }
     if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_w) {
         switched_ = true;   // --then-omega: what the arrow keys do, live (no reset)
         set_omega(opt_.then_omega);

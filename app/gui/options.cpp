@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string_view>
 #include <tuple>
@@ -64,6 +65,7 @@ const char* usage_text() {
            "  --details          the status bar's technical fields (epoch, samples, dropped)\n"
            "  --clicker          the Poincare clicker on: each click on the map starts an orbit in its own colour\n"
            "  --orbit X,V        (repeatable) such a click at x = X m, v = V m/s, spread over --frames\n"
+           "  --phi0 RAD         the Poincare section's phase: points at phi = RAD + 2 pi k, 0..2 pi (default 0)\n"
            "  --strip Q[,Q2]     the time strip's trace and a second one below it: x, v, E (energy),\n"
            "                     F (bumper force), drive (m0e ω² cos φ); default x (right-click the strip)\n"
            "  --bifurcation P    compute a bifurcation diagram at start: cf-up, cf-down or ef\n"
@@ -127,6 +129,7 @@ const char* usage_text() {
            "  --then-preset N    apply preset N half-way instead (as pressing key N)\n"
            "  --then-xI X        move the bumper to X [m] half-way instead (as the x_I slider)\n"
            "  --then-omega W     set omega to W [rad/s] half-way instead (as the arrow keys: live, no reset)\n"
+           "  --then-phi0 RAD    set the section phase to RAD half-way instead (as its slider: the map restarts)\n"
            "  --bench-plot       frames per second with --points points on every plot (needs a display)\n"
            "  --points N         points per plot for --bench-plot (default 100000)\n"
            "  --plot-backend B   how dense curves are drawn: raster (CPU, default), gpu (instanced\n"
@@ -390,6 +393,11 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--demo") o.demo = static_cast<int>(number(a, value(), 1, 5));
         else if (a == "--details") o.details = true;
         else if (a == "--clicker") o.clicker = true;
+        else if (a == "--phi0") o.phi0 = number(a, value(), 0.0, 2.0 * std::numbers::pi);
+        else if (a == "--then-phi0") {
+            o.then_phi0 = number(a, value(), 0.0, 2.0 * std::numbers::pi);
+            o.then_phase = true;
+        }
         else if (a == "--orbit") {
             const std::string& sv = value();
             const auto c = sv.find(',');
@@ -459,6 +467,7 @@ Options parse_options(const std::vector<std::string>& args) {
     if (o.then_preset > 0 && o.frames == 0) throw OptionsError("--then-preset needs --frames N");
     if (o.then_xi && o.frames == 0) throw OptionsError("--then-xI needs --frames N");
     if (o.then_w && o.frames == 0) throw OptionsError("--then-omega needs --frames N");
+    if (o.then_phase && o.frames == 0) throw OptionsError("--then-phi0 needs --frames N");
     for (const std::string& h : o.hide)
         if (h == o.maximise) throw OptionsError("--maximise " + h + ": that panel is hidden by --hide");
     if (!o.save_session.empty() && o.frames == 0) throw OptionsError("--save-session needs --frames N");

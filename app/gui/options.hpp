@@ -94,6 +94,9 @@ struct Options {
     bool details = false;        // --details: the status bar's technical fields (epoch, samples, dropped)
     // The Poincare clicker (views/poincare_panel.hpp).
     bool clicker = false;        // --clicker: on at start
+    double phi0 = 0;             // --phi0: the section phase [rad], 0 .. 2 pi (sections at phi0 + 2 pi k)
+    bool then_phase = false;     // with --frames: set the section phase to then_phi0 half-way (as the slider)
+    double then_phi0 = 0;        // [rad]
     std::vector<std::pair<double, double>> orbits;   // --orbit X,V (repeatable): clicks spread over --frames
 };
 

@@ -39,6 +39,7 @@ ViewContext App::view_context() const {
     c.speed = speed_;
     c.xI = xI_;
     c.xI_shown = xI_shown_;
+    c.section_phase = section_phase_;
     c.paused = paused_;
     c.sim_paused = sim_->status().paused;
     c.replay = replay_.active();
@@ -65,6 +66,16 @@ void App::apply_view(const ViewAction& a) {
     if (a.hold) sim_->send(SimCommand::hold(*a.hold));   // each hold restarts the companion too
     if (a.set_state) set_state(a.set_state->first, a.set_state->second);
     if (a.start_orbit) restart_at_section(a.start_orbit->first, a.start_orbit->second);
+    if (a.section_phase) set_section_phase(*a.section_phase);
+}
+
+void App::set_section_phase(double phi0) {
+    if (phi0 == section_phase_) return;
+    section_phase_ = phi0;
+    // The orbits the clicker took belong to the old section: not to be mixed with the new one's points
+    // (the map and the sections clear at the engine's new epoch).
+    poincare_.clear_orbits();
+    sim_->send(SimCommand::section_phase(phi0));
 }
 
 void App::start_orbit(double x, double v) {
@@ -73,12 +84,14 @@ void App::start_orbit(double x, double v) {
 }
 
 void App::restart_at_section(double x, double v) {
-    // The orbit starts on the section: at the next phi = 2 pi n (the forcing's phase moves on to it), from
-    // (x, v) checked as a click in the phase portrait is (rail, bumper).
+    // The orbit starts on the section: at the next phi = phi0 + 2 pi k (the forcing's phase moves on to
+    // it), from (x, v) checked as a click in the phase portrait is (rail, bumper). The phase is written as
+    // the core's Simulator::section_phi writes it, 2 pi n - psi, so the engine takes it for that section.
     const PickedState s = pick_state(x, v, xI_, params_.has_bumper());
     if (!s.note.empty()) toast(s.note);
-    const double phi0 = kTwoPi * std::ceil(last_.phi / kTwoPi - 1e-9);
-    restart_sim(s.x, s.v, last_.t, phi0, omega_, false);
+    const double psi = section_phase_ > 0.0 ? kTwoPi - section_phase_ : 0.0;
+    const double phi = kTwoPi * std::ceil((last_.phi + psi) / kTwoPi - 1e-9) - psi;
+    restart_sim(s.x, s.v, last_.t, phi, omega_, false);
 }
 
 DataPanelContext App::data_context() const {
@@ -127,7 +140,10 @@ BifurcationContext App::bifurcation_context() {
     c.model = model_name();
     c.omega = omega_;
     c.xI = xI_;
-    c.live = &shown_map().points();   // settled section points only (replaying: those of the cursor's instant)
+    // Settled section points only (replaying: those of the cursor's instant); the diagram's sections are at
+    // phi = 2 pi n, so the map's at another phase would not lie on it.
+    const bool strobe = section_phase_ == 0.0 || section_phase_ == kTwoPi;
+    c.live = strobe ? &shown_map().points() : nullptr;
     c.protocol = &bif_protocol_;
     c.steps = &bif_steps_;
     c.ramp = &ramp_;

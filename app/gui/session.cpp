@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <numbers>
 #include <cstdio>
 #include <fstream>
 #include <initializer_list>
@@ -36,6 +37,7 @@ json session_to_json(const Session& s) {
                  {"ui_scale", s.ui_scale},
                  {"trail_periods", s.trail_periods},
                  {"strip_window", s.strip_window},
+                 {"poincare_phi0", s.poincare_phi0},
                  {"zoom", std::move(zoom)}};
     j["windows"] = {{"data", s.show_data}, {"help", s.show_help}};
     j["bifurcation"] = {{"protocol", s.bif_protocol}, {"steps", s.bif_steps}};
@@ -197,13 +199,14 @@ Session session_from_json(const json& j, const Session& base, const std::string&
         r.number("phi", s.phi, -1e12, 1e12, " rad");
     }
     if (const json* vw = top.find("view")) {
-        const Reader r(file, *vw, "view", {"theme", "ui_scale", "trail_periods", "strip_window", "zoom"});
+        const Reader r(file, *vw, "view", {"theme", "ui_scale", "trail_periods", "strip_window", "poincare_phi0", "zoom"});
         std::string theme = s.dark ? "dark" : "light";
         r.word("theme", theme, {"dark", "light"});
         s.dark = theme == "dark";
         r.number("ui_scale", s.ui_scale, 0.5, 3.0);
         r.number("trail_periods", s.trail_periods, 1.0, 60.0);
         r.number("strip_window", s.strip_window, 0.5, 60.0, " s");
+        r.number("poincare_phi0", s.poincare_phi0, 0.0, 2.0 * std::numbers::pi, " rad");
         if (const json* z = r.find("zoom")) {
             if (!z->is_object()) r.fail("zoom", std::string("expected an object, got ") + z->type_name());
             s.views.clear();

@@ -45,6 +45,7 @@ struct Session {
     double ui_scale = 1.0;               // 0.5 .. 3
     double trail_periods = 8.0;          // phase portrait trail [forcing periods], 1 .. 60
     double strip_window = 6.0;           // x(t) strip [s], 0.5 .. 60
+    double poincare_phi0 = 0.0;          // the Poincare section's phase [rad], 0 .. 2 pi
     std::vector<SessionView> views;      // zoomed plots only
     bool show_data = false, show_help = false;   // windows open
     // The bifurcation diagram's settings (not the diagram: it is recomputed on demand).

@@ -90,6 +90,7 @@ SimEngine::SimEngine(const EngineConfig& cfg, MsgSink* sink)
     dt_ = sample_dt_for(speed_);
     s_.x = cfg.x0;
     s_.v = cfg.v0;
+    sim_.set_section_phase(std::isfinite(cfg.phi0) ? std::clamp(cfg.phi0, 0.0, kTwoPi) : 0.0);
     Simulator::make_consistent(p_, d_, s_);
     ledger_.reset(s_);
     restart_grid();
@@ -134,7 +135,7 @@ void SimEngine::put(SimMsg& m) {
 }
 
 double SimEngine::next_section_time() const {
-    const double t_sec = d_.time_of_phase(kTwoPi * static_cast<double>(s_.next_section));
+    const double t_sec = sim_.next_section_time(d_, s_);
     return std::isfinite(t_sec) ? t_sec : s_.t + 1.0;   // a stopped drive: a second, not forever
 }
 
@@ -210,8 +211,23 @@ bool SimEngine::apply(const SimCommand& c) {
             paused_ = c.a != 0.0;
             if (!paused_) stepping_ = false;
             return true;
+        case CmdKind::SetSectionPhase: {
+            // The trajectory goes on; only the instants that are sections change. A new epoch: the map
+            // and the clicker's orbit of the old phase are another section's points, and the grazing
+            // monitor's periods end at the sections.
+            if (!std::isfinite(c.a) || c.a < 0.0 || c.a > kTwoPi) return false;
+            if (c.a == sim_.section_phase()) return true;
+            sim_.set_section_phase(c.a);
+            // The revolution running now may still have its section at the new phase ahead.
+            Simulator::sync_sections(d_, s_);
+            if (stepping_) step_target_ = next_section_time();
+            ++epoch_;
+            grazing_.reset();
+            emit_now();
+            return true;
+        }
         case CmdKind::StepPeriod: {
-            // Run to the next section phi = 2 pi n (one forcing period away at most), then pause.
+            // Run to the next section phi = phi0 + 2 pi k (one forcing period away at most), then pause.
             step_target_ = next_section_time();
             stepping_ = true;
             paused_ = true;
@@ -295,6 +311,7 @@ bool SimEngine::restart_from(const SimEngine& src, const std::string& model, dou
     }
     np.xI = src.p_.xI;
     p_ = std::move(np);
+    sim_.set_section_phase(src.sim_.section_phase());   // the companion's sections are the cart's
     xI_target_ = src.xI_target_;
     d_ = src.d_;
     s_ = State{};

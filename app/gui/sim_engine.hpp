@@ -34,6 +34,7 @@ struct EngineConfig {
     double v0 = 0.0;
     double speed = 1.0;       // real-time factor
     bool paused = false;
+    double phi0 = 0.0;        // the Poincare section phase [rad], 0 .. 2 pi
 };
 
 inline constexpr double kMinSpeed = 0.01, kMaxSpeed = 100.0;
@@ -81,6 +82,7 @@ public:
     double bumper_target() const { return xI_target_; }   // where the bumper is moving to (params().xI: now)
     bool held() const { return held_; }                    // the mouse holds the cart
     double phi() const { return d_.phi(s_.t); }
+    double section_phase() const { return sim_.section_phase(); }   // phi0 [rad]
     std::uint32_t epoch() const { return epoch_; }
     bool paused() const { return paused_; }
     bool stepping() const { return stepping_; }
@@ -98,7 +100,7 @@ private:
     class Tap;   // the Observer that turns the simulator's pieces and events into records
     void emit_now();
     void restart_grid();
-    double next_section_time() const;   // when phi reaches the next section 2 pi n under the current drive
+    double next_section_time() const;   // when phi reaches the next section phi0 + 2 pi k under the current drive
     // A new drive from now (SetOmega, Ramp): phi continuous, the sections and a stepped period follow it.
     void change_drive(const Drive& d);
     void put(SimMsg& m);   // tags and hands a record to the sink

@@ -12,7 +12,7 @@ namespace impactlab::gui {
 
 enum class MsgKind : std::uint8_t {
     Sample,    // the trajectory at a fixed sim-time step
-    Section,   // a Poincare section point (phi = 2 pi n), located by the core
+    Section,   // a Poincare section point (phi = phi0 + 2 pi k, phi0 the section phase), located by the core
     Impact,    // a rigid impact began (G, H): force = v-, energy = impact duration
     Grazing,   // the grazing monitor, once per forcing period at its section (GrazingMonitor::Period):
                // x = the largest x over the period [m], v = the last impact's v- (rigid) or entry velocity
@@ -25,11 +25,11 @@ struct SimMsg {
     double t = 0;        // [s]
     double x = 0;        // [m]
     double v = 0;        // [m/s]
-    double phi = 0;      // unbalance angle, unwrapped [rad]; a Section has phi = 2 pi n exactly
+    double phi = 0;      // unbalance angle, unwrapped [rad]; a Section has phi = phi0 mod 2 pi
     double omega = 0;    // [rad/s]
     double force = 0;    // bumper force [N] (Impact: the impact velocity v- [m/s])
     double energy = 0;   // mechanical energy [J] (Impact: the impact duration [s])
-    std::uint32_t epoch = 0;   // bumped by every change of model, omega, xI or a reset
+    std::uint32_t epoch = 0;   // bumped by every change of model, omega, xI, section phase or a reset
     MsgKind kind = MsgKind::Sample;
     Regime regime = Regime::Free;
     std::uint8_t source = 0;   // 0: the cart; 1: its companion (the twin or the ghost, CompanionMode)
@@ -57,6 +57,8 @@ enum class CmdKind : std::uint8_t {
     SetParam,     // model = a parameter's key ("k", "kappa0", ...; param_edit.hpp), a = its value; x, v, phi
                   // kept. A value the core's validate() refuses changes nothing
     ResetParams,  // every parameter back to the running version's own values; x, v, phi kept
+    SetSectionPhase,   // a = the Poincare section phase phi0 [rad], 0 .. 2 pi: sections at phi0 + 2 pi k
+                       // from now; the run goes on, a new epoch (the map's points are of another section)
 };
 
 // The second cart that runs beside the first in lockstep.
@@ -102,6 +104,7 @@ struct SimCommand {
         return c;
     }
     static SimCommand reset_params() { return {CmdKind::ResetParams, 0, 0, {}}; }
+    static SimCommand section_phase(double phi0) { return {CmdKind::SetSectionPhase, phi0, 0, {}}; }
     static SimCommand set_model(std::string_view name) {
         SimCommand c{CmdKind::SetModel, 0, 0, {}};
         const std::size_t n = name.size() < sizeof(c.model) - 1 ? name.size() : sizeof(c.model) - 1;

@@ -140,6 +140,16 @@ bool App::write_state_json(const std::string& path) {
         imp.push_back(h[i].impacts);
     }
     j["poincare_points"] = std::move(pts);
+    // The section's phase asked for [rad], and the newest section point the engine sent in this epoch: its
+    // t, its phi reduced to [0, 2 pi) (phi0 there, up to rounding), x and v.
+    j["poincare_phi0"] = number(section_phase_);
+    if (!sections_.empty()) {
+        const SimMsg& m = sections_.back();
+        j["poincare_last_section"] = {{"t", number(m.t)}, {"phi_mod", number(m.phi - kTwoPi * std::floor(m.phi / kTwoPi))},
+                                      {"x", number(m.x)}, {"v", number(m.v)}};
+    } else {
+        j["poincare_last_section"] = nullptr;
+    }
     j["session_window"] = session_window_ ? json(session_saving_ ? "save" : "load") : json(nullptr);
     j["session_browser"] = session_window_ ? session_browser_.state() : json(nullptr);   // the files it lists
     j["plane"] = analysis_.plane.state();

@@ -36,7 +36,17 @@ bool begin_tile_at(const char* name, const Rect& r, ImGuiWindowFlags extra = 0) 
 
 // Titles, longest first: the tile shows the longest that fits beside its buttons (the view table's, and
 // the rig's magnification where it is not x1).
-std::vector<std::string> titles_of(PanelId p, double magnify) {
+// A title's "φ = 2πn" with the section's phase in it ("φ = 1.57 + 2πn") when it is not 0.
+std::string with_section_phase(std::string title, double phi0) {
+    static const std::string strobe = "φ = 2πn";
+    const std::size_t at = title.find(strobe);
+    if (at == std::string::npos || phi0 == 0.0 || phi0 == kTwoPi) return title;
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "φ = %.2f + 2πn", phi0);
+    return title.replace(at, strobe.size(), buf);
+}
+
+std::vector<std::string> titles_of(PanelId p, double magnify, double phi0 = 0.0) {
     if (p == PanelId::Rig && magnify > 1.001) {
         char g[16];
         std::snprintf(g, sizeof g, "%.3g", magnify);
@@ -45,7 +55,7 @@ std::vector<std::string> titles_of(PanelId p, double magnify) {
     }
     std::vector<std::string> out;
     for (const char* t : view_info(p).titles)
-        if (t) out.emplace_back(t);
+        if (t) out.push_back(with_section_phase(t, phi0));
     return out;
 }
 
@@ -125,9 +135,11 @@ void App::draw_tile(const Tile& tile) {
     const float button_w = frame_h, buttons_w = static_cast<float>(buttons) * button_w + 4.0f * ui_scale_;
     const float room = tile.rect.w - buttons_w - 2.0f * ImGui::GetStyle().FramePadding.x - 4.0f * ui_scale_;
     std::string title;
-    std::vector<std::string> titles = titles_of(active, magnification());
+    std::vector<std::string> titles = titles_of(active, magnification(), section_phase_);
     if (active == PanelId::Strip && (strip_.first() != StripQuantity::X || strip_.second()))   // other traces
-        titles = {"Time strip        dots: Poincaré sections (φ = 2πn)    right-click: the traces", "Time strip"};
+        titles = {with_section_phase("Time strip        dots: Poincaré sections (φ = 2πn)    right-click: the traces",
+                                     section_phase_),
+                  "Time strip"};
     for (const std::string& t : titles) {
         title = t;
         if (ImGui::CalcTextSize(t.c_str()).x <= room) break;

@@ -147,8 +147,25 @@ void Simulator::move_bumper(Params& p, const Drive& d, State& s, double xI) {
     make_consistent(p, d, s);
 }
 
+void Simulator::set_section_phase(double phi0) {
+    if (!(phi0 >= 0.0 && phi0 <= kTwoPi)) {
+        std::ostringstream msg;
+        msg << "section phase phi0 = " << phi0 << " rad is outside [0, 2 pi]";
+        throw std::invalid_argument(msg.str());
+    }
+    phi0_ = phi0;
+    psi_ = phi0 > 0.0 ? kTwoPi - phi0 : 0.0;
+}
+
+double Simulator::next_section_time(const Drive& d, const State& s) const {
+    // As step() sees it: a section at or before now (the revolution's, ahead of its end) is passed over.
+    double t = d.time_of_phase(section_phi(s.next_section));
+    if (t <= s.t) t = d.time_of_phase(section_phi(s.next_section + 1));
+    return t;
+}
+
 void Simulator::sync_sections(const Drive& d, State& s) {
-    // The next section is the first phi = 2 pi n strictly after now.
+    // The next section is in the first revolution ending (phi = 2 pi n) strictly after now.
     const double periods = d.phi(s.t) / kTwoPi;
     s.next_section = static_cast<std::int64_t>(std::floor(periods + 1e-9)) + 1;
 }
@@ -158,8 +175,10 @@ bool Simulator::step(const Params& p, const Drive& d, State& s, double t_limit, 
     // advance(), where both are fixed.
     if (!in_advance_) fsal_valid_ = false;
     if (!(s.t < t_limit)) return false;
-    const double t_sec = d.time_of_phase(kTwoPi * static_cast<double>(s.next_section));
-    if (t_sec <= s.t) {   // a section at this very instant was already taken (or the drive was swapped)
+    const double t_sec = d.time_of_phase(section_phi(s.next_section));
+    // A section at this very instant was already taken, the drive was swapped, or (phi0 > 0) the section
+    // of the revolution now running lies behind.
+    if (t_sec <= s.t) {
         ++s.next_section;
         return true;
     }

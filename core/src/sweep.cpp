@@ -45,8 +45,9 @@ bool cancelled(const Progress* p) { return p && p->cancel.load(std::memory_order
 }  // namespace
 
 std::vector<SectionPoint> poincare_section(const Params& p, double omega, int periods, int transient, State& s,
-                                           const Tolerances& tol, Progress* progress) {
+                                           const Tolerances& tol, Progress* progress, double phi0) {
     Simulator sim(tol);
+    sim.set_section_phase(phi0);
     const Drive drive(omega, s.t, 0.0);
     Simulator::make_consistent(p, drive, s);
     SectionCollector col(transient + 1, progress);
@@ -54,7 +55,7 @@ std::vector<SectionPoint> poincare_section(const Params& p, double omega, int pe
         col.on_section_progress = [&](const SectionPoint& sp) {
             progress->fraction.store(static_cast<double>(sp.n) / (periods + transient), std::memory_order_relaxed);
         };
-    sim.advance(p, drive, s, drive.time_of_phase(kTwoPi * (periods + transient)), &col);
+    sim.advance(p, drive, s, drive.time_of_phase(sim.section_phi(periods + transient)), &col);
     return std::move(col.points);
 }
 

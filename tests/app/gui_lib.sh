@@ -30,6 +30,16 @@ xvfb_rc() {
     if [ -s "$xvfb_rcfile" ]; then rc=$(cat "$xvfb_rcfile"); fi
 }
 
+# gui_refuses FLAG ARGS...: the GUI given ARGS must exit 2 (a usage error, before any window) naming FLAG.
+gui_refuses() {
+    flag="$1"; shift
+    "$gui" "$@" >"$dir/refused.log" 2>&1
+    refused_rc=$?
+    if [ $refused_rc -ne 2 ] || ! grep -q -- "$flag" "$dir/refused.log"; then
+        cat "$dir/refused.log"; echo "$TEST: '$*' should exit 2 naming $flag, got $refused_rc"; exit 1
+    fi
+}
+
 # gui_json NAME ARGS...: as gui_exec, with --state-json $dir/NAME.json; fails the test on a non-zero exit.
 gui_json() {
     json_name="$1"; shift

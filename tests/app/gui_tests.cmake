@@ -21,6 +21,15 @@ add_test(NAME gui_poincare
                  ${CMAKE_CURRENT_BINARY_DIR}/gui_poincare)
 set_tests_properties(gui_poincare PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "gui")
 
+# The Poincare section at a chosen phase (--phi0, --then-phi0) against the CLI's, and its session key
+# (gui_phase.sh says what it checks).
+if(TARGET impactlab)
+  add_test(NAME gui_phase
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_phase.sh $<TARGET_FILE:impactlab-gui>
+                   $<TARGET_FILE:impactlab> ${CMAKE_CURRENT_BINARY_DIR}/gui_phase)
+  set_tests_properties(gui_phase PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240 LABELS "gui")
+endif()
+
 # The Poincare map's period label on both sides of the first period doubling, from rest and after a live
 # omega change (gui_doubling.sh says what it checks).
 add_test(NAME gui_doubling

@@ -190,6 +190,49 @@ TEST_CASE("engine: an omega change keeps phi continuous; step one period stops a
     CHECK(e.state().t - t0 == doctest::Approx(2 * std::numbers::pi / 15.0).epsilon(1e-9));
 }
 
+TEST_CASE("engine: the section phase changes live: a new epoch, sections at phi0 from then on, steps to them") {
+    constexpr double kTau = 2 * std::numbers::pi;
+    const auto phase_of = [&](const SimMsg& m) { return m.phi - kTau * std::floor(m.phi / kTau + 1e-12); };
+    VectorSink sink;
+    EngineConfig cfg = config("A1H", 9.0);
+    cfg.phi0 = 1.0;   // --phi0: from the start, no change of epoch
+    SimEngine e(cfg, &sink);
+    CHECK(e.section_phase() == 1.0);
+    e.advance_to(3.0);
+    CHECK(e.epoch() == 0);
+    for (const SimMsg& m : sink.of(MsgKind::Section)) CHECK(phase_of(m) == doctest::Approx(1.0).epsilon(1e-9));
+    CHECK(sink.count(MsgKind::Section) == 5);   // phi(3) = 27 rad: 1, 1 + 2 pi, ..., 1 + 8 pi
+
+    const double t = e.state().t, x = e.state().x, v = e.state().v;
+    REQUIRE(e.apply(SimCommand::section_phase(4.0)));
+    CHECK(e.epoch() == 1);
+    CHECK(e.section_phase() == 4.0);
+    CHECK(e.state().t == t);   // the run goes on: only the section instants change
+    CHECK(e.state().x == x);
+    CHECK(e.state().v == v);
+    CHECK(sink.msgs.back().epoch == 1);
+    REQUIRE(e.apply(SimCommand::section_phase(4.0)));   // the slider resends its value: nothing new
+    CHECK(e.epoch() == 1);
+    for (double bad : {-0.1, 7.0, std::nan("")}) CHECK_FALSE(e.apply(SimCommand::section_phase(bad)));
+    CHECK(e.section_phase() == 4.0);
+
+    sink.msgs.clear();
+    e.advance_to(6.0);
+    REQUIRE(sink.count(MsgKind::Section) >= 4);
+    for (const SimMsg& m : sink.of(MsgKind::Section)) {
+        CHECK(m.epoch == 1);
+        CHECK(phase_of(m) == doctest::Approx(4.0).epsilon(1e-9));
+    }
+    // Step one period ends on the next section of the new phase.
+    REQUIRE(e.apply(SimCommand::step_period()));
+    e.advance_to(1e9);
+    CHECK(e.phi() - kTau * std::floor(e.phi() / kTau) == doctest::Approx(4.0).epsilon(1e-9));
+    // The companion cart starts with the cart's sections.
+    SimEngine ghost(config("A1G", 9.0));
+    REQUIRE(ghost.restart_from(e, "A1G", 0.0));
+    CHECK(ghost.section_phase() == 4.0);
+}
+
 TEST_CASE("engine: reset returns to t = 0 with the given state; clamps out-of-range commands") {
     SimEngine e(config("A1H", 9.0));
     e.advance_to(2.0);

@@ -94,6 +94,17 @@ impactlab_cli_test(simulate_negative_x0 --rc 0 --csv X.csv "t,x,v,phi,regime" 10
                    -- simulate --model A1C --omega 9 --duration 1 --dt 0.01 --x0 -0.011 --v0 -0.05 --out X.csv)
 impactlab_cli_test(poincare_csv --rc 0 --csv P.csv "n,x,v" 5 5
                    -- poincare --model A1H --omega 18 --periods 5 --out P.csv)
+impactlab_cli_test(poincare_phi0_csv --rc 0 --csv P.csv "n,x,v" 5 5
+                   -- poincare --model A1H --omega 18 --periods 5 --phi0 2.5 --out P.csv)
+impactlab_cli_test(poincare_phi0_above_2pi --rc 2 --match "'--phi0'" --match "outside \\[0, 6.28319\\]" --absent P.csv
+                   -- poincare --omega 18 --periods 5 --phi0 7 --out P.csv)
+impactlab_cli_test(poincare_phi0_negative --rc 2 --match "'--phi0'" --match "outside" --absent P.csv
+                   -- poincare --omega 18 --periods 5 --phi0 -0.5 --out P.csv)
+impactlab_cli_test(poincare_phi0_not_a_number --rc 2 --match "'--phi0'" --match "'90deg' is not a finite number"
+                   -- poincare --omega 18 --periods 5 --phi0 90deg --out P.csv)
+impactlab_cli_test(help_poincare_phi0 --rc 0 --match "--phi0 RAD" -- poincare --help)
+add_test(NAME cli.poincare_phase COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/poincare_phase.sh $<TARGET_FILE:impactlab>)
+set_tests_properties(cli.poincare_phase PROPERTIES LABELS cli TIMEOUT 120)
 impactlab_cli_test(bifurcation_csv --rc 0 --csv B.csv "omega,x,v" 9 9
                    -- bifurcation --sweep up --steps 3 --omega-min 5 --omega-max 6 --transient 2 --record 3
                       --out B.csv)

@@ -13,8 +13,10 @@
 #include "impactlab/forces.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/simulator.hpp"
+#include "coasting.hpp"
 
 using namespace impactlab;
+using impactlab::testing::harmonic;
 
 namespace {
 
@@ -70,20 +72,6 @@ Params conservative_a1(const char* version = "A1H") {
     p.T = 0;
     p.m0e = 0;
     p.xI = 0.05;
-    return p;
-}
-
-// A linear oscillator m x'' + k x = 0 (omega0 = 10 rad/s), everything else off, bumper at 0.
-Params harmonic(const char* version, double xI = 0.0) {
-    Params p = make_version(version);
-    p.m = 1.0;
-    p.k = 100.0;
-    p.a = {};
-    p.b = {};
-    p.c = 0;
-    p.T = 0;
-    p.m0e = 0;
-    p.xI = xI;
     return p;
 }
 

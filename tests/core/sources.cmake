@@ -10,6 +10,7 @@ set(IMPACTLAB_CORE_TEST_SOURCES
   core/equilibria_test.cpp
   core/impact_test.cpp
   core/sweep_test.cpp
+  core/section_phase_test.cpp
   core/plot_test.cpp
   core/raster_test.cpp
   core/input_file_test.cpp

@@ -121,7 +121,10 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
     // The fit, in the data area Plot::begin will lay out (its margins): the newest point's ring stays off
     // the frame, and a band at the top for the label and the legend (a second line when they do not fit
     // side by side) stays free of points.
-    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    // A row under the plot for the section's phase, unless the tile is too small to spare it.
+    ImVec2 avail = ImGui::GetContentRegionAvail();
+    const bool phase_row = avail.y > 8.0f * ImGui::GetFrameHeightWithSpacing();
+    if (phase_row) avail.y -= ImGui::GetFrameHeightWithSpacing();
     const double area_w = avail.x - fs * 4.4f, area_h = avail.y - fs * 2.8f;
     // Replaying, the map is that of the replayed instant, and says so.
     char when[48] = "";
@@ -288,7 +291,18 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
     if (ImGui::BeginPopup("##poincare_menu")) {
         if (ImGui::MenuItem("Clicker: each click starts an orbit in its own colour", nullptr, clicker_)) clicker_ = !clicker_;
         if (ImGui::MenuItem("Clear the orbits", nullptr, false, !orbits_.empty())) orbits_.clear();
+        if (ImGui::MenuItem("Section at φ = 2πn (phase 0)", nullptr, false, ctx.section_phase != 0.0)) act.section_phase = 0.0;
         ImGui::EndPopup();
+    }
+    if (phase_row) {
+        float phi0 = static_cast<float>(ctx.section_phase);
+        char fmt[64];
+        std::snprintf(fmt, sizeof fmt, "section φ0 = %%.2f rad (%.0f°)", ctx.section_phase * 360.0 / kTwoPi);
+        ImGui::SetNextItemWidth(-1);
+        if (ImGui::SliderFloat("##phi0", &phi0, 0.0f, static_cast<float>(kTwoPi), fmt))
+            act.section_phase = std::clamp(static_cast<double>(phi0), 0.0, kTwoPi);
+        tooltip("The section's phase: a point each time the unbalance passes φ = φ0 + 2πk (0: the stroboscopic\n"
+                "section). A change starts the map afresh and clears the clicker's orbits.");
     }
     return act;
 }

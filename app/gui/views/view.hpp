@@ -34,6 +34,7 @@ struct ViewContext {
     double omega = 0, speed = 1;                 // asked for [rad/s], the speed factor
     double xI = 0;                               // [m] the slider's bumper position
     double xI_shown = 0;                         // [m] where the simulation has it (travelling to xI)
+    double section_phase = 0;                    // [rad] the Poincare section's phase phi0 asked for
     bool paused = false, sim_paused = false;     // asked for; what the simulation says
     bool replay = false;                         // the panels show a replayed instant
     float ui_scale = 1;
@@ -55,6 +56,7 @@ struct ViewAction {
     std::optional<std::pair<double, double>> set_state;   // start from (x, v) [m, m/s]
     std::optional<double> hold;                           // hold the cart at x [m] (dragged in the rig)
     std::optional<std::pair<double, double>> start_orbit; // the Poincare clicker: a new orbit from (x, v) at a section
+    std::optional<double> section_phase;                  // the Poincare section's phase phi0 [rad], 0 .. 2 pi
 };
 
 // The companion's colour in every plot (magenta: apart from the cart's trace, the sections and the bumper).

@@ -11,7 +11,8 @@
 
 namespace impactlab {
 
-// One revolution of the unbalance [rad]: the Poincare sections sit at phi = 2 pi i.
+// One revolution of the unbalance [rad]: the Poincare sections sit at phi = phi0 + 2 pi i (phi0 = 0 unless
+// Simulator::set_section_phase says otherwise).
 inline constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 class Drive {

@@ -26,7 +26,7 @@ struct State {
     double v_release = 0;                // regime II: the velocity v+ it ends with [m/s]
     double v_impact = 0;                 // regime II: the velocity v- of the impact in progress [m/s]
     double h = 0;                        // next step-size guess [s]; 0 lets the simulator choose
-    std::int64_t next_section = 1;       // i of the next Poincare section phi = 2 pi i
+    std::int64_t next_section = 1;       // n of the next Poincare section (Simulator::section_phi)
     std::int8_t side = 0;                // compliant bumper: +1 in contact, -1 clear, 0 unknown
     std::uint64_t steps = 0, rejected = 0, impacts = 0;
     double t_mark = 0;                   // the step budget's last checkpoint: time and steps + rejected there
@@ -38,6 +38,8 @@ struct State {
 struct SimulationStalled : std::runtime_error { using std::runtime_error::runtime_error; };
 inline constexpr std::uint64_t kStallWindow = 1u << 16;   // steps between two checks of the step budget
 
+// n counts the unbalance's revolutions: section n is the one in phi in (2 pi (n - 1), 2 pi n]
+// (Simulator::section_phi), so a run from phi = 0 meets sections 1, 2, ... whatever the section phase.
 struct SectionPoint { std::int64_t n; double t, x, v; Regime regime; };
 struct ImpactEvent { double t, v_minus, v_plus, duration; };
 
@@ -67,6 +69,18 @@ public:
     const Tolerances& tolerances() const { return tol_; }
     void set_tolerances(const Tolerances& tol) { tol_ = tol; }
 
+    // The Poincare section phase phi0 [rad], 0 <= phi0 <= 2 pi (2 pi is 0): sections at phi = phi0 + 2 pi k.
+    // An analysis setting, not physics: it changes which instants on_section reports, never the
+    // trajectory. Throws std::invalid_argument outside the range. Default 0: the stroboscopic phi = 2 pi n.
+    // Changed mid-run, sync_sections(d, s) must follow: the revolution running may have its new section ahead.
+    void set_section_phase(double phi0);
+    double section_phase() const { return phi0_; }
+    // The phase of section n: 2 pi n for phi0 = 0 (or 2 pi), else 2 pi (n - 1) + phi0; either way the
+    // last section at or before phi = 2 pi n, so sync_sections (which counts revolutions) needs no phase.
+    double section_phi(std::int64_t n) const { return kTwoPi * static_cast<double>(n) - psi_; }
+    // When the next section after s.t comes under drive d (infinite for a drive that stops short of it).
+    double next_section_time(const Drive& d, const State& s) const;
+
     // Makes a state consistent with the parameters and the drive: a rigid bumper never has the cart beyond
     // xI (it is put on the bumper, in regime III if the normal force presses it there, else I); compliant
     // models only know regime I; the next Poincare section is the first after state.t.
@@ -77,8 +91,9 @@ public:
     // compliant bumper already pressed h deep keeps that depth (a move by zero changes nothing).
     // Then make_consistent settles the regime.
     static void move_bumper(Params& p, const Drive& d, State& s, double xI);
-    // After a change of drive only: the next section becomes the first phi = 2 pi n after s.t; a regime II
-    // or III in progress carries over.
+    // After a change of drive only: the next section becomes that of the first revolution ending after s.t
+    // (step() passes over it if the section phase put it at or before s.t); a regime II or III in
+    // progress carries over.
     static void sync_sections(const Drive& d, State& s);
 
     // One piece: an accepted integration step, a located event, or a stretch held at the bumper; never
@@ -94,6 +109,8 @@ private:
     void release(const Params& p, const Drive& d, State& s, double v_plus, Observer* obs);
     void check_step_budget(State& s) const;
     Tolerances tol_;
+    double phi0_ = 0;   // the section phase [rad]
+    double psi_ = 0;    // 2 pi - phi0 (0 for phi0 = 0): how far section n lies before phi = 2 pi n [rad]
     DenseStep work_, retry_;
     // First-same-as-last cache of the explicit method: f at (fsal_t_, fsal_y_).
     bool fsal_valid_ = false, in_advance_ = false;

@@ -110,9 +110,12 @@ Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress = n
 Diagram run_ef_ramp(const Params& p, const EfSpec& spec, Progress* progress = nullptr, const Tolerances& tol = {},
                     Observer* extra = nullptr);
 
-// Poincare section at constant omega: `transient` periods discarded, then `periods` points recorded.
+// Poincare section at constant omega, the drive's phase 0 at state.t: `transient` periods discarded, then
+// `periods` points recorded at phi = phi0 + 2 pi k (Simulator::set_section_phase: 0 <= phi0 <= 2 pi, else
+// std::invalid_argument), n = 1 + transient, ...; the state is left at the last of them.
 std::vector<SectionPoint> poincare_section(const Params& p, double omega, int periods, int transient, State& state,
-                                           const Tolerances& tol = {}, Progress* progress = nullptr);
+                                           const Tolerances& tol = {}, Progress* progress = nullptr,
+                                           double phi0 = 0.0);
 
 // Distinct values among the recorded section points at one omega (period detection, tests, README):
 // the number of clusters of x closer than `tol` [m]; returns record+1 if it exceeds max_period.
