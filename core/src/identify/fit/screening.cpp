@@ -118,6 +118,21 @@ void select_effects(FitSession& fs) {
     std::vector<std::size_t>& chosen = sel.chosen;
     std::vector<double>& step_gain = sel.step_gain;
     std::vector<bool> cand_used(cands.size(), false);
+    // A group's coefficients fitted on top of the columns chosen so far: its instance with them, and the
+    // coefficients (a base change's is its first).
+    auto fitted_on_cur = [&](const Group& g, Eigen::VectorXd& beta) {
+        std::vector<int> cols = cur;
+        cols.insert(cols.end(), g.cols.begin(), g.cols.end());
+        double cv, in;
+        cv_sse(folds, cols, cv, in, &beta);
+        EffectInstance inst = g.inst;
+        const Candidate& c = cands[g.cand];
+        if (!c.base)
+            for (std::size_t li = 0; li < c.linear.size(); ++li)
+                inst.p[static_cast<std::size_t>(c.free[static_cast<std::size_t>(c.linear[li])])] +=
+                    beta[static_cast<Eigen::Index>(cur.size() + li)];
+        return inst;
+    };
     for (int round = 0; round < o.max_effects; ++round) {
         struct Eval {
             std::size_t g;
@@ -164,22 +179,11 @@ void select_effects(FitSession& fs) {
         if (round == 0)
             for (const auto& e : evals) {
                 // Its parameters fitted alone on the baseline residual: sign and size, selected or not.
-                const Group& g = groups[e.g];
-                const Candidate& c = cands[g.cand];
-                std::vector<int> cols = cur;
-                cols.insert(cols.end(), g.cols.begin(), g.cols.end());
-                double cv, in;
+                const Candidate& c = cands[groups[e.g].cand];
                 Eigen::VectorXd beta;
-                cv_sse(folds, cols, cv, in, &beta);
-                if (c.base) {
-                    rep.candidates.push_back({c.id, e.gain_in, e.z, false, {{c.param, beta[static_cast<Eigen::Index>(cur.size())]}}, e.gain_cv});
-                    continue;
-                }
-                EffectInstance inst = g.inst;
-                for (std::size_t li = 0; li < c.linear.size(); ++li)
-                    inst.p[static_cast<std::size_t>(c.free[static_cast<std::size_t>(c.linear[li])])] +=
-                        beta[static_cast<Eigen::Index>(cur.size() + li)];
-                rep.candidates.push_back({c.id, e.gain_in, e.z, false, named(inst), e.gain_cv});
+                const EffectInstance inst = fitted_on_cur(groups[e.g], beta);
+                if (c.base) rep.candidates.push_back({c.id, e.gain_in, e.z, false, {{c.param, beta[static_cast<Eigen::Index>(cur.size())]}}, e.gain_cv});
+                else rep.candidates.push_back({c.id, e.gain_in, e.z, false, named(inst), e.gain_cv});
             }
         const Eval* lib = nullptr;
         const Eval* gen = nullptr;
@@ -261,18 +265,9 @@ void select_effects(FitSession& fs) {
             }
         if (rival && std::find(picks.begin(), picks.end(), rival) == picks.end()) {
             // With its coefficients fitted in the named effects' place.
-            const Group& g = groups[rival->g];
-            const Candidate& c = cands[g.cand];
-            std::vector<int> cols = cur;
-            cols.insert(cols.end(), g.cols.begin(), g.cols.end());
-            double cv, in;
             Eigen::VectorXd beta;
-            cv_sse(folds, cols, cv, in, &beta);
-            Rival rv{{}, rival->g, g.inst, rival->z};
+            Rival rv{{}, rival->g, fitted_on_cur(groups[rival->g], beta), rival->z};
             for (const Eval* pick : picks) rv.named.push_back(pick->g);
-            for (std::size_t li = 0; li < c.linear.size(); ++li)
-                rv.generic_inst.p[static_cast<std::size_t>(c.free[static_cast<std::size_t>(c.linear[li])])] +=
-                    beta[static_cast<Eigen::Index>(cur.size() + li)];
             sel.rivals.push_back(std::move(rv));
         }
         const bool pair = picks.size() == 2;
