@@ -261,6 +261,9 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
     const ImVec2 lp(plot.area_min().x + 6, plot.area_min().y + 4);
     plate_text(plot.draw(), lp, label, pal.title_text);
     if (legend) {   // right-aligned, beside the label or on the line below it
+        // A narrow tile (a large UI scale) takes the short title, or the dots alone, rather than clip it.
+        const float room = plot.area_max().x - plot.area_min().x - 12, dots = legend_w - ImGui::CalcTextSize(legend_title).x;
+        if (dots + ImGui::CalcTextSize(legend_title).x > room) legend_title = dots + ImGui::CalcTextSize("impacts").x <= room ? "impacts" : "";
         float x = plot.area_max().x - 6;
         const float y = two_lines ? lp.y + fs + 4 : lp.y;
         for (int cat = 3; cat >= 0; --cat) {
