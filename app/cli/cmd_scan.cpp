@@ -156,7 +156,8 @@ int cmd_scan(const std::vector<std::string>& argv) {
                 validate(q, "scan plane corner");
             }
         if (a.has("--doubling-from")) {
-            if (!a.has("--png")) throw UsageError("scan: --doubling-from draws on the PNG: give --png");
+            if (!a.has("--png") && !a.has("--curves-out"))
+                throw UsageError("scan: --doubling-from draws on the PNG or writes --curves-out: give --png or --curves-out");
             if (spec.x.param != ScanParam::Omega || spec.y.param == ScanParam::Omega)
                 throw UsageError("scan: --doubling-from needs --x omega:... and --y xI:... or m0e:...");
             const std::string v = a.str("--doubling-from", "");
@@ -175,7 +176,8 @@ int cmd_scan(const std::vector<std::string>& argv) {
             if (!a.has(flag)) continue;
             const std::string f = flag;
             const std::string what = f == "--fold-from" ? "fold" : "grazing";
-            if (!a.has("--png")) throw UsageError("scan: " + f + " draws on the PNG: give --png");
+            if (!a.has("--png") && !a.has("--curves-out"))
+                throw UsageError("scan: " + f + " draws on the PNG or writes --curves-out: give --png or --curves-out");
             if (spec.x.param != ScanParam::Omega || spec.y.param == ScanParam::Omega)
                 throw UsageError("scan: " + f + " needs --x omega:... and --y xI:... or m0e:...");
             if (what == "grazing" && !p.has_bumper()) throw UsageError("scan: --grazing-from needs a model with a bumper");

@@ -253,6 +253,10 @@ impactlab_cli_test(scan_grazing_fold_auto --rc 0 --match "grazing curve: started
                       --grazing-from auto --fold-from auto --png p.png --out p.csv)
 impactlab_cli_test(scan_curves_out_alone --rc 2 --match "--curves-out writes the continued curves" --absent p.csv
                    -- scan --model A1G --x omega:9.5:9.7:3 --y xI:-0.0045:-0.004:2 --out p.csv --curves-out c.csv)
+# The curves' points alone, without a PNG to draw them on.
+impactlab_cli_test(scan_fold_curve_points_only --rc 0 --match "fold curve: [1-9][0-9]* points" --csv p.csv "omega,xI,period" 6 6
+                   -- scan --model A1G --xI -0.004 --x omega:9.4:9.6:3 --y xI:-0.0045:-0.004:2 --transient 2 --record 4 --threads 1
+                      --fold-from 9.548943,-0.0157368,0.00230387 --curves-out c.csv --out p.csv)
 impactlab_cli_test(scan_fold_curve --rc 0 --match "fold curve: [0-9]+ points, ends: xI range / xI range" --csv p.csv "omega,xI,period" 6 6
                    -- scan --model A1G --xI -0.004 --x omega:9.4:9.6:3 --y xI:-0.0045:-0.004:2 --transient 2 --record 4 --threads 1
                       --fold-from 9.548943,-0.0157368,0.00230387 --png p.png --out p.csv)
