@@ -148,6 +148,24 @@ TEST_CASE("curves: A1G's fold of the impacting period-1 orbit followed in xI is 
     CHECK(checked == 1);
 }
 
+TEST_CASE("curves: started on continue's fold at xI = -3.5 mm, where the monodromy is noisy, the fold curve starts") {
+    // Near its grazing the fold's det(M - I) keeps a noise of ~3e-5 while omega stands still to 1e-10: the
+    // Newton once ran out of steps there and the curve was "lost" at its own start.
+    Params p = make_version("A1G");
+    p.xI = -0.0035;
+    const BifCurve c = continue_fold_curve(p, ContParam::XI, 9.69923488501, Vec2(-0.0159455019081, -7.99497499868e-05), 1, -0.004,
+                                           -0.003, 2.5e-4);
+    CHECK(c.end == "xI range / xI range");
+    bool at_start = false;
+    for (const CurvePoint& q : c.points)
+        if (q.q == -0.0035) {
+            at_start = true;
+            CHECK(std::abs(q.omega - 9.69923488501) < 1e-6);   // continue's fold there
+        }
+    CHECK(at_start);
+    CHECK(c.points.size() >= 5);
+}
+
 TEST_CASE("curves: a cancel is seen between the curve's steps, and the curve comes back marked cancelled") {
     const Params p = make_version("A1C");
     const Vec2 y0(-0.0142521, -0.0499209);

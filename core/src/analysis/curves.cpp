@@ -72,6 +72,7 @@ Located fold_newton(const Params& p, double omega, Vec2 y, int period, const Tol
         F = Eigen::Vector3d((m.y[0] - yy[0]) / kXScale, (m.y[1] - yy[1]) / kVScale, (m.M - Mat2::Identity()).determinant());
         return F.allFinite();
     };
+    int settled = 0;   // Newton steps in a row that left omega where it was
     try {
         for (int it = 0; it < 25; ++it) {
             Eigen::Vector3d F;
@@ -100,6 +101,14 @@ Located fold_newton(const Params& p, double omega, Vec2 y, int period, const Tol
             y += Vec2(d[0], d[1]);
             omega += d[2];
             if (!(omega > 0) || std::abs(d[2]) > 1.0) return r;
+            // Near a grazing the monodromy's noise keeps det(M - I) at ~3e-5 (A1G, xI = -3.5 mm) while omega
+            // stands still: an orbit that is a fixed point, with omega's step below 1e-9 twice running and the
+            // determinant within its noise, is the fold.
+            settled = std::abs(d[2]) < 1e-9 && std::abs(F[0]) < 1e-9 && std::abs(F[1]) < 1e-9 && std::abs(F[2]) / ds < 1e-3 ? settled + 1 : 0;
+            if (settled >= 2) {
+                r = {true, omega, y};
+                return r;
+            }
         }
     } catch (const std::exception&) {
     }
