@@ -83,7 +83,7 @@ int cmd_continue(const std::vector<std::string>& argv) {
         ProgressBar bar("continue " + p.name, progress);
         r = analysis::continue_orbits(p, spec, &progress);
     }
-    const char* pname = analysis::cont_param_name(spec.param);
+    const char* pname = sweep_param_name(spec.param);
     br << "branch," << pname << ",x,v,period,stable\n";
     for (const auto& b : r.branches)
         for (const auto& q : b.points)

@@ -314,7 +314,7 @@ int cmd_scan(const std::vector<std::string>& argv) {
     std::vector<ScanCurve> curves;
     std::vector<std::pair<const char*, analysis::BifCurve>> followed;   // for --curves-out
     // Each curve continued along the y axis at half its grid step, drawn over the maps.
-    const analysis::ContParam second = spec.y.param == ScanParam::XI ? analysis::ContParam::XI : analysis::ContParam::M0e;
+    const analysis::ContParam second = spec.y.param;   // xI or m0e (checked with the curves' flags)
     const double step = 0.5 * (spec.y.hi - spec.y.lo) / std::max(1, spec.y.n - 1);
     auto add_curve = [&](const char* what, const char* label, analysis::BifCurve c, bool dashed, bool dotted) {
         ScanCurve sc;

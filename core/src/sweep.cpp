@@ -91,15 +91,17 @@ double level_value(const CfLevel& lv, SweepParam s) {
     return s == SweepParam::Omega ? lv.omega : s == SweepParam::XI ? lv.xI : lv.m0e;
 }
 
+double& level_value(CfLevel& lv, SweepParam s) {
+    return s == SweepParam::Omega ? lv.omega : s == SweepParam::XI ? lv.xI : lv.m0e;
+}
+
 std::vector<CfLevel> sweep_levels(const Params& p, const ParamSweep& s) {
     std::vector<CfLevel> levels(static_cast<std::size_t>(std::max(s.steps, 0)));
     for (int j = 0; j < s.steps; ++j) {
         const double u = s.steps == 1 ? s.lo : s.lo + (s.hi - s.lo) * j / (s.steps - 1);
         CfLevel& lv = levels[static_cast<std::size_t>(j)];
         lv = {s.omega, p.xI, p.m0e};
-        if (s.over == SweepParam::Omega) lv.omega = u;
-        else if (s.over == SweepParam::XI) lv.xI = u;
-        else lv.m0e = u;
+        level_value(lv, s.over) = u;
     }
     if (s.direction == SweepDirection::Down) std::reverse(levels.begin(), levels.end());
     return levels;

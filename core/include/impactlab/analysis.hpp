@@ -129,8 +129,8 @@ bool first_impact(const Params& p, double omega, const Vec2& y, int k, const Tol
 
 // ---- Continuation -----------------------------------------------------------------------------------------
 
-enum class ContParam : std::uint8_t { Omega, XI, M0e };
-const char* cont_param_name(ContParam c);   // "omega", "xI", "m0e"
+// The parameter a branch is continued in: the one a CF sweep or a scan axis moves (sweep_param_name names it).
+using ContParam = SweepParam;
 
 enum class BifKind : std::uint8_t { Fold, PeriodDoubling, NeimarkSacker, Grazing };
 const char* bif_kind_name(BifKind k);       // "fold", "period_doubling", "neimark_sacker", "grazing"

@@ -69,6 +69,7 @@ struct EfSpec {
 // One level of a CF-style sweep: the forcing frequency and the parameters a parameter plane varies.
 struct CfLevel { double omega, xI, m0e; };
 double level_value(const CfLevel& lv, SweepParam s);   // lv.omega, lv.xI or lv.m0e
+double& level_value(CfLevel& lv, SweepParam s);
 
 // A CF sweep of one parameter from lo to hi (in its SI units) over `steps` levels: value_j = lo + (hi - lo)
 // j / (steps - 1), j = 0..steps-1 (reversed going down); the other two are the model's, and omega is `omega`

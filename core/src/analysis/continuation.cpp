@@ -19,15 +19,6 @@
 
 namespace impactlab::analysis {
 
-const char* cont_param_name(ContParam c) {
-    switch (c) {
-        case ContParam::Omega: return "omega";
-        case ContParam::XI: return "xI";
-        case ContParam::M0e: return "m0e";
-    }
-    return "?";
-}
-
 const char* bif_kind_name(BifKind k) {
     switch (k) {
         case BifKind::Fold: return "fold";
@@ -209,7 +200,7 @@ void Continuer::follow(const Job& job, Branch& br) {
                     // has a nearly singular M - I, and the corrector fails where the damped Newton of
                     // find_orbit still converges: restart a little further on at fixed q, the same branch.
                     if (restart(cur, t, k, ds, skipped)) continue;
-                    end = "Newton failed near " + std::string(cont_param_name(spec_.param)) + " = " +
+                    end = "Newton failed near " + std::string(sweep_param_name(spec_.param)) + " = " +
                           std::to_string(q_of(cur.u));
                     // An orbit about to graze: the impacting side is out of the corrector's reach (a rigid
                     // bumper, or a compliant one as stiff as C1's), the grazing itself is still located on
@@ -317,7 +308,7 @@ void Continuer::follow(const Job& job, Branch& br) {
             first = false;
             const double q = q_of(next.u);
             if (q < lo || q > hi) {
-                end = std::string(cont_param_name(spec_.param)) + " range";
+                end = std::string(sweep_param_name(spec_.param)) + " range";
                 break;
             }
             pts.push_back(point_of(next, k));

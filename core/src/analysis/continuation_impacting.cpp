@@ -106,7 +106,7 @@ void Continuer::follow_impacting(const Job& job, Branch& br) {
         if (!correct_impacting(z + ds * t, t, k, zn, Jn, sec)) {
             ds *= 0.5;
             if (ds < spec_.ds_min) {
-                end = "Newton failed (impact to impact) near " + std::string(cont_param_name(spec_.param)) + " = " +
+                end = "Newton failed (impact to impact) near " + std::string(sweep_param_name(spec_.param)) + " = " +
                       std::to_string(q_of(z));
                 break;
             }
@@ -132,19 +132,19 @@ void Continuer::follow_impacting(const Job& job, Branch& br) {
                 if (q.kind == BifKind::Grazing && std::abs(q.param - bp.param) < 1e-5 * q_scale_) known = true;
             if (!known) result_.points.push_back(bp);
             reached_.push_back(bp.param);
-            end = "grazing at " + std::string(cont_param_name(spec_.param)) + " = " + std::to_string(bp.param) +
+            end = "grazing at " + std::string(sweep_param_name(spec_.param)) + " = " + std::to_string(bp.param) +
                   " (the impacts end)";
             break;
         }
         const double q = q_of(zn);
-        if (q < lo || q > hi) { end = std::string(cont_param_name(spec_.param)) + " range"; break; }
+        if (q < lo || q > hi) { end = std::string(sweep_param_name(spec_.param)) + " range"; break; }
         // The same orbit on the real map: one impact per k periods and a fixed point of P^k. Otherwise the
         // flight crosses xI in between (a second impact) and the orbit is not the rig's.
         Sol sp;
         sp.u = u_of(sec, q);
         sp.r = map(sp.u, k, true);
         if (sp.r.impacts != 1 || scaled_norm(sp.r.y - sec) > 1e-5) {
-            end = "the impacting orbit is no longer admissible near " + std::string(cont_param_name(spec_.param)) +
+            end = "the impacting orbit is no longer admissible near " + std::string(sweep_param_name(spec_.param)) +
                   " = " + std::to_string(q) + " (its flight crosses xI)";
             break;
         }

@@ -166,7 +166,7 @@ BifCurve follow_curve(const Params& p, BifKind kind, const char* what, ContParam
             }
             const double q = first ? q0 : prev.q + dir * h;
             if (q > hi + 1e-12 * std::abs(hi) || q < lo - 1e-12 * std::abs(lo)) {
-                ends[side] = std::string(cont_param_name(second)) + " range";
+                ends[side] = std::string(sweep_param_name(second)) + " range";
                 break;
             }
             q_ref = q;
@@ -185,7 +185,7 @@ BifCurve follow_curve(const Params& p, BifKind kind, const char* what, ContParam
                     h *= 0.5;
                     continue;
                 }
-                ends[side] = std::string(what) + " lost near " + cont_param_name(second) + " = " + std::to_string(q);
+                ends[side] = std::string(what) + " lost near " + sweep_param_name(second) + " = " + std::to_string(q);
                 break;
             }
             pts.push_back({at.omega, q, at.y});

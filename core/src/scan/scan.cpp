@@ -108,13 +108,8 @@ private:
 
 CfLevel level_at(const Params& p, const ScanSpec& spec, int i, int row) {
     CfLevel lv{spec.omega, p.xI, p.m0e};
-    auto set = [&](ScanParam which, double v) {
-        if (which == ScanParam::Omega) lv.omega = v;
-        else if (which == ScanParam::XI) lv.xI = v;
-        else lv.m0e = v;
-    };
-    set(spec.y.param, spec.y.at(row));
-    set(spec.x.param, spec.x.at(i));
+    level_value(lv, spec.y.param) = spec.y.at(row);
+    level_value(lv, spec.x.param) = spec.x.at(i);
     return lv;
 }
 
