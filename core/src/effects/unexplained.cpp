@@ -26,10 +26,13 @@ struct Value { double S, dS; };
 Value spline(const double* p, double s) {
     const double lo = p[0], hi = p[1];
     if (!(hi > lo)) return {0.0, 0.0};
+    // A state that is not a number (a trial model the integrator cannot follow) has no interval: its force is
+    // NaN, which stalls the simulation, never an index out of the coefficients.
+    if (std::isnan(s)) return {s, s};
     const double h = (hi - lo) / 3.0, ih = 1.0 / h;
     const bool inside = s > lo && s < hi;
     const double t = (std::clamp(s, lo, hi) - lo) * ih;   // in [0, 3]
-    const int i = std::min(2, static_cast<int>(t));
+    const int i = std::clamp(static_cast<int>(t), 0, 2);
     const double f = t - i, g = 1.0 - f, f2 = f * f, g2 = g * g;
     // Basis i .. i+3 at u = f + 1, f, f - 1, f - 2 (the kernel above, piece by piece).
     const double b0 = g2 * g / 6.0, b1 = 2.0 / 3.0 - f2 + 0.5 * f2 * f, b2 = 2.0 / 3.0 - g2 + 0.5 * g2 * g, b3 = f2 * f / 6.0;
