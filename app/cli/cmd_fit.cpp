@@ -178,6 +178,10 @@ int cmd_fit(const std::vector<std::string>& argv) {
     for (const auto& g : r.gate) std::printf("final gate: %s\n", g.c_str());
     std::printf("final gate passed: %s\n", r.gate_passed.c_str());
     std::printf("verdict: %s\n", r.verdict.c_str());
+    for (const auto& bp : r.base_estimates) std::printf("base parameter %s = %.6g +/- %.2g\n", bp.name.c_str(), bp.value, bp.sigma);
+    for (const auto& u : r.unseparated)
+        std::printf("the data do not separate %s and %s (correlation %.4f): they pin %s %s %s = %.6g +/- %.2g\n", u.a.c_str(), u.b.c_str(),
+                    u.correlation, u.a.c_str(), u.ratio ? "/" : "*", u.b.c_str(), u.value, u.sigma);
     for (const auto& w : r.data_wells)
         std::printf("run %zu's own well (from its data): %s, %.4g +/- %.2g Hz, local k2 %.3g +/- %.2g\n", w.run + 1,
                     w.side.empty() ? "side unclear" : w.side.c_str(), w.omega / (2 * 3.141592653589793), w.somega / (2 * 3.141592653589793),
@@ -212,7 +216,8 @@ int cmd_fit(const std::vector<std::string>& argv) {
     };
     row("residual RMS " + fu, b.residual_rms_N, eb.residual_rms_N, e.residual_rms_N);
     row("shooting RMS 1 period " + xu, b.shooting_rms_1_m, eb.shooting_rms_1_m, e.shooting_rms_1_m);
-    row("shooting RMS 10 periods " + xu, b.shooting_rms_10_m, eb.shooting_rms_10_m, e.shooting_rms_10_m);
+    row("shooting RMS 10 periods " + xu + (r.past_horizon(10.0) ? " *" : ""), b.shooting_rms_10_m, eb.shooting_rms_10_m,
+        e.shooting_rms_10_m);
     if (b.shooting_rms_judge_m >= 0 && r.horizon_periods != 1.0 && r.horizon_periods != 10.0) {
         char name[80];
         std::snprintf(name, sizeof name, "shooting RMS %.3g periods %s", r.horizon_periods, xu.c_str());
@@ -224,7 +229,22 @@ int cmd_fit(const std::vector<std::string>& argv) {
         row("impact law bumper level offset [m]", b.impact.level_offset_m, eb.impact.level_offset_m, e.impact.level_offset_m);
     }
     if (b.diagram_distance_m >= 0) row("diagram distance [m]", b.diagram_distance_m, eb.diagram_distance_m, e.diagram_distance_m);
-    if (b.simulation_rms_m >= 0) row("free-run simulation RMS", b.simulation_rms_m, eb.simulation_rms_m, e.simulation_rms_m);
+    if (b.simulation_rms_m >= 0)
+        row(std::string("free-run simulation RMS") + (r.past_horizon(INFINITY) ? " *" : ""), b.simulation_rms_m, eb.simulation_rms_m,
+            e.simulation_rms_m);
+    if (b.attractor_x_w1 >= 0) {
+        row("attractor x distance / std", b.attractor_x_w1, eb.attractor_x_w1, e.attractor_x_w1);
+        row("attractor v distance / std", b.attractor_v_w1, eb.attractor_v_w1, e.attractor_v_w1);
+        if (r.data_well_changes_per_s >= 0) {
+            char name[80];
+            std::snprintf(name, sizeof name, "well changes /s (record %.3g)", r.data_well_changes_per_s);
+            row(name, b.attractor_wells_per_s, eb.attractor_wells_per_s, e.attractor_wells_per_s);
+        }
+        if (b.attractor_spectrum_db >= 0) row("spectrum RMS difference [dB]", b.attractor_spectrum_db, eb.attractor_spectrum_db, e.attractor_spectrum_db);
+    }
+    if (r.past_horizon(1.0) || r.past_horizon(10.0) || r.past_horizon(INFINITY))
+        std::printf("* past the record's predictability horizon (%.3g periods): printed, not judged; the attractor judges there\n",
+                    r.data_horizon_periods);
     if (b.test_simulation_rms_m >= 0)
         row("free-run simulation RMS (test)", b.test_simulation_rms_m, eb.test_simulation_rms_m, e.test_simulation_rms_m);
     if (b.test_shooting_rms_m >= 0) row("shooting RMS (test) " + xu, b.test_shooting_rms_m, eb.test_shooting_rms_m, e.test_shooting_rms_m);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -130,17 +131,22 @@ void in_range(const std::string& src, const std::string& key, double v) {
 }
 
 // A law's force sampled over the rail, speeds and forcing a rig can reach: finite, and below kMaxLawForce.
+// A model in its record's units (x_extent > 0) is sampled over its own extent, speeds scaled alike, and its
+// forces need only be finite: a ceiling in newtons means nothing in strain or volts.
 template <class ForceAt>
-void bounded_force(const std::string& src, const std::string& key, ForceAt force_at) {
+void bounded_force(const std::string& src, const std::string& key, ForceAt force_at, double x_extent = 0.0) {
     static constexpr double speeds[] = {-10.0, -1.0, -0.1, -1e-3, 0.0, 1e-3, 0.1, 1.0, 10.0};
+    const double X = x_extent > 0 ? x_extent : kRailHalfTravel, scale = X / kRailHalfTravel;
+    const double ceiling = x_extent > 0 ? std::numeric_limits<double>::max() : kMaxLawForce;
     for (int i = 0; i <= 40; ++i) {
-        const double x = -kRailHalfTravel + 5e-3 * i;
-        for (const double v : speeds)
+        const double x = -X + X / 20.0 * i;
+        for (const double v0 : speeds)
             for (int j = 0; j < 8; ++j) {
+                const double v = v0 * scale;
                 const double phi = kTwoPi * j / 8;
                 for (const double omega : {0.0, 10.0, 100.0, 1000.0}) {
                     const double F = force_at(x, v, phi, omega);
-                    if (!(std::abs(F) <= kMaxLawForce)) {
+                    if (!(std::abs(F) <= ceiling)) {
                         std::ostringstream what;
                         what << "gives a force of " << F << " N at x = " << x << " m, v = " << v << " m/s, phi = " << phi
                              << ", omega = " << omega << " rad/s; no law on the rig exceeds " << kMaxLawForce
@@ -157,6 +163,7 @@ void validate(const Params& p, const std::string& src) {
     const std::pair<const char*, double> base[] = {{"m", p.m}, {"m0e", p.m0e}, {"c", p.c},   {"T", p.T},
                                                    {"eps", p.eps}, {"k", p.k},   {"xI", p.xI}, {"input_gain", p.input_gain}};
     for (const auto& [key, v] : base) in_range(src, key, v);
+    if (!(p.x_extent >= 0.0) || !std::isfinite(p.x_extent)) fail(src, "x_extent", "must be >= 0 (0: the rail)", p.x_extent);
     for (int i = 0; i < 4; ++i) finite(src, "a[" + std::to_string(i) + "]", p.a[i]);
     for (int i = 0; i < 4; ++i) finite(src, "b[" + std::to_string(i) + "]", p.b[i]);
     // The denominator of Eq. (3) must not vanish on the rail (|x| <= 0.1 m): sample it.
@@ -169,11 +176,12 @@ void validate(const Params& p, const std::string& src) {
         if (!std::isfinite(den * den))
             fail(src, "b", "makes the denominator of F_SA overflow on |x| <= 0.1 m at x = " + std::to_string(x), den);
     }
-    bounded_force(src, "a", [&](double x, double, double, double) { return spring_magnet(p, x).F; });
+    bounded_force(src, "a", [&](double x, double, double, double) { return spring_magnet(p, x).F; }, p.x_extent);
     for (int i = 0; i <= 1000; ++i) {
-        const double x = -kRailHalfTravel + 2e-4 * i, slope = spring_magnet(p, x).dF;
+        const double X = p.x_extent > 0 ? p.x_extent : kRailHalfTravel;
+        const double x = -X + X / 500.0 * i, slope = spring_magnet(p, x).dF;
         if (!std::isfinite(slope))
-            fail(src, "a", "makes the slope of F_SA overflow on |x| <= 0.1 m at x = " + std::to_string(x), slope);
+            fail(src, "a", "makes the slope of F_SA overflow on |x| <= " + std::to_string(X) + " at x = " + std::to_string(x), slope);
     }
     if (!p.impact) throw ParamError(src + ": no impact model");
     const std::string ik = std::string("impact.");
@@ -189,9 +197,9 @@ void validate(const Params& p, const std::string& src) {
         const std::string ek = std::string("effects.") + e.law->id;
         for (std::size_t i = 0; i < kMaxLawParams && e.law->names[i]; ++i) finite(src, ek + "." + e.law->names[i], e.p[i]);
         if (e.law->kind != EffectKind::Force) continue;
-        bounded_force(src, ek, [&](double x, double v, double phi, double omega) {
-            return e.law->force(e.p.data(), {0.0, x, v, phi, omega, 0.0, p.m0e, p.xI}).F;
-        });
+        bounded_force(
+            src, ek, [&](double x, double v, double phi, double omega) { return e.law->force(e.p.data(), {0.0, x, v, phi, omega, 0.0, p.m0e, p.xI}).F; },
+            p.x_extent);
     }
 }
 

@@ -166,7 +166,7 @@ Params params_from_json_text(const std::string& text, const std::string& src) {
         json::sax_parse(text, &keys);
         if (!keys.duplicate.empty()) fail(src, "key '" + keys.duplicate + "' appears twice (JSON would keep the last silently)");
     }
-    check_keys(j, {"name", "base", "stiffness", "m", "m0e", "k", "c", "T", "eps", "a", "b", "xI", "input_gain", "impact",
+    check_keys(j, {"name", "base", "stiffness", "m", "m0e", "k", "c", "T", "eps", "a", "b", "xI", "input_gain", "x_extent", "impact",
                    "effects"},
                "", src);
 
@@ -208,6 +208,7 @@ Params params_from_json_text(const std::string& text, const std::string& src) {
     read_coeffs(j, "b", p.b, required, src);
     read(j, "xI", p.xI, required, "", src);
     read(j, "input_gain", p.input_gain, false, "", src);   // optional: 0 (no sampled input) by default
+    read(j, "x_extent", p.x_extent, false, "", src);       // optional: 0 (the rail) by default
 
     if (j.contains("impact")) {
         const json& im = j["impact"];
@@ -281,6 +282,7 @@ std::string params_to_json_text(const Params& p) {
     for (double v : p.b) j["b"].push_back(v);
     j["xI"] = p.xI;
     if (p.input_gain != 0.0) j["input_gain"] = p.input_gain;
+    if (p.x_extent != 0.0) j["x_extent"] = p.x_extent;
     json im;
     im["model"] = p.impact->id;
     for (std::size_t i = 0; i < kMaxLawParams && p.impact->names[i]; ++i) im[p.impact->names[i]] = p.ip[i];

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -31,6 +32,9 @@ enum class Forcing { Unbalance, Input };   // phi drives m0e phi'^2 sin(phi); or
 struct Model {
     Params p;               // p.input_gain: the force per unit of u; impact model "none": no bumper
     Forcing forcing = Forcing::Unbalance;
+    // Starting values only (resolve_fit_model's "duffing"), not a model of any rig: the fit judges its changes
+    // against the baseline it fits, never against these.
+    bool placeholder = false;
     bool bumper() const { return p.has_bumper(); }
     // The measurement map x_measured = sensor_gain * c(x) + sensor_offset, from the sensor_* effects; c is
     // the identity unless a curved sensor effect bends the scale.
@@ -112,6 +116,10 @@ struct ErrorSummary {
     double test_shooting_rms_m = -1;
     // Shooting over windows as long as the held-out judge's (the judging horizon); < 0: not computed.
     double shooting_rms_judge_m = -1;
+    // The free run's attractor against the record's (input-forced data), what judges a chaotic record past its
+    // predictability horizon; < 0: not computed. Distances of the x and v distributions (Wasserstein-1 over
+    // the record's std), the model's well changes per second, the spectra's RMS difference [dB].
+    double attractor_x_w1 = -1, attractor_v_w1 = -1, attractor_wells_per_s = -1, attractor_spectrum_db = -1;
 };
 
 // What showed an effect: the equation error (a force law) or the impacts (an impact law).
@@ -195,6 +203,20 @@ const char* baseline_name(Baseline b);   // "fixed", "fit"
 // the data's own units, which the report names as such.
 enum class FitUnits { Metres, DataUnits };
 
+// A base parameter written, with its standard error from the equation error (inf: the data do not see it).
+struct BaseEstimate {
+    std::string name;
+    double value = 0, sigma = 0;
+};
+// Two base parameters the data do not separate (correlation beyond 0.98): what they pin is their ratio a/b
+// (correlated) or their product a*b (anticorrelated), with its standard error.
+struct UnseparatedPair {
+    std::string a, b;
+    double correlation = 0;
+    bool ratio = true;
+    double value = 0, sigma = 0;
+};
+
 struct FitReport {
     std::string data_source, model_name, forcing;
     Baseline baseline = Baseline::Fixed;
@@ -213,6 +235,10 @@ struct FitReport {
     // exponent it implies [1/s]; not measured on records too short for it.
     bool data_horizon_measured = false, data_regular = false;
     double data_horizon_periods = 0, data_lambda = 0;
+    // Whether a trajectory error over `periods` forcing periods lies past the record's predictability horizon
+    // (a chaotic record): printed, never judged.
+    bool past_horizon(double periods) const { return data_horizon_measured && !data_regular && data_horizon_periods < periods; }
+    double data_well_changes_per_s = -1;   // the record's passages between two wells; < 0: one well (or phi-forced)
     std::size_t validation_windows = 0;
     double validation_rms_before_m = 0, validation_rms_after_m = 0;   // held-out shooting RMS
     std::vector<CandidateScore> candidates;
@@ -245,6 +271,10 @@ struct FitReport {
     std::string wells_from_data;
     std::string gate_passed;
     std::vector<std::string> gate_within;   // printed errors that rose, within their scatter (said beside the table)
+    // The fitted base parameters of the model written, with their standard errors, and the pairs the data
+    // do not separate (empty for a fixed baseline).
+    std::vector<BaseEstimate> base_estimates;
+    std::vector<UnseparatedPair> unseparated;
 };
 
 // The sensor noise of a uniformly sampled record [its units]: the smaller of the MAD of its 4th differences
@@ -305,6 +335,36 @@ void steps_profile(const std::vector<double>& omegas, double plateau, double ram
 }  // namespace impactlab::identify
 
 namespace impactlab::identify {
+
+// The randomized benchmark of the loop (benchmark.cpp): `records` records drawn from families of effects the
+// library has no name for (polynomials in x and v of any symmetry, mixed x-v terms, narrow bumps, piecewise
+// springs, a cycling stiffness, pairs) and a null family (every seventh), over versions, regimes and noise
+// levels, each fitted with the version's parameters fixed. Deterministic for a seed.
+struct IdentifyBenchRecord {
+    std::string family, version, regime;
+    double noise = 0;
+    std::vector<std::string> allowed, named;   // library ids whose physics is in the record; ids the fit named
+    bool null_family = false;
+    bool false_claim = false;   // a named (not generic) law that is not in the data
+    bool better = false;        // 1-period shooting down 3x, or to 1.5x the noise
+    bool honest = false;        // the noise floor claimed exactly when the model written is at the noise
+    bool before_at_floor = false;
+    double before = 0, after = 0, runtime_s = 0;
+    std::string error;          // the fit's error, if it failed
+};
+struct IdentifyBenchOptions {
+    int records = 200;
+    unsigned seed = 1;
+    double duration = 30.0;     // [s] per record, at 1 kHz
+    const std::atomic<bool>* cancel = nullptr;
+    std::function<void(int done, int total, const IdentifyBenchRecord& last)> progress;
+};
+struct IdentifyBenchResult {
+    std::vector<IdentifyBenchRecord> rows;
+    double false_claim_rate = 0, better_rate = 0, honest_rate = 0;
+    std::size_t null_claims = 0, null_records = 0, better_records = 0, errors = 0;
+};
+IdentifyBenchResult run_identify_bench(const IdentifyBenchOptions& options);
 
 // The recovery matrix: an effect injected by synth into a version at a moderate strength, and what the loop
 // makes of it. Recovered when the effect is named first, its parameter lies within 3 sigma of the truth,

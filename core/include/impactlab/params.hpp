@@ -157,6 +157,10 @@ struct Params {
     std::array<double, 4> b{};      // b2, b4, b6, b8
     double xI = 0.0;                // bumper position [m]
     double input_gain = 0.0;        // force per unit of a sampled input u(t) [N per unit of u] (Drive::input)
+    // Where the model's laws are checked (|x| <= x_extent, in the model's own unit of x); 0: the rail,
+    // |x| <= 0.1 m, with forces a rail can take. A model in a record's units (strain, volts) carries the
+    // extent of its record, and its forces are checked for being finite there, with no ceiling in newtons.
+    double x_extent = 0.0;
     const ImpactModel* impact = nullptr;            // never null in a valid Params
     std::array<double, kMaxLawParams> ip{};         // impact law parameters (impact->names order)
     std::vector<EffectInstance> effects;            // extra force laws (identify/, effects/)

@@ -83,6 +83,7 @@ Model resolve_fit_model(const std::string& name, Forcing forcing) {
         m.p.xI = 0.0;
         m.p.input_gain = 1.0;
         m.forcing = Forcing::Input;
+        m.placeholder = true;
         return m;
     }
     m.p = resolve_model(name);
@@ -297,6 +298,24 @@ std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& nam
         out.push_back({n, p, std::max(1e-6 * std::abs(*p), 1e-9)});
     }
     return out;
+}
+
+double base_scale(const std::string& name, const Prep& pr, const Model& m) {
+    const double f = pr.f_typ > 0 ? pr.f_typ : 1.0, x = pr.x_typ > 0 ? pr.x_typ : 1.0, v = pr.v_typ > 0 ? pr.v_typ : 1.0;
+    const double w = pr.period > 0 ? kTwoPi / pr.period : 1.0;
+    double s = 1.0;
+    if (name == "k" || name == "a1") s = f / x;
+    else if (name == "a3") s = f / (x * x * x);
+    else if (name == "a5") s = f / (x * x * x * x * x);
+    else if (name == "c") s = f / v;
+    else if (name == "T") s = f;
+    else if (name == "gain") s = pr.u_typ > 0 ? f / pr.u_typ : 1.0;
+    else if (name == "m0e") s = f / (w * w);
+    else if (name == "m") s = m.p.m;
+    else if (name == "b2") s = 1.0 / (x * x);
+    else if (name == "b4") s = 1.0 / (x * x * x * x);
+    else if (name == "xI") s = x;
+    return std::isfinite(s) && s > 0 ? s : 1.0;
 }
 
 namespace {

@@ -84,8 +84,14 @@ PrintedErrors printed_errors(const Prep& pr, const Model& m, const FitOptions& o
     pe.e.push_back(squares_by_block(kErrResidual, static_cast<std::size_t>(pe.R.size()),
                                     [&](std::size_t i) { return pe.R[static_cast<Eigen::Index>(i)]; }));
     pr.check_cancel();
+    // A chaotic record's trajectory errors judge only within its predictability horizon; past it they are
+    // printed as such and the attractor's statistics judge.
+    const Prep::Predictability& dh = pr.predictability;
+    const bool chaotic = dh.measured && !dh.regular;
     pe.e.push_back(shooting_error(kErrShoot1, pr, m, 1.0, o));
+    pe.e.back().decides = !chaotic || dh.periods >= 1.0;
     pe.e.push_back(shooting_error(kErrShoot10, pr, m, 10.0, o));
+    pe.e.back().decides = !chaotic || dh.periods >= 10.0;
     if (judge_periods > 0 && judge_periods != 1.0 && judge_periods != 10.0)
         pe.e.push_back(shooting_error(kErrShootJudge, pr, m, judge_periods, o));
     pr.check_cancel();
@@ -158,12 +164,21 @@ PrintedErrors printed_errors(const Prep& pr, const Model& m, const FitOptions& o
         const std::vector<double> fr = free_run(pr, m, o.rtol);
         const MeasuredData& data = *pr.data;
         pe.e.push_back(squares_by_block(kErrFree, pr.n, [&](std::size_t i) { return fr[i] - data.x[i]; }));
+        pe.e.back().decides = !chaotic;
+        // The attractor judges a chaotic record; a regular one's free run is the stricter test, so there the
+        // statistics are printed only.
+        pe.attractor = attractor_stats(pr, fr);
+        for (PrintedError& a : attractor_errors(pe.attractor)) {
+            a.decides = chaotic;
+            pe.e.push_back(std::move(a));
+        }
     }
     if (test) {
         pr.check_cancel();
         const std::vector<double> fr = free_run(*test, m, o.rtol);
         const MeasuredData& td = *test->data;
         pe.e.push_back(squares_by_block(kErrTestFree, test->n, [&](std::size_t i) { return fr[i] - td.x[i]; }));
+        pe.e.back().decides = !chaotic;
         pe.e.push_back(shooting_error(kErrTestShoot, *test, m, judge_periods > 0 ? judge_periods : 1.0, o));
     }
     return pe;
@@ -173,7 +188,7 @@ GateCheck gate_check(const PrintedErrors& given, const PrintedErrors& cand, doub
     GateCheck g;
     for (const PrintedError& ref : given.e) {
         const PrintedError* c = cand.find(ref.name);
-        if (!c) continue;
+        if (!c || !ref.decides) continue;
         double vr = ref.value(), vc = c->value();
         if (!std::isfinite(vr)) continue;   // the given model could not be simulated here: nothing to be worse than
         char buf[320];

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "impactlab/drive.hpp"
+#include "impactlab/rosenbrock.hpp"
 #include "impactlab/identify.hpp"
 
 namespace impactlab::identify::detail {
@@ -66,6 +67,9 @@ struct Prep {
     std::size_t n = 0;
     double dt = 0, sigma_x = 0, period = 0, drive_rms = 0;
     double x_span = 0;                       // the record's extent, 0.5 % to 99.5 % quantiles of x
+    // The record's own scales (its units, whatever they are): half its extent, its RMS speed and input, and
+    // the inertial force m a they imply. Steps, floors and ceilings are set from them, never absolutely.
+    double x_typ = 0, v_typ = 0, u_typ = 0, f_typ = 0;
     bool phi_forced = true;
     // One drive per run (MeasuredData::run_starts): omega(t) fitted to the run's phi, or its input u(t).
     std::vector<Drive> drives;
@@ -165,11 +169,14 @@ struct LsqOptions {
     int max_iterations = 30;
     double function_tolerance = 1e-9;   // stop when an iteration lowers the cost by less than this share
     double huber_delta = 0;             // > 0: Huber loss with this scale on each residual (outliers, saturated samples)
+    long max_evaluations = 0;           // residual evaluations (a Jacobian costs one per knob); 0: 2 (knobs + 2) per iteration
+    double max_seconds = 0;             // wall clock, a safety net for evaluations that turn slow; 0: none
 };
 struct LsqSummary {
     double initial_cost = 0, final_cost = 0;   // |R|^2
     int iterations = 0;
     bool converged = false;
+    bool budget_spent = false;                 // ended by its budget, at the best point reached
 };
 // Bounded Levenberg-Marquardt (Ceres) over the knobs, each clamped to [lo, hi]; leaves the knobs at the
 // solution, the residual there in R and, if J is given, its forward-difference Jacobian dR/dknob.
@@ -255,6 +262,8 @@ std::string wells_asymmetry(const std::vector<RunWell>& wells, const std::string
 // embedding with the forcing, followed forward (Rosenstein); the doubling time of their mean separation.
 using DataHorizon = Prep::Predictability;
 DataHorizon data_horizon(const Prep& pr);
+// The integrator's tolerances for the fit's simulations of model m on record pr (shooting.cpp).
+Tolerances fit_tolerances(const Prep& pr, const Model& m, double rtol);
 // Free run over the whole record from the first usable sample: simulated measurement at every sample
 // (NaN before the start).
 std::vector<double> free_run(const Prep& pr, const Model& m, double rtol);
@@ -292,14 +301,45 @@ struct PrintedError {
     double resolution = 0;      // the least change of the value the data resolve
     double quantum = 0;         // a unit's own quantum (an impact's dwell: one sample): a one-quantum change of one unit
     bool missing_fails = true;  // a unit only the given model has counts against the other (not so for impacts)
+    // Past the record's predictability horizon a trajectory error is printed but judges nothing: any model
+    // diverges there, the right one too, and the attractor's statistics judge instead.
+    bool decides = true;
     double value() const;       // NaN when no unit is finite
 };
+// ---- attractor.cpp ------------------------------------------------------------------------------------
+inline constexpr const char* kErrHistX = "attractor: x distribution, Wasserstein / std x";
+inline constexpr const char* kErrHistV = "attractor: v distribution, Wasserstein / std v";
+inline constexpr const char* kErrWells = "attractor: well changes per second, |ln ratio|";
+inline constexpr const char* kErrSpectrum = "attractor: power spectrum, RMS dB";
+// Two wells in a record's x: a dip in its histogram below half of both humps; the hilltop at the dip and a
+// band of 15 % of the humps' distance on either side, which a passage must cross to count as a well change.
+struct WellBand {
+    bool found = false;
+    double hilltop = 0, band = 0;
+};
+WellBand well_band(const std::vector<double>& x);
+std::size_t well_changes(const std::vector<double>& x, double mid, double band);
+std::size_t well_changes(const std::vector<double>& x, const WellBand& wb);
+// A free run's statistics against the record's, by blocks of the samples both define (from sample `from`):
+// the distance between the x and v distributions (Wasserstein-1 over the record's std), the well changes'
+// rate (|ln| of the ratio), and the spectrum's RMS difference in dB over the band the record has power in.
+struct AttractorStats {
+    bool ok = false, wells_found = false;
+    std::vector<double> hist_x, hist_v, wells, spectrum_db;   // one per block
+    double rate_data = 0, rate_sim = 0;                        // well changes per second
+    static double mean(const std::vector<double>& v);
+};
+AttractorStats attractor_stats(const Prep& pr, const std::vector<double>& sim, std::size_t from = 0);
+// The same as errors the final gate compares, one unit per block (all missing for a run that stalled).
+std::vector<PrintedError> attractor_errors(const AttractorStats& st);
+
 // Every error the report prints for one model, with what the plots need of the same runs.
 struct PrintedErrors {
     std::vector<PrintedError> e;
     Eigen::VectorXd R;                     // the equation error at pr.rows
     PredictedImpacts pred;
     std::vector<std::pair<double, double>> diagram, diagram_measured;
+    AttractorStats attractor;              // the free run's (input-forced data)
     const PrintedError* find(const std::string& name) const;
     double value(const char* name) const {
         const PrintedError* p = find(name);
@@ -307,6 +347,8 @@ struct PrintedErrors {
     }
 };
 PrintedErrors printed_errors(const Prep& pr, const Model& m, const FitOptions& o, double judge_periods, const Prep* test);
+
+
 // Whether `cand` is worse than `given` on any printed error: a rise of the printed value beyond z_tol times
 // its scatter over the paired units (two standard errors; visible at four significant digits), or a unit it
 // cannot simulate.
@@ -383,6 +425,9 @@ struct BaseParam {
     double step;
 };
 std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& names);
+// A base parameter's natural size in the record's units: the change that moves its force by the record's
+// typical force f_typ where x, v and u take their typical sizes (k by f/x, a3 by f/x^3, c by f/v, ...).
+double base_scale(const std::string& name, const Prep& pr, const Model& m);
 std::vector<std::string> default_fit_params(const Model& m);
 
 }  // namespace impactlab::identify::detail

@@ -5,6 +5,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "identify/internal.hpp"
@@ -33,6 +34,9 @@ public:
     bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
         const double* x = parameters[0];
         const auto p = knobs_.size();
+        // Past the budget every evaluation fails at once, and the callback below ends the solve.
+        if (exhausted()) return false;
+        ++evaluations_;
         for (std::size_t k = 0; k < p; ++k) *knobs_[k].value = x[k];
         if (!(eval_(R_) < INFINITY) || R_.size() != num_residuals()) return false;
         robust(R_);
@@ -41,6 +45,7 @@ public:
             // Row-major num_residuals x p, as Ceres wants it.
             Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(jacobians[0], num_residuals(),
                                                                                                  static_cast<Eigen::Index>(p));
+            evaluations_ += static_cast<long>(p);
             for (std::size_t k = 0; k < p; ++k) {
                 const double h = step_of_(knobs_[k], x[k]);
                 *knobs_[k].value = x[k] + h;
@@ -55,6 +60,18 @@ public:
     }
     // 0: the plain residuals (the Jacobian handed back to the caller is of those).
     void set_huber(double delta) { huber_ = delta; }
+    // The budget: at most `evaluations` residual evaluations and `seconds` of wall clock (0: none). The count
+    // is what bounds a fit on any machine; the clock only stops one whose every evaluation has become slow.
+    void set_budget(long evaluations, double seconds) {
+        max_evaluations_ = evaluations;
+        max_seconds_ = seconds;
+        start_ = std::chrono::steady_clock::now();
+    }
+    bool exhausted() const {
+        if (max_evaluations_ > 0 && evaluations_ >= max_evaluations_) return true;
+        return max_seconds_ > 0 && std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() > max_seconds_;
+    }
+    long evaluations() const { return evaluations_; }
 
 private:
     void robust(Eigen::VectorXd& r) const {
@@ -66,7 +83,23 @@ private:
     const ResidualFn& eval_;
     const StepFn& step_of_;
     double huber_;
+    mutable long evaluations_ = 0;
+    long max_evaluations_ = 0;
+    double max_seconds_ = 0;
+    std::chrono::steady_clock::time_point start_;
     mutable Eigen::VectorXd R_, Rt_;
+};
+
+// Ends the solve, keeping its best point, once the cost function's budget is spent.
+class BudgetCallback : public ceres::IterationCallback {
+public:
+    explicit BudgetCallback(const KnobCost& cost) : cost_(cost) {}
+    ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+        return cost_.exhausted() ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
+    }
+
+private:
+    const KnobCost& cost_;
 };
 
 }  // namespace
@@ -103,10 +136,20 @@ LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const
     so.num_threads = 1;   // results must not depend on the machine; the residuals are cheap to split anyway
     so.logging_type = ceres::SILENT;
     so.minimizer_progress_to_stdout = false;
+    // Every solve has a budget: by default what its iterations need with every step retried once (a Jacobian
+    // and two trial points per iteration), so a fit ends on any record, however its model behaves.
+    const long p = static_cast<long>(knobs.size());
+    cost->set_budget(o.max_evaluations > 0 ? o.max_evaluations : 2L * (p + 2) * std::max(1, o.max_iterations), o.max_seconds);
+    BudgetCallback budget(*cost);
+    so.callbacks.push_back(&budget);
+    so.update_state_every_iteration = true;
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
     out.iterations = static_cast<int>(summary.iterations.size());
     out.converged = summary.termination_type == ceres::CONVERGENCE;
+    out.budget_spent = cost->exhausted();
+    // The knobs at the best point Ceres accepted (the parameter block holds it, budget or not).
+    cost->set_budget(0, 0);
     for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = x[k];
     out.final_cost = eval(R);
     if (J) {

@@ -37,6 +37,11 @@ json errors_json(const ErrorSummary& e) {
     if (e.test_simulation_rms_m >= 0) j["test_simulation_rms_m"] = num(e.test_simulation_rms_m);
     if (e.test_shooting_rms_m >= 0) j["test_shooting_rms_m"] = num(e.test_shooting_rms_m);
     if (e.shooting_rms_judge_m >= 0) j["shooting_rms_judge_m"] = num(e.shooting_rms_judge_m);
+    if (e.attractor_x_w1 >= 0)
+        j["attractor"] = {{"x_wasserstein_per_std", num(e.attractor_x_w1)},
+                          {"v_wasserstein_per_std", num(e.attractor_v_w1)},
+                          {"well_changes_per_s", e.attractor_wells_per_s >= 0 ? num(e.attractor_wells_per_s) : json(nullptr)},
+                          {"spectrum_rms_db", e.attractor_spectrum_db >= 0 ? num(e.attractor_spectrum_db) : json(nullptr)}};
     return j;
 }
 
@@ -265,6 +270,16 @@ std::string markdown(const FitReport& r, bool with_plots) {
         for (const auto& f : r.effects_rejected) md << "- **" << f.id << "**: " << f.reason << ".\n";
         md << "\n";
     }
+    if (!r.base_estimates.empty()) {
+        md << "## The base parameters written, with what the data tell of them\n\nStandard errors from the equation error (its "
+              "variance and correlation time); inf: the data do not see the parameter.\n\n| parameter | value | standard error |\n|---|---|---|\n";
+        for (const auto& b : r.base_estimates) md << "| " << b.name << " | " << g3(b.value, "%.6g") << " | " << g3(b.sigma, "%.2g") << " |\n";
+        for (const auto& u : r.unseparated)
+            md << "\nThe data do not separate " << u.a << " and " << u.b << " (correlation " << g3(u.correlation, "%.4f")
+               << "): what they pin is " << u.a << (u.ratio ? " / " : " * ") << u.b << " = " << g3(u.value, "%.6g") << " +/- "
+               << g3(u.sigma, "%.2g") << "; neither value alone is a finding.\n";
+        md << "\n";
+    }
     if (!r.data_wells.empty()) {
         const bool m = r.metres();
         md << "## Each run's well, measured from its data\n\nA local force law per unit mass, a + c v + k x + k2 x^2 + k3 x^3 - F0 = "
@@ -331,8 +346,11 @@ std::string markdown(const FitReport& r, bool with_plots) {
     const double xs = metres ? 1e3 : 1.0;
     const std::string xu = metres ? "mm" : r.x_unit();
     row(std::string("residual RMS [") + r.force_unit() + "]", [](const ErrorSummary& e) { return e.residual_rms_N; }, 1, "%.4g");
-    row("shooting RMS, 1 period [" + xu + "]", [](const ErrorSummary& e) { return e.shooting_rms_1_m; }, xs, "%.4g");
-    row("shooting RMS, 10 periods [" + xu + "]", [](const ErrorSummary& e) { return e.shooting_rms_10_m; }, xs, "%.4g");
+    const char* past = " (past the horizon: printed, not judged)";
+    row("shooting RMS, 1 period [" + xu + "]" + (r.past_horizon(1.0) ? past : ""), [](const ErrorSummary& e) { return e.shooting_rms_1_m; },
+        xs, "%.4g");
+    row("shooting RMS, 10 periods [" + xu + "]" + (r.past_horizon(10.0) ? past : ""),
+        [](const ErrorSummary& e) { return e.shooting_rms_10_m; }, xs, "%.4g");
     if (b.shooting_rms_judge_m >= 0 && r.horizon_periods != 1.0 && r.horizon_periods != 10.0)
         row("shooting RMS, " + g3(r.horizon_periods) + " periods (the judging horizon) [" + xu + "]",
             [](const ErrorSummary& e) { return e.shooting_rms_judge_m; }, xs, "%.4g");
@@ -344,7 +362,19 @@ std::string markdown(const FitReport& r, bool with_plots) {
     if (b.diagram_distance_m >= 0)
         row("diagram distance (mean per omega bin) [mm]", [](const ErrorSummary& e) { return e.diagram_distance_m; }, 1e3, "%.4g");
     if (b.simulation_rms_m >= 0)
-        row("free-run simulation RMS (as measured)", [](const ErrorSummary& e) { return e.simulation_rms_m; }, 1, "%.4g");
+        row(std::string("free-run simulation RMS (as measured)") + (r.past_horizon(INFINITY) ? past : ""),
+            [](const ErrorSummary& e) { return e.simulation_rms_m; }, 1, "%.4g");
+    if (b.attractor_x_w1 >= 0) {
+        const char* judged = r.past_horizon(INFINITY) ? " (judged: the record is chaotic)" : " (printed: a regular record is judged by its free run)";
+        row(std::string("attractor: x distribution, Wasserstein / std x") + judged, [](const ErrorSummary& e) { return e.attractor_x_w1; },
+            1, "%.3g");
+        row("attractor: v distribution, Wasserstein / std v", [](const ErrorSummary& e) { return e.attractor_v_w1; }, 1, "%.3g");
+        if (r.data_well_changes_per_s >= 0)
+            row("attractor: well changes per second (record: " + g3(r.data_well_changes_per_s) + ")",
+                [](const ErrorSummary& e) { return e.attractor_wells_per_s; }, 1, "%.3g");
+        if (b.attractor_spectrum_db >= 0)
+            row("attractor: power spectrum, RMS difference [dB]", [](const ErrorSummary& e) { return e.attractor_spectrum_db; }, 1, "%.3g");
+    }
     if (b.test_simulation_rms_m >= 0)
         row("free-run simulation RMS on the test rows (as measured)", [](const ErrorSummary& e) { return e.test_simulation_rms_m; }, 1,
             "%.4g");
@@ -473,6 +503,16 @@ std::string report_json_text(const FitReport& r) {
         j["data_wells"].push_back({{"run", w.run + 1}, {"side", w.side}, {"x0", num(w.x0)}, {"omega", num(w.omega)}, {"omega_sigma", num(w.somega)},
                                    {"k2", num(w.k2)}, {"k2_sigma", num(w.sk2)}, {"depth", num(w.depth)}});
     j["wells_from_data"] = r.wells_from_data;
+    j["base_parameters"] = json::array();
+    for (const auto& b : r.base_estimates) j["base_parameters"].push_back({{"name", b.name}, {"value", num(b.value)}, {"sigma", num(b.sigma)}});
+    j["unseparated"] = json::array();
+    for (const auto& u : r.unseparated)
+        j["unseparated"].push_back({{"a", u.a},
+                                    {"b", u.b},
+                                    {"correlation", num(u.correlation)},
+                                    {"pinned", u.a + (u.ratio ? " / " : " * ") + u.b},
+                                    {"value", num(u.value)},
+                                    {"sigma", num(u.sigma)}});
     j["wells_before"] = wells_json(r.wells_before);
     j["wells_after"] = wells_json(r.wells_after);
     j["units"] = {{"x", r.x_unit()}, {"force", r.force_unit()}};

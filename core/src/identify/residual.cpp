@@ -80,6 +80,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     // floor too high would pass a real residual off as noise).
     pr.sigma_x = estimate_noise(d.x);
     pr.x_span = quantile(d.x, 0.995) - quantile(d.x, 0.005);
+    pr.x_typ = std::max({0.5 * pr.x_span, 10.0 * pr.sigma_x, 1e-300});
     pr.phi_forced = d.has_phi();
     if (pr.phi_forced != (m.forcing == Forcing::Unbalance))
         throw ParamError(pr.phi_forced ? "the data are forced through phi, but the model expects an input u"
@@ -132,6 +133,20 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
         pr.vs = d.v;   // a measured velocity is used as it is (its own noise, no smoothing lag at reversals)
     } else {
         refine_reversals(d, pr);
+    }
+    {
+        double sv2 = 0, su2 = 0, cv = 0;
+        for (std::size_t i = 0; i < n; ++i)
+            if (std::isfinite(pr.vs[i])) {
+                sv2 += pr.vs[i] * pr.vs[i];
+                cv += 1;
+            }
+        for (double u : pr.u)
+            if (std::isfinite(u)) su2 += u * u;
+        pr.v_typ = cv > 0 ? std::sqrt(sv2 / cv) : 0.0;
+        if (!(pr.v_typ > 0)) pr.v_typ = pr.x_typ * kTwoPi / pr.period;
+        pr.u_typ = pr.u.empty() ? 0.0 : std::sqrt(su2 / static_cast<double>(pr.u.size()));
+        pr.f_typ = std::max(m.p.m * pr.v_typ * kTwoPi / pr.period, 1e-300);
     }
     pr.zone.assign(n, 0);
     // Nothing reaches across the start of a run: the smoothers' and the kernel's reach around it is left out.

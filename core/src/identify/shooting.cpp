@@ -36,9 +36,7 @@ private:
 void run(const Prep& pr, const Model& m, std::size_t i0, std::size_t i1, double x, double v, double rtol,
          std::vector<double>& out) {
     const MeasuredData& d = *pr.data;
-    Tolerances tol;
-    tol.rtol = rtol;
-    Simulator sim(tol);
+    Simulator sim(fit_tolerances(pr, m, rtol));
     State s;
     s.t = d.t[i0];
     s.x = x;
@@ -70,6 +68,18 @@ double sse(const Prep& pr, const Model& m, std::size_t i0, const std::vector<dou
 
 }  // namespace
 
+Tolerances fit_tolerances(const Prep& pr, const Model& m, double rtol) {
+    Tolerances tol;
+    tol.rtol = rtol;
+    // The rig's defaults are in metres; a model in its record's units (strain, volts) takes the record's own
+    // scales, so the integrator's error is the same share of the signal in any unit.
+    if (m.p.stiffness_id == "duffing" && pr.x_typ > 0 && pr.v_typ > 0) {
+        tol.x_scale = pr.x_typ;
+        tol.v_scale = pr.v_typ;
+    }
+    return tol;
+}
+
 std::size_t usable_start(const Prep& pr, std::size_t i, std::size_t limit) {
     while (i < limit && (pr.zone[i] || !std::isfinite(pr.xs[i]) || !std::isfinite(pr.vs[i]))) ++i;
     return i;
@@ -92,7 +102,7 @@ std::vector<double> simulate_window(const Prep& pr, const Model& m, std::size_t 
     };
     double best_sse = fit_sse(best);
     if (refine) {
-        const double dx = std::max(1e-7, 0.3 * pr.sigma_x), dv = dx / std::max(pr.dt * 10, 1e-4);
+        const double dx = std::max(1e-5 * pr.x_typ, 0.3 * pr.sigma_x), dv = dx / (pr.dt * 10);
         std::vector<double> sx, sv, trial, e;
         for (int it = 0; it < 2; ++it) {
             sse(pr, m, i0, best, &e);
@@ -272,9 +282,7 @@ std::vector<std::pair<double, double>> free_run_sections(const Prep& pr, const M
         const std::size_t a = usable_start(pr, first, last);
         if (a + 2 >= last) continue;
         const Drive& drive = pr.drive_of(a);
-        Tolerances tol;
-        tol.rtol = rtol;
-        Simulator sim(tol);
+        Simulator sim(fit_tolerances(pr, m, rtol));
         State s;
         s.t = d.t[a];
         s.x = m.true_x(pr.xs[a]);

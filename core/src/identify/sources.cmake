@@ -19,7 +19,9 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/fit/errors.cpp
   src/identify/fit/held_out.cpp
   src/identify/fit/tools.cpp
+  src/identify/fit/uncertainty.cpp
   src/identify/gate.cpp
+  src/identify/attractor.cpp
   src/identify/horizon.cpp
   src/identify/remainder.cpp
   src/identify/features.cpp
@@ -27,6 +29,7 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/report.cpp
   src/identify/synth.cpp
   src/identify/recovery.cpp
+  src/identify/benchmark.cpp
   src/identify/wells.cpp
   src/identify/least_squares.cpp
 )

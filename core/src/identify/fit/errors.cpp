@@ -22,7 +22,7 @@ void errors_stage(FitSession& fs) {
     if (test) pt = prepare(*test, model0, o, tnotes);
     const Prep* ptp = test ? &pt : nullptr;
     const double judge = rep.horizon_periods;
-    const PrintedErrors pg = printed_errors(pr, model0, o, judge, ptp);
+    const PrintedErrors pg = printed_errors(pr, chain.front().model, o, judge, ptp);   // the model given, or the baseline for mere starting values
     // The baseline the effects are judged against too: the last baseline step not worse than the model given
     // (a fitted baseline is a change like any other). An effect must not make the model worse than either.
     std::size_t last_base = 0;
@@ -83,7 +83,7 @@ void errors_stage(FitSession& fs) {
     // The held-out RMS of the model written: the baseline's where no effect stays, else its step's.
     if (kept_step <= last_base) rep.validation_rms_after_m = rep.validation_rms_before_m;
     else if (chosen.held_out_rms_m >= 0) rep.validation_rms_after_m = chosen.held_out_rms_m;
-    if (kept_step == 0 && rep.baseline == Baseline::Fit) rep.baseline = Baseline::Fixed;
+    if (kept_step == 0 && rep.baseline == Baseline::Fit && !model0.placeholder) rep.baseline = Baseline::Fixed;
     rep.gate_passed = chosen.what;
 
     auto fill = [&](const PrintedErrors& p, ErrorSummary& e) {
@@ -101,6 +101,13 @@ void errors_stage(FitSession& fs) {
         e.simulation_rms_m = p.find(kErrFree) ? p.value(kErrFree) : -1;
         e.test_simulation_rms_m = p.find(kErrTestFree) ? p.value(kErrTestFree) : -1;
         e.test_shooting_rms_m = p.find(kErrTestShoot) ? p.value(kErrTestShoot) : -1;
+        if (p.attractor.ok) {
+            e.attractor_x_w1 = AttractorStats::mean(p.attractor.hist_x);
+            e.attractor_v_w1 = AttractorStats::mean(p.attractor.hist_v);
+            e.attractor_spectrum_db = p.attractor.spectrum_db.empty() ? -1.0 : AttractorStats::mean(p.attractor.spectrum_db);
+            if (p.attractor.wells_found) e.attractor_wells_per_s = p.attractor.rate_sim;
+            if (p.attractor.wells_found) rep.data_well_changes_per_s = p.attractor.rate_data;
+        }
     };
     fill(pg, rep.error_before);
     fill(pa, rep.error_after);
@@ -119,7 +126,7 @@ void errors_stage(FitSession& fs) {
     const Eigen::VectorXd& R1 = pa.R;
     const PredictedImpacts& pred_before = pg.pred;
     const PredictedImpacts& pred_after = pa.pred;
-    const Model& base = model0;
+    const Model& base = chain.front().model;
 
     // The material for the plots.
     {

@@ -109,7 +109,7 @@ bool baseline_predicts_better(const Prep& pr, const Model& given, const Model& f
         std::vector<std::pair<std::size_t, std::size_t>> sub;
         for (std::size_t w : sp.fold_wins[f]) sub.push_back(sp.wins[w]);
         Model mf = fitted;
-        std::vector<Knob> knobs = base_knobs(mf, names);
+        std::vector<Knob> knobs = base_knobs(mf, names, pr);
         if (sp.fold_pr[1 - f].rows.size() >= 20) {
             Eigen::VectorXd R;
             Eigen::MatrixXd J;

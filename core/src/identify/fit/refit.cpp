@@ -59,7 +59,7 @@ void refit_stage(FitSession& fs) {
             }
         }
         std::vector<Knob> knobs;
-        if (o.fit_baseline) knobs = base_knobs(after, base_names);
+        if (o.fit_baseline) knobs = base_knobs(after, base_names, pr);
         const std::size_t n_base_knobs = knobs.size();
         for (std::size_t k = 0; k < chosen.size(); ++k) {
             const Candidate& c = cands[groups[chosen[k]].cand];

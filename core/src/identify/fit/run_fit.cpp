@@ -21,8 +21,35 @@ const char* fit_stage_name(FitStage s) {
     return "?";
 }
 
-FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOptions& options, const MeasuredData* test,
+namespace {
+
+// Runs one stage; a fault inside it (an exception other than a cancel) ends the stage, not the fit: the report
+// says which stage and why, and `undo` puts back what the fit held before it.
+template <class Stage, class Undo>
+void guarded(FitSession& fs, FitStage stage, Stage&& run, Undo&& undo) {
+    try {
+        run();
+    } catch (const FitCancelled&) {
+        throw;
+    } catch (const std::exception& e) {
+        fs.rep.notes.push_back(std::string("the stage '") + fit_stage_name(stage) + "' failed (" + e.what() +
+                               "); its result is left out and the fit goes on with the model before it");
+        undo();
+    }
+}
+
+}  // namespace
+
+FitReport run_fit(const MeasuredData& data, const Model& given, const FitOptions& options, const MeasuredData* test,
                   FitProgress* progress) {
+    // A model in the record's units is checked where the record lies (twice its largest |x|), not on the rail.
+    Model model0 = given;
+    if (model0.p.stiffness_id == "duffing" && model0.p.x_extent == 0.0) {
+        double xmax = 0;
+        for (double x : data.x)
+            if (std::isfinite(x)) xmax = std::max(xmax, std::abs(x));
+        if (xmax > 0) model0.p.x_extent = 2.0 * xmax;
+    }
     FitSession fs(data, model0, options, test, progress);
     FitOptions& o = fs.o;
     fs.enter(FitStage::Prepare);
@@ -83,7 +110,17 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
             rep.baseline = Baseline::Fixed;
         }
     }
-    if (o.fit_baseline) {
+    if (o.fit_baseline && model0.placeholder) {
+        // Starting values are no model to be "not worse than": the baseline fitted to the equation error is the
+        // reference of every later change and of the final gate.
+        chain = {{"the base parameters fitted to the equation error (the model given holds starting values only)", ee_base, {}, -1, false}};
+        rep.notes.push_back("the model given (" + model0.p.name +
+                            ") holds starting values only: the errors 'before' and the final gate's reference are those of the "
+                            "baseline fitted to the equation error");
+        if (!pr.phi_forced && std::any_of(rep.notes.begin(), rep.notes.end(),
+                                          [](const std::string& n) { return n.rfind("baseline refined on the free-run", 0) == 0; }))
+            chain.push_back({"the base parameters refined on the free-run simulation error", base, {}, -1, true});
+    } else if (o.fit_baseline) {
         chain.push_back({"the base parameters fitted to the equation error", ee_base, {}, -1, true});
         if (!pr.phi_forced && rep.notes.size() && rep.notes.back().rfind("baseline refined on the free-run", 0) == 0)
             chain.push_back({"the base parameters refined on the free-run simulation error", base, {}, -1, true});
@@ -96,13 +133,19 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     fs.in0 = R0.squaredNorm();
     rep.noise_floor_N = base.p.m * pr.sigma_x * pr.K.noise_gain / base.sensor_gain();
 
+    auto no_effects = [&fs] {
+        fs.sel = Selection{};
+        fs.after = fs.base;
+        fs.rep.effects_found.clear();
+        while (fs.chain.size() > 1 && !fs.chain.back().baseline) fs.chain.pop_back();
+    };
     fs.enter(FitStage::Candidates);
     // ---- 2. candidate columns -----------------------------------------------------------------------------
-    screen_candidates(fs);
+    guarded(fs, FitStage::Candidates, [&] { screen_candidates(fs); }, [&] { fs.screen = Screen{}; });
 
     fs.enter(FitStage::Selection);
     // ---- 3. greedy selection ------------------------------------------------------------------------------
-    select_effects(fs);
+    guarded(fs, FitStage::Selection, [&] { select_effects(fs); }, no_effects);
 
     fs.enter(FitStage::Refit);
     // ---- 4. the model with the effects: linear estimates, then joint nonlinear refinement; an effect whose
@@ -119,18 +162,39 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
         sc.v_typ = av.empty() ? 0.0 : std::sqrt(s / static_cast<double>(av.size()));
         sc.x_typ = quantile(ax, 0.9);
     }
-    refit_stage(fs);
+    guarded(fs, FitStage::Refit, [&] { refit_stage(fs); }, no_effects);
     Model& after = fs.after;
 
     fs.enter(FitStage::ImpactLaw);
     // ---- 5. the impact law: bumper position, impact duration, restitution ----------------------------------
-    impact_law_stage(fs);
-    end_stop_stage(fs.prep, fs.o, fs.sc, fs.after, fs.rep);
+    {
+        const Model before_law = fs.after;
+        const FitReport rep_before = fs.rep;
+        guarded(
+            fs, FitStage::ImpactLaw,
+            [&] {
+                impact_law_stage(fs);
+                end_stop_stage(fs.prep, fs.o, fs.sc, fs.after, fs.rep);
+            },
+            [&] {
+                std::vector<std::string> notes = std::move(fs.rep.notes);
+                fs.rep = rep_before;
+                fs.rep.notes = std::move(notes);
+                fs.after = before_law;
+            });
+    }
     fs.enter(FitStage::Validation);
     // ---- 6. validation: an effect stays only if it lowers the short-horizon simulation error on data held
     //         out from its fit, by more than the windows' scatter; the final model must beat the baseline ----
-    validate_effects(fs);
-    output_error_stage(fs);
+    guarded(fs, FitStage::Validation, [&] { validate_effects(fs); }, no_effects);
+    {
+        const Model before_oe = fs.after;
+        const Chain chain_before = fs.chain;
+        guarded(fs, FitStage::Validation, [&] { output_error_stage(fs); }, [&] {
+            fs.after = before_oe;
+            fs.chain = chain_before;
+        });
+    }
 
     fs.enter(FitStage::Errors);
     // ---- 7. the final gate, errors before and after; 8. material for the plots; the verdict ------------------
@@ -140,6 +204,11 @@ FitReport run_fit(const MeasuredData& data, const Model& model0, const FitOption
     if (!rep.effects_found.empty()) after.p.name = base.p.name + "+" + rep.effects_found.front().id;
     for (std::size_t k = 1; k < rep.effects_found.size(); ++k) after.p.name += "+" + rep.effects_found[k].id;
     rep.after = after;
+    // ---- 9. what the data tell of the base parameters written (nothing changes them here) ------------------
+    guarded(fs, FitStage::Errors, [&] { uncertainty_stage(fs); }, [&] {
+        rep.base_estimates.clear();
+        rep.unseparated.clear();
+    });
     rep.runs = pr.run_start.size();
     rep.wells_before = well_report(model0, {}, pr);
     rep.data_wells = data_wells(pr, hac_lag);

@@ -22,7 +22,7 @@ void screen_candidates(FitSession& fs) {
         Model mb = base;
         const std::vector<BaseParam> bparams = base_params(mb, base_names);
         for (const auto& b : bparams) {
-            const double v0 = *b.value, h = std::max(1e-4 * std::abs(v0), 1e-6);
+            const double v0 = *b.value, h = std::max(1e-4 * std::abs(v0), 1e-4 * base_scale(b.name, pr, base));
             *b.value = v0 + h;
             residual(pr, mb, Rtmp, pw);
             *b.value = v0;

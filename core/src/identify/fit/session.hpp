@@ -129,6 +129,7 @@ void impact_law_stage(FitSession& fs);     // impact_law.cpp: 5, bumper position
 void validate_effects(FitSession& fs);     // validation.cpp: 6, held-out validation
 void output_error_stage(FitSession& fs);   // validation.cpp: 6b, the output-error refit of an input-forced record
 void errors_stage(FitSession& fs);         // errors.cpp: 7 and 8, the final gate, errors, plots, verdict
+void uncertainty_stage(FitSession& fs);    // uncertainty.cpp: 9, the base parameters' standard errors
 
 // ---- tools.cpp, held_out.cpp ----------------------------------------------------------------------------------
 // Levenberg-Marquardt on the weak-form residual over `knobs` (numerical Jacobian). Returns the final
@@ -156,7 +157,7 @@ double group_z_dss(const Eigen::MatrixXd& J, const Eigen::VectorXd& R, const std
 // Knobs for the fitted base parameters, with their physical bounds: mass, damping, friction and unbalance
 // never negative, the input gain keeps the sign it starts with, the magnets' b2 keeps F_SA's denominator
 // positive.
-std::vector<Knob> base_knobs(Model& m, const std::vector<std::string>& names);
+std::vector<Knob> base_knobs(Model& m, const std::vector<std::string>& names, const Prep& pr);
 // Knobs for the free parameters of effect instance `inst` as candidate `c` fits them, with their bounds.
 void effect_knobs(const Candidate& c, EffectInstance& inst, std::vector<Knob>& knobs);
 // A base parameter's value in model m.

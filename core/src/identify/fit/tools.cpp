@@ -110,6 +110,9 @@ void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_i
     lo.max_iterations = max_iter;
     lo.function_tolerance = 1e-7;
     lo.huber_delta = 3.0 * 1.4826 * std::max(median(a_e), 1e-300);
+    // A trial model whose free run turns slow (a stiff or nearly unstable one) must not hold the fit: the
+    // solve ends, at its best point, after a time in proportion to the samples it fits.
+    lo.max_seconds = 20.0 + 1e-3 * static_cast<double>(b - a);
     least_squares(knobs, err, step_of, lo, e);
 }
 
@@ -170,14 +173,18 @@ double group_z_dss(const Eigen::MatrixXd& J, const Eigen::VectorXd& R, const std
     return chi2_to_z(dss / std::max(s2 * tau, 1e-300), static_cast<int>(q));
 }
 
-std::vector<Knob> base_knobs(Model& m, const std::vector<std::string>& names) {
+std::vector<Knob> base_knobs(Model& m, const std::vector<std::string>& names, const Prep& pr) {
     std::vector<Knob> knobs;
+    const Model shape = m;
     for (const auto& b : base_params(m, names)) {
-        double lo = -1e12, hi = 1e12;
+        // Unbounded but for the physics (Ceres leaves a bound beyond 1e11 unset), whatever the record's units.
+        double lo = -INFINITY, hi = INFINITY;
         if (b.name == "c" || b.name == "T" || b.name == "m0e" || b.name == "m") lo = 0;
         if (b.name == "gain") (*b.value >= 0 ? lo : hi) = 0;
-        if (b.name == "b2") lo = -50;
-        knobs.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6), lo, hi, b.name});
+        if (b.name == "b2") lo = -50;   // the magnets' law is the rig's, in metres: 1 + b2 x^2 > 0 on the rail
+        // The step follows the value, or the record's own scale of the parameter when the value is near zero
+        // (a cubic started at 0 in units of 1e-4 would otherwise move no force at all).
+        knobs.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6 * base_scale(b.name, pr, shape)), lo, hi, b.name});
     }
     return knobs;
 }

@@ -45,7 +45,7 @@ void validate_effects(FitSession& fs) {
             Model mf = model_for[f];
             std::vector<Knob> knobs = found_effect_knobs(mf, base, cands);
             if (refit_base)
-                for (const Knob& k : base_knobs(mf, base_names)) knobs.push_back(k);
+                for (const Knob& k : base_knobs(mf, base_names, pr)) knobs.push_back(k);
             const Prep& fit_on = fold_pr[1 - f];
             if (!knobs.empty() && fit_on.rows.size() >= 20) {
                 Eigen::VectorXd R;
@@ -324,7 +324,7 @@ void validate_effects(FitSession& fs) {
         Model refit = cur;
         std::vector<Knob> knobs = found_effect_knobs(refit, base, cands);
         if (refit_base)
-            for (const Knob& k : base_knobs(refit, base_names)) knobs.push_back(k);
+            for (const Knob& k : base_knobs(refit, base_names, pr)) knobs.push_back(k);
         if (!knobs.empty()) {
             Eigen::VectorXd R;
             Eigen::MatrixXd J;
@@ -367,8 +367,10 @@ void output_error_stage(FitSession& fs) {
     Model& after = fs.after;
     Chain& chain = fs.chain;
     if (pr.phi_forced || !o.fit_baseline || rep.effects_found.empty()) return;
+    // Past a chaotic record's horizon the free-run error measures no model (see the baseline stage).
+    if (pr.predictability.measured && !pr.predictability.regular) return;
     Model refined = after;
-    std::vector<Knob> knobs = base_knobs(refined, base_names);
+    std::vector<Knob> knobs = base_knobs(refined, base_names, pr);
     for (const Knob& k : found_effect_knobs(refined, base, cands)) knobs.push_back(k);
     lm_simulation(pr, refined, knobs, 20, o.rtol);
     if (!unphysical(refined).empty() || !refinement_predicts_better(pr, refined, after, o.rtol)) {
