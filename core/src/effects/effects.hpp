@@ -15,6 +15,7 @@ const EffectLaw& friction_drift_law();
 const EffectLaw& stiffness_drift_law();
 const EffectLaw& unbalance_drift_law();
 const EffectLaw& even_stiffness_law();
+const EffectLaw& cubic_stiffness_law();
 const EffectLaw& linear_stiffness_law();
 const EffectLaw& viscous_damping_law();
 const EffectLaw& coulomb_friction_law();

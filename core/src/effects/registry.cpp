@@ -26,6 +26,7 @@ std::vector<EffectLaw>& table() {
             effects::stiffness_drift_law(),
             effects::unbalance_drift_law(),
             effects::even_stiffness_law(),
+            effects::cubic_stiffness_law(),
             effects::linear_stiffness_law(),
             effects::viscous_damping_law(),
             effects::coulomb_friction_law(),

@@ -10,6 +10,7 @@ set(IMPACTLAB_EFFECT_SOURCES
   src/effects/stiffness_drift.cpp
   src/effects/unbalance_drift.cpp
   src/effects/even_stiffness.cpp
+  src/effects/cubic_stiffness.cpp
   src/effects/linear_stiffness.cpp
   src/effects/viscous_damping.cpp
   src/effects/coulomb_friction.cpp
