@@ -32,6 +32,8 @@ namespace {
 struct Options {
     bool quick = false;
     bool cf = true, ef = true, fit = false, scan = false, analysis = false;
+    int identify = 0;   // records of the loop's randomized benchmark (0: not run)
+    unsigned seed = 1;
     std::vector<std::string> only;   // empty: the paper's versions
     impactlab::Tolerances tol;
 };
@@ -45,7 +47,9 @@ struct Options {
         "  --cf-only     skip the EF ramps;  --ef-only  skip the CF diagrams\n"
         "  --fit         only the measured-data loop: 300 s records at 1 kHz and a 120 s input-forced one at 2 kHz\n"
         "  --scan        only impactlab scan's thread pool: points per second on 1 thread and on every core\n"
-        "  --analysis    only the analysis jobs: Lyapunov sweep and strip, basins on 2 threads, continuation\n",
+        "  --analysis    only the analysis jobs: Lyapunov sweep and strip, basins on 2 threads, continuation\n"
+        "  --identify N  only the loop's randomized benchmark: N records of effects the library has no name for, and\n"
+        "                a null family; the rates of false claims, better models and honest verdicts (--seed S, default 1)\n",
         impactlab::Tolerances{}.rtol);
     std::exit(rc);
 }
@@ -66,6 +70,8 @@ Options parse(int argc, char** argv) {
         else if (a == "--fit") o.fit = true;
         else if (a == "--scan") o.scan = true;
         else if (a == "--analysis") o.analysis = true;
+        else if (a == "--identify") o.identify = std::stoi(value());
+        else if (a == "--seed") o.seed = static_cast<unsigned>(std::stoul(value()));
         else if (a == "-h" || a == "--help") usage(0);
         else {
             std::fprintf(stderr, "bench: unknown option '%s'\n", a.c_str());
@@ -270,8 +276,40 @@ void bench_analysis() {
     }
 }
 
+// The loop's randomized benchmark: each record's family, what the fit named, and the rates.
+int bench_identify(int n, unsigned seed) {
+    namespace id = impactlab::identify;
+    id::IdentifyBenchOptions bo;
+    bo.records = n;
+    bo.seed = seed;
+    std::printf("identify: %d records of 30 s at 1 kHz, seed %u (versions A1H A1C A1G A3G; periodic, chaotic, steps; noise 1-10 um)\n\n",
+                n, seed);
+    std::printf("%4s %-22s %-5s %-9s %8s %10s %10s %5s %5s %5s %7s  %s\n", "#", "family", "model", "regime", "noise[um]", "before[um]",
+                "after[um]", "false", "better", "honest", "wall[s]", "named");
+    bo.progress = [](int done, int, const id::IdentifyBenchRecord& r) {
+        std::string named;
+        for (const auto& x : r.named) named += (named.empty() ? "" : " ") + x;
+        if (!r.error.empty()) named = "ERROR: " + r.error;
+        std::printf("%4d %-22s %-5s %-9s %8.2f %10.3g %10.3g %5s %5s %5s %7.2f  %s\n", done, r.family.c_str(), r.version.c_str(),
+                    r.regime.c_str(), r.noise * 1e6, r.before * 1e6, r.after * 1e6, r.false_claim ? "yes" : "-",
+                    r.null_family ? "n/a" : (r.better ? "yes" : "no"), r.honest ? "yes" : "no", r.runtime_s, named.c_str());
+        std::fflush(stdout);
+    };
+    const Times t = timed([&] {
+        const id::IdentifyBenchResult res = id::run_identify_bench(bo);
+        std::printf("\nfalse physical claims: %.1f %% of %zu records; null family: %zu claims in %zu records\n",
+                    100.0 * res.false_claim_rate, res.rows.size() - res.errors, res.null_claims, res.null_records);
+        std::printf("better (1-period shooting down 3x or to 1.5x the noise): %.1f %% of %zu records not at the noise before\n",
+                    100.0 * res.better_rate, res.better_records);
+        std::printf("honest verdicts: %.1f %%; fits that failed: %zu\n", 100.0 * res.honest_rate, res.errors);
+    });
+    std::printf("total wall %.1f s, cpu %.1f s\n", t.wall, t.cpu);
+    return 0;
+}
+
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
+    if (o.identify > 0) return bench_identify(o.identify, o.seed);
     if (o.analysis) {
         bench_analysis();
         return 0;
