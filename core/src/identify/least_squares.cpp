@@ -25,22 +25,26 @@ double huber_residual(double r, double delta) {
 
 class KnobCost : public ceres::CostFunction {
 public:
-    KnobCost(std::vector<Knob>& knobs, const ResidualFn& eval, const StepFn& step_of, int m, double huber_delta)
-        : knobs_(knobs), eval_(eval), step_of_(step_of), huber_(huber_delta) {
+    // Ceres works on z = value / scale and on R / r_scale, so that its tolerances (the gradient's is absolute)
+    // mean the same in any units of the record: a cubic in strain has a gradient of 1e-20 in its own units.
+    KnobCost(std::vector<Knob>& knobs, const ResidualFn& eval, const StepFn& step_of, int m, double huber_delta,
+             std::vector<double> scale, double r_scale)
+        : knobs_(knobs), eval_(eval), step_of_(step_of), huber_(huber_delta), scale_(std::move(scale)), r_scale_(r_scale) {
         set_num_residuals(m);
         mutable_parameter_block_sizes()->push_back(static_cast<int>(knobs.size()));
     }
 
     bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-        const double* x = parameters[0];
+        const double* z = parameters[0];
         const auto p = knobs_.size();
-        // Past the budget every evaluation fails at once, and the callback below ends the solve.
-        if (exhausted()) return false;
+        // The budget is checked between iterations (the callback below): a failed evaluation would make Ceres
+        // log an error to the user's terminal, and an iteration costs at most knobs + 2 evaluations.
         ++evaluations_;
-        for (std::size_t k = 0; k < p; ++k) *knobs_[k].value = x[k];
+        std::vector<double> x(p);
+        for (std::size_t k = 0; k < p; ++k) *knobs_[k].value = x[k] = z[k] * scale_[k];
         if (!(eval_(R_) < INFINITY) || R_.size() != num_residuals()) return false;
         robust(R_);
-        Eigen::Map<Eigen::VectorXd>(residuals, num_residuals()) = R_;
+        Eigen::Map<Eigen::VectorXd>(residuals, num_residuals()) = R_ / r_scale_;
         if (jacobians && jacobians[0]) {
             // Row-major num_residuals x p, as Ceres wants it.
             Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(jacobians[0], num_residuals(),
@@ -53,7 +57,7 @@ public:
                 *knobs_[k].value = x[k];
                 if (!ok) return false;
                 robust(Rt_);
-                J.col(static_cast<Eigen::Index>(k)) = (Rt_ - R_) / h;
+                J.col(static_cast<Eigen::Index>(k)) = (Rt_ - R_) * (scale_[k] / (h * r_scale_));
             }
         }
         return true;
@@ -83,6 +87,8 @@ private:
     const ResidualFn& eval_;
     const StepFn& step_of_;
     double huber_;
+    std::vector<double> scale_;
+    double r_scale_;
     mutable long evaluations_ = 0;
     long max_evaluations_ = 0;
     double max_seconds_ = 0;
@@ -114,17 +120,24 @@ LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const
         if (J) J->resize(R.size(), static_cast<Eigen::Index>(knobs.size()));
         return out;
     }
-    std::vector<double> x(knobs.size());
-    for (std::size_t k = 0; k < knobs.size(); ++k) x[k] = std::clamp(*knobs[k].value, knobs[k].lo, knobs[k].hi);
+    std::vector<double> x(knobs.size()), scale(knobs.size());
+    for (std::size_t k = 0; k < knobs.size(); ++k) {
+        const double v = std::clamp(*knobs[k].value, knobs[k].lo, knobs[k].hi);
+        // A knob's scale: its value, or ten thousand of its steps where it starts near zero.
+        scale[k] = std::max(std::abs(v), 1e4 * std::abs(knobs[k].step));
+        if (!(scale[k] > 0) || !std::isfinite(scale[k])) scale[k] = 1.0;
+        x[k] = v / scale[k];
+    }
+    const double r_scale = std::sqrt(ss0 / static_cast<double>(R.size())) > 0 ? std::sqrt(ss0 / static_cast<double>(R.size())) : 1.0;
     ceres::Problem::Options po;
     po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
     po.loss_function_ownership = ceres::TAKE_OWNERSHIP;
     ceres::Problem problem(po);
-    auto* cost = new KnobCost(knobs, eval, step_of, static_cast<int>(R.size()), o.huber_delta);
+    auto* cost = new KnobCost(knobs, eval, step_of, static_cast<int>(R.size()), o.huber_delta, scale, r_scale);
     problem.AddResidualBlock(cost, nullptr, x.data());
     for (std::size_t k = 0; k < knobs.size(); ++k) {
-        if (knobs[k].lo > -1e11) problem.SetParameterLowerBound(x.data(), static_cast<int>(k), knobs[k].lo);
-        if (knobs[k].hi < 1e11) problem.SetParameterUpperBound(x.data(), static_cast<int>(k), knobs[k].hi);
+        if (knobs[k].lo > -1e11) problem.SetParameterLowerBound(x.data(), static_cast<int>(k), knobs[k].lo / scale[k]);
+        if (knobs[k].hi < 1e11) problem.SetParameterUpperBound(x.data(), static_cast<int>(k), knobs[k].hi / scale[k]);
     }
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_QR;
@@ -137,7 +150,8 @@ LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const
     so.logging_type = ceres::SILENT;
     so.minimizer_progress_to_stdout = false;
     // Every solve has a budget: by default what its iterations need with every step retried once (a Jacobian
-    // and two trial points per iteration), so a fit ends on any record, however its model behaves.
+    // and two trial points per iteration), so a fit ends on any record, however its model behaves; the solve
+    // stops at the first iteration's end past it.
     const long p = static_cast<long>(knobs.size());
     cost->set_budget(o.max_evaluations > 0 ? o.max_evaluations : 2L * (p + 2) * std::max(1, o.max_iterations), o.max_seconds);
     BudgetCallback budget(*cost);
@@ -150,7 +164,7 @@ LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const
     out.budget_spent = cost->exhausted();
     // The knobs at the best point Ceres accepted (the parameter block holds it, budget or not).
     cost->set_budget(0, 0);
-    for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = x[k];
+    for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = x[k] * scale[k];
     out.final_cost = eval(R);
     if (J) {
         cost->set_huber(0.0);
@@ -158,9 +172,14 @@ LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const
         Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Jr(R.size(), static_cast<Eigen::Index>(knobs.size()));
         double* jac[] = {Jr.data()};
         Eigen::VectorXd tmp(R.size());
-        if (cost->Evaluate(block, tmp.data(), jac)) *J = Jr;
-        else J->setZero(R.size(), static_cast<Eigen::Index>(knobs.size()));
-        for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = x[k];
+        if (cost->Evaluate(block, tmp.data(), jac)) {
+            // Back to dR/dknob in the knobs' and the residual's own units.
+            *J = Jr;
+            for (std::size_t k = 0; k < knobs.size(); ++k) J->col(static_cast<Eigen::Index>(k)) *= r_scale / scale[k];
+        } else {
+            J->setZero(R.size(), static_cast<Eigen::Index>(knobs.size()));
+        }
+        for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = x[k] * scale[k];
         eval(R);
     }
     return out;
