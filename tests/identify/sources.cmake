@@ -16,4 +16,5 @@ set(IMPACTLAB_IDENTIFY_TEST_SOURCES
   identify/stops_test.cpp
   identify/features_test.cpp
   identify/drift_test.cpp
+  identify/metamorphic_test.cpp
 )
