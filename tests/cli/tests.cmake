@@ -260,3 +260,22 @@ impactlab_cli_test(scan_fold_curve_points_only --rc 0 --match "fold curve: [1-9]
 impactlab_cli_test(scan_fold_curve --rc 0 --match "fold curve: [0-9]+ points, ends: xI range / xI range" --csv p.csv "omega,xI,period" 6 6
                    -- scan --model A1G --xI -0.004 --x omega:9.4:9.6:3 --y xI:-0.0045:-0.004:2 --transient 2 --record 4 --threads 1
                       --fold-from 9.548943,-0.0157368,0.00230387 --png p.png --out p.csv)
+
+# --- every record of ../shared/data, fitted as a user would: never a crash, always an end -------------------
+# (label shared-fit; run under the asan and ubsan presets by scripts/sanitize.sh as well)
+set(IMPACTLAB_SHARED_FIT ${CMAKE_CURRENT_LIST_DIR}/shared_fit.sh)
+set(IMPACTLAB_SHARED ${PROJECT_SOURCE_DIR}/../shared)
+function(impactlab_shared_fit name)
+  add_test(NAME shared_fit.${name} COMMAND bash ${IMPACTLAB_SHARED_FIT} $<TARGET_FILE:impactlab> ${IMPACTLAB_SHARED} -- ${ARGN})
+  set_tests_properties(shared_fit.${name} PROPERTIES LABELS "cli;shared-fit" TIMEOUT 900 SKIP_RETURN_CODE 77)
+endfunction()
+foreach(f s1_quadratic_damping s2_bumper_offset s3_noise_only)
+  impactlab_shared_fit(${f} @SHARED@/data/synthetic/${f}.csv.gz --model A1H)
+endforeach()
+foreach(f sym_left sym_right asym_left asym_right asym_left_stepped sym_chaos_hp0p5 sym_chaos_hp0p1 asym_chaos_hp0p5 asym_chaos_hp0p1)
+  impactlab_shared_fit(${f} @SHARED@/data/mismatch/${f}.csv.gz --model duffing --u-col u)
+endforeach()
+impactlab_shared_fit(sym_pair @SHARED@/data/mismatch/sym_left.csv.gz @SHARED@/data/mismatch/sym_right.csv.gz --model duffing --u-col u)
+impactlab_shared_fit(asym_pair @SHARED@/data/mismatch/asym_left.csv.gz @SHARED@/data/mismatch/asym_right.csv.gz --model duffing --u-col u)
+impactlab_shared_fit(silverbox_snls @SHARED@/data/real/silverbox/SNLS80mV.csv.gz --model duffing --x-col V2 --u-col V1 --rate 610.3516)
+impactlab_shared_fit(silverbox_schroeder @SHARED@/data/real/silverbox/Schroeder80mV.csv.gz --model duffing --x-col V2 --u-col V1 --rate 610.3516)
