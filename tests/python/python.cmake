@@ -16,7 +16,7 @@ if(TARGET impactlab_python)
                      --ExecutePreprocessor.timeout=900 --output-dir ${PROJECT_BINARY_DIR}/examples
                      ${PROJECT_SOURCE_DIR}/examples/tour.ipynb)
     set_tests_properties(notebook PROPERTIES LABELS "python" TIMEOUT 1200
-                         ENVIRONMENT "PYTHONPATH=${PROJECT_BINARY_DIR}/python;IMPACTLAB_SHARED=${PROJECT_SOURCE_DIR}/../shared;MPLBACKEND=Agg")
+                         ENVIRONMENT "PYTHONPATH=${PROJECT_BINARY_DIR}/python;IMPACTLAB_SHARED=${PROJECT_SOURCE_DIR}/../shared")
   else()
     message(STATUS "examples/tour.ipynb: not run (needs python3-nbconvert, python3-ipykernel, python3-matplotlib)")
   endif()
