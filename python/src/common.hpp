@@ -67,7 +67,10 @@ auto run_long(Job&& job, const std::atomic<double>& fraction, std::atomic<bool>&
     return done.get();
 }
 
-// A model argument: an impactlab.Model, or a version name / parameter file path as the CLI's --model takes;
+// A file name given as str or os.PathLike (pathlib.Path).
+std::string fspath(const py::handle& path);
+// A model argument: an impactlab.Model, or a version name / parameter file path (str or os.PathLike) as the
+// CLI's --model takes;
 // validated (ParamError naming the key otherwise).
 Params model_arg(const py::handle& model);
 

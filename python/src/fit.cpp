@@ -10,18 +10,17 @@ namespace impactlab::py_binding {
 namespace {
 
 std::vector<std::string> paths_arg(const py::handle& records) {
-    const auto fspath = py::module_::import("os").attr("fspath");
     std::vector<std::string> paths;
-    if (py::isinstance<py::str>(records) || py::hasattr(records, "__fspath__")) paths.push_back(fspath(records).cast<std::string>());
+    if (py::isinstance<py::str>(records) || py::hasattr(records, "__fspath__")) paths.push_back(fspath(records));
     else
-        for (const auto& r : records) paths.push_back(fspath(r).cast<std::string>());
+        for (const auto& r : records) paths.push_back(fspath(r));
     if (paths.empty()) throw py::value_error("fit: no record given");
     return paths;
 }
 
 py::object fit(const py::handle& records, const py::handle& model, std::optional<std::string> baseline,
                const std::vector<std::string>& only, const std::vector<std::string>& exclude, int max_effects, bool generic,
-               double rtol, std::optional<std::string> report, bool plots, const py::object& progress) {
+               double rtol, const py::object& report, bool plots, const py::object& progress) {
     const std::vector<std::string> paths = paths_arg(records);
     identify::LoadOptions lo;
     std::vector<identify::MeasuredData> runs;
@@ -47,7 +46,8 @@ py::object fit(const py::handle& records, const py::handle& model, std::optional
     o.generic = generic;
     check_range("fit", "rtol", rtol, 1e-13, 1e-2);
     o.rtol = rtol;
-    o.plots = plots && report.has_value();
+    const std::optional<std::string> dir = report.is_none() ? std::nullopt : std::optional<std::string>(fspath(report));
+    o.plots = plots && dir.has_value();
     for (const auto& id : o.only)
         if (!identify::find_catalogue_effect(id)) throw py::value_error("fit: only: unknown effect '" + id + "'");
     for (const auto& id : o.exclude)
@@ -55,7 +55,7 @@ py::object fit(const py::handle& records, const py::handle& model, std::optional
     identify::FitProgress pr;
     const identify::FitReport r =
         run_long([&] { return identify::run_fit(data, m, o, nullptr, &pr); }, pr.fraction, pr.cancel, progress);
-    if (report) identify::write_report(r, *report, o.plots);
+    if (dir) identify::write_report(r, *dir, o.plots);
     py::dict out(py::module_::import("json").attr("loads")(identify::report_json_text(r)));
     out["model_before"] = py::cast(r.before.p);
     out["model_after"] = py::cast(r.after.p);

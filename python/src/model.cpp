@@ -38,12 +38,13 @@ Model.from_name("A1H") is a version of the paper (stiffness A1 or A3, bumper C, 
 Model.from_json(path) reads a parameter file as every --model FILE.json of the CLI does. A value outside its
 physical range is refused with the CLI's message (ParamError, a ValueError).)");
     c.def_static("from_name", &make_version, py::arg("name"), "The built-in version NAME (\"A1H\", \"A3C1\", ...); see models().")
-        .def_static("from_json", &load_params, py::arg("path"),
+        .def_static("from_json", [](const py::object& path) { return load_params(fspath(path)); }, py::arg("path"),
                     "A parameter file (JSON, as `impactlab models --json A1H` writes; \"base\" starts from a version).")
         .def_static("from_json_text", &params_from_json_text, py::arg("text"), py::arg("source") = "text",
                     "A parameter set from JSON text; `source` names it in messages.")
         .def("to_json", &params_to_json_text, "The parameter file's text (Model.from_json_text reads it back).")
-        .def("save", &save_params, py::arg("path"), "Writes the parameter file (whole or not at all).")
+        .def("save", [](const Params& p, const py::object& path) { save_params(p, fspath(path)); }, py::arg("path"),
+             "Writes the parameter file (whole or not at all).")
         .def("copy", [](const Params& p) { return p; })
         .def("__copy__", [](const Params& p) { return p; })
         .def("__deepcopy__", [](const Params& p, py::dict) { return p; }, py::arg("memo"))

@@ -11,9 +11,13 @@
 
 namespace impactlab::py_binding {
 
+std::string fspath(const py::handle& path) {
+    return py::module_::import("os").attr("fspath")(path).cast<std::string>();
+}
+
 Params model_arg(const py::handle& model) {
     Params p;
-    if (py::isinstance<py::str>(model)) p = resolve_model(model.cast<std::string>());
+    if (py::isinstance<py::str>(model) || py::hasattr(model, "__fspath__")) p = resolve_model(fspath(model));
     else if (py::isinstance<Params>(model)) p = model.cast<Params>();
     else throw py::type_error("model: expected an impactlab.Model, a version name (\"A1H\") or a parameter file (*.json)");
     validate(p, p.name);

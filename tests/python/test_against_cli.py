@@ -30,8 +30,8 @@ def test_model_json_round_trip(tmp_path, cli):
     m.xI = -0.004
     m.m0e = 0.03
     path = tmp_path / "m.json"
-    m.save(str(path))
-    back = impactlab.Model.from_json(str(path))
+    m.save(path)                         # a pathlib.Path or a str
+    back = impactlab.Model.from_json(path)
     assert back == m and back.xI == -0.004
     # The CLI reads the file the module wrote, and the module the file the CLI writes.
     text = cli("models", "--json", "A3C1").stdout
@@ -54,7 +54,7 @@ def test_simulate_from_a_parameter_file_and_a_start(tmp_path, cli):
     out = tmp_path / "traj.csv"
     cli("simulate", "--model", tmp_path / "m.json", "--omega", 12.5, "--duration", 3, "--dt", 0.002, "--x0", -0.01,
         "--v0", 0.05, "--rtol", 1e-9, "--out", out)
-    r = impactlab.simulate(str(tmp_path / "m.json"), 12.5, 3, dt=0.002, x0=-0.01, v0=0.05, rtol=1e-9)
+    r = impactlab.simulate(tmp_path / "m.json", 12.5, 3, dt=0.002, x0=-0.01, v0=0.05, rtol=1e-9)
     assert_columns_match(r, out)
 
 
@@ -155,7 +155,7 @@ def test_scan_bit_for_bit_any_thread_count(tmp_path, cli):
 def test_fit_report_and_model(tmp_path, cli, shared):
     record = shared / "data" / "synthetic" / "s1_quadratic_damping.csv.gz"
     cli("fit", record, "--model", "A1H", "--report", tmp_path / "cli", "--no-plots")
-    r = impactlab.fit(str(record), impactlab.Model.from_name("A1H"), report=str(tmp_path / "py"), plots=False)
+    r = impactlab.fit(str(record), impactlab.Model.from_name("A1H"), report=tmp_path / "py", plots=False)
     with open(tmp_path / "cli" / "report.json") as f:
         want = json.load(f)
     assert isinstance(r["model_after"], impactlab.Model)
