@@ -4,6 +4,7 @@
 
 #include "common.hpp"
 #include "impactlab/drive.hpp"
+#include "impactlab/identify_data.hpp"
 #include "impactlab/simulator.hpp"
 #include "impactlab/sweep.hpp"
 
@@ -11,9 +12,30 @@ namespace impactlab::py_binding {
 
 namespace {
 
-py::object simulate(const py::handle& model, double omega, double duration, double dt, double x0, double v0, double rtol,
-                    const py::object& progress) {
+py::object simulate(const py::handle& model, std::optional<double> omega_arg, std::optional<double> duration_arg,
+                    std::optional<double> dt_arg, double x0, double v0, double rtol, const py::object& input,
+                    const std::string& u_col, double u_scale, const py::object& progress) {
     const Params p = model_arg(model);
+    // An input-forced run (the CLI's --input): the record's u drives the model through its input_gain; then
+    // omega defaults to 0 and the duration and step to the record's.
+    std::optional<identify::MeasuredData> rec;
+    double in_dt = 0;
+    if (!input.is_none()) {
+        identify::LoadOptions lo;
+        lo.columns.u = u_col;
+        lo.u_scale = u_scale;
+        lo.min_samples = 2;
+        rec = identify::load_measured(fspath(input), lo);
+        if (!rec->has_u()) throw py::value_error("simulate: input: " + rec->source + " has no input column u (map one with u_col)");
+        in_dt = (rec->t.back() - rec->t.front()) / static_cast<double>(rec->size() - 1);
+    } else if (!u_col.empty() || u_scale != 1.0) {
+        throw py::value_error("simulate: u_col and u_scale need input");
+    }
+    if (!omega_arg && !rec) throw py::value_error("simulate: missing 'omega'");
+    if (!duration_arg && !rec) throw py::value_error("simulate: missing 'duration'");
+    const double omega = omega_arg.value_or(0.0);
+    const double duration = duration_arg.value_or(in_dt * static_cast<double>(rec ? rec->size() - 1 : 0));
+    const double dt = dt_arg.value_or(rec ? in_dt : 1e-3);
     check_range("simulate", "omega", omega, 0.0, 1000.0);
     check_range("simulate", "duration", duration, 1e-6, 1e6);
     check_range("simulate", "dt", dt, 1e-7, 1e3);
@@ -33,12 +55,13 @@ py::object simulate(const py::handle& model, double omega, double duration, doub
             Out o;
             o.s.x = x0;
             o.s.v = v0;
-            const Drive d(omega);
+            Drive d(omega);
+            if (rec) d.set_input(0.0, in_dt, rec->u);
             simulate_sampled(p, d, o.s, duration, dt, tol, &pr, [&](const Sample& smp) {
                 o.t.push_back(smp.t);
                 o.x.push_back(smp.x);
                 o.v.push_back(smp.v);
-                o.phi.push_back(smp.phi);
+                o.phi.push_back(rec ? d.input(smp.t) : smp.phi);
                 o.regime.push_back(static_cast<int>(smp.regime));
             });
             return o;
@@ -48,7 +71,7 @@ py::object simulate(const py::handle& model, double omega, double duration, doub
     cols["t"] = array(r.t);
     cols["x"] = array(r.x);
     cols["v"] = array(r.v);
-    cols["phi"] = array(r.phi);
+    cols[rec ? "u" : "phi"] = array(r.phi);
     cols["regime"] = array_of(r.regime);
     py::dict extras;
     extras["model"] = p.name;
@@ -175,11 +198,15 @@ py::object bifurcation(const py::handle& model, const std::string& sweep, const 
 
 void bind_sim(py::module_& m) {
     using namespace pybind11::literals;
-    m.def("simulate", &simulate, "model"_a, "omega"_a, "duration"_a, py::kw_only(), "dt"_a = 1e-3, "x0"_a = 0.0, "v0"_a = 0.0,
-          "rtol"_a = 1e-8, "progress"_a = py::none(),
+    m.def("simulate", &simulate, "model"_a, "omega"_a = py::none(), "duration"_a = py::none(), py::kw_only(), "dt"_a = py::none(),
+          "x0"_a = 0.0, "v0"_a = 0.0, "rtol"_a = 1e-8, "input"_a = py::none(), "u_col"_a = "", "u_scale"_a = 1.0,
+          "progress"_a = py::none(),
           R"(One run at constant omega [rad/s] for `duration` [s] from (x0 [m], v0 [m/s]) at rest phase phi = 0,
 sampled every dt [s]: `impactlab simulate`. Returns a Result with columns t [s], x [m], v [m/s], phi [rad],
 regime (1 free flight, 2 sticking, 3 permanent contact) and attributes steps, impacts, state (t, x, v at the end).
+input: a record (CSV, plain or .gz) whose input column u (u_col: its name or 1-based number; u_scale multiplies
+it) drives the model by input_gain * u(t), as `simulate --input`: then omega defaults to 0, duration and dt to the
+record's; the columns are t, x, v, u, regime.
 progress: called with the fraction done (0..1) about every 50 ms. Ctrl-C stops it (KeyboardInterrupt).)");
     m.def("poincare", &poincare, "model"_a, "omega"_a, "periods"_a, py::kw_only(), "transient"_a = 0, "phi0"_a = 0.0, "x0"_a = 0.0,
           "v0"_a = 0.0, "rtol"_a = 1e-8, "progress"_a = py::none(),
