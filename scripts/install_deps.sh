@@ -9,6 +9,8 @@ packages=(
   libopenmpi-dev openmpi-bin
   clang
   emscripten chromium dpkg-dev python3 desktop-file-utils
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-pandas
+  jupyter-notebook python3-nbconvert python3-ipykernel python3-matplotlib
 )
 missing=()
 for p in "${packages[@]}"; do

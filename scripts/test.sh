@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The test job (CI runs exactly this): install what is missing, then
-#  1. build the headless core, CLI and tests with the GUI OFF (the core must not need GL) and run them;
+#  1. build the headless core, CLI and tests with the GUI OFF (the core must not need GL) and run them (the
+#     Python module's pytest suite against the CLI and the notebook examples/tour.ipynb among them);
 #  2. build everything (GUI and benchmarks included) and run the GUI smoke test under Xvfb;
 #  3. install into a temporary prefix and run both programs from elsewhere, and make the .deb (cpack);
 #  4. build the browser page (scripts/web.sh, emscripten) and open it in headless Chromium;

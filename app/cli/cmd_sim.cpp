@@ -94,27 +94,19 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     const double dt = a.num("--dt", input ? in_dt : 1e-3, 1e-7, 1e3);
     check_rows("simulate", duration / dt, "--duration / --dt");
     auto out = open_out(a.required("--out"));
-    Simulator sim(tolerances_from(a));
     Drive drive(omega);
     if (input) drive.set_input(0.0, in_dt, rec->u);
     State s;
     s.x = a.num("--x0", 0.0, -0.1, 0.1);
     s.v = a.num("--v0", 0.0, -10.0, 10.0);
     check_start(p, s.x, "simulate", "--x0");
-    Simulator::make_consistent(p, drive, s);
     out << (input ? "t,x,v,u,regime\n" : "t,x,v,phi,regime\n");
-    UniformSampler sampler(drive, dt, 0.0, [&](const Sample& smp) {
+    Progress progress;
+    ProgressBar bar("simulate " + p.name, progress);
+    simulate_sampled(p, drive, s, duration, dt, tolerances_from(a), &progress, [&](const Sample& smp) {
         out << smp.t << ',' << smp.x << ',' << smp.v << ',' << (input ? drive.input(smp.t) : smp.phi) << ',' << static_cast<int>(smp.regime)
             << '\n';
     });
-    Progress progress;
-    ProgressBar bar("simulate " + p.name, progress);
-    // Advance in slices so the bar moves.
-    const int slices = 200;
-    for (int i = 1; i <= slices; ++i) {
-        sim.advance(p, drive, s, duration * i / slices, &sampler);
-        progress.fraction.store(static_cast<double>(i) / slices);
-    }
     bar.finish();
     out.commit();
     std::fprintf(stderr, "%s: %.6g s simulated, %llu steps, %llu impacts -> %s\n", p.name.c_str(), duration,

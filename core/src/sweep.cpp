@@ -59,6 +59,27 @@ std::vector<SectionPoint> poincare_section(const Params& p, double omega, int pe
     return std::move(col.points);
 }
 
+bool simulate_sampled(const Params& p, const Drive& d, State& s, double duration, double dt, const Tolerances& tol,
+                      Progress* progress, const std::function<void(const Sample&)>& sink) {
+    // The sampler stops the simulator at a cancel; the slices keep the progress moving on long runs.
+    struct Sampler : UniformSampler {
+        Sampler(const Drive& dr, double step, std::function<void(const Sample&)> f, const Progress* pr)
+            : UniformSampler(dr, step, 0.0, std::move(f)), progress(pr) {}
+        bool stop() const override { return cancelled(progress); }
+        const Progress* progress;
+    };
+    Simulator sim(tol);
+    Simulator::make_consistent(p, d, s);
+    Sampler sampler(d, dt, sink, progress);
+    const int slices = 200;
+    for (int i = 1; i <= slices; ++i) {
+        sim.advance(p, d, s, duration * i / slices, &sampler);
+        if (cancelled(progress)) return false;
+        if (progress) progress->fraction.store(static_cast<double>(i) / slices, std::memory_order_relaxed);
+    }
+    return true;
+}
+
 const char* sweep_param_name(SweepParam s) {
     switch (s) {
         case SweepParam::Omega: return "omega";

@@ -32,6 +32,17 @@ cd "$dir/elsewhere" || fail "no directory $dir/elsewhere"
 [ -s diag.csv ] && [ -s diag.png ] || fail "impactlab wrote no diagram"
 "$check" diag.png || fail "the installed impactlab's plot is not a real picture"
 
+# The Python module, where the build has it: installed under the prefix's dist-packages and imported from here.
+python=$(sed -n 's/^IMPACTLAB_PYTHON_EXECUTABLE:INTERNAL=//p' "$build/CMakeCache.txt")
+if [ -n "$python" ] && [ -d "$build/python/impactlab" ]; then
+    pkg="$prefix/lib/python3/dist-packages"
+    for f in __init__.py __init__.pyi _result.py py.typed; do [ -f "$pkg/impactlab/$f" ] || fail "not installed: $pkg/impactlab/$f"; done
+    ls "$pkg"/impactlab/_impactlab*.so >/dev/null 2>&1 || fail "not installed: the extension under $pkg/impactlab"
+    PYTHONPATH="$pkg" "$python" -c "import impactlab; assert impactlab.__file__.startswith('$pkg'); \
+print(impactlab.simulate(impactlab.Model.from_name('A1H'), omega=18, duration=5)['x'][:3])" >py.log 2>&1 ||
+        { cat py.log; fail "the installed Python module does not run from $dir/elsewhere"; }
+fi
+
 if ! command -v xvfb-run >/dev/null 2>&1; then
     echo "install_test: xvfb-run is not installed: the installed impactlab-gui was not run"
     exit 0

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <utility>
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -117,6 +118,13 @@ Diagram run_ef_ramp(const Params& p, const EfSpec& spec, Progress* progress = nu
 std::vector<SectionPoint> poincare_section(const Params& p, double omega, int periods, int transient, State& state,
                                            const Tolerances& tol = {}, Progress* progress = nullptr,
                                            double phi0 = 0.0);
+
+// One run of `duration` seconds from state s (made consistent with p and d first) under drive d, its trajectory
+// sampled every dt from t = 0 into `sink`; advanced in 200 equal slices, so the progress moves and a cancel is
+// seen within a slice (the CLI's simulate and the Python module share the slicing, hence every sample).
+// Returns false when progress->cancel stopped it.
+bool simulate_sampled(const Params& p, const Drive& d, State& s, double duration, double dt, const Tolerances& tol,
+                      Progress* progress, const std::function<void(const Sample&)>& sink);
 
 // Distinct values among the recorded section points at one omega (period detection, tests, README):
 // the number of clusters of x closer than `tol` [m]; returns record+1 if it exceeds max_period.
