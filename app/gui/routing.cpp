@@ -43,6 +43,7 @@ ViewContext App::view_context() const {
     c.paused = paused_;
     c.sim_paused = sim_->status().paused;
     c.replay = replay_.active();
+    c.omega_moving = ramp_.active();
     c.ui_scale = ui_scale_;
     c.frame_dt = frame_dt_;
     c.now = now_s();
