@@ -149,6 +149,7 @@ BifurcationContext App::bifurcation_context() {
     c.steps = &bif_steps_;
     c.ramp = &ramp_;
     c.overlay = [this](Plot& plot) { analysis_.overlay_diagram(plot); };
+    c.overlay_legend = [this](bool compact) { analysis_.overlay_legend(compact); };
     if (const auto& ov = analysis_.overlay()) c.branches = &*ov;
     return c;
 }
