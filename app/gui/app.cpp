@@ -38,6 +38,14 @@ int next_impact_law(int current) {
     return current;
 }
 
+// Keys pressed during the events of a frame. GLFW reports a tap shorter than a frame as a press and a
+// release in one poll, which leave ImGui's key state up again before it looks (the key lost): held down
+// for one frame instead (App::frame). ImGui's backend chains to this callback. UI thread.
+std::vector<int> g_pressed, g_held;
+void on_key(GLFWwindow*, int key, int, int action, int) {
+    if (action == GLFW_PRESS && key >= 0 && key < 512) g_pressed.push_back(key);
+}
+
 void glfw_error(int code, const char* text) { std::fprintf(stderr, "impactlab-gui: GLFW error %d: %s\n", code, text); }
 
 int index_of_stiffness(const std::string& id) {
@@ -144,6 +152,7 @@ bool App::init(std::string& error) {
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;   // the layout is computed, nothing to remember
+    glfwSetKeyCallback(win_, on_key);   // before the backend, which chains to it
     ImGui_ImplGlfw_InitForOpenGL(win_, true);
 #ifdef __EMSCRIPTEN__
     ImGui_ImplOpenGL3_Init("#version 300 es");   // WebGL2
@@ -249,9 +258,9 @@ void App::rebuild_fonts() {
     ImFontConfig cfg;
     cfg.OversampleH = 2;
     cfg.OversampleV = 1;
-    // Latin-1, Greek (ω, φ, π, κ, λ) and a few signs (², –, ·, −, ≤, ≥, ■): the panels speak the paper's symbols.
-    static const ImWchar kRanges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2010, 0x2027, 0x2212, 0x2212,
-                                      0x2264, 0x2265, 0x25A0, 0x25CF, 0};
+    // Latin-1, Greek (ω, φ, π, κ, λ) and a few signs (², –, ·, →, −, ≤, ≥, ■): the panels speak the paper's symbols.
+    static const ImWchar kRanges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2010, 0x2027, 0x2190, 0x2193,
+                                      0x2212, 0x2212, 0x2264, 0x2265, 0x25A0, 0x25CF, 0};
     cfg.GlyphRanges = kRanges;
     const float size = std::round(14.5f * ui_scale_);
     const std::string font = asset_path("fonts/DejaVuSans.ttf");   // share/impactlab when installed
@@ -322,16 +331,16 @@ void App::run_demo(int k) {
     demo_ = k;
     if (companion_mode_ != CompanionMode::Off && k != 3) set_companion(CompanionMode::Off);
     switch (k) {
-        case 1:   // period doubling: the first doubling of A1H at 10.86 rad/s, crossed slowly
+        case 1:   // period doubling: the first doubling of A1H at 10.86 rad/s, crossed in about 30 s of wall time
             set_version("A1H");
-            set_omega(10.3);
-            set_speed(20.0);
-            start_ramp(11.4, 0.02);
+            set_omega(kDemo1From);
+            set_demo_speed(20.0);
+            start_ramp(kDemo1To, kDemo1Rate);
             break;
         case 2:   // the road to chaos: the live ramp over the diagram
             set_version("A1H");
             set_omega(9.0);
-            set_speed(50.0);
+            set_demo_speed(50.0);
             start_bifurcation();
             start_ramp(16.0, 0.05);
             break;
@@ -344,9 +353,10 @@ void App::run_demo(int k) {
             set_companion(CompanionMode::Ghost);
             break;
         }
-        case 4:   // the energy budget, in chaos
+        case 4:   // the energy budget, in chaos: its balance is in the State group
             set_version("A1H");
             apply_preset(presets_for("A1H")[2]);
+            controls_focus_ = 2;
             break;
         case 5:   // basins: A1G's two attractors at 13 rad/s
             set_version("A1G");
@@ -357,6 +367,12 @@ void App::run_demo(int k) {
         default: demo_ = 0; return;
     }
     toast(std::string(guide_demo(k).title) + ": " + guide_demo(k).look_for);
+}
+
+void App::set_demo_speed(double s) {
+    // --warmup runs at 100x first: the demo's speed then follows it (a test reads a later moment of the demo).
+    demo_speed_ = s;
+    if (!warming_) set_speed(s);
 }
 
 void App::set_version(const std::string& name) {
@@ -478,9 +494,12 @@ void App::drain_samples() {
 
 void App::handle_keys() {
     ImGuiIO& io = ImGui::GetIO();
-    if (io.WantTextInput) return;
     auto pressed = [](int key, bool repeat = false) { return ImGui::IsKeyPressed(key, repeat); };
     const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
+    // Ctrl+S and Ctrl+O type nothing: they also work from a text field (the session window's own path).
+    if (ctrl && pressed(GLFW_KEY_S)) open_session_window(true);
+    if (ctrl && pressed(GLFW_KEY_O)) open_session_window(false);
+    if (io.WantTextInput) return;
     // Replay (Shift+R) has its own Space, Left/Right, , . Enter and Esc (app_replay.cpp).
     const bool replaying = replay_.active();
     handle_replay_keys();
@@ -511,8 +530,6 @@ void App::handle_keys() {
     if (pressed(GLFW_KEY_H) && !ctrl) show_help_ = !show_help_;
     if (pressed(GLFW_KEY_F12)) screenshot(screenshot_name());
     if (pressed(GLFW_KEY_F4)) show_params_ = !show_params_;
-    if (ctrl && pressed(GLFW_KEY_S)) open_session_window(true);
-    if (ctrl && pressed(GLFW_KEY_O)) open_session_window(false);
     if (ctrl && pressed(GLFW_KEY_E)) export_csv();
     if (ctrl && (pressed(GLFW_KEY_EQUAL) || pressed(GLFW_KEY_KP_ADD))) {
         ui_scale_ = std::min(3.0f, ui_scale_ + 0.25f);
@@ -534,15 +551,40 @@ void App::handle_keys() {
 void App::frame() {
     const double t_events = now_s();
     glfwPollEvents();
+    if (opt_.tap && frame_count_ == 3) {   // --tap: a press and its release in one poll, through the backend
+        const int key = GLFW_KEY_A + (opt_.tap - 'a');
+        ImGui_ImplGlfw_KeyCallback(win_, key, 0, GLFW_PRESS, 0);
+        ImGui_ImplGlfw_KeyCallback(win_, key, 0, GLFW_RELEASE, 0);
+    }
     rebuild_fonts();
     const double t = now_s();
     frame_dt_ = std::clamp(t - last_frame_time_, 1e-4, 0.25);
     last_frame_time_ = t;
-    fps_ = fps_ <= 0 ? 1.0 / frame_dt_ : fps_ + (1.0 / frame_dt_ - fps_) * 0.05;
+    // Frames counted over half a second of wall time: an average of 1/dt would follow a burst of frames
+    // shown back to back (a swap deferred, a resize) up to 1000 fps and more.
+    ++fps_frames_;
+    if (fps_since_ <= 0) fps_since_ = t;
+    if (t - fps_since_ >= 0.5 || (fps_ <= 0 && fps_frames_ >= 3 && t > fps_since_)) {
+        fps_ = fps_frames_ / (t - fps_since_);
+        fps_frames_ = 0;
+        fps_since_ = t;
+    }
     flash_ *= std::exp(-frame_dt_ / 0.22);
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
+    {   // a tap released within the poll it was pressed in: down for this frame, up at the next
+        ImGuiIO& io = ImGui::GetIO();
+        for (const int key : g_held)
+            if (std::find(g_pressed.begin(), g_pressed.end(), key) == g_pressed.end()) io.KeysDown[key] = false;
+        g_held.clear();
+        for (const int key : g_pressed)
+            if (!io.KeysDown[key]) {
+                io.KeysDown[key] = true;
+                g_held.push_back(key);
+            }
+        g_pressed.clear();
+    }
     if (!opt_.press.empty() && (frame_count_ == 3 || frame_count_ == 4)) {
         // --press: down at frame 3, up at frame 4, as the GLFW backend's key callback sets them.
         ImGuiIO& io = ImGui::GetIO();
@@ -553,6 +595,7 @@ void App::frame() {
         io.KeysDown[GLFW_KEY_LEFT_CONTROL] = down && ctrl;
         io.KeyCtrl = down && ctrl;
     }
+    script_mouse();
     ImGui::NewFrame();
     plot_gpu::begin_frame();
     opaque_image::begin_frame();
@@ -561,10 +604,13 @@ void App::frame() {
     if (opt_.set_state && frame_count_ == 1) set_state(opt_.set_x, opt_.set_v);   // --set-state, as a click
     if (frame_count_ == 1)
         for (const auto& [key, value] : opt_.params) set_param(key, value);   // --param, as typed in the panel
-    if (frame_count_ == 1 && opt_.demo > 0) run_demo(opt_.demo);             // --demo, as its button
+    if (frame_count_ == 1 && opt_.demo > 0) {   // --demo, as its button
+        run_demo(opt_.demo);
+        guide_.move_aside();
+    }
     if (warming_ && have_last_ && last_.t >= opt_.warmup) {
         warming_ = false;
-        set_speed(opt_.speed);
+        set_speed(demo_speed_ > 0 ? demo_speed_ : opt_.speed);   // a demo's own speed, once warmed up
         if (opt_.paused) set_paused(true);
     }
     poll_bifurcation();

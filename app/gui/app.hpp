@@ -97,6 +97,7 @@ private:
     int run_bench();           // --bench-plot: the timed frames and their report
     int soak();                // --soak: model switches at 100x with an RSS report
     bool script_step();        // a counted --frames frame: the script's changes; false when the run is over
+    void script_mouse();       // --double-click: the scripted mouse of this frame (before ImGui::NewFrame)
     void fill_bench_data(int points);
     void feed_bench_frame();   // appends one frame's worth of new samples (bench mode)
 
@@ -190,6 +191,13 @@ private:
     GuidePanel guide_;                 // "What to try": five demonstrations
     bool show_guide_ = false;
     int demo_ = 0;                     // the last demonstration run (1-5), 0 none
+    double demo_speed_ = 0;
+    int controls_focus_ = -1;          // the controls' group (0 Run, 1 View, 2 State) to bring to the front
+    int controls_tab_ = -1;            // the group shown when the controls are tabbed (-1: not tabbed)            // the speed the last demonstration asked for (0: none)
+    // Demonstration 1: A1H's first doubling (10.8613 rad/s) crossed slowly, 0.6 rad/s over 600 s of
+    // simulation, 30 s of wall time at 20x, the split reached about 13 s in.
+    static constexpr double kDemo1From = 10.6, kDemo1To = 11.2, kDemo1Rate = 1e-3;
+    void set_demo_speed(double s);
     bool details_ = false;             // the status bar's technical fields
     bool show_params_ = false;
     int params_rev_ = 0;               // bumped at every change of params_ (the potential, the energy floor)
@@ -253,6 +261,8 @@ private:
     double section_phase_ = 0;   // [rad] the Poincare section's phase phi0, as last sent
     float strip_window_ = 6.0f;
     double last_frame_time_ = 0, fps_ = 0, frame_dt_ = 1.0 / 60;
+    double fps_since_ = 0;   // [s] wall time the frames counted in fps_frames_ began
+    int fps_frames_ = 0;
 
     // Screenshot / toast / modes.
     std::string pending_shot_;
@@ -302,9 +312,11 @@ private:
     std::string clip_summary_, clip_error_;
     // Session files (app_session.cpp).
     bool session_window_ = false, session_saving_ = true;
-    int session_request_ = 0;   // 1 save, 2 load (after the panels drew)
+    int session_request_ = 0;   // 1 save, 2 load, 3 save over the existing file (after the panels drew)
+    std::string overwrite_pending_;   // the existing file a save would replace, asked about ("" none)
+    ImVec2 click_at_{};               // --double-click: where the mouse is held (harness.cpp)
     char session_path_[512] = "impactlab-session.json";
-    FileBrowser session_browser_{{".json"}};   // the session window's list of the folder's .json files
+    FileBrowser session_browser_{{".json"}, "impactlab-session.json"};   // the session window's list of the folder's .json files
     std::string session_error_;
 };
 

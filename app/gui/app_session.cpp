@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <system_error>
 
 #include "app.hpp"
 #include "param_edit.hpp"
@@ -15,6 +17,7 @@ namespace impactlab::gui {
 
 namespace {
 constexpr const char* kProtocols[] = {"cf-up", "cf-down", "ef"};
+constexpr const char* kSessionName = "impactlab-session.json";   // a session saved into a folder
 }  // namespace
 
 Session App::current_session() const {
@@ -173,6 +176,7 @@ void App::open_session_window(bool save) {
     session_window_ = true;
     session_saving_ = save;
     session_error_.clear();
+    overwrite_pending_.clear();
 }
 
 void App::draw_session_window() {
@@ -192,9 +196,18 @@ void App::draw_session_window() {
         const bool enter = ImGui::InputText("file", session_path_, sizeof session_path_, ImGuiInputTextFlags_EnterReturnsTrue);
         // The session files beside the path: a click picks one, a double-click also saves or loads it.
         const bool picked = session_browser_.draw("##session_files", session_path_, sizeof session_path_);
-        if (ImGui::Button(session_saving_ ? "Save" : "Load") || enter || picked) session_request_ = session_saving_ ? 1 : 2;
-        ImGui::SameLine();
-        if (ImGui::Button("Close")) session_window_ = false;
+        // Saving over a file asks first (a double-click on a row says "save", not "overwrite").
+        if (!overwrite_pending_.empty() && overwrite_pending_ != save_target(session_path_, kSessionName)) overwrite_pending_.clear();
+        if (session_saving_ && !overwrite_pending_.empty()) {
+            ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s exists. Overwrite it?", overwrite_pending_.c_str());
+            if (ImGui::Button("Overwrite")) session_request_ = 3;
+            ImGui::SameLine();
+            if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) overwrite_pending_.clear();
+        } else {
+            if (ImGui::Button(session_saving_ ? "Save" : "Load") || enter || picked) session_request_ = session_saving_ ? 1 : 2;
+            ImGui::SameLine();
+            if (ImGui::Button("Close")) session_window_ = false;
+        }
         if (!session_error_.empty()) {
             ImGui::PushTextWrapPos(ImGui::GetFontSize() * 32);
             ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", session_error_.c_str());
@@ -208,7 +221,18 @@ void App::handle_session_request() {
     // After the panels drew (the histories are live again): what the session window asked for.
     const int req = session_request_;
     session_request_ = 0;
-    if (req == 1 && save_session_file(session_path_)) session_window_ = false;
+    if (req == 1 || req == 3) {
+        // A folder typed or entered means a file in it; an existing file is written only once confirmed.
+        const std::string target = save_target(session_path_, kSessionName);
+        std::snprintf(session_path_, sizeof session_path_, "%s", target.c_str());
+        std::error_code ec;
+        if (req == 1 && std::filesystem::exists(target, ec)) {
+            overwrite_pending_ = target;
+            return;
+        }
+        overwrite_pending_.clear();
+        if (save_session_file(target)) session_window_ = false;
+    }
     if (req == 2 && load_session_file(session_path_)) session_window_ = false;
 }
 

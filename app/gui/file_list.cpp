@@ -51,4 +51,34 @@ std::vector<FileEntry> list_files(const std::string& dir, const std::vector<std:
     return out;
 }
 
+RowAction RowClicks::click(const std::string& dir, const std::string& name, bool is_dir, bool double_click, double t,
+                           double double_time) {
+    if (t - entered_at_ <= double_time) return RowAction::None;   // the rest of the gesture that opened this folder
+    if (is_dir) {
+        entered_at_ = t;
+        dir_.clear();
+        name_.clear();
+        return RowAction::EnterDir;
+    }
+    if (double_click && dir == dir_ && name == name_) return RowAction::Open;
+    dir_ = dir;
+    name_ = name;
+    return RowAction::Pick;
+}
+
+std::string save_target(const std::string& path, const std::string& default_name) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (path.empty()) return default_name;
+    if (path.back() == '/' || fs::is_directory(path, ec)) return (fs::path(path) / default_name).lexically_normal().string();
+    return path;
+}
+
+std::string path_in_folder(const std::string& dir, const std::string& path, const std::string& default_name) {
+    namespace fs = std::filesystem;
+    std::string name = fs::path(path).filename().string();
+    if (name.empty() || name == "." || name == "..") name = default_name;
+    return (fs::path(dir) / name).lexically_normal().string();
+}
+
 }  // namespace impactlab::gui

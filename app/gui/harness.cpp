@@ -134,6 +134,29 @@ int App::run_bench() {
     return 0;
 }
 
+void App::script_mouse() {
+    // --double-click: press, release, press, release on four frames at one point, timed as at 60 fps (a
+    // loaded machine's slow frames must not split the gesture into two single clicks).
+    for (std::size_t k = 0; k < opt_.double_clicks.size(); ++k) {
+        const long f = frame_count_ - 10 - 8 * static_cast<long>(k);
+        if (f < 0 || f > 4) continue;
+        ImGuiIO& io = ImGui::GetIO();
+        if (f == 0) {
+            const FileBrowser::Row* r = session_browser_.row(opt_.double_clicks[k]);
+            if (!r) {
+                std::fprintf(stderr, "impactlab-gui: error: --double-click: no row '%s' in the session browser\n",
+                             opt_.double_clicks[k].c_str());
+                exit_code_ = 1;
+                continue;
+            }
+            click_at_ = ImVec2(0.5f * (r->x0 + r->x1), 0.5f * (r->y0 + r->y1));
+        }
+        io.MousePos = click_at_;
+        io.MouseDown[0] = f == 0 || f == 2;
+        io.DeltaTime = 1.0f / 60.0f;
+    }
+}
+
 bool App::script_step() {
     // --orbit: the clicks, one at each of the first n of n + 1 equal parts of the run.
     const long parts = static_cast<long>(opt_.orbits.size()) + 1;

@@ -115,6 +115,11 @@ const char* usage_text() {
            "                     counted once the diagram is done and the warm-up is over)\n"
            "  --screenshot FILE  PNG written after --frames\n"
            "  --press [ctrl+]K   press key K (a-z), with Ctrl if asked, at frame 3 (tests of the shortcuts)\n"
+           "  --tap K            press and release key K (a-z) within one frame's events at frame 3, as a tap\n"
+           "                     shorter than a frame does (xdotool key K)\n"
+           "  --double-click ROW (repeatable) a double-click on the session browser's row ROW (\"sub/\" for a\n"
+           "                     folder), the mouse held still where that row was at the first click; the k-th\n"
+           "                     from frame 10 + 8 k (tests of the browser)\n"
            "  --state-json FILE  JSON written after --frames: model, omega, xI, sim_time, fps, and the Poincare\n"
            "                     map as shown: poincare_period (k, 0 for chaos, null while settling) and\n"
            "                     poincare_points [[x, v], ...] [m, m/s]. With --preset, --state-json or --data\n"
@@ -367,6 +372,7 @@ Options parse_options(const std::vector<std::string>& args) {
         }
         else if (a == "--session") o.session = value();
         else if (a == "--browse") o.browse = value();
+        else if (a == "--double-click") o.double_clicks.push_back(value());
         else if (a == "--save-session") o.save_session = value();
         else if (a == "--clip-out") o.clip_out = value();
         else if (a == "--clip-seconds") o.clip_seconds = number(a, value(), 0.1, 60.0);
@@ -423,6 +429,11 @@ Options parse_options(const std::vector<std::string>& args) {
             const std::string key = o.press.rfind("ctrl+", 0) == 0 ? o.press.substr(5) : o.press;
             if (key.size() != 1 || key[0] < 'a' || key[0] > 'z')
                 throw OptionsError("--press: '" + o.press + "' is not a letter a-z, with or without ctrl+");
+        }
+        else if (a == "--tap") {
+            const std::string key = value();
+            if (key.size() != 1 || key[0] < 'a' || key[0] > 'z') throw OptionsError("--tap: '" + key + "' is not a letter a-z");
+            o.tap = key[0];
         }
         else if (a == "--soak") o.soak = number(a, value(), 1.0, 86400.0);
         else if (a == "--bench-plot") o.bench_plot = true;

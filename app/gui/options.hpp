@@ -13,6 +13,7 @@ struct OptionsError : std::runtime_error { using std::runtime_error::runtime_err
 struct Options {
     std::string model = "A1H";
     std::string browse;          // --browse DIR: the Load session window open on DIR's session files
+    std::vector<std::string> double_clicks;   // --double-click ROW: the mouse held still on the session browser's row, clicked twice
     std::string model_file;      // --model FILE.json: the file (model is its version, params its values)
     double omega = 9.0;          // [rad/s]
     double xI = 0.0;             // [m]
@@ -82,6 +83,7 @@ struct Options {
     bool twin = false;           // --twin: a second cart 1 um to the right, the same model
     std::string ghost;           // --ghost M: a second cart from the same state under M's impact law
     std::string press;           // --press [ctrl+]KEY: that key pressed at frame 3 (headless tests of the keys)
+    char tap = 0;                // --tap KEY: pressed and released within one frame's events at frame 3
     bool set_state = false;      // --set-state X,V: at the first frame, as a click in the phase portrait
     double set_x = 0, set_v = 0; // [m], [m/s]
     // The parameters panel (views/params_panel.hpp).

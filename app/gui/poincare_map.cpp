@@ -33,6 +33,8 @@ void PoincareMap::reset() {
     period_ = 0;
     seen_ = 0;
     unsettled_ = 0;
+    slow_ = false;
+    decay_ = NAN;
     update_tolerance();
 }
 
@@ -76,7 +78,7 @@ double PoincareMap::gap(std::size_t i, std::size_t d) const {
 bool PoincareMap::dying_alternation(int period) const {
     // Over the trailing stretch where P^k recurs (loosely), the d-difference (d | k) of a transient converging
     // to period d shrinks geometrically to 0, that of a period-k orbit levels off at the orbit's own spread.
-    // Which one: Aitken's extrapolation of the d-difference from three samples along the stretch.
+    // Which one: the spread's shrink per period over the newer half of the stretch.
     const auto k = static_cast<std::size_t>(period);
     const std::size_t n = recent_.size();
     std::size_t first = n;
@@ -92,17 +94,16 @@ bool PoincareMap::dying_alternation(int period) const {
             for (std::size_t j = 0; j < k; ++j) g = std::max(g, gap(end - j, d));
             return g;
         };
-        const double ea = spread(n - 1 - 2 * m), eb = spread(n - 1 - m), ec = spread(n - 1);
-        const double d1 = eb - ea, d2 = ec - eb;
-        if (d2 > -0.05) continue;                     // not shrinking (by more than noise)
-        const double rho = d1 < 0 ? d2 / d1 : 0;      // the shrink per m periods
-        if (rho > 0 && rho < 1) {
-            // Heads for 0 (period d), or at least far below where it is: a period-k orbit that has
-            // recurred to within the tolerance is close to its own spread already.
-            if (ec + d2 * rho / (1 - rho) < std::max(1.0, 0.5 * ec)) return true;
-            continue;   // levels off: period k
-        }
-        if (ec < cfg_.dying_ratio * ea) return true;
+        const double eb = spread(n - 1 - m), ec = spread(n - 1);
+        if (ec - eb > -0.05) continue;                // not shrinking (by more than noise)
+        // Still shrinking measurably: not period k yet. Near a multiplier of -1 the alternation dies out over
+        // hundreds of periods (0.64 % a period at A1H's 10.85 rad/s), and an extrapolation from a few samples
+        // (a fast mode dying on top of it) once took it for a level and said period 2. A period-k orbit's own
+        // spread is level: its shrink per period falls below kLevel once it has converged.
+        constexpr double kLevel = 2e-4;               // [1/period] a shrink this slow is a level
+        if (std::log(eb / ec) / static_cast<double>(m) < kLevel) continue;
+        decay_ = eb > 0 && ec > 0 ? std::pow(ec / eb, 1.0 / static_cast<double>(m)) : NAN;
+        return true;
     }
     return false;
 }
@@ -165,6 +166,13 @@ void PoincareMap::push(const MapInput& in) {
             if (points_.size() > keep) points_.drop_oldest(points_.size() - keep);
             // The alternation of a negative multiplier has died out: the orbit's period is a divisor of k.
             if (const int d = k > 1 ? find_period(0, period_, true) : 0; d > 0) settle_on(d);
+            // Or it is still dying out (it looked level for a while): not period k after all, wait.
+            else if (k > 1 && !from_chaos_ && dying_alternation(period_)) {
+                status_ = Status::Settling;
+                period_ = 0;
+                unsettled_ = 1;
+                slow_ = true;   // the points go on as provisional ones (no jump of the view)
+            }
             return;
         }
         if (from_chaos_) {
@@ -183,6 +191,7 @@ void PoincareMap::push(const MapInput& in) {
     // unstable cycles for a few periods (intermittency), a settled orbit recurs for ever.
     const bool chaotic = status_ == Status::Chaotic;
     bool converging = false;
+    slow_ = false;
     if (const int k = find_period(chaotic ? static_cast<std::size_t>(cfg_.chaos_after) / 2 : 0, cfg_.max_period + 1, false);
         k > 0) {
         if (!dying_alternation(k)) {
@@ -191,6 +200,7 @@ void PoincareMap::push(const MapInput& in) {
             return;
         }
         converging = true;   // recurring, so not chaos: the period is not yet known
+        slow_ = k > 1;       // an alternation dying out: the period is a divisor of k, not yet known
     }
     if (status_ == Status::Chaotic) {
         points_.push({in.x, in.v, in.impacts});

@@ -11,6 +11,7 @@
 // GL-free; UI thread only (the app feeds it from its drain of the sample ring).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -27,7 +28,6 @@ struct PoincareConfig {
     double break_factor = 10;     // a settled orbit breaks when a point misses by break_factor * rel_tol
     int chaos_after = 64;         // section points without any recurrence before "chaos" is said
     int provisional_after = 16;   // undecided points before the newer half is shown (no period said)
-    double dying_ratio = 0.5;     // d-differences shrunk below this fraction over a stretch: a transient
     int periodic_cycles = 4;      // a periodic orbit shows its last few cycles: where it is, not where it
                                   // was while it converged (a slow approach would smear each point)
     double min_size_x = 1e-3;     // [m]   floors of the attractor's size (a cart at rest has size 0)
@@ -64,6 +64,11 @@ public:
     bool provisional() const { return status_ == Status::Settling && !points_.empty(); }
     // The period k while Periodic; 0 while Chaotic; -1 while settling.
     int period() const { return status_ == Status::Periodic ? period_ : status_ == Status::Chaotic ? 0 : -1; }
+    // Settling on an alternation that recurs after k periods but is still dying out (a multiplier near -1):
+    // the period is a divisor of k, not yet known. decay() is the alternation's shrink per forcing period
+    // (its |multiplier|, e.g. 0.994), NaN when unknown.
+    bool slow() const { return status_ == Status::Settling && slow_; }
+    double decay() const { return decay_; }
     // Section points received since the last reset() (transient included).
     std::uint64_t seen() const { return seen_; }
     // The settled points, oldest first: a periodic orbit's last periodic_cycles * k, a chaotic orbit's all
@@ -105,6 +110,8 @@ private:
     std::uint64_t unsettled_ = 0;    // points since the last reset or break without a decision
     double tol_x_ = 0, tol_v_ = 0;
     bool from_chaos_ = false;        // the current period was found after chaos had been said
+    bool slow_ = false;              // the last point recurred after k > 1 periods, its alternation dying
+    mutable double decay_ = NAN;     // the alternation's shrink per period when last measured (dying_alternation)
 };
 
 // Turns the simulation's records, in the order they were published, into MapInputs: the extent of the

@@ -43,6 +43,7 @@ ViewContext App::view_context() const {
     c.paused = paused_;
     c.sim_paused = sim_->status().paused;
     c.replay = replay_.active();
+    c.omega_moving = ramp_.active();
     c.ui_scale = ui_scale_;
     c.frame_dt = frame_dt_;
     c.now = now_s();
@@ -148,6 +149,7 @@ BifurcationContext App::bifurcation_context() {
     c.steps = &bif_steps_;
     c.ramp = &ramp_;
     c.overlay = [this](Plot& plot) { analysis_.overlay_diagram(plot); };
+    c.overlay_legend = [this](bool compact) { analysis_.overlay_legend(compact); };
     if (const auto& ov = analysis_.overlay()) c.branches = &*ov;
     return c;
 }

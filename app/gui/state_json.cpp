@@ -40,7 +40,10 @@ bool App::write_state_json(const std::string& path) {
                                }()}});
         j["clicker"] = {{"on", poincare_.clicker()}, {"orbits", std::move(orbits)}};
     }
-    j["guide"] = {{"open", show_guide_}, {"demo", demo_}, {"details", details_}, {"basins_open", panel_visible_[static_cast<std::size_t>(PanelId::Basins)]}};
+    j["guide"] = {{"open", show_guide_}, {"demo", demo_}, {"details", details_}, {"basins_open", panel_visible_[static_cast<std::size_t>(PanelId::Basins)]},
+                  {"collapsed", guide_.collapsed()},
+                  {"controls_tab", controls_tab_ < 0 || !layout_.controls_tabbed ? json(nullptr) : json(controls_tab_ == 0 ? "Run" : controls_tab_ == 1 ? "View" : "State")},
+                  {"rect", {guide_.rect()[0], guide_.rect()[1], guide_.rect()[2], guide_.rect()[3]}}};
     {   // The time strip's traces and their y ranges [SI units].
         json traces = json::array(), views = json::array();
         traces.push_back(strip_key(strip_.first()));
@@ -131,6 +134,9 @@ bool App::write_state_json(const std::string& path) {
                            : st == PoincareMap::Status::Chaotic ? "chaos"
                            : map.provisional()                   ? "provisional" : "settling";
     j["poincare_period"] = st == PoincareMap::Status::Settling ? json(nullptr) : json(map.period());
+    j["poincare_slow"] = map.slow();   // settling on an alternation still dying out (a multiplier near -1)
+    j["poincare_decay"] = std::isfinite(map.decay()) ? json(map.decay()) : json(nullptr);   // its shrink per period
+    j["poincare_omega_moving"] = ramp_.active();   // the label says omega moves
     j["poincare_seen"] = map.seen();   // section points since the last change, the transient included
     j["poincare_tol"] = {map.tol_x(), map.tol_v()};
     json pts = json::array(), imp = json::array();
@@ -151,6 +157,8 @@ bool App::write_state_json(const std::string& path) {
         j["poincare_last_section"] = nullptr;
     }
     j["session_window"] = session_window_ ? json(session_saving_ ? "save" : "load") : json(nullptr);
+    j["session_path"] = session_path_;
+    j["session_overwrite_asked"] = overwrite_pending_.empty() ? json(nullptr) : json(overwrite_pending_);
     j["session_browser"] = session_window_ ? session_browser_.state() : json(nullptr);   // the files it lists
     j["plane"] = analysis_.plane.state();
     j["basins"] = analysis_.basins.state();   // the basins shown: their box, grid and attractors   // the plane shown and the doubling continued over it
@@ -197,6 +205,15 @@ bool App::write_state_json(const std::string& path) {
                             {"above", b.live.above}, {"below", b.live.below}};
         d["lyapunov"] = {{"on", b.lyap_on}, {"running", b.lyap_running}, {"steps", b.lyap_steps},
                          {"done", b.lyap_done}, {"positive", b.lyap_positive}};
+        const auto& om = bif_panel_.omega_label();
+        d["omega_label_rect"] = {om[0], om[1], om[2], om[3]};   // [px] the running omega's label
+        const auto& pr = bif_panel_.plot_rect();
+        d["plot_rect"] = {pr[0], pr[1], pr[2], pr[3]};   // [px] the data area drawn (zeros: not drawn)
+        const auto& lg = analysis_.legend_rect();
+        d["legend_rect"] = lg[2] > lg[0] ? json{lg[0], lg[1], lg[2], lg[3]} : json(nullptr);   // the branches' legend
+        json mk = json::array();
+        for (const auto& q : analysis_.markers()) mk.push_back({q[0], q[1]});
+        d["markers_px"] = std::move(mk);   // the bifurcation points drawn
         j["diagram"] = std::move(d);
     }
     j["poincare_impacts"] = std::move(imp);   // impacts in the forcing period ending at each point

@@ -239,14 +239,19 @@ void App::draw_controls() {
     };
     if (!layout_.controls_tabbed) {
         for (int i = 0; i < 3; ++i) measured(i);
+        controls_tab_ = -1;   // every group shows (a focus asked for waits: the first frames measure untabbed)
     } else if (ImGui::BeginTabBar("##controls_tabs")) {
         for (int i : kTabOrder) {
-            if (ImGui::BeginTabItem(kGroups[i].name)) {
+            // A demonstration may name a group (demo 4: the energy balance under State): it comes to the front.
+            const ImGuiTabItemFlags flags = controls_focus_ == i ? ImGuiTabItemFlags_SetSelected : 0;
+            if (ImGui::BeginTabItem(kGroups[i].name, nullptr, flags)) {
+                controls_tab_ = i;
                 measured(i);
                 ImGui::EndTabItem();
             }
         }
         ImGui::EndTabBar();
+        controls_focus_ = -1;
     }
     float need = 0;
     bool all = true;
@@ -332,7 +337,10 @@ void App::layout_and_draw() {
     data_panel_.poll(data_context());
     if (show_data_) data_panel_.draw(&show_data_, data_context());
     if (show_guide_)
-        if (const GuideAction ga = guide_.draw(&show_guide_, demo_); ga.demo) run_demo(ga.demo);
+        if (const GuideAction ga = guide_.draw(&show_guide_, demo_); ga.demo) {
+            run_demo(ga.demo);
+            guide_.move_aside();
+        }
     if (show_params_) {
         const ParamsAction pa = params_panel_.draw(&show_params_, {&params_, model_name(), ui_scale_});
         if (pa.set) set_param(pa.set->first, pa.set->second);

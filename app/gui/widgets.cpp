@@ -1,6 +1,8 @@
 #include "widgets.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "theme.hpp"
 
@@ -22,6 +24,34 @@ void same_line_or_wrap(float next_w) {
 
 float button_width(const char* label) {
     return ImGui::CalcTextSize(label, nullptr, true).x + 2.0f * ImGui::GetStyle().FramePadding.x;
+}
+
+void text_wrapped_at_spaces(const char* text) {
+    const float width = std::max(ImGui::GetContentRegionAvail().x, ImGui::GetFontSize() * 4.0f);
+    std::string line, word;
+    const auto flush_word = [&] {
+        if (word.empty()) return;
+        const std::string joined = line.empty() ? word : line + " " + word;
+        if (!line.empty() && ImGui::CalcTextSize(joined.c_str()).x > width) {
+            ImGui::TextUnformatted(line.c_str());
+            line = word;
+        } else {
+            line = joined;
+        }
+        word.clear();
+    };
+    for (const char* c = text; *c; ++c) {
+        if (*c == ' ') flush_word();
+        else if (*c == '\n') {
+            flush_word();
+            ImGui::TextUnformatted(line.c_str());
+            line.clear();
+        } else {
+            word += *c;
+        }
+    }
+    flush_word();
+    if (!line.empty()) ImGui::TextUnformatted(line.c_str());
 }
 
 void plate_text(ImDrawList* dl, ImVec2 p, const char* text, ImU32 col, ImVec2 align) {

@@ -13,6 +13,10 @@ void same_line_or_wrap(float next_w);
 // The width of a button labelled `label` (its text and frame padding) [px].
 float button_width(const char* label);
 
+// Text wrapped to the content region at spaces only: ImGui's own wrap also breaks after '.', ',' and ';',
+// which splits a number ("cq = 4." / "001").
+void text_wrapped_at_spaces(const char* text);
+
 // A text on a dark (or light) plate that keeps it readable over plots and the rig; align as ImGui's (0:
 // left/top, 1: right/bottom of the text at p).
 void plate_text(ImDrawList* dl, ImVec2 p, const char* text, ImU32 col, ImVec2 align = ImVec2(0, 0));

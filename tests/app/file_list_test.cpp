@@ -32,3 +32,35 @@ TEST_CASE("file_list: folders first, wanted extensions only, hidden entries left
     CHECK(error.find("cannot list") != std::string::npos);
     fs::remove_all(d);
 }
+
+TEST_CASE("RowClicks: a double-click acts on the row its first click picked, never on the row under a folder it opened") {
+    RowClicks c;
+    const double dt = 0.3;
+    // The issue's gesture: a double-click on "sub/" opens it at the first click; the second lands on
+    // "live.json", now in that row, and must neither pick nor open it.
+    CHECK(c.click("/d", "sub", true, false, 10.00, dt) == RowAction::EnterDir);
+    CHECK(c.click("/d/sub", "live.json", false, true, 10.15, dt) == RowAction::None);
+    // Later, a single click picks, a double-click on the same row opens.
+    CHECK(c.click("/d/sub", "live.json", false, false, 12.00, dt) == RowAction::Pick);
+    CHECK(c.click("/d/sub", "live.json", false, true, 12.10, dt) == RowAction::Open);
+    // A double-click whose first click picked another row only picks.
+    CHECK(c.click("/d/sub", "a.json", false, false, 14.00, dt) == RowAction::Pick);
+    CHECK(c.click("/d/sub", "b.json", false, true, 14.10, dt) == RowAction::Pick);
+    // The same name in another folder is another row.
+    CHECK(c.click("/d/sub", "..", true, false, 16.00, dt) == RowAction::EnterDir);
+    CHECK(c.click("/d", "b.json", false, true, 18.00, dt) == RowAction::Pick);
+}
+
+TEST_CASE("save_target and path_in_folder: saving into a folder means that folder") {
+    namespace fs = std::filesystem;
+    const fs::path d = fs::temp_directory_path() / "impactlab_save_target_test";
+    fs::remove_all(d);
+    fs::create_directories(d / "sub");
+    CHECK(save_target((d / "sub").string(), "s.json") == (d / "sub" / "s.json").string());
+    CHECK(save_target((d / "new").string() + "/", "s.json") == (d / "new" / "s.json").string());
+    CHECK(save_target((d / "x.json").string(), "s.json") == (d / "x.json").string());
+    CHECK(save_target("", "s.json") == "s.json");
+    CHECK(path_in_folder((d / "sub").string(), (d / "live.json").string(), "s.json") == (d / "sub" / "live.json").string());
+    CHECK(path_in_folder((d / "sub").string(), (d.string() + "/"), "s.json") == (d / "sub" / "s.json").string());
+    fs::remove_all(d);
+}

@@ -6,6 +6,8 @@
 #     same core function): the same omega to 1e-7, and the curve A1C's vertical line at 10.86134 rad/s from
 #     the grazing near xI = -3.3 mm up to the plane's top.
 #  3. --plane-doubling without a plane exits 1 naming the flag.
+#  4. A1C at omega 10.9-11.1, |xI| <= 1 mm, as the CLI scans it: every cell settled to period 2 (20
+#     transient periods once left 5 and 10 there), and so the GUI's plane shows it.
 # Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
 # usage: gui_plane.sh IMPACTLAB_GUI IMPACTLAB_CLI OUT_DIR
 gui="$1"; cli="$2"; dir="$3"
@@ -16,6 +18,9 @@ mkdir -p "$dir"
 
 "$cli" scan --model A1C --x omega:9.5:12.5:13 --y xI:-0.006:0.002:9 --out "$dir/plane.csv" --png "$dir/plane.png" \
     --doubling-from auto --threads 2 2>"$dir/cli.log" || { cat "$dir/cli.log"; echo "gui_plane: the scan failed"; exit 1; }
+"$cli" scan --model A1C --x omega:10.9:11.1:3 --y xI:-0.001:0.001:3 --out "$dir/settled.csv" 2>"$dir/cli2.log" ||
+    { cat "$dir/cli2.log"; echo "gui_plane: the 3 x 3 scan failed"; exit 1; }
+gui_json settled --model A1C --plane "$dir/settled.csv" --frames 5
 gui_json plain --model A1C --frames 5
 gui_json plane --model A1C --plane "$dir/plane.csv" --plane-doubling --frames 20 --screenshot "$dir/plane_tile.png"
 
@@ -71,6 +76,9 @@ else:
         fail.append(f"doubling: spans xI {min(qs)} .. {max(qs)}, not -3.3 mm .. 2 mm")
     if "doubling lost" not in db["end"]:
         fail.append(f"doubling: its lower end is not the grazing: {db['end']}")
+st = load("settled")["plane"]
+if st.get("periods") != [2] * 9:
+    fail.append(f"settled: the cells at 10.9-11.1 rad/s read {st.get('periods')}, not period 2 everywhere")
 for f in fail:
     print("gui_plane:", f)
 if fail:

@@ -54,6 +54,20 @@ if(TARGET impactlab)
   set_tests_properties(gui_bifurcations PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900 LABELS "gui")
 endif()
 
+# The period label waits for a slowly dying alternation just below the first doubling, and never says
+# period 1 just above it; a ramp says omega moves (gui_label_wait.sh says what it checks).
+add_test(NAME gui_label_wait
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_label_wait.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_label_wait)
+set_tests_properties(gui_label_wait PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 400 LABELS "gui")
+
+# Legends and labels never cover the data; the diagram stays drawn with the analysis tiles open and at
+# scale 2 (gui_legends.sh says what it checks).
+add_test(NAME gui_legends
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_legends.sh $<TARGET_FILE:impactlab-gui>
+                 ${CMAKE_CURRENT_BINARY_DIR}/gui_legends)
+set_tests_properties(gui_legends PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 400 LABELS "gui")
+
 # Defects a teacher meets: --save-session keeps --model, bad session numbers and duplicate keys refused.
 add_test(NAME gui_teacher
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/app/gui_teacher.sh $<TARGET_FILE:impactlab-gui>

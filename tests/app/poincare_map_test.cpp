@@ -302,6 +302,49 @@ TEST_CASE("poincare map: on the engine across the first doubling (10.8613 rad/s)
     }
 }
 
+TEST_CASE("poincare map: on the engine next to the doubling, the label waits for the alternation's decay") {
+    // A1H at 10.85 rad/s: a stable period 1 with multiplier -0.9936 (impactlab orbit), approached alternating,
+    // the alternation shrinking by 0.64 % a period: P^2 recurs for hundreds of periods before P does. The map
+    // says "settling (slow)" with that rate meanwhile, never period 2. At 10.87 the orbit is period 2: never 1.
+    struct FeedSink final : MsgSink {
+        PoincareMap* map;
+        SectionFeeder feeder;
+        void put(const SimMsg& m) override { feeder.on_msg(m, *map); }
+    };
+    for (const double omega : {10.85, 10.87}) {
+        CAPTURE(omega);
+        const int want = omega < 10.8613 ? 1 : 2;
+        PoincareMap map;
+        FeedSink sink;
+        sink.map = &map;
+        EngineConfig cfg;
+        cfg.model = "A1H";
+        cfg.omega = omega;
+        cfg.speed = 100;
+        SimEngine engine(cfg, &sink);
+        const double period_s = 2 * std::numbers::pi / omega;
+        int wrong = 0, slow = 0, told = -1;
+        double decay = NAN;
+        for (int n = 1; n <= 1500; ++n) {
+            engine.advance_to(n * period_s + 1e-9);
+            if (map.period() > 0 && map.period() != want) ++wrong;
+            if (map.slow()) {
+                ++slow;
+                if (std::isfinite(map.decay())) decay = map.decay();
+            }
+            if (told < 0 && map.period() == want) told = n;
+        }
+        CHECK(wrong == 0);
+        MESSAGE("A1H " << omega << ": settling (slow) for " << slow << " periods (decay " << decay << " a period), period "
+                       << want << " told after " << told);
+        if (want == 1) {
+            CHECK(slow > 100);
+            CHECK(decay > 0.98);
+            CHECK(decay < 1.0);
+        }
+    }
+}
+
 namespace {
 // What a map shows, to compare two maps with.
 struct MapView {

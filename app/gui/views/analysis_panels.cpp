@@ -236,8 +236,10 @@ void AnalysisPanels::overlay_diagram(Plot& plot) const {
     const ImVec2 m = ImGui::GetIO().MousePos;
     const analysis::BifPoint* near = nullptr;
     float best = 8.0f * s * 8.0f * s;
+    markers_.clear();
     for (const analysis::BifPoint& q : overlay_->points) {
         const ImVec2 p = plot.to_px(q.param, q.y[0]);
+        if (p.x >= a.x && p.x <= b.x && p.y >= a.y && p.y <= b.y) markers_.push_back({p.x, p.y});
         bif_marker(dl, p, q.kind, 5.0f * s);
         const float d2 = (p.x - m.x) * (p.x - m.x) + (p.y - m.y) * (p.y - m.y);
         if (plot.hovered() && d2 < best) {
@@ -248,44 +250,87 @@ void AnalysisPanels::overlay_diagram(Plot& plot) const {
     if (near)
         ImGui::SetTooltip("%s at ω = %.7g rad/s (± %.0e)\nperiod %d, x = %.3f mm, v = %.1f mm/s",
                           bif_label(near->kind), near->param, near->precision, near->period, 1e3 * near->y[0], 1e3 * near->y[1]);
-    // Legend (top right): the line styles (in a neutral colour: the colour is the period), a colour per
-    // period shown, and the symbols of the kinds found.
-    struct Row {
-        std::string text;
-        int style;   // 0 solid, 1 dashed, 2 a period's colour, 3 a marker
-        int arg;     // the period, or the kind
+}
+
+void AnalysisPanels::overlay_legend(bool compact) const {
+    // A row above the diagram, outside its plot (it never covers a branch, a point or a label): the line
+    // styles in a neutral colour (the colour is the period), a colour per period shown, the symbols found.
+    // Compact (a short tile): one word, "key", that shows the row when hovered.
+    legend_ = {};
+    if (!overlay_) return;
+    if (compact) {
+        ImGui::TextDisabled("key");
+        const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+        if (ImGui::IsItemHovered()) {
+            ImGui::BeginTooltip();
+            ImGui::PushTextWrapPos(ImGui::GetFontSize() * 22.0f);
+            overlay_legend(false);
+            ImGui::PopTextWrapPos();
+            ImGui::EndTooltip();
+        }
+        legend_ = {a.x, a.y, b.x, b.y};
+        return;
+    }
+    const float s = ImGui::GetFontSize() / 14.5f, lh = ImGui::GetTextLineHeight();
+    const ImU32 neutral = palette().axis_text;
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+    bool first = true;
+    // One entry: its sample drawn in a box of 22 s pixels, then its text, wrapped as a unit.
+    const auto entry = [&](const char* text, const auto& sample) {
+        const float w = 24 * s + ImGui::CalcTextSize(text).x;
+        if (!first) same_line_or_wrap(w);
+        first = false;
+        const ImVec2 p = ImGui::GetCursorScreenPos();
+        sample(dl, ImVec2(p.x + 1, p.y + 0.5f * lh), ImVec2(p.x + 20 * s, p.y + 0.5f * lh));
+        dl->AddText(ImVec2(p.x + 24 * s, p.y), neutral, text);
+        ImGui::Dummy(ImVec2(w, lh));
+        x0 = std::min(x0, p.x);
+        y0 = std::min(y0, p.y);
+        x1 = std::max(x1, p.x + w);
+        y1 = std::max(y1, p.y + lh);
     };
-    std::vector<Row> rows{{"stable", 0, 0}, {"unstable", 1, 0}};
+    entry("stable", [&](ImDrawList* d, ImVec2 a, ImVec2 b) { d->AddLine(a, b, neutral, 2.0f * s); });
+    entry("unstable", [&](ImDrawList* d, ImVec2 a, ImVec2 b) { draw_branch(d, {a, b}, {1}, neutral, 2.0f * s); });
+    // The periods as one entry: "period" and each period shown, in its colour.
+    std::vector<int> periods;
     for (int k = 1; k <= 64; k *= 2)
         for (const BranchCurve& cv : overlay_->curves)
             if (cv.period == k) {
-                rows.push_back({"period " + std::to_string(k), 2, k});
+                periods.push_back(k);
                 break;
             }
-    static const char* kKinds[] = {"fold", "period doubling", "Neimark-Sacker", "grazing"};
+    if (!periods.empty()) {
+        std::string all = "period";
+        for (const int k : periods) {
+            all += ' ';
+            all += std::to_string(k);
+        }
+        const float w = ImGui::CalcTextSize(all.c_str()).x;
+        same_line_or_wrap(w);
+        const ImVec2 p = ImGui::GetCursorScreenPos();
+        dl->AddText(p, neutral, "period");
+        float x = p.x + ImGui::CalcTextSize("period").x;
+        for (const int k : periods) {
+            std::string t(1, ' ');
+            t += std::to_string(k);
+            dl->AddText(ImVec2(x, p.y), branch_color(k), t.c_str());
+            x += ImGui::CalcTextSize(t.c_str()).x;
+        }
+        ImGui::Dummy(ImVec2(w, lh));
+        x1 = std::max(x1, p.x + w);
+        y1 = std::max(y1, p.y + lh);
+    }
+    static const char* kKinds[] = {"fold", "doubling", "Neimark-Sacker", "grazing"};
     for (int kind = 0; kind < 4; ++kind)
         for (const analysis::BifPoint& q : overlay_->points)
             if (static_cast<int>(q.kind) == kind) {
-                rows.push_back({kKinds[kind], 3, kind});
+                entry(kKinds[kind], [&](ImDrawList* d, ImVec2 a, ImVec2 b) {
+                    bif_marker(d, ImVec2(0.5f * (a.x + b.x), a.y), static_cast<analysis::BifKind>(kind), 4.5f * s);
+                });
                 break;
             }
-    const float lh = ImGui::GetTextLineHeight();
-    float w = 0;
-    for (const Row& r : rows) w = std::max(w, ImGui::CalcTextSize(r.text.c_str()).x);
-    const float x0 = b.x - w - 34 * s - 6, y0 = a.y + 6;
-    const ImU32 bg = palette().dark ? IM_COL32(10, 12, 16, 190) : IM_COL32(255, 255, 255, 200);
-    dl->AddRectFilled(ImVec2(x0 - 4, y0 - 2), ImVec2(b.x - 4, y0 + static_cast<float>(rows.size()) * lh + 2), bg, 3.0f);
-    float y = y0 + 0.5f * lh;
-    const ImU32 neutral = palette().axis_text;
-    for (const Row& r : rows) {
-        const ImVec2 l0(x0 + 2, y), l1(x0 + 24 * s, y);
-        if (r.style == 0) dl->AddLine(l0, l1, neutral, 2.0f * s);
-        else if (r.style == 1) draw_branch(dl, {l0, l1}, {1}, neutral, 2.0f * s);
-        else if (r.style == 2) dl->AddLine(l0, l1, branch_color(r.arg), 3.0f * s);
-        else bif_marker(dl, ImVec2(x0 + 13 * s, y), static_cast<analysis::BifKind>(r.arg), 4.5f * s);
-        dl->AddText(ImVec2(x0 + 30 * s, y - 0.5f * lh), neutral, r.text.c_str());
-        y += lh;
-    }
+    legend_ = {x0, y0, x1, y1};
 }
 
 }  // namespace impactlab::gui

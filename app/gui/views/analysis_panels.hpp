@@ -5,6 +5,9 @@
 // nothing here talks to that thread. UI thread only.
 #pragma once
 
+#include <array>
+#include <vector>
+
 #include <optional>
 #include <string>
 
@@ -42,10 +45,17 @@ public:
     // Inside the bifurcation diagram's plot, last: branches (stable solid, unstable dashed) and the
     // bifurcation points (a symbol per kind, named on hover).
     void overlay_diagram(Plot& plot) const;
+    // Its legend, as a row of items where the caller is (above the diagram, outside the plot); compact: the
+    // word "key", the row shown while it is hovered.
+    void overlay_legend(bool compact) const;
     // Before the GL context goes.
     void release_gl();
     // The continued branches shown over the diagram (--state-json reports their special points).
     const std::optional<ContinuationOverlay>& overlay() const { return overlay_; }
+    // As last drawn (screen pixels): the legend row's rectangle (x0, y0, x1, y1; zeros: none drawn) and the
+    // bifurcation markers inside the plot.
+    const std::array<float, 4>& legend_rect() const { return legend_; }
+    const std::vector<std::array<float, 2>>& markers() const { return markers_; }
 
     PlanePanel plane;     // the parameter plane's tile
     BasinsPanel basins;   // the basins' tile
@@ -60,6 +70,8 @@ private:
     long here_wait_ = 0;       // frames waited for it
     double here_chaos_since_ = -1;   // [s] simulated time since when the map has said chaos (-1: it has not)
     std::string startup_error_;
+    mutable std::array<float, 4> legend_{};              // drawn by the const overlay_legend
+    mutable std::vector<std::array<float, 2>> markers_;
 };
 
 }  // namespace impactlab::gui

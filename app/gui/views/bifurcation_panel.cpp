@@ -356,6 +356,36 @@ void BifurcationPanel::update_texture(int w, int h) {
 
 void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toast) {
     const float fs = ImGui::GetFontSize();
+    // A short tile (analysis tiles open, a large UI scale): the settings fold into one button, so the
+    // diagram keeps the height (a row of controls wrapped over three lines left it 50 px).
+    const bool short_tile = ImGui::GetContentRegionAvail().y < fs * 16.0f;
+    if (short_tile) {
+        if (ImGui::SmallButton(settings_open_ ? "settings ^" : "settings v")) settings_open_ = !settings_open_;
+        tooltip("The diagram's settings (parameter, protocol, steps, range), folded in a short tile.");
+        if (!settings_open_) {
+            ImGui::SameLine();
+            if (job_.running()) {
+                if (ImGui::SmallButton("Cancel")) job_.cancel();
+                ImGui::SameLine();
+                ImGui::ProgressBar(static_cast<float>(job_.progress()),
+                                   ImVec2(std::max(fs * 4.0f, ImGui::GetContentRegionAvail().x - fs * 0.5f), ImGui::GetTextLineHeight()));
+            } else {
+                char label[48];
+                std::snprintf(label, sizeof label, "Compute %s", c.model.c_str());
+                ImGui::BeginDisabled(!range_error_.empty());
+                if (ImGui::SmallButton(label)) toast = start(c);
+                ImGui::EndDisabled();
+                tooltip("B: runs on a worker thread and fills in column by column; the animation goes on.");
+            }
+            if (c.overlay_legend && c.branches && !show_v_ && over_ == SweepParam::Omega) {
+                ImGui::SameLine();
+                c.overlay_legend(true);
+            }
+            if (!range_error_.empty()) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", range_error_.c_str());
+            return;
+        }
+        ImGui::SameLine();
+    }
     // Keeps a row's items together: the next one goes on a new line when it would not fit.
     auto same_line_if = [&](float width) {
         ImGui::SameLine();
@@ -469,6 +499,7 @@ void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toa
     if (strip_ok) tooltip(tip);
     else if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", tip);
     draw_legend();
+    if (c.overlay_legend && c.branches && !show_v_ && over_ == SweepParam::Omega) c.overlay_legend(short_tile);
     if (!range_error_.empty()) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", range_error_.c_str());
 }
 
@@ -501,8 +532,10 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
     const bool strip = lyap_on_ && over_omega;
     const float strip_h = strip ? std::max(ImGui::GetFontSize() * 6.0f, 0.3f * avail.y) : 0.0f;
     avail.y -= strip_h;
+    plot_rect_ = {};
     if (!plot.begin("##bif", avail, fit_x_, fit_y_with_branches(c), ax)) return act;
     const ImVec2 a = plot.area_min(), b = plot.area_max();
+    plot_rect_ = {a.x, a.y, b.x, b.y};
     const Range vx = plot.x_range(), vy = plot.y_range();
     if (vx.lo != view_x_.lo || vx.hi != view_x_.hi || vy.lo != view_y_.lo || vy.hi != view_y_.hi) {
         view_x_ = vx;
@@ -514,7 +547,7 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         update_texture(static_cast<int>(b.x - a.x), static_cast<int>(b.y - a.y));
         // A diagram of another model (or bumper position) stays, dimmed, until B computes the new one.
         if (tex_) plot.image(image_.data(), tex_w_, tex_h_, static_cast<GLuint>(tex_), is_stale ? 90.0f / 255.0f : 1.0f);
-        draw_info(plot, b.x - a.x);
+        if (b.y - a.y > 6.0f * ImGui::GetFontSize()) draw_info(plot, b.x - a.x);   // a low plot keeps its data clear
         if (shown_.points.empty() && job_.running())
             plate_text(plot.draw(), ImVec2(0.5f * (a.x + b.x), 0.5f * (a.y + b.y)), "computing the first level...",
                   pal.axis_text, ImVec2(0.5f, 0.5f));
@@ -577,8 +610,35 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         ImVec2 p = plot.to_px(std::clamp(cur, vx.lo, vx.hi), vy.hi);
         p.x = std::clamp(p.x, a.x, b.x);
         // The label sits right of the line, or left of it near the right edge, so it is never cut off.
-        const bool left = beyond_hi || (!beyond_lo && p.x + ImGui::CalcTextSize(buf).x + 12 > b.x);
+        bool left = beyond_hi || (!beyond_lo && p.x + ImGui::CalcTextSize(buf).x + 12 > b.x);
+        // At the top of the plot, else the other side of the line, else the plot's foot: the first place
+        // where no continued branch's point lies under it.
+        if (c.branches && !show_v_ && over_omega) {
+            const ImVec2 ts = ImGui::CalcTextSize(buf);
+            const auto covers = [&](bool on_left, float y) {
+                const float lx = on_left ? p.x - 5 - ts.x : p.x + 5;
+                if (lx < a.x || lx + ts.x > b.x) return true;   // cut off: no place
+                for (const analysis::BifPoint& q : c.branches->points) {
+                    const ImVec2 m = plot.to_px(q.param, q.y[0]);
+                    if (m.x > lx - 9 && m.x < lx + ts.x + 9 && m.y > y - 7 && m.y < y + ts.y + 9) return true;
+                }
+                return false;
+            };
+            const float foot = b.y - ts.y - 2.0f * ImGui::GetTextLineHeightWithSpacing() - 6;
+            const std::pair<bool, float> places[] = {{left, p.y + 3}, {!left, p.y + 3}, {left, foot}, {!left, foot}};
+            for (const auto& [l, y] : places)
+                if (!covers(l, y)) {
+                    left = l;
+                    p.y = y - 3;
+                    break;
+                }
+        }
         plate_text(plot.draw(), ImVec2(left ? p.x - 5 : p.x + 5, p.y + 3), buf, pal.title_text, ImVec2(left ? 1.0f : 0.0f, 0));
+        {   // the label's plate (--state-json: no legend may cover it)
+            const ImVec2 ts = ImGui::CalcTextSize(buf);
+            const float lx = left ? p.x - 5 - ts.x : p.x + 5;
+            omega_label_ = {lx - 3, p.y + 2, lx + ts.x + 3, p.y + 4 + ts.y};
+        }
         // The running attractor's section points the view does not hold: how many, and on which side.
         const float line = ImGui::GetTextLineHeightWithSpacing();
         const auto note = [&](std::size_t count, const char* where, float y) {

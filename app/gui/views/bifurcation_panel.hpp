@@ -8,6 +8,8 @@
 // nothing here talks to the simulation thread. UI thread only.
 #pragma once
 
+#include <array>
+
 #include <functional>
 #include <optional>
 #include <string>
@@ -35,6 +37,7 @@ struct BifurcationContext {
     int* steps = nullptr;                    // CF omega levels
     const OmegaRamp* ramp = nullptr;         // the live omega ramp: the section points it passed, in green
     std::function<void(Plot&)> overlay;      // drawn last inside the diagram (the continued branches)
+    std::function<void(bool)> overlay_legend;   // its legend above the diagram (outside it); true: compact
     const ContinuationOverlay* branches = nullptr;   // what `overlay` draws (or null): the y fit includes it
 };
 
@@ -95,6 +98,10 @@ public:
     // with --bif-nowait), or the strip asked for at start still computing.
     bool busy() const;
     double progress() const { return job_.progress(); }
+    // The running omega's label as last drawn (screen pixels x0, y0, x1, y1; zeros before).
+    const std::array<float, 4>& omega_label() const { return omega_label_; }
+    // The diagram's data area as last drawn (screen pixels x0, y0, x1, y1; zeros when not drawn).
+    const std::array<float, 4>& plot_rect() const { return plot_rect_; }
     // The diagram's omega axis (the auto-fit, not the zoom): what the continuation follows. A diagram over
     // xI or m0e gives the omega range last typed for one over omega.
     Range omega_axis() const { return shown_req_.over == SweepParam::Omega ? fit_x_ : kept_[0]; }
@@ -174,6 +181,9 @@ private:
     int lyap_done_ = 0;
     bool lyap_y_user_ = false;
     Range lyap_view_y_{-1, 1};
+    std::array<float, 4> omega_label_{};   // the running omega's label (omega_label())
+    std::array<float, 4> plot_rect_{};     // the data area (plot_rect())
+    bool settings_open_ = false;           // a short tile's folded settings, unfolded
 };
 
 }  // namespace impactlab::gui

@@ -7,9 +7,11 @@
 #include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <string>
 #include <utility>
 
 #include "theme.hpp"
+#include "widgets.hpp"
 
 namespace impactlab::gui {
 
@@ -263,10 +265,11 @@ void DataPanel::draw_effects() {
     const auto& r = *report_;
     ImGui::TextUnformatted("Effects found (switch them on and off: the errors below follow)");
     ImGui::Separator();
-    if (r.effects_found.empty()) ImGui::TextWrapped("No effect passed the held-out test and the final gate.");
-    // What the fit concluded, and what the final gate undid: the same sentences as report.md.
-    ImGui::TextWrapped("Verdict: %s.", r.verdict.c_str());
-    for (const auto& g : r.gate) ImGui::TextWrapped("Final gate: %s.", g.c_str());
+    if (r.effects_found.empty()) text_wrapped_at_spaces("No effect passed the held-out test and the final gate.");
+    // What the fit concluded, and what the final gate undid: the same sentences as report.md (wrapped at
+    // spaces: a fitted value is never split).
+    text_wrapped_at_spaces(("Verdict: " + r.verdict + ".").c_str());
+    for (const auto& g : r.gate) text_wrapped_at_spaces(("Final gate: " + g + ".").c_str());
     for (std::size_t k = 0; k < r.effects_found.size() && k < kMaxToggleEffects; ++k) {
         const auto& f = r.effects_found[k];
         const std::uint32_t bit = std::uint32_t{1} << k;
@@ -279,7 +282,7 @@ void DataPanel::draw_effects() {
         }
         ImGui::Indent();
         ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-        ImGui::TextWrapped("%s (%s)", f.sentence.c_str(), identify::evidence_name(f.evidence));
+        text_wrapped_at_spaces((f.sentence + " (" + identify::evidence_name(f.evidence) + ")").c_str());
         ImGui::PopStyleColor();
         ImGui::Unindent();
     }

@@ -59,7 +59,7 @@ private:
 
     // Fields.
     char path_[512] = {};
-    FileBrowser browser_{{".csv", ".gz"}};   // the data files beside the path (Browse)
+    FileBrowser browser_{{".csv", ".gz"}, ""};   // the data files beside the path (Browse)
     bool browsing_ = false;
     char t_col_[64] = {}, x_col_[64] = {}, f_col_[64] = {};
     bool f_is_u_ = false;

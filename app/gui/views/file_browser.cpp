@@ -35,8 +35,10 @@ bool FileBrowser::draw(const char* id, char* path, std::size_t cap, float rows) 
     ImGui::TextDisabled("%s", dir_.c_str());
     if (!error_.empty()) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", error_.c_str());
     const float h = rows * ImGui::GetTextLineHeightWithSpacing();
+    rows_.clear();
     if (ImGui::BeginChild(id, ImVec2(ImGui::GetContentRegionAvail().x, h), true)) {
         std::string go;   // a folder clicked: opened after the loop (the list is being walked)
+        const ImGuiIO& io = ImGui::GetIO();
         for (const FileEntry& e : entries_) {
             char label[300];
             if (e.dir) std::snprintf(label, sizeof label, "%s/", e.name.c_str());
@@ -44,19 +46,34 @@ bool FileBrowser::draw(const char* id, char* path, std::size_t cap, float rows) 
             const std::string full = (fs::path(dir_) / e.name).lexically_normal().string();
             const bool chosen = !e.dir && full == path;
             if (ImGui::Selectable(label, chosen, ImGuiSelectableFlags_AllowDoubleClick)) {
-                if (e.dir) {
-                    go = full;
-                } else {
-                    std::snprintf(path, cap, "%s", full.c_str());
-                    open = ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
+                switch (clicks_.click(dir_, e.name, e.dir, ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left), ImGui::GetTime(),
+                                      static_cast<double>(io.MouseDoubleClickTime))) {
+                    case RowAction::EnterDir: go = full; break;
+                    case RowAction::Pick: std::snprintf(path, cap, "%s", full.c_str()); break;
+                    case RowAction::Open:
+                        std::snprintf(path, cap, "%s", full.c_str());
+                        open = true;
+                        break;
+                    case RowAction::None: break;
                 }
             }
+            const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+            rows_.push_back({e.dir ? e.name + "/" : e.name, lo.x, lo.y, hi.x, hi.y});
         }
         if (entries_.empty() && error_.empty()) ImGui::TextDisabled("(no matching files)");
-        if (!go.empty()) open_dir(go);
+        if (!go.empty()) {   // the field follows: saving now writes into the folder entered
+            open_dir(go);
+            if (!default_name_.empty()) std::snprintf(path, cap, "%s", path_in_folder(dir_, path, default_name_).c_str());
+        }
     }
     ImGui::EndChild();
     return open;
+}
+
+const FileBrowser::Row* FileBrowser::row(const std::string& name) const {
+    for (const Row& r : rows_)
+        if (r.name == name) return &r;
+    return nullptr;
 }
 
 nlohmann::json FileBrowser::state() const {

@@ -8,9 +8,9 @@ namespace impactlab::gui {
 
 namespace {
 constexpr GuideDemo kDemos[kDemoCount] = {
-    {"Period doubling", "A1H at ω = 10.3 rad/s, ω ramped slowly to 11.4 at 20x.",
-     "Watch the Poincaré map: its one point splits in two as ω passes 10.86 rad/s, and x(t) repeats every second "
-     "forcing period."},
+    {"Period doubling", "A1H at ω = 10.6 rad/s, ω ramped slowly to 11.2 at 20x (30 s; the guide folds away).",
+     "Watch the Poincaré map: its one point splits in two as ω passes 10.86 rad/s, about 13 s in, and x(t) "
+     "repeats every second forcing period."},
     {"The road to chaos", "A1H from ω = 9 rad/s ramped to 16 at 50x, the bifurcation diagram computing beside it.",
      "Watch the green points the ramp leaves over the diagram: one branch, then two near 10.9 rad/s, then a "
      "cloud (chaos) from about 12.8."},
@@ -35,7 +35,25 @@ GuideAction GuidePanel::draw(bool* open, int last_demo) {
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + 0.5f * vp->Size.x, vp->Pos.y + 0.5f * vp->Size.y), ImGuiCond_FirstUseEver,
                             ImVec2(0.5f, 0.5f));
     ImGui::SetNextWindowSize(ImVec2(fs * 34.0f, 0), ImGuiCond_FirstUseEver);
-    if (!ImGui::Begin("What to try###guide", open, ImGuiWindowFlags_NoSavedSettings)) {
+    // Folded, only its title bar, narrow (over the controls' corner, not a plot); unfolded, its own width.
+    if (collapsed_) ImGui::SetNextWindowSize(ImVec2(fs * 9.0f, 0), ImGuiCond_Always);
+    else if (was_collapsed_) ImGui::SetNextWindowSize(ImVec2(fs * 34.0f, 0), ImGuiCond_Always);
+    was_collapsed_ = collapsed_;
+    if (aside_pending_) {
+        ImGui::SetNextWindowSize(ImVec2(fs * 9.0f, 0), ImGuiCond_Always);
+        aside_pending_ = false;
+        ImGui::SetNextWindowCollapsed(true, ImGuiCond_Always);
+        ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + 0.25f * fs, vp->Pos.y + vp->Size.y - 2.0f * fs), ImGuiCond_Always,
+                                ImVec2(0.0f, 1.0f));
+    }
+    const bool shown = ImGui::Begin("What to try###guide", open, ImGuiWindowFlags_NoSavedSettings);
+    collapsed_ = ImGui::IsWindowCollapsed();
+    const ImVec2 wp = ImGui::GetWindowPos(), ws = ImGui::GetWindowSize();
+    rect_[0] = wp.x;
+    rect_[1] = wp.y;
+    rect_[2] = wp.x + ws.x;
+    rect_[3] = wp.y + ws.y;
+    if (!shown) {
         ImGui::End();
         return act;
     }

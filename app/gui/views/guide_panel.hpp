@@ -23,6 +23,16 @@ class GuidePanel {
 public:
     // Inside its own window; *open goes false when the user closes it.
     GuideAction draw(bool* open, int last_demo);
+    // After "Show me": folded to its title bar in the bottom-left corner, off the plots the demo speaks of
+    // (its title bar unfolds it again).
+    void move_aside() { aside_pending_ = true; }
+    bool collapsed() const { return collapsed_; }
+    // The window's rectangle as last drawn (screen pixels): x0, y0, x1, y1.
+    const float* rect() const { return rect_; }
+
+private:
+    bool aside_pending_ = false, collapsed_ = false, was_collapsed_ = false;
+    float rect_[4] = {0, 0, 0, 0};
 };
 
 }  // namespace impactlab::gui

@@ -15,7 +15,8 @@ struct Rgb {
 };
 inline ImU32 col(Rgb c, float a = 1.0f) { return IM_COL32(c.r, c.g, c.b, static_cast<int>(255 * a)); }
 
-// Period classes of a plane (the scan's `period`: 1..16 section values, 0 for more: chaos or a long period).
+// Period classes of a plane (the scan's `period`: 1..16 section values, 0 for more: chaos or a long period,
+// -1 for a point that had not settled).
 inline Rgb period_rgb(int k) {
     switch (k) {
         case 1: return {66, 120, 205};
@@ -27,18 +28,20 @@ inline Rgb period_rgb(int k) {
         case 7:
         case 8: return {226, 100, 168};
         case 0: return {196, 36, 36};
+        case -1: return {70, 70, 70};      // not settled (impactlab::kNotSettled): dark grey
         default: return {150, 150, 150};   // 9..16
     }
 }
 inline const char* period_name(int k) {
     static char buf[24];
+    if (k == -1) return "not settled";
     if (k == 0) return "chaos / > 16";
     if (k >= 9) return "period 9-16";
     if (k == 7 || k == 8) return "period 7-8";
     std::snprintf(buf, sizeof buf, "period %d", k);
     return buf;
 }
-inline int period_class(int k) { return k >= 9 ? 9 : k == 8 ? 7 : k; }
+inline int period_class(int k) { return k >= 9 ? 9 : k == 8 ? 7 : k < 0 ? 8 : k; }   // 8: not settled
 
 // A continuous measure (impacts, lyapunov, x range): dark blue to yellow, t in [0, 1].
 inline Rgb ramp_rgb(double t) {

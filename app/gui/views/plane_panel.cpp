@@ -285,8 +285,8 @@ void PlanePanel::draw_legend(const std::vector<double>& vals, bool classes, doub
         bool present[10] = {};
         for (double v : vals)
             if (std::isfinite(v)) present[std::clamp(period_class(static_cast<int>(std::lround(v))), 0, 9)] = true;
-        for (int k : {1, 2, 3, 4, 5, 6, 7, 9, 0})
-            if (present[k]) swatch(period_rgb(k), period_name(k));
+        for (int k : {1, 2, 3, 4, 5, 6, 7, 9, 0, 8})
+            if (present[k]) swatch(period_rgb(k == 8 ? -1 : k), period_name(k == 8 ? -1 : k));
     } else if (vmax >= vmin) {
         for (int k = 4; k >= 0; --k) {
             char buf[32];
@@ -442,6 +442,14 @@ nlohmann::json PlanePanel::state() const {
         j["y"] = plane_->y_name;
         j["nx"] = plane_->nx();
         j["ny"] = plane_->ny();
+        j["xs"] = plane_->xs;
+        j["ys"] = plane_->ys;
+        // The period measure cell by cell (x fastest; -1 not settled, 0 chaos, null not computed).
+        if (const int m = plane_->measure_index("period"); m >= 0) {
+            json per = json::array();
+            for (const double v : plane_->values[static_cast<std::size_t>(m)]) per.push_back(std::isfinite(v) ? json(v) : json(nullptr));
+            j["periods"] = std::move(per);
+        }
     }
     j["running"] = job_.running();
     // Each curve: where it started, its points (omega [rad/s], the second parameter) and why it ended.

@@ -104,6 +104,9 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
     char label[160];
     const unsigned long long seen = map.seen();
     if (seen == 0) std::snprintf(label, sizeof label, "no section yet (one per forcing period)");
+    else if (map.slow() && std::isfinite(map.decay()))
+        std::snprintf(label, sizeof label, "settling (slow): the alternation shrinks x%.4f per period", map.decay());
+    else if (map.slow()) std::snprintf(label, sizeof label, "settling (slow): an alternation dying out");
     else if (map.provisional())
         std::snprintf(label, sizeof label, "no period yet (provisional)  %zu of %llu points", n, seen);
     else if (status == PoincareMap::Status::Settling)
@@ -129,13 +132,16 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
     // Replaying, the map is that of the replayed instant, and says so.
     char when[48] = "";
     if (ctx.replay) std::snprintf(when, sizeof when, "  (replay, t = %.2f s)", ctx.last.t);
+    else if (ctx.omega_moving) std::snprintf(when, sizeof when, "  (ω moving: %.3f rad/s)", ctx.last.omega);
     const auto too_wide = [&] { return ImGui::CalcTextSize(label).x + ImGui::CalcTextSize(when).x + 12 > area_w; };
     if (too_wide()) {   // a small tile or a large UI scale: the short words
         if (seen == 0) std::snprintf(label, sizeof label, "no section yet");
+        else if (map.slow()) std::snprintf(label, sizeof label, "settling (slow)");
         else if (map.provisional()) std::snprintf(label, sizeof label, "no period yet  %zu", n);
         else if (status == PoincareMap::Status::Settling) std::snprintf(label, sizeof label, "settling... %llu", seen);
         else if (!periodic) std::snprintf(label, sizeof label, "chaos  %zu points", n);
         if (ctx.replay && too_wide()) std::snprintf(when, sizeof when, "  (replay)");
+        if (ctx.omega_moving && too_wide()) std::snprintf(when, sizeof when, "  (ω moving)");
     }
     {
         const std::size_t len = std::strlen(label);
@@ -161,8 +167,15 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
         for (std::size_t i = 0; i < n; ++i) add(pts[i].x, pts[i].v);
         const AxisFit fx = fit_axis(xl, xh, 0.002, area_w, edge, edge);
         const AxisFit fv = fit_axis(vl, vh, 0.02, area_h, edge, edge + label_band);
-        x_.track({fx.lo, fx.hi}, 0.0, 1e-12, ctx.frame_dt);
-        v_.track({fv.lo, fv.hi}, 0.0, 1e-12, ctx.frame_dt);
+        // The view a click is aimed in holds still: it only grows (to take in a new orbit), and not at all
+        // while the mouse is over the map, so a click lands where it was aimed.
+        if (!x_.init) {
+            x_.snap({fx.lo, fx.hi}, 0.0, 1e-12);
+            v_.snap({fv.lo, fv.hi}, 0.0, 1e-12);
+        } else if (!ImGui::IsWindowHovered(ImGuiHoveredFlags_ChildWindows)) {
+            x_.snap({std::min(fx.lo, x_.cur.lo), std::max(fx.hi, x_.cur.hi)}, 0.0, 1e-12);
+            v_.snap({std::min(fv.lo, v_.cur.lo), std::max(fv.hi, v_.cur.hi)}, 0.0, 1e-12);
+        }
         fit_generation_ = ~std::uint64_t{0};
     } else if (n == 0 && phase_x.init) {
         // Settling: an empty map in the phase portrait's view.

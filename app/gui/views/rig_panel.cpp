@@ -153,9 +153,11 @@ ViewAction RigPanel::draw(const ViewContext& ctx) {
         put(buf, dim, {{ub, {1, 0}}});
     }
     // Parts.
-    std::snprintf(buf, sizeof buf, "magnets repel: %+.2f N", st.magnet_force);
+    // The magnets' force on the cart as a direction and a size: a signed "repel: -12.58 N" read as attraction.
+    const char* towards = st.magnet_force < 0 ? "←" : "→";
+    std::snprintf(buf, sizeof buf, "magnets push the cart %s %.2f N", towards, std::abs(st.magnet_force));
     if (!put(buf, dim, {{at(-0.014, rig::kMagnetFixedY - 0.001), {1, 0.5f}}})) {
-        std::snprintf(buf, sizeof buf, "magnets %+.2f N", st.magnet_force);
+        std::snprintf(buf, sizeof buf, "magnets %s %.2f N", towards, std::abs(st.magnet_force));
         put(buf, dim, {{at(-0.014, rig::kMagnetFixedY - 0.001), {1, 0.5f}}});
     }
     std::snprintf(buf, sizeof buf, "springs  k = %.0f N/m", p.k);

@@ -37,6 +37,7 @@ struct ViewContext {
     double section_phase = 0;                    // [rad] the Poincare section's phase phi0 asked for
     bool paused = false, sim_paused = false;     // asked for; what the simulation says
     bool replay = false;                         // the panels show a replayed instant
+    bool omega_moving = false;                   // a live ramp moves omega (the map's period is no one omega's)
     float ui_scale = 1;
     double frame_dt = 1.0 / 60, now = 0;         // [s] of wall time
     std::size_t trail_first = 0;                 // the first sample of the phase portrait's trail

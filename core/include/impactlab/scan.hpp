@@ -47,9 +47,11 @@ struct ScanSpec {
     int transient = 20, record = 70;   // periods per point, as the CF sweep
 };
 
-// What one point shows. period: 1..16 distinct section values (as the CF sweep counts them), 0 for more
-// (chaos or a long period); impacts per forcing period (rigid impacts, or contacts of a compliant bumper);
+// What one point shows. period: 1..16 distinct section values (as the CF sweep counts them) once they recur
+// in order, 0 for more (chaos or a long period), kNotSettled when the point had not settled within its
+// record and ten more records; impacts per forcing period (rigid impacts, or contacts of a compliant bumper);
 // x range over the recorded periods [m]; lyapunov [1/s] (NaN when not measured).
+inline constexpr double kNotSettled = -1;   // ScanPoint::period of a point still in its transient
 struct ScanPoint {
     double period = 0, lyapunov = 0, impacts = 0, xmin = 0, xmax = 0;
 };

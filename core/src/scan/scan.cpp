@@ -77,8 +77,7 @@ public:
     }
     void end_level(std::size_t j, const Params& p, const State& s) override {
         ScanPoint pt;
-        const int distinct = count_period(xs_, 1e-5);
-        pt.period = distinct > 16 ? 0.0 : distinct;
+        pt.period = settled_period(p, s);
         pt.impacts = static_cast<double>(impacts_) / spec_.record;
         pt.xmin = xmin_;
         pt.xmax = xmax_;
@@ -92,6 +91,57 @@ public:
     void set_compliant(bool c) { compliant_ = c; }
 
 private:
+    // The period of the record window, only once it has settled: a count of 1..16 clusters must recur in
+    // order, every point k sections later, with the k-differences not still shrinking (an alternation dying
+    // out near a multiplier of -1 is no period 2). Otherwise the cell runs on, from its end state (a copy: the
+    // row continues from where the level ended), record periods at a time up to kSettleBudget windows more,
+    // then reads kNotSettled. More than 16 values is chaos (or a long period) at once, as before.
+    double settled_period(const Params& p, const State& s) const {
+        std::vector<double> xs = xs_;
+        State copy = s;
+        double gap_before = INFINITY;
+        for (int more = 0;; ++more) {
+            const int distinct = count_period(xs, kClusterTol);
+            if (distinct <= 16 && record_settled(xs, distinct)) return distinct;
+            // More than 16 values: chaos, unless the next record comes twice as close to recurring (a slow
+            // transient: A1C at 11 rad/s after a CF step of 0.25 rad/s, lambda < 0, period 2 in the end).
+            const double gap = recurrence_gap(xs);
+            if (distinct > 16 && more > 0 && !(gap < 0.5 * gap_before)) return 0.0;
+            if (more == kSettleBudget) return kNotSettled;
+            gap_before = gap;
+            const std::vector<SectionPoint> next = poincare_section(p, level_.omega, spec_.record, 0, copy, tol_);
+            xs.clear();
+            for (const SectionPoint& sp : next) xs.push_back(sp.x);
+        }
+    }
+    // How far the record is from recurring with any period up to 16: the least, over k, of the largest
+    // |x_i - x_(i-k)| [m].
+    static double recurrence_gap(const std::vector<double>& xs) {
+        double best = INFINITY;
+        for (std::size_t k = 1; k <= 16 && k < xs.size(); ++k) {
+            double worst = 0;
+            for (std::size_t i = k; i < xs.size(); ++i) worst = std::max(worst, std::abs(xs[i] - xs[i - k]));
+            best = std::min(best, worst);
+        }
+        return best;
+    }
+    static bool record_settled(const std::vector<double>& xs, int k) {
+        const auto n = xs.size();
+        const auto d = static_cast<std::size_t>(k);
+        if (n < 2 * d + 2) return true;   // too short a record to tell (a scan's --record 1)
+        for (std::size_t i = d; i < n; ++i)
+            if (std::abs(xs[i] - xs[i - d]) > kClusterTol) return false;
+        // The step to the next section, over the first and the last cycle: an alternation dying out shrinks.
+        const auto step = [&](std::size_t from) {
+            double g = 0;
+            for (std::size_t i = from; i < from + d; ++i) g = std::max(g, std::abs(xs[i + 1] - xs[i]));
+            return g;
+        };
+        return k == 1 || step(0) - step(n - 1 - d) <= kClusterTol;
+    }
+    static constexpr double kClusterTol = 1e-5;   // [m] as the CF sweep counts its section values
+    static constexpr int kSettleBudget = 10;      // record windows run on before a cell reads "not settled"
+
     // The record window's dynamics: from the transient's last section to the end (record whole periods).
     bool recording() const { return sections_ >= spec_.transient; }
     const ScanSpec& spec_;
@@ -336,9 +386,10 @@ std::vector<std::pair<int, std::vector<ScanPoint>>> read_scan_log(std::istream& 
                 if (!log_number(t, v[k]))
                     throw bad("'" + t.substr(0, 40) + "' is not a number as the log writes them (hexadecimal)");
             }
-            // What no scan gives: a period that is no whole number of sections in [0, 16] (0 = chaos), a negative
+            // What no scan gives: a period that is no whole number of sections in [0, 16] (0 = chaos) nor
+            // kNotSettled, a negative
             // or unbounded impact rate.
-            if (!(v[0] >= 0 && v[0] <= 16 && v[0] == std::floor(v[0])))
+            if (!((v[0] >= 0 || v[0] == kNotSettled) && v[0] <= 16 && v[0] == std::floor(v[0])))
                 throw bad("point " + std::to_string(i) + ": period " + tok[2 + 5 * i] + " is not one a scan gives");
             if (!(v[2] >= 0 && std::isfinite(v[2])))
                 throw bad("point " + std::to_string(i) + ": impacts " + tok[4 + 5 * i] + " is not one a scan gives");

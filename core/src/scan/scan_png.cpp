@@ -79,9 +79,11 @@ void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint
     if (m.period) {
         const std::vector<ClassDef> cls{{"period 1", {31, 119, 180}},  {"period 2", {44, 160, 44}},
                                         {"period 3", {255, 127, 14}},  {"period 4", {148, 103, 189}},
-                                        {"period 5-16", {140, 86, 75}}, {"chaos (> 16)", {214, 39, 40}}};
+                                        {"period 5-16", {140, 86, 75}}, {"chaos (> 16)", {214, 39, 40}},
+                                        {"not settled", {150, 150, 150}}};
         layers.push_back(map_panel(spec, rows, "period of the section points", cls,
                                        [](const ScanPoint& p) {
+                                           if (p.period == kNotSettled) return 6;
                                            if (p.period == 0) return 5;
                                            if (p.period <= 4) return static_cast<int>(p.period) - 1;
                                            return 4;
