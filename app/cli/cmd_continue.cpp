@@ -21,7 +21,8 @@ int cmd_continue(const std::vector<std::string>& argv) {
                          "(the period-2k branch switched onto), Neimark-Sacker and grazing located to 1e-7 in the parameter.\n"
                          "A branch of a G version goes on through a grazing onto the impacting branch (from impact to impact\n"
                          "while the impacts are slower than 0.05 m/s); each grazing crossed is printed with its scenario and\n"
-                         "the impacting orbit's scaling. A branch back at an earlier orbit ends (\"closed loop\").\n"
+                         "the impacting orbit's scaling. A branch back at an earlier orbit ends (\"closed loop\"). A cascade\n"
+                         "of doublings is printed with Feigenbaum's ratios (omega_k - omega_k-1) / (omega_k+1 - omega_k).\n"
                          "Writes DIR/branches.csv (branch,omega,x,v,period,stable; x, v at the section phi = 0) and\n"
                          "DIR/points.csv (kind,omega,x,v,period).\n"
                          "  --omega-min W, --omega-max W   the range [rad/s] (default 5, 25)\n"
@@ -106,6 +107,14 @@ int cmd_continue(const std::vector<std::string>& argv) {
     for (const auto& q : r.points)
         std::printf("%-16s %s = %.9g (+- %.1g), period %d, x = %.6g m, v = %.6g m/s\n", analysis::bif_kind_name(q.kind), pname,
                     q.param, q.precision, q.period, q.y[0], q.y[1]);
+    // A cascade of doublings on switched branches: Feigenbaum's ratios as a check of the points' accuracy.
+    if (const analysis::Cascade c = analysis::find_cascade(r); c.doublings.size() >= 3) {
+        std::printf("cascade: doublings of period");
+        for (const analysis::BifPoint* d : c.doublings) std::printf(" %d at %.9g", d->period, d->param);
+        std::printf("\ncascade: ratios (q_k - q_k-1) / (q_k+1 - q_k):");
+        for (double x : c.ratios) std::printf(" %.4f", x);
+        std::printf(" (Feigenbaum's delta %.4f)\n", analysis::kFeigenbaumDelta);
+    }
     for (const auto& q : r.points)
         if (!q.scenario.empty())
             std::printf("grazing at %s = %.9g crossed onto the impacting branch: %s; |mu| ~ d^%.3f, v- ~ d^%.3f "

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <vector>
+#include <string>
 
 #include "impactlab/analysis.hpp"
 #include "impactlab/params.hpp"
@@ -154,4 +155,49 @@ TEST_CASE("continuation: A1C1's branches report the grazings that end them, as A
             CAPTURE(a.param);
             CHECK_FALSE((a.kind == b.kind && a.period == b.period && std::abs(a.param - b.param) < 1e-5));
         }
+}
+
+TEST_CASE("continuation: A1C's cascade from the period-1 doubling at 22.147 followed to period 16, Feigenbaum's ratios") {
+    // From the stable period 1 above its doubling at 22.1473 down the cascade: period 2 doubles at 19.7802,
+    // period 4 at 19.4957, period 8 at 19.4343, period 16 at 19.4212 (an independent CVODE reference: the
+    // first two to 1e-5). The range stops short of the unstable branches' long runs below the cascade.
+    ContinuationSpec spec;
+    spec.lo = 19.38;
+    spec.hi = 22.6;
+    spec.start = 22.6;
+    spec.max_period = 16;
+    const Params p = make_version("A1C");
+    const ContinuationResult r = continue_orbits(p, spec);
+    for (const auto& b : r.branches) {
+        CAPTURE(b.end);
+        CHECK(b.end.find("Newton failed") == std::string::npos);
+    }
+    const Cascade c = find_cascade(r);
+    REQUIRE(c.doublings.size() >= 5);   // periods 1, 2, 4, 8, 16
+    const double expect[] = {22.147253, 19.780239, 19.495706, 19.434322, 19.421216};
+    for (std::size_t j = 0; j < 5; ++j) {
+        CAPTURE(j);
+        CHECK(c.doublings[j]->period == 1 << j);
+        CHECK(std::abs(c.doublings[j]->param - expect[j]) < std::max(1e-5, 2 * c.doublings[j]->precision));
+    }
+    // The ratios approach Feigenbaum's delta (a cascade this short: within 10 %).
+    REQUIRE(c.ratios.size() >= 3);
+    for (std::size_t j = 1; j < c.ratios.size(); ++j) CHECK(std::abs(c.ratios[j] / kFeigenbaumDelta - 1) < 0.1);
+    // Each doubling is where Newton on the period map puts its multiplier through -1: the period-k orbit
+    // 1e-6 either side (rtol 1e-12), its multiplier nearest -1 on either side of -1.
+    for (std::size_t j = 1; j < c.doublings.size() && j < 5; ++j) {
+        const BifPoint& d = *c.doublings[j];
+        CAPTURE(d.period);
+        OrbitOptions oo;
+        oo.period = d.period;
+        oo.sim = analysis_tolerances(1e-12);
+        double side[2];
+        for (int s = 0; s < 2; ++s) {
+            const Orbit o = find_orbit(p, d.param + (s == 0 ? -1e-6 : 1e-6) + d.precision * (s == 0 ? -1 : 1), d.y, oo);
+            REQUIRE(o.converged);
+            const double a = o.floquet.mu[0].real(), b = o.floquet.mu[1].real();
+            side[s] = (std::abs(a + 1) < std::abs(b + 1) ? a : b) + 1.0;
+        }
+        CHECK(side[0] * side[1] < 0);
+    }
 }
