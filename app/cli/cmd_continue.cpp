@@ -128,10 +128,11 @@ int cmd_continue(const std::vector<std::string>& argv) {
         plot::Panel pan;
         pan.xlabel = std::string(pname) + (spec.param == analysis::ContParam::Omega ? " [rad/s]" : "");
         pan.ylabel = "x [mm]";
-        const plot::Color colors[] = {{31, 119, 180, 255}, {255, 127, 14, 255}, {44, 160, 44, 255}, {148, 103, 189, 255}};
+        const plot::Color colors[] = {{31, 119, 180, 255}, {255, 127, 14, 255}, {44, 160, 44, 255}, {148, 103, 189, 255},
+                                      {214, 39, 40, 255}, {140, 86, 75, 255}};
         const std::vector<analysis::BranchCurve> curves = analysis::branch_curves(r);
         for (int per : {1, 2, 4, 8, 16, 32}) {
-            plot::Series st{plot::Series::Kind::Line, {}, {}, colors[std::min(3, static_cast<int>(std::log2(per)))], 2.0f,
+            plot::Series st{plot::Series::Kind::Line, {}, {}, colors[std::min(5, static_cast<int>(std::log2(per)))], 2.0f,
                             "period " + std::to_string(per) + " stable"};
             plot::Series un{plot::Series::Kind::Points, {}, {}, st.color, 0.8f, "period " + std::to_string(per) + " unstable"};
             // Each of the k section points of an orbit is a point of the diagram, as in a sweep: one curve per

@@ -142,9 +142,11 @@ TEST_CASE("continuation: A1C1's branches report the grazings that end them, as A
     spec.lo = 5.0;
     spec.hi = 25.0;
     const ContinuationResult r = continue_orbits(make_version("A1C1"), spec);
+    // The unstable period-8 branch below the cascade may reach its own grazing (16.7974) within the point
+    // limit or not, depending on the map's last bits: the grazings of periods 2 and 4 are the ones asked for.
     std::vector<double> grazings;
     for (const auto& b : r.points)
-        if (b.kind == BifKind::Grazing) grazings.push_back(b.param);
+        if (b.kind == BifKind::Grazing && b.period <= 4) grazings.push_back(b.param);
     REQUIRE(grazings.size() == 3);
     CHECK(grazings[0] == doctest::Approx(12.7992694).epsilon(1e-7));
     CHECK(grazings[1] == doctest::Approx(15.9679638).epsilon(1e-7));
