@@ -219,7 +219,7 @@ void Continuer::follow(const Job& job, Branch& br) {
                     // has a nearly singular M - I, and the corrector fails where the damped Newton of
                     // find_orbit still converges: restart a little further on at fixed q, the same branch.
                     if (restart(cur, t, k, ds, skipped)) continue;
-                    end = "Newton failed near " + std::string(sweep_param_name(spec_.param)) + " = " +
+                    end = "numerical limit near " + std::string(sweep_param_name(spec_.param)) + " = " +
                           std::to_string(q_of(cur.u));
                     // An orbit about to graze: the impacting side is out of the corrector's reach (a rigid
                     // bumper, or a compliant one as stiff as C1's), the grazing itself is still located on
@@ -231,10 +231,15 @@ void Continuer::follow(const Job& job, Branch& br) {
                         const MapResult rl = map(cur.u + ds * 2 * t, k, false);
                         res_last = residual(rl, cur.u + ds * 2 * t).cwiseAbs().maxCoeff();
                     }
-                    char rbuf[160];
-                    std::snprintf(rbuf, sizeof rbuf, " (corrector failed at steps down to %.1g; residual %.2g there)",
+                    char rbuf[240];
+                    std::snprintf(rbuf, sizeof rbuf, ": the corrector fails at steps down to %.1g (residual %.2g there)",
                                   spec_.ds_min, res_last);
                     end += rbuf;
+                    if (work_.has_bumper() && std::abs(g) < 0.1) {
+                        std::snprintf(rbuf, sizeof rbuf, ", the orbit's largest x %.3g mm %s the bumper (a grazing)",
+                                      std::abs(g) * kXScale * 1e3, g < 0 ? "short of" : "into");
+                        end += rbuf;
+                    }
                     // A compliant contact's orbit that has just begun to press the bumper (inside its first
                     // millimetre): the grazing it came from is located on the bumperless orbit and named.
                     if (work_.has_bumper() && !work_.rigid() && g >= 0 && g < 0.1) {
