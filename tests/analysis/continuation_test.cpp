@@ -73,6 +73,24 @@ void check_full_range(const char* name, double lo, double start) {
         if (pt.param < pd->param - 1e-3) CHECK(pt.stable);
         if (pt.param > pd->param + 1e-3 && pt.param < 22.0) CHECK_FALSE(pt.stable);
     }
+    // Every branch ends for a stated reason; a numerical limit states its residual. A branch of A1C that meets
+    // its compliant contact ends at the grazing, located, with how deep it presses there.
+    for (const auto& b : r.branches) {
+        CAPTURE(b.end);
+        CHECK(b.end.find("Newton failed") == std::string::npos);
+        if (b.end.find("numerical limit") != std::string::npos) CHECK(b.end.find("residual") != std::string::npos);
+        const std::string at = "grazing at omega = ";
+        if (std::string(name) == "A1C" && b.period == 2 && b.end.find("grazing") != std::string::npos) {
+            // (Or, where the corrector stops just short of the touch, "grazing (the corrector cannot step ...)".)
+            if (b.end.rfind(at, 0) == 0) {
+                CHECK(b.end.find("pressing the compliant contact") != std::string::npos);
+                const double g = std::stod(b.end.substr(at.size()));
+                CHECK((std::abs(g - 12.7992694) < 1e-6 || std::abs(g - 15.9679638) < 1e-6));
+            } else {
+                CHECK(b.end.rfind("grazing (", 0) == 0);
+            }
+        }
+    }
     // A period-k branch point carries its k section points, the first the branch's own.
     for (const auto& b : r.branches)
         for (const auto& pt : b.points) {
