@@ -205,7 +205,9 @@ void Continuer::follow(const Job& job, Branch& br) {
                 // A long period (8 periods and more of a cascade) carries the integrator's error up to the
                 // corrector's tolerance, and the steps shrink for noise rather than for the branch's shape:
                 // the map is sharpened for the rest of this branch (twice at most, down to rtol 1e-12).
-                if (ds < 2e-3 && sharpened < 2 && spec_.sim.rtol > 1.5e-12) {
+                // (Not beside a bumper: there the steps shrink for the grazing, and a sharper map only costs.)
+                if (ds < 2e-3 && sharpened < 2 && spec_.sim.rtol > 1.5e-12 &&
+                    !(work_.has_bumper() && std::abs(test(BifKind::Grazing, cur)) < 0.01)) {
                     ++sharpened;
                     spec_.sim.rtol = std::max(spec_.sim.rtol * 0.01, 1e-12);
                     Sol again;
@@ -235,8 +237,8 @@ void Continuer::follow(const Job& job, Branch& br) {
                     std::snprintf(rbuf, sizeof rbuf, ": the corrector fails at steps down to %.1g (residual %.2g there)",
                                   spec_.ds_min, res_last);
                     end += rbuf;
-                    if (work_.has_bumper() && std::abs(g) < 0.1) {
-                        std::snprintf(rbuf, sizeof rbuf, ", the orbit's largest x %.3g mm %s the bumper (a grazing)",
+                    if (work_.has_bumper() && std::abs(g) < 0.01) {
+                        std::snprintf(rbuf, sizeof rbuf, ", the orbit's largest x %.3g mm %s the bumper (a grazing ahead or begun)",
                                       std::abs(g) * kXScale * 1e3, g < 0 ? "short of" : "into");
                         end += rbuf;
                     }
