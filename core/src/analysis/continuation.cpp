@@ -245,8 +245,16 @@ void Continuer::follow(const Job& job, Branch& br) {
                     // A compliant contact's orbit that has just begun to press the bumper (inside its first
                     // millimetre): the grazing it came from is located on the bumperless orbit and named.
                     if (work_.has_bumper() && !work_.rigid() && g >= 0 && g < 0.1) {
+                        // Located already as the corrector stepped in (the test's sign change): that one, to
+                        // its bracket; else located now, back along the branch on the bumperless orbit.
                         last_located_ = -1;
-                        locate(BifKind::Grazing, cur, -t, 0.05, cur, k, br.id, true);
+                        for (std::size_t qi = 0; qi < result_.points.size(); ++qi) {
+                            const BifPoint& q = result_.points[qi];
+                            if (q.kind == BifKind::Grazing && q.period == k && std::abs(q.param - q_of(cur.u)) < 1e-3 * q_scale_ &&
+                                (last_located_ < 0 || q.precision < result_.points[static_cast<std::size_t>(last_located_)].precision))
+                                last_located_ = static_cast<int>(qi);
+                        }
+                        if (last_located_ < 0) locate(BifKind::Grazing, cur, -t, 0.05, cur, k, br.id, true);
                         if (last_located_ >= 0) {
                             const BifPoint& g0 = result_.points[static_cast<std::size_t>(last_located_)];
                             char gbuf[320];
