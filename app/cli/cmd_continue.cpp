@@ -21,7 +21,8 @@ int cmd_continue(const std::vector<std::string>& argv) {
                          "(the period-2k branch switched onto), Neimark-Sacker and grazing located to 1e-7 in the parameter.\n"
                          "A branch of a G version goes on through a grazing onto the impacting branch (from impact to impact\n"
                          "while the impacts are slower than 0.05 m/s); each grazing crossed is printed with its scenario and\n"
-                         "the impacting orbit's scaling. A branch back at an earlier orbit ends (\"closed loop\").\n"
+                         "the impacting orbit's scaling. A branch back at an earlier orbit ends (\"closed loop\"). A cascade\n"
+                         "of doublings is printed with Feigenbaum's ratios (omega_k - omega_k-1) / (omega_k+1 - omega_k).\n"
                          "Writes DIR/branches.csv (branch,omega,x,v,period,stable; x, v at the section phi = 0) and\n"
                          "DIR/points.csv (kind,omega,x,v,period).\n"
                          "  --omega-min W, --omega-max W   the range [rad/s] (default 5, 25)\n"
@@ -106,6 +107,14 @@ int cmd_continue(const std::vector<std::string>& argv) {
     for (const auto& q : r.points)
         std::printf("%-16s %s = %.9g (+- %.1g), period %d, x = %.6g m, v = %.6g m/s\n", analysis::bif_kind_name(q.kind), pname,
                     q.param, q.precision, q.period, q.y[0], q.y[1]);
+    // A cascade of doublings on switched branches: Feigenbaum's ratios as a check of the points' accuracy.
+    if (const analysis::Cascade c = analysis::find_cascade(r); c.doublings.size() >= 3) {
+        std::printf("cascade: doublings of period");
+        for (const analysis::BifPoint* d : c.doublings) std::printf(" %d at %.9g", d->period, d->param);
+        std::printf("\ncascade: ratios (q_k - q_k-1) / (q_k+1 - q_k):");
+        for (double x : c.ratios) std::printf(" %.4f", x);
+        std::printf(" (Feigenbaum's delta %.4f)\n", analysis::kFeigenbaumDelta);
+    }
     for (const auto& q : r.points)
         if (!q.scenario.empty())
             std::printf("grazing at %s = %.9g crossed onto the impacting branch: %s; |mu| ~ d^%.3f, v- ~ d^%.3f "
@@ -119,10 +128,11 @@ int cmd_continue(const std::vector<std::string>& argv) {
         plot::Panel pan;
         pan.xlabel = std::string(pname) + (spec.param == analysis::ContParam::Omega ? " [rad/s]" : "");
         pan.ylabel = "x [mm]";
-        const plot::Color colors[] = {{31, 119, 180, 255}, {255, 127, 14, 255}, {44, 160, 44, 255}, {148, 103, 189, 255}};
+        const plot::Color colors[] = {{31, 119, 180, 255}, {255, 127, 14, 255}, {44, 160, 44, 255}, {148, 103, 189, 255},
+                                      {214, 39, 40, 255}, {140, 86, 75, 255}};
         const std::vector<analysis::BranchCurve> curves = analysis::branch_curves(r);
         for (int per : {1, 2, 4, 8, 16, 32}) {
-            plot::Series st{plot::Series::Kind::Line, {}, {}, colors[std::min(3, static_cast<int>(std::log2(per)))], 2.0f,
+            plot::Series st{plot::Series::Kind::Line, {}, {}, colors[std::min(5, static_cast<int>(std::log2(per)))], 2.0f,
                             "period " + std::to_string(per) + " stable"};
             plot::Series un{plot::Series::Kind::Points, {}, {}, st.color, 0.8f, "period " + std::to_string(per) + " unstable"};
             // Each of the k section points of an orbit is a point of the diagram, as in a sweep: one curve per

@@ -117,7 +117,9 @@ int cmd_simulate(const std::vector<std::string>& argv) {
 
 int cmd_poincare(const std::vector<std::string>& argv) {
     if (show_help_if_asked(argv, "usage: impactlab poincare --model A1H --omega 18 --periods 200 --out sec.csv [options]\n\n"
-                         "Samples (x, v) once per revolution of the unbalance (phi = phi0 + 2 pi n) and writes n,x,v.\n"
+                         "Samples (x, v) once per revolution of the unbalance and writes n,x,v. The start (phi = 0 at t = 0) is\n"
+                         "no row; row n is the (N + n)-th passage of phi through phi0 after it (N = --transient), at\n"
+                         "phi = phi0 + 2 pi (N + n - 1) for phi0 > 0, and at phi = 2 pi (N + n) for phi0 = 0 (as 2 pi).\n"
                          "  --omega W        forcing frequency [rad/s] (required)\n"
                          "  --periods N      section points to record (required)\n"
                          "  --transient N    periods discarded first (default 0)\n"

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <vector>
+#include <string>
 
 #include "impactlab/analysis.hpp"
 #include "impactlab/params.hpp"
@@ -71,6 +72,25 @@ void check_full_range(const char* name, double lo, double start) {
     for (const auto& pt : r.branches[0].points) {
         if (pt.param < pd->param - 1e-3) CHECK(pt.stable);
         if (pt.param > pd->param + 1e-3 && pt.param < 22.0) CHECK_FALSE(pt.stable);
+    }
+    // Every branch ends for a stated reason; a numerical limit states its residual. A branch of A1C that meets
+    // its compliant contact ends at the grazing, located, with how deep it presses there.
+    for (const auto& b : r.branches) {
+        CAPTURE(b.end);
+        CHECK(b.end.find("Newton failed") == std::string::npos);
+        if (b.end.find("numerical limit") != std::string::npos) CHECK(b.end.find("residual") != std::string::npos);
+        const std::string at = "grazing at omega = ";
+        if (std::string(name) == "A1C" && b.period == 2 && b.end.find("grazing") != std::string::npos) {
+            // (Or, where the corrector stops just short of the touch, "grazing (the corrector cannot step ...)".)
+            if (b.end.rfind(at, 0) == 0) {
+                CHECK(b.end.find("pressing the compliant contact") != std::string::npos);
+                const double g = std::stod(b.end.substr(at.size()));
+                // The grazing the branch located as it stepped in (to 1e-6 relative, as the grazing above).
+                CHECK((std::abs(g / 12.7992694 - 1) < 1e-6 || std::abs(g / 15.9679638 - 1) < 1e-6));
+            } else {
+                CHECK(b.end.rfind("grazing (", 0) == 0);
+            }
+        }
     }
     // A period-k branch point carries its k section points, the first the branch's own.
     for (const auto& b : r.branches)
@@ -141,9 +161,11 @@ TEST_CASE("continuation: A1C1's branches report the grazings that end them, as A
     spec.lo = 5.0;
     spec.hi = 25.0;
     const ContinuationResult r = continue_orbits(make_version("A1C1"), spec);
+    // The unstable period-8 branch below the cascade may reach its own grazing (16.7974) within the point
+    // limit or not, depending on the map's last bits: the grazings of periods 2 and 4 are the ones asked for.
     std::vector<double> grazings;
     for (const auto& b : r.points)
-        if (b.kind == BifKind::Grazing) grazings.push_back(b.param);
+        if (b.kind == BifKind::Grazing && b.period <= 4) grazings.push_back(b.param);
     REQUIRE(grazings.size() == 3);
     CHECK(grazings[0] == doctest::Approx(12.7992694).epsilon(1e-7));
     CHECK(grazings[1] == doctest::Approx(15.9679638).epsilon(1e-7));
@@ -154,4 +176,49 @@ TEST_CASE("continuation: A1C1's branches report the grazings that end them, as A
             CAPTURE(a.param);
             CHECK_FALSE((a.kind == b.kind && a.period == b.period && std::abs(a.param - b.param) < 1e-5));
         }
+}
+
+TEST_CASE("continuation: A1C's cascade from the period-1 doubling at 22.147 followed to period 16, Feigenbaum's ratios") {
+    // From the stable period 1 above its doubling at 22.1473 down the cascade: period 2 doubles at 19.7802,
+    // period 4 at 19.4957, period 8 at 19.4343, period 16 at 19.4212 (an independent CVODE reference: the
+    // first two to 1e-5). The range stops short of the unstable branches' long runs below the cascade.
+    ContinuationSpec spec;
+    spec.lo = 19.38;
+    spec.hi = 22.6;
+    spec.start = 22.6;
+    spec.max_period = 16;
+    const Params p = make_version("A1C");
+    const ContinuationResult r = continue_orbits(p, spec);
+    for (const auto& b : r.branches) {
+        CAPTURE(b.end);
+        CHECK(b.end.find("Newton failed") == std::string::npos);
+    }
+    const Cascade c = find_cascade(r);
+    REQUIRE(c.doublings.size() >= 5);   // periods 1, 2, 4, 8, 16
+    const double expect[] = {22.147253, 19.780239, 19.495706, 19.434322, 19.421216};
+    for (std::size_t j = 0; j < 5; ++j) {
+        CAPTURE(j);
+        CHECK(c.doublings[j]->period == 1 << j);
+        CHECK(std::abs(c.doublings[j]->param - expect[j]) < std::max(1e-5, 2 * c.doublings[j]->precision));
+    }
+    // The ratios approach Feigenbaum's delta (a cascade this short: within 10 %).
+    REQUIRE(c.ratios.size() >= 3);
+    for (std::size_t j = 1; j < c.ratios.size(); ++j) CHECK(std::abs(c.ratios[j] / kFeigenbaumDelta - 1) < 0.1);
+    // Each doubling is where Newton on the period map puts its multiplier through -1: the period-k orbit
+    // 1e-6 either side (rtol 1e-12), its multiplier nearest -1 on either side of -1.
+    for (std::size_t j = 1; j < c.doublings.size() && j < 5; ++j) {
+        const BifPoint& d = *c.doublings[j];
+        CAPTURE(d.period);
+        OrbitOptions oo;
+        oo.period = d.period;
+        oo.sim = analysis_tolerances(1e-12);
+        double side[2];
+        for (int s = 0; s < 2; ++s) {
+            const Orbit o = find_orbit(p, d.param + (s == 0 ? -1e-6 : 1e-6) + d.precision * (s == 0 ? -1 : 1), d.y, oo);
+            REQUIRE(o.converged);
+            const double a = o.floquet.mu[0].real(), b = o.floquet.mu[1].real();
+            side[s] = (std::abs(a + 1) < std::abs(b + 1) ? a : b) + 1.0;
+        }
+        CHECK(side[0] * side[1] < 0);
+    }
 }

@@ -223,3 +223,16 @@ TEST_CASE("curves: the plane's automatic start finds A1G's grazing and fold, and
     CHECK(c.curve.cancelled);
     CHECK(c.curve.points.empty());
 }
+
+TEST_CASE("curves: the automatic start of a doubling curve is one of the curve's points, where the reference puts it") {
+    // The continuation locates the doubling with its own test (a secant at rtol / 100); the curve locates it
+    // again with the curve's. The start printed is the curve's point (the reference: 10.861335 +- 3e-6).
+    const Params p = make_version("A1G");
+    PlaneCurveSpec spec{ContParam::XI, 8.0, 12.0, p.xI - 5e-4, p.xI + 5e-4, 5e-4, BifKind::PeriodDoubling};
+    const PlaneCurve d = curve_over_plane(p, spec);
+    REQUIRE(d.found);
+    bool on_curve = false;
+    for (const CurvePoint& c : d.curve.points) on_curve = on_curve || (c.q == p.xI && c.omega == d.omega0 && c.y == d.y0);
+    CHECK(on_curve);
+    CHECK(std::abs(d.omega0 - 10.861335) < 3e-6);
+}

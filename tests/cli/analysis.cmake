@@ -26,6 +26,15 @@ impactlab_cli_test(continue_points_once --rc 0 --count "period_doubling +omega =
 # A3C's continuation over 8..25 takes about 22 s of CPU; on a 2-core machine shared with other jobs its wall
 # time passed the default 60 s.
 set_tests_properties(cli.continue_points_once PROPERTIES TIMEOUT 180)
+# A1C's cascade from its period-1 doubling at 22.147 down to period 16, with Feigenbaum's ratios printed.
+impactlab_cli_test(continue_cascade --rc 0 --match "cascade: doublings of period 1 at 22.147.* 16 at 19.4212"
+                   --match "cascade: ratios .* 4\\.[5-7][0-9]+ 4\\.[5-7][0-9]+ \\(Feigenbaum's delta 4.6692\\)"
+                   -- continue --model A1C --omega-min 19.38 --omega-max 22.6 --omega-start 22.6 --max-period 16 --out out)
+set_tests_properties(cli.continue_cascade PROPERTIES TIMEOUT 180)
+# Benettin 1.59 +- 0.05, two trajectories 1.50 +- 0.07 1/s: a difference of 0.09 +- 0.09, well within 3 standard errors.
+impactlab_cli_test(lyapunov_check_scatter --rc 0 --match "check at rtol 1e-11: Benettin .* \\+- .* two trajectories"
+                   --match "check: they agree within their scatter"
+                   -- lyapunov --model A1C --omega 16 --check)
 impactlab_cli_test(continue_bad_param --rc 2 --match "'--param'" -- continue --param bogus --out out)
 impactlab_cli_test(continue_inverted --rc 2 --match "--omega-max" -- continue --omega-min 12 --omega-max 11 --out out)
 impactlab_cli_test(lyapunov_one --rc 0 --match "lambda_max = " -- lyapunov --model A1G --omega 16 --periods 100)

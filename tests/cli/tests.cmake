@@ -102,7 +102,8 @@ impactlab_cli_test(poincare_phi0_negative --rc 2 --match "'--phi0'" --match "out
                    -- poincare --omega 18 --periods 5 --phi0 -0.5 --out P.csv)
 impactlab_cli_test(poincare_phi0_not_a_number --rc 2 --match "'--phi0'" --match "'90deg' is not a finite number"
                    -- poincare --omega 18 --periods 5 --phi0 90deg --out P.csv)
-impactlab_cli_test(help_poincare_phi0 --rc 0 --match "--phi0 RAD" -- poincare --help)
+impactlab_cli_test(help_poincare_phi0 --rc 0 --match "--phi0 RAD" --match "phi = phi0 \\+ 2 pi \\(N \\+ n - 1\\) for phi0 > 0"
+                   -- poincare --help)
 add_test(NAME cli.poincare_phase COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/poincare_phase.sh $<TARGET_FILE:impactlab>)
 set_tests_properties(cli.poincare_phase PROPERTIES LABELS cli TIMEOUT 120)
 impactlab_cli_test(bifurcation_csv --rc 0 --csv B.csv "omega,x,v" 9 9

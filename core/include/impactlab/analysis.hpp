@@ -194,6 +194,17 @@ struct ContinuationResult {
 };
 ContinuationResult continue_orbits(const Params& p, const ContinuationSpec& spec, Progress* progress = nullptr);
 
+// A period-doubling cascade read off a continuation: the doublings of the chain of switched branches
+// (period k -> 2k -> 4k ...), each on the branch switched onto at the one before, and Feigenbaum's ratios
+// delta_j = (q_j - q_{j-1}) / (q_{j+1} - q_j) of consecutive ones (4.6692... in the limit): a check of how
+// accurately the doublings are located. The longest chain is returned, ordered by period.
+struct Cascade {
+    std::vector<const BifPoint*> doublings;   // into the result's points
+    std::vector<double> ratios;               // doublings.size() - 2 of them
+};
+inline constexpr double kFeigenbaumDelta = 4.669201609102990;
+Cascade find_cascade(const ContinuationResult& r);
+
 // ---- Two-parameter curves ---------------------------------------------------------------------------------
 
 // A period doubling followed in two parameters: omega and `second` (xI or m0e). At each value of the second
@@ -258,15 +269,35 @@ struct LyapunovResult {
     double lambda_min = 0;       // the second exponent [1/s] (lambda_max + lambda_min = mean phase-volume rate)
     double seconds = 0;          // simulated time averaged over [s]
     std::vector<Vec2> sections;  // the recorded section points (the sweep's classification uses them)
+    std::vector<double> growth;  // per period: log of the largest direction's stretch (lambda_max's share)
     bool cancelled = false;
 };
 // Benettin: tangent (with saltation) over `periods` forcing periods after `transient`, re-orthonormalised
 // (QR) once per period. State s is advanced (a sweep carries it on); the drive starts at s.t with phi = 0.
 LyapunovResult lyapunov(const Params& p, double omega, State& s, int transient, int periods,
                         const Tolerances& tol = {}, Progress* progress = nullptr);
-// The check: two trajectories d0 apart (scaled), the distance renormalised once per period.
+// The check: two trajectories d0 apart (scaled), the distance renormalised once per period; growth (optional)
+// receives each period's log(distance / d0).
 double lyapunov_two_trajectory(const Params& p, double omega, State s, int transient, int periods,
-                               const Tolerances& tol = {}, double d0 = 1e-7);
+                               const Tolerances& tol = {}, double d0 = 1e-7, std::vector<double>* growth = nullptr);
+
+// Both estimates of lambda_max over the same trajectory (from s, at tol) with their scatter: the periods cut
+// into `blocks` consecutive blocks, each block's estimate, and the standard error of the mean over blocks.
+// On a chaotic attractor the two runs' reference trajectories part after some dozens of periods, so their
+// blocks are independent samples: the difference is judged against both standard errors. The two-trajectory
+// estimate is also run at d0 / 10, so that a difference from the finite separation shows as a move with d0.
+struct LyapunovCheck {
+    double benettin = 0, benettin_se = 0;          // [1/s]
+    double two = 0, two_se = 0;                    // two trajectories d0 apart [1/s]
+    double two_small = 0;                          // the same at d0 / 10 [1/s]
+    double diff = 0, diff_se = 0;                  // two - benettin, and its standard error [1/s]
+    double d0 = 1e-6;
+    int blocks = 10;
+    bool agree = false;                            // |diff| <= 3 diff_se (within the scatter)
+    std::string why;                               // a sentence: agree, or what the difference follows
+};
+LyapunovCheck lyapunov_check(const Params& p, double omega, const State& s, int transient, int periods,
+                             const Tolerances& tol, double d0 = 1e-6, int blocks = 10);
 
 struct LyapunovPoint { double omega, lambda_max, lambda_min; int period; };
 // Along a CF sweep (each omega from the previous state, as run_cf_sweep): spec.transient periods dropped,

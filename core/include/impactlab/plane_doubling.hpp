@@ -22,7 +22,8 @@ struct PlaneCurveSpec {
 };
 struct PlaneCurve {
     bool found = false;                 // a period-1 point of the kind lay in [omega_lo, omega_hi]
-    double omega0 = 0;                  // where it was found, at the model's own second parameter [rad/s]
+    double omega0 = 0;                  // the curve's point at the model's own second parameter [rad/s]
+                                        // (where it was found, located again by the curve's own test)
     Vec2 y0 = Vec2::Zero();             // its section point [m, m/s]
     BifCurve curve;                     // ordered by the second parameter
     bool cancelled = false;

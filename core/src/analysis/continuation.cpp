@@ -160,6 +160,14 @@ void Continuer::follow(const Job& job, Branch& br) {
     const int k = job.period;
     std::vector<BranchPoint> fwd, bwd;
     std::string end_fwd, end_bwd, skipped;
+    // The map's tolerance may be sharpened along this branch (below); the next branch starts from the spec's.
+    const Tolerances sim0 = spec_.sim;
+    struct Restore {
+        Tolerances& sim;
+        Tolerances saved;
+        ~Restore() { sim = saved; }
+    } restore{spec_.sim, sim0};
+    int sharpened = 0;
     const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
     bool closed = false;
     for (int dir = 0; dir < (job.both_ways && !closed ? 2 : 1); ++dir) {
@@ -194,18 +202,70 @@ void Continuer::follow(const Job& job, Branch& br) {
             }
             Sol next;
             if (!correct(cur.u + ds * t, t, k, next)) {
+                // A long period (8 periods and more of a cascade) carries the integrator's error up to the
+                // corrector's tolerance, and the steps shrink for noise rather than for the branch's shape:
+                // the map is sharpened for the rest of this branch (twice at most, down to rtol 1e-12).
+                // (Not beside a bumper: there the steps shrink for the grazing, and a sharper map only costs.)
+                if (ds < 2e-3 && sharpened < 2 && spec_.sim.rtol > 1.5e-12 &&
+                    !(work_.has_bumper() && std::abs(test(BifKind::Grazing, cur)) < 0.01)) {
+                    ++sharpened;
+                    spec_.sim.rtol = std::max(spec_.sim.rtol * 0.01, 1e-12);
+                    Sol again;
+                    if (correct(cur.u, t, k, again)) cur = std::move(again);   // the point on the sharper map
+                    ds = std::max(ds, 4e-3);
+                    continue;
+                }
                 ds *= 0.5;
                 if (ds < spec_.ds_min) {
                     // A cart held by dry friction (a real multiplier within 1 % of +1: the creeping mode)
                     // has a nearly singular M - I, and the corrector fails where the damped Newton of
                     // find_orbit still converges: restart a little further on at fixed q, the same branch.
                     if (restart(cur, t, k, ds, skipped)) continue;
-                    end = "Newton failed near " + std::string(sweep_param_name(spec_.param)) + " = " +
+                    end = "numerical limit near " + std::string(sweep_param_name(spec_.param)) + " = " +
                           std::to_string(q_of(cur.u));
                     // An orbit about to graze: the impacting side is out of the corrector's reach (a rigid
                     // bumper, or a compliant one as stiff as C1's), the grazing itself is still located on
                     // the bumperless orbit.
                     const double g = test(BifKind::Grazing, cur);
+                    // The corrector's last residual there: the numerical limit the end states.
+                    double res_last = NAN;
+                    {
+                        const MapResult rl = map(cur.u + ds * 2 * t, k, false);
+                        res_last = residual(rl, cur.u + ds * 2 * t).cwiseAbs().maxCoeff();
+                    }
+                    char rbuf[240];
+                    std::snprintf(rbuf, sizeof rbuf, ": the corrector fails at steps down to %.1g (residual %.2g there)",
+                                  spec_.ds_min, res_last);
+                    end += rbuf;
+                    if (work_.has_bumper() && std::abs(g) < 0.01) {
+                        std::snprintf(rbuf, sizeof rbuf, ", the orbit's largest x %.3g mm %s the bumper (a grazing ahead or begun)",
+                                      std::abs(g) * kXScale * 1e3, g < 0 ? "short of" : "into");
+                        end += rbuf;
+                    }
+                    // A compliant contact's orbit that has just begun to press the bumper (inside its first
+                    // millimetre): the grazing it came from is located on the bumperless orbit and named.
+                    if (work_.has_bumper() && !work_.rigid() && g >= 0 && g < 0.1) {
+                        // Located already as the corrector stepped in (the test's sign change): that one, to
+                        // its bracket; else located now, back along the branch on the bumperless orbit.
+                        last_located_ = -1;
+                        for (std::size_t qi = 0; qi < result_.points.size(); ++qi) {
+                            const BifPoint& q = result_.points[qi];
+                            if (q.kind == BifKind::Grazing && q.period == k && std::abs(q.param - q_of(cur.u)) < 1e-3 * q_scale_ &&
+                                (last_located_ < 0 || q.precision < result_.points[static_cast<std::size_t>(last_located_)].precision))
+                                last_located_ = static_cast<int>(qi);
+                        }
+                        if (last_located_ < 0) locate(BifKind::Grazing, cur, -t, 0.05, cur, k, br.id, true);
+                        if (last_located_ >= 0) {
+                            const BifPoint& g0 = result_.points[static_cast<std::size_t>(last_located_)];
+                            char gbuf[320];
+                            std::snprintf(gbuf, sizeof gbuf,
+                                          "grazing at %s = %.9g, pressing the compliant contact %.3g mm deep at %s = %.9g, "
+                                          "where the corrector's steps fail (residual %.2g at a step of %.1g)",
+                                          sweep_param_name(spec_.param), g0.param, g * kXScale * 1e3,
+                                          sweep_param_name(spec_.param), q_of(cur.u), res_last, spec_.ds_min);
+                            end = gbuf;
+                        }
+                    }
                     if (work_.has_bumper() && g < 0 && g > -0.1) {
                         last_located_ = -1;
                         locate(BifKind::Grazing, cur, t, 0.05, cur, k, br.id, true);
@@ -256,8 +316,11 @@ void Continuer::follow(const Job& job, Branch& br) {
             // the step may have left the branch's segment (the stable period 2 of A1C at 12.78 once landed
             // on the impacting orbit at 12.96, past the fold, with a multiplier of -13). Shorter, down to
             // a crawl: a true jump (a grazing) is then crossed in steps that bracket it.
-            if (!first && ds > 16 * spec_.ds_min &&
-                ((next.u - (cur.u + ds * t)).norm() > 0.5 * ds || multiplier_change(cur.r.M, next.r.M) > kMaxMultiplierStep)) {
+            // The first step off a doubling too: its branch bends back in the parameter as the square of the
+            // step, and a long first step jumps past the next doubling of a cascade (A1C's period 8 from
+            // 19.4957 landed at 19.4036, past its own doubling at 19.43, with mu = -2.1).
+            if (ds > 16 * spec_.ds_min &&
+                ((next.u - (cur.u + ds * t)).norm() > 0.5 * ds || (!first && multiplier_change(cur.r.M, next.r.M) > kMaxMultiplierStep))) {
                 ds *= 0.5;
                 continue;
             }

@@ -106,8 +106,15 @@ void Continuer::follow_impacting(const Job& job, Branch& br) {
         if (!correct_impacting(z + ds * t, t, k, zn, Jn, sec)) {
             ds *= 0.5;
             if (ds < spec_.ds_min) {
-                end = "Newton failed (impact to impact) near " + std::string(sweep_param_name(spec_.param)) + " = " +
-                      std::to_string(q_of(z));
+                Vec2 Gl;
+                Eigen::Matrix<double, 2, 3> Jl;
+                Vec2 sl;
+                const double rl = shot(z + 2 * ds * t, k, Gl, Jl, sl) ? Gl.cwiseAbs().maxCoeff() : NAN;
+                char buf[160];
+                std::snprintf(buf, sizeof buf, ": the corrector fails at steps down to %.1g (residual %.2g there)",
+                              spec_.ds_min, rl);
+                end = "numerical limit (impact to impact) near " + std::string(sweep_param_name(spec_.param)) + " = " +
+                      std::to_string(q_of(z)) + buf;
                 break;
             }
             continue;

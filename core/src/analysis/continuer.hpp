@@ -119,6 +119,16 @@ private:
             const Vec3 rhs(G[0], G[1], h);
             const Vec3 du = A.fullPivLu().solve(-rhs);
             if (!du.allFinite() || du.norm() > 1.0) return false;   // left the neighbourhood of the branch
+            // At the map's noise floor (a long period: its residual's noise passes res_tol) the residual no
+            // longer falls, yet a Newton step below the tolerance puts the branch's point within it of u (as
+            // find_orbit accepts it). Without this, whether a step converges follows the last bits of libm.
+            if (it >= 2 && du.norm() < res_tol_ && G.cwiseAbs().maxCoeff() < 100 * res_tol_ && std::abs(h) < 1e-9) {
+                out.u = u;
+                out.r = std::move(r);
+                out.J = J;
+                out.iterations = it;
+                return true;
+            }
             u += du;
         }
         return false;
@@ -185,12 +195,16 @@ private:
             return NAN;
         }
     }
-    // The largest change of a multiplier between two points (matched the closer way round).
+    // The largest change of a multiplier between two points (matched the closer way round), relative to the
+    // larger multiplier where that exceeds 1: an unstable orbit of a cascade (mu = -20 .. -1000) moves its
+    // multiplier by more than kMaxMultiplierStep in any step worth taking, while a jump onto another segment
+    // (-1 to -13) stays large relative to it.
     static double multiplier_change(const Mat2& A, const Mat2& B) {
         const Floquet a = floquet(A), b = floquet(B);
         const double same = std::max(std::abs(a.mu[0] - b.mu[0]), std::abs(a.mu[1] - b.mu[1]));
         const double swapped = std::max(std::abs(a.mu[0] - b.mu[1]), std::abs(a.mu[1] - b.mu[0]));
-        return std::min(same, swapped);
+        const double scale = std::max({1.0, std::abs(a.mu[0]), std::abs(b.mu[0])});
+        return std::min(same, swapped) / scale;
     }
 
     BranchPoint point_of(const Sol& s, int k) const {

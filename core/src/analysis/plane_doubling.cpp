@@ -36,6 +36,13 @@ PlaneCurve follow(const Params& base, const PlaneCurveSpec& spec, double omega0,
     if (progress) progress->fraction.store(0.0, std::memory_order_relaxed);
     out.curve = continue_curve(spec.kind, base, spec.second, omega0, y0, period, lo, hi, spec.step, analysis_tolerances(), progress);
     out.cancelled = out.curve.cancelled;
+    // The start is the curve's own point at q0, located again by the curve's test (the continuation's value
+    // comes from another test, 2e-6 .. 1e-5 rad/s off at a doubling): what is printed as the start is on it.
+    for (const CurvePoint& c : out.curve.points)
+        if (c.q == q0) {
+            out.omega0 = c.omega;
+            out.y0 = c.y;
+        }
     // A side that starts at the axis' end says so (the curve functions would call it the range's end); a
     // point lost there, or a cancel, keeps its own words.
     const std::size_t k = out.curve.end.find(" / ");
