@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "impactlab/input_file.hpp"
 #include "impactlab/figures.hpp"
 #include "impactlab/forces.hpp"
 #include "impactlab/identify.hpp"
@@ -100,7 +101,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     State s;
     s.x = a.num("--x0", 0.0, -0.1, 0.1);
     s.v = a.num("--v0", 0.0, -10.0, 10.0);
-    check_start(p, s.x, "simulate", "--x0");
+    check_start(p, s.x, "simulate", "--x0", !a.has("--x0"));
     Simulator::make_consistent(p, drive, s);
     out << (input ? "t,x,v,u,regime\n" : "t,x,v,phi,regime\n");
     UniformSampler sampler(drive, dt, 0.0, [&](const Sample& smp) {
@@ -117,9 +118,9 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     }
     bar.finish();
     out.commit();
-    std::fprintf(stderr, "%s: %.6g s simulated, %llu steps, %llu impacts -> %s\n", p.name.c_str(), duration,
+    std::fprintf(stderr, "%s: %.6g s simulated, %llu steps, %llu impacts -> %s\n", printable(p.name).c_str(), duration,
                  static_cast<unsigned long long>(s.steps), static_cast<unsigned long long>(s.impacts),
-                 a.required("--out").c_str());
+                 printable(a.required("--out")).c_str());
     return 0;
 }
 
@@ -146,7 +147,7 @@ int cmd_poincare(const std::vector<std::string>& argv) {
     State s;
     s.x = a.num("--x0", 0.0, -0.1, 0.1);
     s.v = a.num("--v0", 0.0, -10.0, 10.0);
-    check_start(p, s.x, "poincare", "--x0");
+    check_start(p, s.x, "poincare", "--x0", !a.has("--x0"));
     Progress progress;
     ProgressBar bar("poincare " + p.name, progress);
     const auto pts = poincare_section(p, omega, periods, transient, s, tolerances_from(a), &progress, phi0);
@@ -154,7 +155,7 @@ int cmd_poincare(const std::vector<std::string>& argv) {
     out << "n,x,v\n";
     for (const auto& sp : pts) out << sp.n - transient << ',' << sp.x << ',' << sp.v << '\n';
     out.commit();
-    std::fprintf(stderr, "%s: %zu section points -> %s\n", p.name.c_str(), pts.size(), a.required("--out").c_str());
+    std::fprintf(stderr, "%s: %zu section points -> %s\n", printable(p.name).c_str(), pts.size(), printable(a.required("--out")).c_str());
     return 0;
 }
 
@@ -253,8 +254,8 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
         }
     }
     write_diagram_csv(d, out);   // renamed into place when the command succeeds, the PNG included
-    std::fprintf(stderr, "%s %s: %zu points, %.0f s simulated, %llu steps -> %s\n", p.name.c_str(), d.protocol.c_str(),
-                 d.points.size(), d.simulated_seconds, static_cast<unsigned long long>(d.steps), out_path.c_str());
+    std::fprintf(stderr, "%s %s: %zu points, %.0f s simulated, %llu steps -> %s\n", printable(p.name).c_str(), d.protocol.c_str(),
+                 d.points.size(), d.simulated_seconds, static_cast<unsigned long long>(d.steps), printable(out_path).c_str());
     if (sweep != "ramp" && d.over == SweepParam::Omega) {   // Fig. 3's transitions are of omega, from the hilltop
         const Transitions tr = find_transitions(d);
         // A transition the sweep did not meet is NaN: say "none" rather than print "nan".
@@ -274,7 +275,7 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
     }
     if (a.has("--png")) {
         save_diagram_png(d, a.str("--png", ""));
-        std::fprintf(stderr, "plot -> %s\n", a.str("--png", "").c_str());
+        std::fprintf(stderr, "plot -> %s\n", printable(a.str("--png", "")).c_str());
     }
     return 0;
 }
@@ -297,7 +298,7 @@ int cmd_figure3(const std::vector<std::string>& argv) {
         data = compute_figure3(steps, tol, &progress);
     }
     save_figure3_png(data, out_path);
-    std::fprintf(stderr, "figure 3 -> %s\n", out_path.c_str());
+    std::fprintf(stderr, "figure 3 -> %s\n", printable(out_path).c_str());
     return 0;
 }
 

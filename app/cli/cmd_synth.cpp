@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "impactlab/input_file.hpp"
 #include "impactlab/identify.hpp"
 #include "impactlab/params_json.hpp"
 
@@ -209,8 +210,8 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
     const bool gz = out_path.size() > 3 && out_path.substr(out_path.size() - 3) == ".gz";
     out << (gz ? identify::gzip_stored(text.str()) : text.str());
     out.commit();
-    std::fprintf(stderr, "synth: %s, %zu samples over %.6g s, %s impacts, effects: %s -> %s\n", model.p.name.c_str(), d.size(),
-                 o.duration, d.meta.at("impacts").c_str(), d.meta.at("effects").c_str(), out_path.c_str());
+    std::fprintf(stderr, "synth: %s, %zu samples over %.6g s, %s impacts, effects: %s -> %s\n", printable(model.p.name).c_str(), d.size(),
+                 o.duration, d.meta.at("impacts").c_str(), d.meta.at("effects").c_str(), printable(out_path).c_str());
     return 0;
 }
 
