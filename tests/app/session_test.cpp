@@ -3,8 +3,10 @@
 // of range, unknown model) is refused with the file, the key (or line) and the problem named.
 #include <doctest/doctest.h>
 
+#include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <unistd.h>
@@ -145,3 +147,28 @@ TEST_CASE("session: a refused parameter names the file and its key once, then th
     CHECK(e == "s.json: key 'params.c': must lie in [0, 1e+06] N s/m (viscous resistance), got -5");
 }
 
+
+TEST_CASE("session: 400k empty objects are read in one linear pass, then refused by key") {
+    std::string text = R"({"format": "impactlab-gui session", "junk": [)";
+    text.reserve(text.size() + 3 * 400000 + 2);
+    for (int i = 0; i < 400000; ++i) text += i ? ",{}" : "{}";
+    text += "]}";
+    const std::clock_t c0 = std::clock();
+    CHECK(has(error_of(text), "s.json: key 'junk': unknown key"));
+    // Generous (a sanitizer's build included): one pass takes a fraction of a second, nlohmann's callback
+    // parser, which scans the whole parent array at each closed object, took 40 s.
+    CHECK(static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC < 10.0);
+}
+
+TEST_CASE("session: a data file named in bytes that are not UTF-8 is saved escaped, never an exception") {
+    const fs::path dir = fs::temp_directory_path() / ("impactlab-session-bytes-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    Session s = sample();
+    s.data = "/tmp/r\xff" "e.csv";
+    const std::string path = (dir / "s.json").string();
+    CHECK_NOTHROW(save_session(s, path));
+    std::ifstream f(path);
+    const std::string text((std::istreambuf_iterator<char>(f)), {});
+    CHECK(has(text, "\"data\": \"/tmp/r\\\\xffe.csv\""));
+    fs::remove_all(dir);
+}
