@@ -5,6 +5,7 @@
 #include <iterator>
 #include <numbers>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <set>
@@ -356,7 +357,15 @@ Session session_from_json(const json& j, const Session& base, const std::string&
         if (d->is_null()) s.data.clear();
         else if (!d->is_string()) top.fail("data", std::string("expected a file name or null, got ") + d->type_name());
         else {
-            const std::string path = d->get<std::string>();
+            std::string path = d->get<std::string>();
+            // A relative name is relative to the session file's folder (as save_session writes it), so the session
+            // opens from any working directory; one found only from here (an older session) is taken too.
+            namespace fs = std::filesystem;
+            if (!path.empty() && fs::path(path).is_relative() && !file.empty()) {
+                const fs::path beside = (fs::path(file).parent_path() / path).lexically_normal();
+                std::error_code ec;
+                if (fs::exists(beside, ec) || !fs::exists(path, ec)) path = beside.string();
+            }
             if (!path.empty()) try {
                     check_input_file(path);
                 } catch (const InputFileError& e) {
@@ -476,8 +485,17 @@ void save_session(const Session& s, const std::string& path) {
     if (path.empty()) throw SessionError("session: no file name given");
     // Whole or not at all, every write checked; any failure (a full disk, a name in any bytes) is a
     // SessionError, the one kind the GUI's save catches.
+    // A relative data file name (relative to the working directory) is saved relative to the session file's
+    // folder: the session then opens from any working directory, and the pair can move together.
+    Session saved = s;
+    if (!saved.data.empty() && std::filesystem::path(saved.data).is_relative()) {
+        namespace fs = std::filesystem;
+        std::error_code ec;
+        const fs::path rel = fs::proximate(fs::absolute(saved.data, ec), fs::absolute(path, ec).parent_path(), ec);
+        if (!ec && !rel.empty()) saved.data = rel.string();
+    }
     try {
-        write_file_whole(path, session_text(s));
+        write_file_whole(path, session_text(saved));
     } catch (const std::exception& e) {
         throw SessionError(printable(e.what()));
     }

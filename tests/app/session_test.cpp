@@ -172,3 +172,27 @@ TEST_CASE("session: a data file named in bytes that are not UTF-8 is saved escap
     CHECK(has(text, "\"data\": \"/tmp/r\\\\xffe.csv\""));
     fs::remove_all(dir);
 }
+
+TEST_CASE("session: a relative data path is saved relative to the session file, and opens from any working directory") {
+    const fs::path dir = fs::temp_directory_path() / ("impactlab-session-rel-" + std::to_string(::getpid()));
+    fs::create_directories(dir / "data");
+    fs::create_directories(dir / "sessions");
+    std::ofstream(dir / "data" / "run.csv") << "t,x,phi\n0,0,0\n";
+    const fs::path cwd = fs::current_path();
+    Session s = sample();
+    s.data = fs::relative(dir / "data" / "run.csv", cwd).string();   // as typed in the working directory
+    REQUIRE(fs::path(s.data).is_relative());
+    save_session(s, (dir / "sessions" / "s.json").string());
+    fs::current_path("/");   // another working directory
+    std::string err;
+    Session back;
+    try {
+        back = load_session((dir / "sessions" / "s.json").string(), Session{});
+    } catch (const SessionError& e) {
+        err = e.what();
+    }
+    fs::current_path(cwd);
+    CHECK(err.empty());
+    CHECK(fs::equivalent(back.data, dir / "data" / "run.csv"));
+    fs::remove_all(dir);
+}
