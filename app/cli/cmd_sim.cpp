@@ -94,6 +94,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     const double duration = a.num("--duration", input ? in_dt * static_cast<double>(rec->size() - 1) : 0.0, 1e-6, 1e6);
     const double dt = a.num("--dt", input ? in_dt : 1e-3, 1e-7, 1e3);
     check_rows("simulate", duration / dt, "--duration / --dt");
+    check_run_span(p, 0.0, duration, "simulate");
     auto out = open_out(a.required("--out"));
     Simulator sim(tolerances_from(a));
     Drive drive(omega);

@@ -204,6 +204,7 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
     for (std::size_t i = 1; i < o.knot_t.size(); ++i)
         if (o.knot_t[i] < o.knot_t[i - 1]) throw UsageError("synth: the omega knots' times must not decrease");
 
+    check_run_span(model.p, 0.0, o.duration, "synth");
     const identify::MeasuredData d = identify::synthesize(model, o);
     std::ostringstream text;
     identify::write_measured_csv(text, d);

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -281,6 +282,23 @@ void check_start(const Params& p, double x, const std::string& command, const st
         std::snprintf(buf, sizeof buf, "%s: %s: x = %.6g m lies beyond the bumper at xI = %.6g m (%s); start at x <= xI", command.c_str(),
                       flag.c_str(), x, p.xI, p.name.substr(0, 60).c_str());
     throw UsageError(buf);
+}
+
+void check_run_span(const Params& p, double t_begin, double t_end, const std::string& command) {
+    try {
+        validate_over(p, t_begin, t_end, p.name);
+    } catch (const ParamError& e) {
+        throw UsageError(command + ": " + e.what());
+    }
+    // A drift's clock (t0, the record's start for a fitted model) travels with the model: a run on another
+    // clock is said so, as the drift then acts as it would have at t - t0 of the record.
+    for (const auto& e : p.effects)
+        for (std::size_t i = 0; i < kMaxLawParams && e.law && e.law->names[i]; ++i)
+            if (std::string(e.law->names[i]) == "t0" && e.p[i] != t_begin)
+                std::fprintf(stderr,
+                             "%s: note: effects.%s.t0 = %.6g s (the clock of the record it was fitted to); this run starts at "
+                             "t = %.6g s, where the drift stands as it did %.6g s %s that record's start\n",
+                             command.c_str(), e.law->id, e.p[i], t_begin, std::fabs(e.p[i] - t_begin), e.p[i] > t_begin ? "before" : "after");
 }
 
 void check_rows(const std::string& command, double rows, const std::string& flags) {

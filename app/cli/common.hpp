@@ -107,6 +107,10 @@ OutputFile open_out(const std::string& path, const std::string& flag = "--out");
 // it onto the bumper unasked (a compliant bumper may be pressed, so any x is a start there).
 // `defaulted`: the flag was not given, x is its default (the message then says so and names the flag to give).
 void check_start(const Params& p, double x, const std::string& command, const std::string& flag, bool defaulted = false);
+// Before a run over [t_begin, t_end] s: every law that changes with time stays a force a rig can take over that
+// span (UsageError naming the effect's key and the time), and a drift whose clock t0 is not the run's start is
+// noted on stderr.
+void check_run_span(const Params& p, double t_begin, double t_end, const std::string& command);
 // The most rows an output may have (synth's cap too): a CSV of a few GB, which some commands hold in memory.
 inline constexpr double kMaxRows = 5e7;
 // Throws UsageError unless `rows` <= kMaxRows, naming `flags`, the flags whose values multiply to it

@@ -144,6 +144,14 @@ impactlab_cli_test(simulate_default_start_beyond_bumper --rc 2
                    --match "the default start x = 0 m lies beyond the bumper at xI = -0.004 m .*: give --x0 X with X <= xI"
                    -- simulate --model A1G --xI -0.004 --omega 10 --duration 1 --out s.csv)
 
+# --- time-dependent effects checked over the run, their clock t0 said ------------------------------------------------
+impactlab_cli_test(synth_drift_over_run --rc 2 --match "synth: .*key 'effects.magnet_drift': gives a force of .* \\(at t = [0-9.e+]+ s of the run's 0 .. 1 s\\)"
+                   --absent y.csv -- synth --model A1H --effect magnet_drift=1e300 --duration 1 --out y.csv)
+impactlab_cli_test(synth_stiffness_drift_over_run --rc 2 --match "synth: .*key 'effects.stiffness_drift': gives a force of"
+                   --absent y.csv -- synth --model A1H --effect stiffness_drift=1e10 --duration 1 --out y.csv)
+impactlab_cli_test(synth_drift_clock_noted --rc 0 --match "synth: note: effects.magnet_drift.t0 = 1000 s"
+                   -- synth --model A1H --effect magnet_drift=-0.0001 --effect magnet_drift.t0=1000 --duration 1 --out y.csv)
+
 # --- sanitizers ---------------------------------------------------------------------------------------------------
 # Under AddressSanitizer, LeakSanitizer must not count Open MPI's allocations (mpirun in cli.scan_identity)
 # against the project: tests/lsan.supp names the library's frames only. Those libraries have no frame
