@@ -8,6 +8,27 @@
 
 namespace impactlab::cli {
 
+namespace {
+// A number as strtod reads it, whole; an underflow to a subnormal or zero is that number (1e-320 is a
+// number), an overflow (1e309) is not finite.
+bool parse_number(const std::string& s, double& v) {
+    char* end = nullptr;
+    errno = 0;
+    v = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v)) return false;
+    return !(errno == ERANGE && std::fabs(v) > 1.0);
+}
+// "[lo, hi]" in the shortest form (an unbounded side as -inf / inf would say nothing): "[-1, 1]", "at least 0".
+std::string bounds_text(double lo, double hi) {
+    std::ostringstream o;
+    o.precision(6);
+    if (std::isfinite(lo) && std::isfinite(hi) && std::fabs(lo) < 1e300 && std::fabs(hi) < 1e300) o << "outside [" << lo << ", " << hi << "]";
+    else if (std::isfinite(lo) && std::fabs(lo) < 1e300) o << "below " << lo;
+    else o << "above " << hi;
+    return o.str();
+}
+}  // namespace
+
 Args::Args(const std::string& command, const std::vector<std::string>& argv, const std::set<std::string>& valued,
            const std::set<std::string>& switches, bool takes_files)
     : command_(command) {
@@ -72,16 +93,9 @@ double Args::num(const std::string& flag, double fallback, double lo, double hi)
     const auto it = values_.find(flag);
     if (it == values_.end()) return fallback;
     const std::string& s = it->second;
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(s.c_str(), &end);
-    if (s.empty() || end != s.c_str() + s.size() || errno == ERANGE || !std::isfinite(v))
-        throw UsageError(command_ + ": option '" + flag + "': '" + s + "' is not a finite number");
-    if (v < lo || v > hi) {
-        std::ostringstream msg;
-        msg << command_ << ": option '" << flag << "': " << s << " is outside [" << lo << ", " << hi << "]";
-        throw UsageError(msg.str());
-    }
+    double v = 0;
+    if (!parse_number(s, v)) throw UsageError(command_ + ": option '" + flag + "': '" + s + "' is not a finite number");
+    if (v < lo || v > hi) throw UsageError(command_ + ": option '" + flag + "': " + s + " is " + bounds_text(lo, hi));
     return v;
 }
 
@@ -101,20 +115,26 @@ int Args::integer(const std::string& flag, int fallback, int lo, int hi) const {
 }
 
 std::array<double, 2> Args::pair(const std::string& flag) const {
+    const std::string v = str(flag, "");
     std::vector<std::string> parts;
     {
-        std::stringstream ss(str(flag, ""));
+        std::stringstream ss(v);
         std::string item;
-        while (std::getline(ss, item, ','))
-            if (!item.empty()) parts.push_back(item);
+        while (std::getline(ss, item, ',')) parts.push_back(item);
     }
-    if (parts.size() != 2) throw UsageError(command_ + ": option '" + flag + "': expected X,V (two numbers)");
+    if (parts.size() != 2 || parts[0].empty() || parts[1].empty())
+        throw UsageError(command_ + ": option '" + flag + "': expected X,V (two numbers), got '" + v + "'");
+    // A start on the rail at a speed the rig can have (as --x0 and --v0): a start beyond would only make the
+    // search that begins there wander or stall.
+    const double lo[2] = {-0.1, -10.0}, hi[2] = {0.1, 10.0};
+    const char* what[2] = {"X", "V"};
     std::array<double, 2> y{};
     for (std::size_t i = 0; i < 2; ++i) {
-        char* end = nullptr;
-        y[i] = std::strtod(parts[i].c_str(), &end);
-        if (end == parts[i].c_str() || *end || !std::isfinite(y[i]))
-            throw UsageError(command_ + ": option '" + flag + "': '" + parts[i] + "' is not a finite number");
+        if (!parse_number(parts[i], y[i]))
+            throw UsageError(command_ + ": option '" + flag + "': " + what[i] + " = '" + parts[i] + "' is not a finite number");
+        if (y[i] < lo[i] || y[i] > hi[i])
+            throw UsageError(command_ + ": option '" + flag + "': " + what[i] + " = " + parts[i] + " is " + bounds_text(lo[i], hi[i]) +
+                             (i == 0 ? " m (the rail)" : " m/s"));
     }
     return y;
 }
@@ -127,11 +147,10 @@ std::pair<double, double> Args::range(const std::string& flag, double lo, double
     double r[2];
     const std::string parts[2] = {s.substr(0, colon), s.substr(colon + 1)};
     for (int i = 0; i < 2; ++i) {
-        char* end = nullptr;
-        r[i] = std::strtod(parts[i].c_str(), &end);
-        if (parts[i].empty() || *end || !std::isfinite(r[i]) || r[i] < lo || r[i] > hi)
-            throw UsageError(command_ + ": option '" + flag + "': '" + parts[i] + "' is not a number in [" + std::to_string(lo) +
-                             ", " + std::to_string(hi) + "]");
+        if (!parse_number(parts[i], r[i]))
+            throw UsageError(command_ + ": option '" + flag + "': '" + parts[i] + "' is not a finite number");
+        if (r[i] < lo || r[i] > hi)
+            throw UsageError(command_ + ": option '" + flag + "': " + parts[i] + " is " + bounds_text(lo, hi));
     }
     if (!(r[1] > r[0])) throw UsageError(command_ + ": option '" + flag + "': the end is not above the start");
     return {r[0], r[1]};

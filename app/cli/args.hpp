@@ -25,7 +25,7 @@ public:
     std::string required(const std::string& flag) const;
     double num(const std::string& flag, double fallback, double lo, double hi) const;
     int integer(const std::string& flag, int fallback, int lo, int hi) const;
-    // "X,V": two finite numbers.
+    // "X,V": a start on the rail, x in [-0.1, 0.1] m, v in [-10, 10] m/s (as --x0, --v0).
     std::array<double, 2> pair(const std::string& flag) const;
     // "A:B" with A < B, both finite, inside [lo, hi]; `fallback` when the flag is absent.
     std::pair<double, double> range(const std::string& flag, double lo, double hi, std::pair<double, double> fallback) const;

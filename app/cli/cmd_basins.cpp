@@ -10,6 +10,7 @@
 
 #include "analysis_common.hpp"
 #include "commands.hpp"
+#include "impactlab/input_file.hpp"
 #include "impactlab/plot.hpp"
 #include "impactlab/simulator.hpp"
 
@@ -44,7 +45,7 @@ int cmd_basins(const std::vector<std::string>& argv) {
     spec.omega = a.num("--omega", 0, 1e-2, 1000.0);
     spec.nx = spec.nv = a.integer("--grid", 200, 1, 4000);
     analysis::set_default_window(p, spec);
-    std::tie(spec.x_min, spec.x_max) = a.range("--x-range", -1.0, 1.0, {spec.x_min, spec.x_max});
+    std::tie(spec.x_min, spec.x_max) = a.range("--x-range", -0.1, 0.1, {spec.x_min, spec.x_max});   // the rail
     std::tie(spec.v_min, spec.v_max) = a.range("--v-range", -100.0, 100.0, {spec.v_min, spec.v_max});
     check_start(p, spec.x_max, "basins", "--x-range (its upper end)");
     spec.transient = a.integer("--transient", spec.transient, 0, 1000000);
@@ -66,11 +67,11 @@ int cmd_basins(const std::vector<std::string>& argv) {
     for (int j = 0; j < spec.nv; ++j)
         for (int i = 0; i < spec.nx; ++i)
             out << r.x0(i) << ',' << r.v0(j) << ',' << r.label[static_cast<std::size_t>(j) * spec.nx + i] << '\n';
-    if (!out) throw std::runtime_error(out_path + ": write failed");
+    out.check();
     const std::size_t ncells = r.label.size();
     std::fprintf(stderr, "%s omega = %g rad/s: %d x %d starts, %zu attractors, %.3g periods per start, %.2f s on %d threads -> %s\n",
-                 p.name.c_str(), spec.omega, spec.nx, spec.nv, r.attractors.size(),
-                 static_cast<double>(r.periods_run) / static_cast<double>(ncells), r.seconds, r.threads, out_path.c_str());
+                 printable(p.name).c_str(), spec.omega, spec.nx, spec.nv, r.attractors.size(),
+                 static_cast<double>(r.periods_run) / static_cast<double>(ncells), r.seconds, r.threads, printable(out_path).c_str());
     // The legend: one line per label.
     auto describe = [](const analysis::Attractor& at) {
         std::string kind = at.kind == analysis::AttractorKind::Periodic ? "period " + std::to_string(at.period)
@@ -154,7 +155,7 @@ int cmd_basins(const std::vector<std::string>& argv) {
             f.y = std::move(fy);
         }
         plot::save_png(fig, png);
-        std::fprintf(stderr, "plot -> %s\n", png.c_str());
+        std::fprintf(stderr, "plot -> %s\n", printable(png).c_str());
     }
     return 0;
 }

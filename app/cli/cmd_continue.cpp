@@ -10,6 +10,7 @@
 
 #include "analysis_common.hpp"
 #include "commands.hpp"
+#include "impactlab/input_file.hpp"
 #include "impactlab/plot.hpp"
 #include "impactlab/simulator.hpp"
 
@@ -56,10 +57,12 @@ int cmd_continue(const std::vector<std::string>& argv) {
             if (a.has(f)) throw UsageError("continue: " + std::string(f) + " belongs to --param omega (for " + param + ": --min, --max)");
         spec.param = param == "xI" ? analysis::ContParam::XI : analysis::ContParam::M0e;
         if (!a.has("--omega")) throw UsageError("continue: --param " + param + " needs '--omega'");
-        spec.omega = a.num("--omega", 10.0, 1e-2, 1000.0);
+        spec.omega = a.num("--omega", 10.0, 0.05, 1000.0);
         if (!a.has("--min") || !a.has("--max")) throw UsageError("continue: --param " + param + " needs '--min' and '--max'");
-        spec.lo = a.num("--min", 0.0, -0.1, 1.0);
-        spec.hi = a.num("--max", 0.0, -0.1, 1.0);
+        // The model's physical range, as --xI and --m0e take it: the bumper on the rail, an unbalance >= 0.
+        const double lo = param == "xI" ? -0.1 : 0.0, hi = param == "xI" ? 0.1 : 10.0;
+        spec.lo = a.num("--min", 0.0, lo, hi);
+        spec.hi = a.num("--max", 0.0, lo, hi);
         if (spec.hi <= spec.lo) throw UsageError("continue: --max is not above --min");
         spec.start = spec.lo;
     } else {
@@ -93,14 +96,15 @@ int cmd_continue(const std::vector<std::string>& argv) {
     pt << "kind," << pname << ",x,v,period\n";
     for (const auto& q : r.points)
         pt << analysis::bif_kind_name(q.kind) << ',' << q.param << ',' << q.y[0] << ',' << q.y[1] << ',' << q.period << '\n';
-    if (!br || !pt) throw std::runtime_error(dir + ": write failed");
+    br.check();
+    pt.check();
     // No orbit at all: say so, and print no branch listing that looks like a result.
     if (r.branches.size() == 1 && r.branches[0].points.empty()) {
         std::fprintf(stderr, "continue: no period-%d orbit to continue: %s\n", spec.period, r.branches[0].end.c_str());
         return 1;
     }
-    std::fprintf(stderr, "%s: %zu branches, %zu bifurcation points, %llu map evaluations, %.2f s -> %s\n", p.name.c_str(),
-                 r.branches.size(), r.points.size(), static_cast<unsigned long long>(r.map_evaluations), r.seconds, dir.c_str());
+    std::fprintf(stderr, "%s: %zu branches, %zu bifurcation points, %llu map evaluations, %.2f s -> %s\n", printable(p.name).c_str(),
+                 r.branches.size(), r.points.size(), static_cast<unsigned long long>(r.map_evaluations), r.seconds, printable(dir).c_str());
     for (const auto& b : r.branches)
         std::printf("branch %d: period %d, %zu points%s, ends: %s\n", b.id, b.period, b.points.size(),
                     b.parent >= 0 ? (" (from branch " + std::to_string(b.parent) + ")").c_str() : "", b.end.c_str());
@@ -167,7 +171,7 @@ int cmd_continue(const std::vector<std::string>& argv) {
         }
         fig.panels.push_back(pan);
         plot::save_png(fig, a.str("--png", ""));
-        std::fprintf(stderr, "plot -> %s\n", a.str("--png", "").c_str());
+        std::fprintf(stderr, "plot -> %s\n", printable(a.str("--png", "")).c_str());
     }
     return 0;
 }

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include "impactlab/identify.hpp"
+#include "impactlab/input_file.hpp"
 
 namespace impactlab::cli {
 
@@ -155,10 +156,10 @@ int cmd_fit(const std::vector<std::string>& argv) {
     identify::write_report(r, dir, o.plots);
 
     if (r.metres())
-        std::printf("%s: %zu samples, model %s (%s), sensor noise %.3g um\n", path.c_str(), r.samples, r.before.p.name.c_str(),
+        std::printf("%s: %zu samples, model %s (%s), sensor noise %.3g um\n", printable(path).c_str(), r.samples, printable(r.before.p.name).c_str(),
                     identify::baseline_name(r.baseline), r.sigma_x * 1e6);
     else
-        std::printf("%s: %zu samples, model %s (%s), sensor noise %.3g (%s)\n", path.c_str(), r.samples, r.before.p.name.c_str(),
+        std::printf("%s: %zu samples, model %s (%s), sensor noise %.3g (%s)\n", printable(path).c_str(), r.samples, printable(r.before.p.name).c_str(),
                     identify::baseline_name(r.baseline), r.sigma_x, r.x_unit());
     if (r.effects_found.empty()) std::printf("effects found: none\n");
     for (const auto& f : r.effects_found)
@@ -249,7 +250,7 @@ int cmd_fit(const std::vector<std::string>& argv) {
         row("free-run simulation RMS (test)", b.test_simulation_rms_m, eb.test_simulation_rms_m, e.test_simulation_rms_m);
     if (b.test_shooting_rms_m >= 0) row("shooting RMS (test) " + xu, b.test_shooting_rms_m, eb.test_shooting_rms_m, e.test_shooting_rms_m);
     for (const auto& w : r.gate_within) std::printf("rose within its scatter: %s\n", w.c_str());
-    std::printf("report: %s/report.json, report.md (%.2f s)\n", dir.c_str(), r.runtime_s);
+    std::printf("report: %s/report.json, report.md (%.2f s)\n", printable(dir).c_str(), r.runtime_s);
     return 0;
 }
 

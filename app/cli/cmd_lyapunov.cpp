@@ -10,6 +10,7 @@
 
 #include "analysis_common.hpp"
 #include "commands.hpp"
+#include "impactlab/input_file.hpp"
 #include "impactlab/plot.hpp"
 #include "impactlab/simulator.hpp"
 
@@ -60,8 +61,8 @@ int cmd_lyapunov(const std::vector<std::string>& argv) {
         }
         out << "omega,lambda_max,lambda_min,period\n";
         for (const auto& q : pts) out << q.omega << ',' << q.lambda_max << ',' << q.lambda_min << ',' << q.period << '\n';
-        if (!out) throw std::runtime_error(out_path + ": write failed");
-        std::fprintf(stderr, "%s: %zu omegas -> %s\n", p.name.c_str(), pts.size(), out_path.c_str());
+        out.check();
+        std::fprintf(stderr, "%s: %zu omegas -> %s\n", printable(p.name).c_str(), pts.size(), printable(out_path).c_str());
         if (a.has("--png")) {
             plot::Figure fig;
             fig.width = 1200;
@@ -91,7 +92,7 @@ int cmd_lyapunov(const std::vector<std::string>& argv) {
     const int transient = a.integer("--transient", 100, 0, 100000000);
     State s;
     s.x = a.num("--x0", analysis::left_well(p), -0.1, 0.1);
-    check_start(p, s.x, "lyapunov", "--x0");
+    check_start(p, s.x, "lyapunov", "--x0", !a.has("--x0"));
     s.v = a.num("--v0", 0.0, -10.0, 10.0);
     const State s0 = s;
     Progress progress;

@@ -3,9 +3,11 @@
 // so the file is the same bit for bit whatever the number of threads or ranks. A tile log beside the output
 // holds every finished row; --resume reads it back and computes only what is missing.
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -85,6 +87,24 @@ constexpr int kTagRequest = 1, kTagRow = 2, kTagResult = 3;
 
 }  // namespace
 
+namespace {
+// A curve's start within the model's physical range (omega >= 0.05 rad/s as continue's, the section point on
+// the rail at a speed the rig can have): a start beyond it sends the curve's Newton far from any orbit, where
+// it wandered without end.
+void check_curve_start(const std::string& flag, const double* w) {
+    const char* names[3] = {"OMEGA", "X", "V"};
+    const double lo[3] = {0.05, -0.1, -10.0}, hi[3] = {1000.0, 0.1, 10.0};
+    const char* units[3] = {"rad/s", "m (the rail)", "m/s"};
+    for (int i = 0; i < 3; ++i)
+        if (!(w[i] >= lo[i] && w[i] <= hi[i])) {
+            char buf[200];
+            std::snprintf(buf, sizeof buf, "scan: option '%s': %s = %.6g is outside [%g, %g] %s", flag.c_str(), names[i], w[i], lo[i],
+                          hi[i], units[i]);
+            throw UsageError(buf);
+        }
+}
+}  // namespace
+
 int cmd_scan(const std::vector<std::string>& argv) {
     if (show_help_if_asked(argv, kScanHelp, kModelHelp)) return 0;
 #ifdef IMPACTLAB_HAVE_MPI
@@ -104,6 +124,10 @@ int cmd_scan(const std::vector<std::string>& argv) {
     // --doubling-from auto (--grazing-from, --fold-from): found by curve_over_plane
     bool doubling_auto = false, grazing_auto = false, fold_auto = false;
     std::vector<std::vector<ScanPoint>> rows;
+    // Rows are written to --out in order as they finish (row_done: computed or resumed; next_row: the first
+    // not yet written); without --png a written row is freed, so memory holds the rows in flight, not the plane.
+    std::vector<bool> row_done;
+    int next_row = 0;
     std::vector<int> todo;
     int threads = 1;
     Tolerances tol;
@@ -167,9 +191,10 @@ int cmd_scan(const std::vector<std::string>& argv) {
                 doubling_auto = true;
             } else {
                 char tail = 0;
-                if (std::sscanf(v.c_str(), "%lf,%lf,%lf%c", &w[0], &w[1], &w[2], &tail) != 3 ||
-                    !std::isfinite(w[0] + w[1] + w[2]) || !(w[0] > 0))
-                    throw UsageError("scan: option '--doubling-from': expected OMEGA,X,V (a period-1 doubling, as continue prints it)");
+                if (std::sscanf(v.c_str(), "%lf,%lf,%lf%c", &w[0], &w[1], &w[2], &tail) != 3)
+                    throw UsageError("scan: option '--doubling-from': expected OMEGA,X,V (a period-1 doubling, as continue prints it), got '" +
+                                     v + "'");
+                check_curve_start("--doubling-from", w);
                 doubling_from = {w[0], w[1], w[2], 1};
             }
         }
@@ -190,10 +215,10 @@ int cmd_scan(const std::vector<std::string>& argv) {
             double w[4] = {0, 0, 0, 1};
             char tail = 0;
             const int n = std::sscanf(v.c_str(), "%lf,%lf,%lf,%lf%c", &w[0], &w[1], &w[2], &w[3], &tail);
-            if ((n != 3 && n != 4) || !std::isfinite(w[0] + w[1] + w[2] + w[3]) || !(w[0] > 0) || !(w[3] >= 1 && w[3] <= 64) ||
-                w[3] != std::floor(w[3]))
-                throw UsageError("scan: option '" + f + "': expected OMEGA,X,V[,K] (a " + what +
-                                 " of the period-K orbit, as continue prints it)");
+            if ((n != 3 && n != 4) || !(w[3] >= 1 && w[3] <= 64) || w[3] != std::floor(w[3]))
+                throw UsageError("scan: option '" + f + "': expected OMEGA,X,V[,K] with K in 1..64 (a " + what +
+                                 " of the period-K orbit, as continue prints it), got '" + v + "'");
+            check_curve_start(f, w);
             (what == "fold" ? fold_from : grazing_from) = {w[0], w[1], w[2], w[3]};
         }
         out_path = a.required("--out");
@@ -207,7 +232,8 @@ int cmd_scan(const std::vector<std::string>& argv) {
             out.emplace(out_path, "--out");
             if (!png.empty()) check_writable(png, "--png");
             if (!curves_path.empty()) check_writable(curves_path, "--curves-out");
-            std::vector<bool> done(static_cast<std::size_t>(spec.y.n), false);
+            row_done.assign(static_cast<std::size_t>(spec.y.n), false);
+            std::vector<bool>& done = row_done;
             const std::string header = scan_log_header(p, spec, tol);
             std::size_t resumed = 0;
             if (a.has("--resume") && std::filesystem::exists(log_path)) {
@@ -236,6 +262,7 @@ int cmd_scan(const std::vector<std::string>& argv) {
             for (int j = 0; j < spec.y.n; ++j)
                 if (done[static_cast<std::size_t>(j)]) log << scan_log_line(j, rows[static_cast<std::size_t>(j)]) << '\n';
             log.flush();
+            if (!log) throw std::runtime_error(log_path + ": write failed (" + std::strerror(errno) + ")");
             if (a.has("--resume"))
                 std::fprintf(stderr, "scan: resumed %zu of %d rows from %s\n", resumed, spec.y.n, log_path.c_str());
         }
@@ -257,12 +284,34 @@ int cmd_scan(const std::vector<std::string>& argv) {
 #endif
 
     [[maybe_unused]] const std::size_t nx = static_cast<std::size_t>(spec.x.n);   // a row's points, as MPI messages carry them
+    Progress progress;
+    int log_errno = 0;   // the tile log's first failed write: the scan stops, as nothing could be resumed
+    auto write_ready_rows = [&] {
+        while (next_row < spec.y.n && row_done[static_cast<std::size_t>(next_row)]) {
+            auto& r = rows[static_cast<std::size_t>(next_row)];
+            write_scan_csv_row(spec, next_row, r, *out);
+            if (png.empty()) std::vector<ScanPoint>().swap(r);
+            ++next_row;
+        }
+        out->flush();   // each finished row reaches the (partial) file now
+        if (out->error() != 0) progress.cancel.store(true);   // a full disk: stop computing what cannot be written
+    };
+    if (rank == 0) {
+        write_scan_csv_header(spec, *out);
+        write_ready_rows();   // what --resume read back
+    }
     auto record_row = [&](int row, const std::vector<ScanPoint>& pts) {   // rank 0, one call at a time
         rows[static_cast<std::size_t>(row)] = pts;
+        row_done[static_cast<std::size_t>(row)] = true;
+        write_ready_rows();
+        errno = 0;
         log << scan_log_line(row, pts) << '\n';
         log.flush();   // a kill loses at most the rows in flight
+        if (!log && log_errno == 0) {
+            log_errno = errno != 0 ? errno : EIO;
+            progress.cancel.store(true);
+        }
     };
-    Progress progress;
     if (ranks == 1) {
         ProgressBar bar("scan " + p.name, progress);
         scan_rows(p, spec, todo, threads, &progress, tol, record_row);
@@ -311,7 +360,9 @@ int cmd_scan(const std::vector<std::string>& argv) {
         return 0;
     }
 #endif
-    write_scan_csv(spec, rows, *out);
+    if (log_errno != 0) throw std::runtime_error(log_path + ": write failed (" + std::strerror(log_errno) + "); the scan stopped");
+    out->check();
+    if (next_row != spec.y.n) throw std::runtime_error("scan: " + std::to_string(spec.y.n - next_row) + " rows were not computed");
     std::vector<ScanCurve> curves;
     std::vector<std::pair<const char*, analysis::BifCurve>> followed;   // for --curves-out
     // Each curve continued along the y axis at half its grid step, drawn over the maps.
@@ -374,9 +425,9 @@ int cmd_scan(const std::vector<std::string>& argv) {
     out->commit();
     log.close();
     std::filesystem::remove(log_path);   // complete: nothing to resume
-    std::fprintf(stderr, "scan %s: %d x %d points (%zu rows computed, %d %s) -> %s%s%s\n", p.name.c_str(), spec.x.n,
+    std::fprintf(stderr, "scan %s: %d x %d points (%zu rows computed, %d %s) -> %s%s%s\n", printable(p.name).c_str(), spec.x.n,
                  spec.y.n, todo.size(), ranks > 1 ? ranks - 1 : threads,
-                 ranks > 1 ? "MPI workers" : "threads", out_path.c_str(), png.empty() ? "" : ", ", png.c_str());
+                 ranks > 1 ? "MPI workers" : "threads", printable(out_path).c_str(), png.empty() ? "" : ", ", printable(png).c_str());
     return 0;
 }
 

@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "impactlab/input_file.hpp"
 #include "impactlab/figures.hpp"
 #include "impactlab/forces.hpp"
 #include "impactlab/identify.hpp"
@@ -93,13 +94,14 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     const double duration = a.num("--duration", input ? in_dt * static_cast<double>(rec->size() - 1) : 0.0, 1e-6, 1e6);
     const double dt = a.num("--dt", input ? in_dt : 1e-3, 1e-7, 1e3);
     check_rows("simulate", duration / dt, "--duration / --dt");
+    check_run_span(p, 0.0, duration, "simulate");
     auto out = open_out(a.required("--out"));
     Drive drive(omega);
     if (input) drive.set_input(0.0, in_dt, rec->u);
     State s;
     s.x = a.num("--x0", 0.0, -0.1, 0.1);
     s.v = a.num("--v0", 0.0, -10.0, 10.0);
-    check_start(p, s.x, "simulate", "--x0");
+    check_start(p, s.x, "simulate", "--x0", !a.has("--x0"));
     out << (input ? "t,x,v,u,regime\n" : "t,x,v,phi,regime\n");
     Progress progress;
     ProgressBar bar("simulate " + p.name, progress);
@@ -109,9 +111,9 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     });
     bar.finish();
     out.commit();
-    std::fprintf(stderr, "%s: %.6g s simulated, %llu steps, %llu impacts -> %s\n", p.name.c_str(), duration,
+    std::fprintf(stderr, "%s: %.6g s simulated, %llu steps, %llu impacts -> %s\n", printable(p.name).c_str(), duration,
                  static_cast<unsigned long long>(s.steps), static_cast<unsigned long long>(s.impacts),
-                 a.required("--out").c_str());
+                 printable(a.required("--out")).c_str());
     return 0;
 }
 
@@ -140,7 +142,7 @@ int cmd_poincare(const std::vector<std::string>& argv) {
     State s;
     s.x = a.num("--x0", 0.0, -0.1, 0.1);
     s.v = a.num("--v0", 0.0, -10.0, 10.0);
-    check_start(p, s.x, "poincare", "--x0");
+    check_start(p, s.x, "poincare", "--x0", !a.has("--x0"));
     Progress progress;
     ProgressBar bar("poincare " + p.name, progress);
     const auto pts = poincare_section(p, omega, periods, transient, s, tolerances_from(a), &progress, phi0);
@@ -148,7 +150,7 @@ int cmd_poincare(const std::vector<std::string>& argv) {
     out << "n,x,v\n";
     for (const auto& sp : pts) out << sp.n - transient << ',' << sp.x << ',' << sp.v << '\n';
     out.commit();
-    std::fprintf(stderr, "%s: %zu section points -> %s\n", p.name.c_str(), pts.size(), a.required("--out").c_str());
+    std::fprintf(stderr, "%s: %zu section points -> %s\n", printable(p.name).c_str(), pts.size(), printable(a.required("--out")).c_str());
     return 0;
 }
 
@@ -247,8 +249,8 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
         }
     }
     write_diagram_csv(d, out);   // renamed into place when the command succeeds, the PNG included
-    std::fprintf(stderr, "%s %s: %zu points, %.0f s simulated, %llu steps -> %s\n", p.name.c_str(), d.protocol.c_str(),
-                 d.points.size(), d.simulated_seconds, static_cast<unsigned long long>(d.steps), out_path.c_str());
+    std::fprintf(stderr, "%s %s: %zu points, %.0f s simulated, %llu steps -> %s\n", printable(p.name).c_str(), d.protocol.c_str(),
+                 d.points.size(), d.simulated_seconds, static_cast<unsigned long long>(d.steps), printable(out_path).c_str());
     if (sweep != "ramp" && d.over == SweepParam::Omega) {   // Fig. 3's transitions are of omega, from the hilltop
         const Transitions tr = find_transitions(d);
         // A transition the sweep did not meet is NaN: say "none" rather than print "nan".
@@ -268,7 +270,7 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
     }
     if (a.has("--png")) {
         save_diagram_png(d, a.str("--png", ""));
-        std::fprintf(stderr, "plot -> %s\n", a.str("--png", "").c_str());
+        std::fprintf(stderr, "plot -> %s\n", printable(a.str("--png", "")).c_str());
     }
     return 0;
 }
@@ -291,7 +293,7 @@ int cmd_figure3(const std::vector<std::string>& argv) {
         data = compute_figure3(steps, tol, &progress);
     }
     save_figure3_png(data, out_path);
-    std::fprintf(stderr, "figure 3 -> %s\n", out_path.c_str());
+    std::fprintf(stderr, "figure 3 -> %s\n", printable(out_path).c_str());
     return 0;
 }
 

@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "impactlab/input_file.hpp"
 #include "impactlab/identify.hpp"
 #include "impactlab/params_json.hpp"
 
@@ -203,14 +204,15 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
     for (std::size_t i = 1; i < o.knot_t.size(); ++i)
         if (o.knot_t[i] < o.knot_t[i - 1]) throw UsageError("synth: the omega knots' times must not decrease");
 
+    check_run_span(model.p, 0.0, o.duration, "synth");
     const identify::MeasuredData d = identify::synthesize(model, o);
     std::ostringstream text;
     identify::write_measured_csv(text, d);
     const bool gz = out_path.size() > 3 && out_path.substr(out_path.size() - 3) == ".gz";
     out << (gz ? identify::gzip_stored(text.str()) : text.str());
     out.commit();
-    std::fprintf(stderr, "synth: %s, %zu samples over %.6g s, %s impacts, effects: %s -> %s\n", model.p.name.c_str(), d.size(),
-                 o.duration, d.meta.at("impacts").c_str(), d.meta.at("effects").c_str(), out_path.c_str());
+    std::fprintf(stderr, "synth: %s, %zu samples over %.6g s, %s impacts, effects: %s -> %s\n", printable(model.p.name).c_str(), d.size(),
+                 o.duration, d.meta.at("impacts").c_str(), d.meta.at("effects").c_str(), printable(out_path).c_str());
     return 0;
 }
 

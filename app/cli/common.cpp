@@ -2,9 +2,13 @@
 
 #include <sstream>
 
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <filesystem>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "impactlab/atomic_file.hpp"
@@ -111,81 +115,154 @@ void check_report_dir(const std::string& dir) {
         fs::remove(p, ec);
 }
 
+CheckedFileBuf::CheckedFileBuf(int fd) : fd_(fd), buf_(std::size_t{1} << 16) { setp(buf_.data(), buf_.data() + buf_.size()); }
+
+CheckedFileBuf::~CheckedFileBuf() { close(); }
+
+bool CheckedFileBuf::write_all(const char* s, std::size_t n) {
+    while (n > 0 && err_ == 0) {
+        const ssize_t k = ::write(fd_, s, n);
+        if (k < 0 && errno == EINTR) continue;
+        if (k <= 0) {
+            err_ = k < 0 ? errno : EIO;
+            break;
+        }
+        s += k;
+        n -= static_cast<std::size_t>(k);
+    }
+    return err_ == 0;
+}
+
+bool CheckedFileBuf::drain() {
+    const bool ok = err_ == 0 && write_all(pbase(), static_cast<std::size_t>(pptr() - pbase()));
+    setp(buf_.data(), buf_.data() + buf_.size());   // a failed file takes no more bytes, but the buffer is reused
+    return ok;
+}
+
+CheckedFileBuf::int_type CheckedFileBuf::overflow(int_type c) {
+    if (fd_ < 0 || !drain()) return traits_type::eof();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+        *pptr() = traits_type::to_char_type(c);
+        pbump(1);
+    }
+    return traits_type::not_eof(c);
+}
+
+std::streamsize CheckedFileBuf::xsputn(const char* s, std::streamsize n) {
+    if (fd_ < 0 || err_ != 0) return 0;
+    if (n <= epptr() - pptr()) {
+        traits_type::copy(pptr(), s, static_cast<std::size_t>(n));
+        pbump(static_cast<int>(n));
+        return n;
+    }
+    if (!drain() || !write_all(s, static_cast<std::size_t>(n))) return 0;   // a large piece goes straight out
+    return n;
+}
+
+int CheckedFileBuf::sync() { return fd_ >= 0 && drain() ? 0 : -1; }
+
+bool CheckedFileBuf::close() {
+    if (fd_ < 0) return err_ == 0;
+    drain();
+    // close() reports what a delayed write found (NFS, quotas): checked like the writes.
+    if (::close(fd_) != 0 && err_ == 0) err_ = errno;
+    fd_ = -1;
+    return err_ == 0;
+}
+
 OutputFile::OutputFile(const std::string& path, const std::string& flag, std::ios::openmode mode)
-    : path_(path), uncaught_(std::uncaught_exceptions()) {
+    : std::ostream(nullptr), path_(path), uncaught_(std::uncaught_exceptions()) {
     if (path.empty()) throw UsageError(flag + ": an empty file name");
     check_not_input(path, flag);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw UsageError(flag + ": '" + path + "' is a directory, not a file name");
     tmp_ = partial_path(path);
-    open(tmp_, mode);
-    if (!is_open()) {
+    const int fd = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | ((mode & std::ios::app) ? O_APPEND : O_TRUNC), 0666);
+    if (fd < 0) {
         discard_partial(tmp_);
         throw UsageError(flag + ": cannot write '" + path + "' (its directory is missing or not writable)");
     }
+    buf_ = std::make_unique<CheckedFileBuf>(fd);
+    rdbuf(buf_.get());
 }
 
 OutputFile::OutputFile(OutputFile&& o) noexcept
-    : std::ofstream(std::move(o)), path_(std::move(o.path_)), tmp_(std::move(o.tmp_)), uncaught_(o.uncaught_), done_(o.done_) {
+    : std::ostream(std::move(o)), buf_(std::move(o.buf_)), path_(std::move(o.path_)), tmp_(std::move(o.tmp_)), uncaught_(o.uncaught_),
+      done_(o.done_) {
+    rdbuf(buf_.get());   // (basic_ostream's move leaves the buffer behind)
+    o.rdbuf(nullptr);
     o.done_ = true;
+}
+
+namespace {
+// The first output that could not be written, reported by finish_outputs (its partial file is gone already).
+std::string& failed_output() {
+    static std::string message;
+    return message;
+}
+// What the system said about the last failed write ("No space left on device"), or a guess without it.
+std::string write_failure(const std::string& path, int err) {
+    return path + ": write failed (" + (err != 0 ? std::string(std::strerror(err)) : std::string("disk full?")) + ")";
+}
+}  // namespace
+
+bool OutputFile::close_checked(int& err) {
+    flush();
+    const bool ok = buf_ && buf_->close() && static_cast<bool>(*this);
+    err = buf_ ? buf_->error() : 0;
+    return ok;
+}
+
+void OutputFile::check() {
+    flush();
+    if (buf_ && buf_->error() != 0) throw std::runtime_error(write_failure(path_, buf_->error()));
 }
 
 void OutputFile::commit() {
     if (done_) return;
     done_ = true;
-    flush();
-    const bool ok = static_cast<bool>(*this);
-    close();
-    if (!ok) {
+    int err = 0;
+    if (!close_checked(err)) {
         discard_partial(tmp_);
-        throw std::runtime_error(path_ + ": write failed (disk full?)");
+        throw std::runtime_error(write_failure(path_, err));
     }
-    commit_partial(tmp_, path_);
+    commit_partial(tmp_, path_);   // staged in main's OutputGroup: renamed with the command's other outputs
 }
-
-namespace {
-// Outputs whose scope ended without an exception, closed, waiting for the command's exit status.
-struct PendingOutput {
-    std::string tmp, path;
-    bool written;
-};
-std::vector<PendingOutput>& pending_outputs() {
-    static std::vector<PendingOutput> list;
-    return list;
-}
-}  // namespace
 
 OutputFile::~OutputFile() {
     if (done_) return;
     done_ = true;
-    const bool failed = std::uncaught_exceptions() > uncaught_;
-    if (!failed) flush();
-    const bool written = static_cast<bool>(*this);
-    close();
-    if (failed) discard_partial(tmp_);   // the command failed: leave the old file as it was
-    else pending_outputs().push_back({tmp_, path_, written});
+    if (std::uncaught_exceptions() > uncaught_) {   // the command failed: leave the old file as it was
+        if (buf_) buf_->close();
+        discard_partial(tmp_);
+        return;
+    }
+    int err = 0;
+    if (!close_checked(err)) {
+        discard_partial(tmp_);
+        if (failed_output().empty()) failed_output() = write_failure(path_, err);
+        return;
+    }
+    commit_partial(tmp_, path_);
 }
 
-bool finish_outputs(bool success) {
+bool finish_outputs(OutputGroup& outputs, bool success) {
     bool ok = true;
-    for (const PendingOutput& o : pending_outputs()) {
-        if (!success || !o.written) {
-            discard_partial(o.tmp);
-            if (success) {
-                std::fprintf(stderr, "impactlab: error: %s: write failed (disk full?)\n", o.path.c_str());
-                ok = false;
-            }
-            continue;
-        }
-        try {
-            commit_partial(o.tmp, o.path);
-        } catch (const std::exception& e) {
-            std::fprintf(stderr, "impactlab: error: %s\n", e.what());
-            ok = false;
-        }
+    if (success && !failed_output().empty()) {
+        std::fprintf(stderr, "impactlab: error: %s\n", printable(failed_output()).c_str());
+        ok = success = false;
     }
-    pending_outputs().clear();
-    return ok;
+    if (!success) {
+        outputs.discard();
+        return ok;
+    }
+    try {
+        outputs.commit();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "impactlab: error: %s\n", printable(e.what()).c_str());
+        return false;
+    }
+    return true;
 }
 
 OutputFile open_out(const std::string& path, const std::string& flag) {
@@ -194,12 +271,34 @@ OutputFile open_out(const std::string& path, const std::string& flag) {
     return out;
 }
 
-void check_start(const Params& p, double x, const std::string& command, const std::string& flag) {
+void check_start(const Params& p, double x, const std::string& command, const std::string& flag, bool defaulted) {
     if (!p.has_bumper() || !p.rigid() || x <= p.xI) return;
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "%s: %s: x = %.6g m lies beyond the bumper at xI = %.6g m (%s); start at x <= xI",
-                  command.c_str(), flag.c_str(), x, p.xI, p.name.substr(0, 60).c_str());
+    char buf[300];
+    if (defaulted)   // the user gave no start: blame the bumper's position, and say how to start
+        std::snprintf(buf, sizeof buf,
+                      "%s: the default start x = %.6g m lies beyond the bumper at xI = %.6g m (%s): give %s X with X <= xI", command.c_str(),
+                      x, p.xI, p.name.substr(0, 60).c_str(), flag.c_str());
+    else
+        std::snprintf(buf, sizeof buf, "%s: %s: x = %.6g m lies beyond the bumper at xI = %.6g m (%s); start at x <= xI", command.c_str(),
+                      flag.c_str(), x, p.xI, p.name.substr(0, 60).c_str());
     throw UsageError(buf);
+}
+
+void check_run_span(const Params& p, double t_begin, double t_end, const std::string& command) {
+    try {
+        validate_over(p, t_begin, t_end, p.name);
+    } catch (const ParamError& e) {
+        throw UsageError(command + ": " + e.what());
+    }
+    // A drift's clock (t0, the record's start for a fitted model) travels with the model: a run on another
+    // clock is said so, as the drift then acts as it would have at t - t0 of the record.
+    for (const auto& e : p.effects)
+        for (std::size_t i = 0; i < kMaxLawParams && e.law && e.law->names[i]; ++i)
+            if (std::string(e.law->names[i]) == "t0" && e.p[i] != t_begin)
+                std::fprintf(stderr,
+                             "%s: note: effects.%s.t0 = %.6g s (the clock of the record it was fitted to); this run starts at "
+                             "t = %.6g s, where the drift stands as it did %.6g s %s that record's start\n",
+                             command.c_str(), e.law->id, e.p[i], t_begin, std::fabs(e.p[i] - t_begin), e.p[i] > t_begin ? "before" : "after");
 }
 
 void check_rows(const std::string& command, double rows, const std::string& flags) {

@@ -5,12 +5,16 @@
 #include <functional>
 #include <chrono>
 #include <fstream>
+#include <memory>
+#include <ostream>
+#include <streambuf>
 #include <optional>
 #include <vector>
 #include <string>
 #include <thread>
 
 #include "args.hpp"
+#include "impactlab/atomic_file.hpp"
 #include "impactlab/identify_data.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/rosenbrock.hpp"
@@ -41,33 +45,72 @@ void check_writable(const std::string& path, const std::string& flag);
 // Before any computing: `dir` is a writable directory, or can be made in a writable one (--report).
 void check_report_dir(const std::string& dir);
 
-// An output written whole or not at all: the text goes to a hidden file beside PATH and is renamed over PATH
-// by commit(), or, at the end of its scope, once the command has returned 0 (finish_outputs). A command that
-// throws or returns non-zero leaves an old PATH as it was and nothing behind. Opening it checks that PATH is
-// writable and no input.
-class OutputFile : public std::ofstream {
+// An output written whole or not at all: the text goes to a hidden file beside PATH. commit(), or the end of
+// its scope, checks every write and stages it in main's OutputGroup; all outputs of a command (CSVs, PNGs)
+// are renamed into place together once the command has returned 0 and every one was written
+// (finish_outputs). A command that throws, returns non-zero or fails a write leaves the old files as they
+// were and nothing behind. Opening it checks that PATH is writable and no input.
+// The bytes of an OutputFile: buffered writes to a file descriptor, each checked, the first failure's errno
+// kept (std::filebuf keeps only a bad bit, and errno is gone by the time the stream is checked).
+class CheckedFileBuf : public std::streambuf {
+public:
+    explicit CheckedFileBuf(int fd);
+    ~CheckedFileBuf() override;
+    CheckedFileBuf(const CheckedFileBuf&) = delete;
+    CheckedFileBuf& operator=(const CheckedFileBuf&) = delete;
+    // Writes what is buffered and closes the file; false if any write or the close failed.
+    bool close();
+    int error() const { return err_; }   // errno of the first failure, 0 if none
+
+protected:
+    int_type overflow(int_type c) override;
+    std::streamsize xsputn(const char* s, std::streamsize n) override;
+    int sync() override;
+
+private:
+    bool drain();
+    bool write_all(const char* s, std::size_t n);
+    int fd_;
+    int err_ = 0;
+    std::vector<char> buf_;
+};
+
+class OutputFile : public std::ostream {
 public:
     OutputFile(const std::string& path, const std::string& flag, std::ios::openmode mode = std::ios::out);
     OutputFile(OutputFile&& o) noexcept;
     OutputFile& operator=(OutputFile&&) = delete;
     ~OutputFile() override;
-    // Flushes, checks the stream and renames into place; throws std::runtime_error naming PATH if that fails.
+    // Flushes, checks every write and the close, and stages the file for finish_outputs; throws
+    // std::runtime_error naming PATH and the system's reason ("No space left on device") if one failed.
     void commit();
+    // Throws that error now if a write has failed already (a command that checks before going on).
+    void check();
+    // errno of the first failed write, 0 if none (asked on the thread that writes).
+    int error() const { return buf_ ? buf_->error() : 0; }
     const std::string& path() const { return path_; }
 
 private:
+    bool close_checked(int& err);
+    std::unique_ptr<CheckedFileBuf> buf_;
     std::string path_, tmp_;
     int uncaught_ = 0;
     bool done_ = false;
 };
-// main(), after a command: with `success`, renames into place every OutputFile that went out of scope
-// uncommitted (false, and a message on stderr, if one cannot be); else removes their partial files.
-bool finish_outputs(bool success);
+// main(), after a command: with `success` and every write checked good, renames into place every output the
+// command staged in `outputs` (OutputFiles, PNGs, reports); else removes them all. False, with a message on
+// stderr, if an output could not be written or renamed.
+bool finish_outputs(OutputGroup& outputs, bool success);
 // Opens an OutputFile for CSV (10 significant digits) or throws UsageError naming it.
 OutputFile open_out(const std::string& path, const std::string& flag = "--out");
 // Throws UsageError when a start x (given by `flag`) lies beyond a rigid bumper, where the simulator would move
 // it onto the bumper unasked (a compliant bumper may be pressed, so any x is a start there).
-void check_start(const Params& p, double x, const std::string& command, const std::string& flag);
+// `defaulted`: the flag was not given, x is its default (the message then says so and names the flag to give).
+void check_start(const Params& p, double x, const std::string& command, const std::string& flag, bool defaulted = false);
+// Before a run over [t_begin, t_end] s: every law that changes with time stays a force a rig can take over that
+// span (UsageError naming the effect's key and the time), and a drift whose clock t0 is not the run's start is
+// noted on stderr.
+void check_run_span(const Params& p, double t_begin, double t_end, const std::string& command);
 // The most rows an output may have (synth's cap too): a CSV of a few GB, which some commands hold in memory.
 inline constexpr double kMaxRows = 5e7;
 // Throws UsageError unless `rows` <= kMaxRows, naming `flags`, the flags whose values multiply to it

@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
     for (const auto& c : commands()) {
         if (name != c.name) continue;
         int rc = 1;
+        impactlab::OutputGroup outputs;   // every file the command writes, committed together at the end
         try {
             rc = c.run(rest);
         } catch (const UsageError& e) {
@@ -78,7 +79,7 @@ int main(int argc, char** argv) {
             rc = 1;
         }
         // An output is renamed into place only now, and only if the command succeeded.
-        return finish_outputs(rc == 0) ? rc : 1;
+        return finish_outputs(outputs, rc == 0) ? rc : 1;
     }
     std::fprintf(stderr, "impactlab: error: unknown command '%s' (see impactlab --help)\n", impactlab::printable(name, 100).c_str());
     return 2;

@@ -165,7 +165,8 @@ double number(const std::string& flag, const std::string& text, double lo, doubl
     errno = 0;
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v))
+    // An underflow (1e-320) is a number; an overflow (1e309) is not.
+    if (text.empty() || end != text.c_str() + text.size() || (errno == ERANGE && std::fabs(v) > 1.0) || !std::isfinite(v))
         throw OptionsError(flag + ": '" + text + "' is not a number");
     if (v < lo || v > hi)
         throw OptionsError(flag + ": " + text + " is out of range [" + fmt(lo) + ", " + fmt(hi) + "]");
@@ -354,7 +355,8 @@ Options parse_options(const std::vector<std::string>& args) {
         else if (a == "--plane-grazing" || a == "--plane-fold") {
             const std::string& v = value();
             if (!parse_curve_start(v))
-                throw OptionsError(a + ": '" + v + "' is neither auto nor OMEGA,X,V[,K] (a point as impactlab continue prints it)");
+                throw OptionsError(a + ": '" + v + "' is neither auto nor OMEGA,X,V[,K] (a point as impactlab continue prints it, "
+                                   "omega in [0.05, 1000] rad/s, X in [-0.1, 0.1] m, V in [-10, 10] m/s, K in 1..64)");
             (a == "--plane-fold" ? o.plane_fold : o.plane_grazing) = v;
         }
         else if (a == "--continue-here") o.continue_here = true;
@@ -392,7 +394,7 @@ Options parse_options(const std::vector<std::string>& args) {
             const std::string& kv = value();
             const auto eq = kv.find('=');
             if (eq == std::string::npos || eq == 0) throw OptionsError("--param: '" + kv + "' is not KEY=VALUE (e.g. k=1200)");
-            o.params.emplace_back(kv.substr(0, eq), number(a, kv.substr(eq + 1), -1e300, 1e300));
+            o.params.emplace_back(kv.substr(0, eq), number("--param " + kv.substr(0, eq), kv.substr(eq + 1), -1e300, 1e300));
         }
         else if (a == "--show-params") o.show_params = true;
         else if (a == "--guide") o.guide = true;

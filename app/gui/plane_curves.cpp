@@ -34,8 +34,10 @@ std::optional<CurveStart> parse_curve_start(const std::string& text) {
     double w[4] = {0, 0, 0, 1};
     char tail = 0;
     const int n = std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &w[0], &w[1], &w[2], &w[3], &tail);
-    if ((n != 3 && n != 4) || !std::isfinite(w[0] + w[1] + w[2] + w[3]) || !(w[0] > 0) || !(w[3] >= 1 && w[3] <= 64) ||
-        w[3] != std::floor(w[3]))
+    // Within the model's physical range, as impactlab scan checks it: omega >= 0.05 rad/s, the point on the rail
+    // at a speed the rig can have (a start at omega = 1e-300 kept the curve's Newton busy for ever).
+    if ((n != 3 && n != 4) || !(w[0] >= 0.05 && w[0] <= 1000.0) || !(std::fabs(w[1]) <= 0.1) || !(std::fabs(w[2]) <= 10.0) ||
+        !(w[3] >= 1 && w[3] <= 64) || w[3] != std::floor(w[3]))
         return std::nullopt;
     s.from = CurveStart::From::Point;
     s.omega = w[0];

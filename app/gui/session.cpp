@@ -5,11 +5,13 @@
 #include <iterator>
 #include <numbers>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <set>
 #include <sstream>
 
+#include "impactlab/json_text.hpp"
 #include "impactlab/atomic_file.hpp"
 #include "impactlab/input_file.hpp"
 #include "impactlab/params.hpp"
@@ -355,7 +357,15 @@ Session session_from_json(const json& j, const Session& base, const std::string&
         if (d->is_null()) s.data.clear();
         else if (!d->is_string()) top.fail("data", std::string("expected a file name or null, got ") + d->type_name());
         else {
-            const std::string path = d->get<std::string>();
+            std::string path = d->get<std::string>();
+            // A relative name is relative to the session file's folder (as save_session writes it), so the session
+            // opens from any working directory; one found only from here (an older session) is taken too.
+            namespace fs = std::filesystem;
+            if (!path.empty() && fs::path(path).is_relative() && !file.empty()) {
+                const fs::path beside = (fs::path(file).parent_path() / path).lexically_normal();
+                std::error_code ec;
+                if (fs::exists(beside, ec) || !fs::exists(path, ec)) path = beside.string();
+            }
             if (!path.empty()) try {
                     check_input_file(path);
                 } catch (const InputFileError& e) {
@@ -367,28 +377,81 @@ Session session_from_json(const json& j, const Session& base, const std::string&
     return s;
 }
 
-Session parse_session(const std::string& text, const Session& base, const std::string& file) {
-    json j;
-    // A key given twice in one object would silently keep one of them: refused, naming it.
-    std::vector<std::set<std::string>> keys;
-    std::string duplicate;
-    const json::parser_callback_t no_duplicates = [&](int, json::parse_event_t ev, json& parsed) {
-        if (ev == json::parse_event_t::object_start) keys.emplace_back();
-        else if (ev == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
-        else if (ev == json::parse_event_t::key && !keys.empty() && !keys.back().insert(parsed.get<std::string>()).second &&
-                 duplicate.empty())
-            duplicate = parsed.get<std::string>();
+namespace {
+// The document built in one SAX pass, each key given twice in one object noted. (nlohmann's callback parser,
+// used before, scans the whole parent at every closed object: 400k "{}" took 40 s.)
+class UniqueKeysDom : public nlohmann::json_sax<json> {
+public:
+    json root;
+    std::string duplicate;   // the first key given twice in one object
+    std::string what;        // the parser's message at an error
+    std::size_t byte = 0;    // where (1-based, as json::parse_error::byte)
+    int error_id = 0;        // nlohmann's exception id: 406 is a number beyond a double
+    bool null() override { return put(nullptr); }
+    bool boolean(bool v) override { return put(v); }
+    bool number_integer(number_integer_t v) override { return put(v); }
+    bool number_unsigned(number_unsigned_t v) override { return put(v); }
+    bool number_float(number_float_t v, const string_t&) override { return put(v); }
+    bool string(string_t& v) override { return put(std::move(v)); }
+    bool binary(binary_t& v) override { return put(json::binary(std::move(v))); }
+    bool start_object(std::size_t) override { return open(json::object()); }
+    bool key(string_t& k) override {
+        if (duplicate.empty() && stack_.back()->contains(k)) duplicate = k;
+        key_ = std::move(k);
         return true;
-    };
-    try {
-        j = json::parse(text, no_duplicates);
-    } catch (const json::out_of_range& e) {
-        // A number beyond a double (1e999): nlohmann reports it as out_of_range, not as a parse error.
-        throw SessionError(file + ": a number is out of range (" + std::string(e.what()) + ")");
-    } catch (const json::parse_error& e) {
-        // The line and column of the byte where parsing stopped (e.byte is 1-based).
+    }
+    bool end_object() override { return close(); }
+    bool start_array(std::size_t) override { return open(json::array()); }
+    bool end_array() override { return close(); }
+    bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& ex) override {
+        byte = position;
+        what = ex.what();
+        error_id = ex.id;
+        return false;
+    }
+
+private:
+    // Only the innermost open value changes, so the pointers to the outer ones on the stack stay valid.
+    json* place(json v) {
+        if (stack_.empty()) {
+            root = std::move(v);
+            return &root;
+        }
+        json& top = *stack_.back();
+        if (top.is_array()) {
+            top.push_back(std::move(v));
+            return &top.back();
+        }
+        json& slot = top[key_];
+        slot = std::move(v);
+        return &slot;
+    }
+    bool put(json v) {
+        place(std::move(v));
+        return true;
+    }
+    bool open(json v) {
+        stack_.push_back(place(std::move(v)));
+        return true;
+    }
+    bool close() {
+        stack_.pop_back();
+        return true;
+    }
+    std::vector<json*> stack_;
+    std::string key_;
+};
+}  // namespace
+
+Session parse_session(const std::string& text, const Session& base, const std::string& file) {
+    // One pass: the document and its duplicate keys (a key given twice would silently keep one of them).
+    UniqueKeysDom dom;
+    if (!json::sax_parse(text, &dom)) {
+        if (dom.error_id == 406)   // a number beyond a double (1e999)
+            throw SessionError(file + ": a number is out of range (" + dom.what + ")");
+        // The line and column of the byte where parsing stopped (byte is 1-based).
         std::size_t line = 1, col = 1;
-        for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+        for (std::size_t i = 0; i + 1 < dom.byte && i < text.size(); ++i) {
             if (text[i] == '\n') {
                 ++line;
                 col = 1;
@@ -396,14 +459,14 @@ Session parse_session(const std::string& text, const Session& base, const std::s
                 ++col;
             }
         }
-        std::string what = e.what();
+        std::string what = dom.what;
         if (const auto p = what.find(": syntax error"); p != std::string::npos) what = what.substr(p + 2);
         else if (const auto q = what.find("] "); q != std::string::npos) what = what.substr(q + 2);
         throw SessionError(file + ": line " + std::to_string(line) + ", column " + std::to_string(col) +
                            ": not valid JSON (" + what + ")");
     }
-    if (!duplicate.empty()) throw SessionError(file + ": key '" + duplicate + "' appears twice in one object");
-    return session_from_json(j, base, file);
+    if (!dom.duplicate.empty()) throw SessionError(file + ": key '" + printable(dom.duplicate, 200) + "' appears twice in one object");
+    return session_from_json(dom.root, base, file);
 }
 
 Session load_session(const std::string& path, const Session& base) {
@@ -416,25 +479,25 @@ Session load_session(const std::string& path, const Session& base) {
     return parse_session(text, base, path);
 }
 
-std::string session_text(const Session& s) { return session_to_json(s).dump(2) + "\n"; }
+std::string session_text(const Session& s) { return json_dump(session_to_json(s), 2) + "\n"; }   // names in any bytes
 
 void save_session(const Session& s, const std::string& path) {
     if (path.empty()) throw SessionError("session: no file name given");
-    const std::string tmp = partial_path(path);
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        f << session_text(s);
-        f.flush();
-        if (!f) {
-            f.close();
-            discard_partial(tmp);
-            throw SessionError(path + ": cannot write it (no such folder, or no permission)");
-        }
+    // Whole or not at all, every write checked; any failure (a full disk, a name in any bytes) is a
+    // SessionError, the one kind the GUI's save catches.
+    // A relative data file name (relative to the working directory) is saved relative to the session file's
+    // folder: the session then opens from any working directory, and the pair can move together.
+    Session saved = s;
+    if (!saved.data.empty() && std::filesystem::path(saved.data).is_relative()) {
+        namespace fs = std::filesystem;
+        std::error_code ec;
+        const fs::path rel = fs::proximate(fs::absolute(saved.data, ec), fs::absolute(path, ec).parent_path(), ec);
+        if (!ec && !rel.empty()) saved.data = rel.string();
     }
     try {
-        commit_partial(tmp, path);
+        write_file_whole(path, session_text(saved));
     } catch (const std::exception& e) {
-        throw SessionError(e.what());
+        throw SessionError(printable(e.what()));
     }
 }
 

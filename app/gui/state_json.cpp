@@ -8,6 +8,9 @@
 #include <fstream>
 
 #include "app.hpp"
+#include "impactlab/atomic_file.hpp"
+#include "impactlab/input_file.hpp"
+#include "impactlab/json_text.hpp"
 #include "param_edit.hpp"
 #include "contact_label.hpp"
 
@@ -220,21 +223,12 @@ bool App::write_state_json(const std::string& path) {
 
     j["layout"] = layout_json();   // tiles.cpp: mode, scale, panels, tiles, magnification
 
-    // Written whole: a temporary beside the target, then renamed over it.
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::trunc);
-        f << j.dump(1) << '\n';
-        if (!f) {
-            std::fprintf(stderr, "impactlab-gui: error: --state-json: cannot write '%s'\n", path.c_str());
-            return false;
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        std::fprintf(stderr, "impactlab-gui: error: --state-json: cannot write '%s'\n", path.c_str());
+    // Written whole (a partial file beside the target, every write checked, renamed over it); a file name in
+    // any bytes (--browse over a folder holding one) is written escaped: the dump never throws.
+    try {
+        write_file_whole(path, json_dump(std::move(j), 1) + "\n");
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "impactlab-gui: error: --state-json: %s\n", printable(e.what()).c_str());
         return false;
     }
     return true;

@@ -58,20 +58,62 @@ std::string size_text(std::size_t bytes) {
     return buf;
 }
 
+std::size_t utf8_sequence(std::string_view text, std::size_t i) {
+    const auto b = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char c = b(i);
+    if (c < 0x80) return 1;
+    std::size_t n = 0;
+    unsigned char lo = 0x80, hi = 0xbf;   // the second byte's range (RFC 3629: no overlongs, no surrogates)
+    if (c >= 0xc2 && c <= 0xdf) n = 2;
+    else if (c >= 0xe0 && c <= 0xef) {
+        n = 3;
+        if (c == 0xe0) lo = 0xa0;
+        if (c == 0xed) hi = 0x9f;
+    } else if (c >= 0xf0 && c <= 0xf4) {
+        n = 4;
+        if (c == 0xf0) lo = 0x90;
+        if (c == 0xf4) hi = 0x8f;
+    } else {
+        return 0;
+    }
+    if (i + n > text.size()) return 0;
+    if (b(i + 1) < lo || b(i + 1) > hi) return 0;
+    for (std::size_t k = 2; k < n; ++k)
+        if (b(i + k) < 0x80 || b(i + k) > 0xbf) return 0;
+    return n;
+}
+
+namespace {
+// Appends text[0, keep) with bytes that are not UTF-8 (and, if `controls`, control characters) as \xNN.
+void append_escaped(std::string& out, std::string_view text, bool controls) {
+    for (std::size_t i = 0; i < text.size();) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        const std::size_t n = utf8_sequence(text, i);
+        if (n == 0 || (controls && (c < 0x20 || c == 0x7f))) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02x", c);
+            out += buf;
+            ++i;
+            continue;
+        }
+        out.append(text.substr(i, n));
+        i += n;
+    }
+}
+}  // namespace
+
+std::string utf8_escaped(std::string_view text) {
+    std::string out;
+    out.reserve(text.size() + 16);
+    append_escaped(out, text, false);
+    return out;
+}
+
 std::string printable(std::string_view text, std::size_t max_bytes) {
     std::string out;
     const std::size_t keep = std::min(text.size(), max_bytes);
     out.reserve(keep + 40);
-    for (std::size_t i = 0; i < keep; ++i) {
-        const auto c = static_cast<unsigned char>(text[i]);
-        if (c < 0x20 || c == 0x7f) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\x%02x", c);
-            out += buf;
-        } else {
-            out += static_cast<char>(c);
-        }
-    }
+    append_escaped(out, text.substr(0, keep), true);
     if (keep < text.size()) out += " ... (" + size_text(text.size() - keep) + " more)";
     return out;
 }

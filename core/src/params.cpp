@@ -203,6 +203,27 @@ void validate(const Params& p, const std::string& src) {
     }
 }
 
+void validate_over(const Params& p, double t_begin, double t_end, const std::string& src) {
+    // A law that changes with time (a drift) is checked where the run takes it, not only at t = 0: at both
+    // ends and three times between (the drifts are linear in t, their largest force is at an end).
+    for (const auto& e : p.effects) {
+        if (!e.law || e.law->kind != EffectKind::Force) continue;
+        const std::string ek = std::string("effects.") + e.law->id;
+        for (int k = 0; k <= 4; ++k) {
+            const double t = t_begin + (t_end - t_begin) * k / 4;
+            try {
+                bounded_force(src, ek, [&](double x, double v, double phi, double omega) {
+                    return e.law->force(e.p.data(), {t, x, v, phi, omega, 0.0, p.m0e, p.xI}).F;
+                });
+            } catch (const ParamError& err) {
+                std::ostringstream when;
+                when << err.what() << " (at t = " << t << " s of the run's " << t_begin << " .. " << t_end << " s)";
+                throw ParamError(when.str());
+            }
+        }
+    }
+}
+
 double impact_param(const Params& p, const std::string& key) {
     for (std::size_t i = 0; i < kMaxLawParams && p.impact->names[i]; ++i)
         if (key == p.impact->names[i]) return p.ip[i];

@@ -1,4 +1,6 @@
 #include "impactlab/params_json.hpp"
+#include "impactlab/json_text.hpp"
+#include "impactlab/atomic_file.hpp"
 #include "impactlab/input_file.hpp"
 
 #include <cmath>
@@ -294,14 +296,16 @@ std::string params_to_json_text(const Params& p) {
         for (std::size_t i = 0; i < kMaxLawParams && e.law->names[i]; ++i) ej[e.law->names[i]] = e.p[i];
         j["effects"].push_back(ej);
     }
-    return j.dump(2) + "\n";
+    return json_dump(std::move(j), 2) + "\n";
 }
 
 void save_params(const Params& p, const std::string& path) {
-    std::ofstream out(path);
-    if (!out) throw ParamError(path + ": cannot write the parameter file");
-    out << params_to_json_text(p);
-    if (!out) throw ParamError(path + ": write failed");
+    // Whole or not at all: a failed write keeps an old parameter file.
+    try {
+        write_file_whole(path, params_to_json_text(p));
+    } catch (const std::runtime_error& e) {
+        throw ParamError(e.what());
+    }
 }
 
 Params resolve_model(const std::string& name_or_path) {

@@ -254,7 +254,9 @@ TEST_CASE("a curve's start reads as auto or as a point continue prints, and anyt
     auto k = parse_curve_start("9.6,-0.0156,-0.0074,2");
     REQUIRE(k);
     CHECK(k->period == 2);
-    for (const char* bad : {"", "9.6,abc", "9.6,-0.0156", "9.6,-0.0156,-0.0074,0.5", "-1,0,0", "9.6,0,0,1,2", "9.6,0,0x"})
+    for (const char* bad : {"", "9.6,abc", "9.6,-0.0156", "9.6,-0.0156,-0.0074,0.5", "-1,0,0", "9.6,0,0,1,2", "9.6,0,0x",
+                            // outside the physical range: omega below 0.05 rad/s, off the rail, too fast, not finite
+                            "1e-300,-0.0157,0.0023", "1e-6,-0.0157,0.0023", "1e300,1e300,0", "9.6,0.5,0", "9.6,0,1e308", "nan,0,0"})
         CHECK_MESSAGE(!parse_curve_start(bad), bad);
 }
 

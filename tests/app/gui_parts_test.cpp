@@ -161,3 +161,18 @@ TEST_CASE("presets: every model's presets land on the attractor they name") {
         }
     }
 }
+
+TEST_CASE("options: a curve start outside the physical range and a --param without a value are refused, naming key and value") {
+    auto error = [](std::vector<std::string> args) {
+        try {
+            parse_options(args);
+        } catch (const OptionsError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    CHECK(error({"--plane-fold", "1e-300,-0.0157,0.0023"}).find("--plane-fold: '1e-300,-0.0157,0.0023' is neither auto nor") == 0);
+    CHECK(error({"--plane-grazing", "1e300,1e300,0"}).find("--plane-grazing: '1e300,1e300,0'") == 0);
+    CHECK(error({"--param", "xI="}) == "--param xI: '' is not a number");
+    CHECK(error({"--phi0", "1e-320"}) == "accepted");   // a subnormal is a number (an underflow, not an overflow)
+}

@@ -3,8 +3,10 @@
 // of range, unknown model) is refused with the file, the key (or line) and the problem named.
 #include <doctest/doctest.h>
 
+#include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <unistd.h>
@@ -145,3 +147,52 @@ TEST_CASE("session: a refused parameter names the file and its key once, then th
     CHECK(e == "s.json: key 'params.c': must lie in [0, 1e+06] N s/m (viscous resistance), got -5");
 }
 
+
+TEST_CASE("session: 400k empty objects are read in one linear pass, then refused by key") {
+    std::string text = R"({"format": "impactlab-gui session", "junk": [)";
+    text.reserve(text.size() + 3 * 400000 + 2);
+    for (int i = 0; i < 400000; ++i) text += i ? ",{}" : "{}";
+    text += "]}";
+    const std::clock_t c0 = std::clock();
+    CHECK(has(error_of(text), "s.json: key 'junk': unknown key"));
+    // Generous (a sanitizer's build included): one pass takes a fraction of a second, nlohmann's callback
+    // parser, which scans the whole parent array at each closed object, took 40 s.
+    CHECK(static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC < 10.0);
+}
+
+TEST_CASE("session: a data file named in bytes that are not UTF-8 is saved escaped, never an exception") {
+    const fs::path dir = fs::temp_directory_path() / ("impactlab-session-bytes-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    Session s = sample();
+    s.data = "/tmp/r\xff" "e.csv";
+    const std::string path = (dir / "s.json").string();
+    CHECK_NOTHROW(save_session(s, path));
+    std::ifstream f(path);
+    const std::string text((std::istreambuf_iterator<char>(f)), {});
+    CHECK(has(text, "\"data\": \"/tmp/r\\\\xffe.csv\""));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("session: a relative data path is saved relative to the session file, and opens from any working directory") {
+    const fs::path dir = fs::temp_directory_path() / ("impactlab-session-rel-" + std::to_string(::getpid()));
+    fs::create_directories(dir / "data");
+    fs::create_directories(dir / "sessions");
+    std::ofstream(dir / "data" / "run.csv") << "t,x,phi\n0,0,0\n";
+    const fs::path cwd = fs::current_path();
+    Session s = sample();
+    s.data = fs::relative(dir / "data" / "run.csv", cwd).string();   // as typed in the working directory
+    REQUIRE(fs::path(s.data).is_relative());
+    save_session(s, (dir / "sessions" / "s.json").string());
+    fs::current_path("/");   // another working directory
+    std::string err;
+    Session back;
+    try {
+        back = load_session((dir / "sessions" / "s.json").string(), Session{});
+    } catch (const SessionError& e) {
+        err = e.what();
+    }
+    fs::current_path(cwd);
+    CHECK(err.empty());
+    CHECK(fs::equivalent(back.data, dir / "data" / "run.csv"));
+    fs::remove_all(dir);
+}

@@ -6,9 +6,11 @@ if(NOT TARGET impactlab)
 endif()
 
 # --- a failure leaves old outputs as they were ------------------------------------------------------------
-impactlab_cli_test(orbit_failure_keeps_output --rc 1 --match "no period-1 orbit found" --unchanged or.csv
+# (The message says Newton ran from the start and failed: a start refused before it would be exit status 2.)
+impactlab_cli_test(orbit_failure_keeps_output --rc 1 --match "no period-1 orbit found from \\(0, 0\\): .* \\(residual [0-9.e+-]+\\)" --unchanged or.csv
                    --write or.csv "precious" -- orbit --model A1H --omega 1000 --out or.csv)
-impactlab_cli_test(continue_failure_keeps_outputs --rc 1 --match "no period-7 orbit to continue" --no-match "^branch 0"
+impactlab_cli_test(continue_failure_keeps_outputs --rc 1 --no-match "^branch 0"
+                   --match "no period-7 orbit to continue: no periodic orbit of period 7 found at the start: Newton"
                    --mkdir cdir --write cdir/branches.csv "old branches" --write cdir/points.csv "old points"
                    --unchanged cdir/branches.csv --unchanged cdir/points.csv
                    -- continue --model A1C --period 7 --omega-min 14 --omega-max 15 --from 0.0,0.5 --out cdir)
@@ -19,7 +21,7 @@ set_tests_properties(cli.signal_cleanup PROPERTIES LABELS cli TIMEOUT 300)
 impactlab_cli_test(simulate_too_many_rows --rc 2 --match "--duration / --dt asks for 1e\\+13 output rows" --unchanged s.csv
                    --write s.csv "old" -- simulate --omega 18 --duration 1e6 --dt 1e-7 --out s.csv)
 impactlab_cli_test(orbit_too_many_rows --rc 2 --match "--period x 2 pi / --omega / --dt asks for" --absent o.csv
-                   -- orbit --omega 0.01 --period 64 --dt 1e-7 --out o.csv)
+                   -- orbit --omega 0.05 --period 64 --dt 1e-7 --out o.csv)
 impactlab_cli_test(bifurcation_too_many_rows --rc 2 --match "--steps x --record asks for 1e\\+11" --no-match "bad_alloc"
                    --unchanged d.csv --write d.csv "old"
                    -- bifurcation --steps 100000 --record 1000000 --transient 0 --out d.csv)
@@ -102,6 +104,53 @@ impactlab_cli_test(name_escaped --rc 0 --match "\\\\x1bcred\\\\x0aline: " --csv 
 string(ASCII 27 _esc)
 string(ASCII 7 _bel)
 impactlab_cli_test(unknown_command_escaped --rc 2 --match "unknown command 'x\\\\x1bc\\\\x07'" -- "x${_esc}c${_bel}")
+
+# --- a full disk: every writing command keeps its old outputs, all of them or none ------------------------------
+# fail_writes makes writes fail with ENOSPC after a byte budget (LD_PRELOAD): no root, no tmpfs needed.
+add_library(impactlab_fail_writes MODULE ${CMAKE_CURRENT_LIST_DIR}/fail_writes.cpp)
+target_link_libraries(impactlab_fail_writes PRIVATE ${CMAKE_DL_LIBS})
+add_test(NAME cli.disk_full COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/disk_full.sh $<TARGET_FILE:impactlab>
+                                    $<TARGET_FILE:impactlab_fail_writes>)
+set_tests_properties(cli.disk_full PROPERTIES LABELS cli TIMEOUT 600)
+
+# --- file names that are not UTF-8: carried as bytes, shown and written escaped -----------------------------------
+add_test(NAME cli.names_as_bytes COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/names_as_bytes.sh $<TARGET_FILE:impactlab>)
+set_tests_properties(cli.names_as_bytes PROPERTIES LABELS cli TIMEOUT 300)
+
+# --- starts and ranges outside the model's physical range, named with their value ------------------------------
+impactlab_cli_test(scan_fold_from_tiny_omega --rc 2 --match "--fold-from': OMEGA = 1e-300 is outside \\[0.05, 1000\\]"
+                   -- scan --model A1G --x omega:10:20:3 --y xI:-0.01:0:3 --fold-from 1e-300,-0.0157,0.0023 --png s.png --out s.csv)
+impactlab_cli_test(scan_grazing_from_huge --rc 2 --match "--grazing-from': OMEGA = 1e\\+300 is outside"
+                   -- scan --model A1G --x omega:10:20:3 --y xI:-0.01:0:3 --grazing-from 1e300,1e300,0 --png s.png --out s.csv)
+impactlab_cli_test(scan_fold_from_off_rail --rc 2 --match "--fold-from': X = 0.5 is outside \\[-0.1, 0.1\\] m \\(the rail\\)"
+                   -- scan --model A1G --x omega:10:20:3 --y xI:-0.01:0:3 --fold-from 12,0.5,0 --png s.png --out s.csv)
+impactlab_cli_test(continue_negative_m0e --rc 2 --match "option '--min': -0.05 is outside \\[0, 10\\]" --absent c
+                   -- continue --model A1C --param m0e --omega 10 --min -0.05 --max 0.01 --out c)
+impactlab_cli_test(continue_xI_off_rail --rc 2 --match "option '--max': 1.0 is outside \\[-0.1, 0.1\\]" --absent c
+                   -- continue --model A1G --param xI --omega 10 --min -0.01 --max 1.0 --out c)
+impactlab_cli_test(basins_x_range_off_rail --rc 2 --match "option '--x-range': -0.5 is outside \\[-0.1, 0.1\\]"
+                   -- basins --model A1G --omega 13 --grid 4 --x-range -0.5:0 --out b.csv)
+impactlab_cli_test(orbit_from_empty_item --rc 2 --match "option '--from': expected X,V \\(two numbers\\), got '0.001,,0'"
+                   -- orbit --model A1H --omega 10 --from 0.001,,0 --out o.csv)
+impactlab_cli_test(orbit_from_huge_speed --rc 2 --match "option '--from': V = 1e308 is outside \\[-10, 10\\] m/s"
+                   -- orbit --model A1H --omega 10 --from 0.001,1e308 --out o.csv)
+impactlab_cli_test(orbit_tiny_omega --rc 2 --match "option '--omega': 0.01 is outside \\[0.05, 1000\\]"
+                   -- orbit --model A1H --omega 0.01 --out o.csv)
+impactlab_cli_test(poincare_subnormal_phi0 --rc 0 --no-match "not a finite number" --csv p.csv "n,x,v" 2 3
+                   -- poincare --omega 10 --periods 3 --phi0 1e-320 --out p.csv)
+impactlab_cli_test(bifurcation_range_overflow --rc 2 --match "option '--range': '1e309' is not a finite number" --no-match "inf"
+                   -- bifurcation --over xI --omega 10 --range 0:1e309 --out d.csv)
+impactlab_cli_test(simulate_default_start_beyond_bumper --rc 2
+                   --match "the default start x = 0 m lies beyond the bumper at xI = -0.004 m .*: give --x0 X with X <= xI"
+                   -- simulate --model A1G --xI -0.004 --omega 10 --duration 1 --out s.csv)
+
+# --- time-dependent effects checked over the run, their clock t0 said ------------------------------------------------
+impactlab_cli_test(synth_drift_over_run --rc 2 --match "synth: .*key 'effects.magnet_drift': gives a force of .* \\(at t = [0-9.e+]+ s of the run's 0 .. 1 s\\)"
+                   --absent y.csv -- synth --model A1H --effect magnet_drift=1e300 --duration 1 --out y.csv)
+impactlab_cli_test(synth_stiffness_drift_over_run --rc 2 --match "synth: .*key 'effects.stiffness_drift': gives a force of"
+                   --absent y.csv -- synth --model A1H --effect stiffness_drift=1e10 --duration 1 --out y.csv)
+impactlab_cli_test(synth_drift_clock_noted --rc 0 --match "synth: note: effects.magnet_drift.t0 = 1000 s"
+                   -- synth --model A1H --effect magnet_drift=-0.0001 --effect magnet_drift.t0=1000 --duration 1 --out y.csv)
 
 # --- sanitizers ---------------------------------------------------------------------------------------------------
 # Under AddressSanitizer, LeakSanitizer must not count Open MPI's allocations (mpirun in cli.scan_identity)

@@ -14,4 +14,5 @@ set(IMPACTLAB_CORE_TEST_SOURCES
   core/plot_test.cpp
   core/raster_test.cpp
   core/input_file_test.cpp
+  core/atomic_file_test.cpp
 )

@@ -29,8 +29,13 @@ std::string read_input_file(const std::string& path, std::size_t max_bytes = kMa
 // "1 GiB", "12.5 MiB", "300 bytes": a size in a message.
 std::string size_text(std::size_t bytes);
 // Text from an input (a name, a token, a message quoting one) made safe to print on a terminal: control
-// characters and DEL as \xNN (an escape sequence shows, it does not act), cut after `max_bytes` with a note of
-// how much was left out.
+// characters, DEL and bytes that are not UTF-8 as \xNN (an escape sequence shows, it does not act; a file
+// name in Latin-1 shows its bytes), cut after `max_bytes` with a note of how much was left out.
 std::string printable(std::string_view text, std::size_t max_bytes = 4000);
+// `text` with every byte that is not part of a well-formed UTF-8 sequence written as \xNN, the rest as it is:
+// a file name carried as bytes becomes text a JSON file or a Markdown report can hold. Never throws.
+std::string utf8_escaped(std::string_view text);
+// The length of the well-formed UTF-8 sequence at text[i] (1 to 4), or 0 if the byte there starts none.
+std::size_t utf8_sequence(std::string_view text, std::size_t i);
 
 }  // namespace impactlab

@@ -199,6 +199,9 @@ const std::vector<ParamRange>& param_ranges();
 inline constexpr double kMaxLawForce = 1e8;
 // Checks every value (finite, signs, ranges, forces); throws ParamError naming `source` and the key.
 void validate(const Params& p, const std::string& source = "parameters");
+// validate's force checks for the laws that change with time (magnet_drift, stiffness_drift, ...), over the
+// times [t_begin, t_end] a run or record spans: a drift harmless at t = 0 may be beyond any rig by its end.
+void validate_over(const Params& p, double t_begin, double t_end, const std::string& source = "parameters");
 // Value of an impact-law parameter by name; throws ParamError if the law has no such parameter.
 double impact_param(const Params& p, const std::string& key);
 void set_impact_param(Params& p, const std::string& key, double value);

@@ -97,7 +97,8 @@ double nice_step(double lo, double hi, int max_count);
 std::vector<std::string> format_ticks(const std::vector<double>& ticks, double step);
 
 Image render(const Figure& fig);
-// Throws std::runtime_error("PATH: cannot write PNG") when the file cannot be written.
+// Throws std::runtime_error("PATH: cannot write it (REASON)" or "PATH: write failed (REASON)") when the file cannot
+// be written whole (a missing folder, a full disk); an old file at PATH is then left as it was.
 void save_png(const Figure& fig, const std::string& path);
 void save_png(const Image& image, const std::string& path);
 

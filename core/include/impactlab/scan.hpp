@@ -69,6 +69,10 @@ void scan_rows(const Params& p, const ScanSpec& spec, const std::vector<int>& to
 // The CSV: the two axis names, then one column per measure (period, lyapunov, impacts, xmin, xmax), rows
 // with the first axis fastest; numbers printed to round-trip exactly.
 void write_scan_csv(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, std::ostream& out);
+// The same CSV in pieces, for a scan that writes its rows as they finish: the header, then row j (y =
+// spec.y.at(j)) once rows 0 .. j-1 are written.
+void write_scan_csv_header(const ScanSpec& spec, std::ostream& out);
+void write_scan_csv_row(const ScanSpec& spec, int j, const std::vector<ScanPoint>& row, std::ostream& out);
 // The same CSV read back as a regular grid: values[m][j * nx + i] at (xs[i], ys[j]), axes increasing. Throws
 // ScanCsvError "SOURCE:LINE: why": a header without two different axes (omega, xI, m0e) and a measure, a row
 // with the wrong number of fields or a field that is no number, rows that do not form a grid with the first

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "identify/internal.hpp"
+#include "impactlab/json_text.hpp"
 #include "impactlab/atomic_file.hpp"
 #include "impactlab/params_json.hpp"
 #include "impactlab/plot.hpp"
@@ -410,7 +411,7 @@ std::string markdown(const FitReport& r, bool with_plots) {
         if (r.impacts.size() >= 3) md << "![impact law](impacts.png)\n\n";
         if (!r.diagram_measured.empty()) md << "![bifurcation diagrams](diagram.png)\n\n";
     }
-    return md.str();
+    return utf8_escaped(md.str());   // a file name in any bytes shows them as \xNN
 }
 
 }  // namespace
@@ -530,7 +531,7 @@ std::string report_json_text(const FitReport& r) {
     j["notes"] = r.notes;
     j["gate"] = {{"undone", r.gate}, {"passed", r.gate_passed}, {"rose_within_scatter", r.gate_within}};
     j["runtime_s"] = r.runtime_s;
-    return j.dump(2) + "\n";
+    return json_dump(std::move(j), 2) + "\n";   // a file name in any bytes
 }
 
 void write_report(const FitReport& r, const std::string& dir, bool with_plots) {
@@ -538,24 +539,15 @@ void write_report(const FitReport& r, const std::string& dir, bool with_plots) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec || !fs::is_directory(dir)) throw std::runtime_error(dir + ": cannot create the report directory");
-    // Each file written beside its name and renamed over it: a failed write leaves an old report whole.
-    auto write = [&](const std::string& name, const std::string& text) {
-        const std::string target = (fs::path(dir) / name).string(), tmp = partial_path(target);
-        {
-            std::ofstream out(tmp);
-            out << text;
-            if (!out) {
-                out.close();
-                discard_partial(tmp);
-                throw std::runtime_error(target + ": write failed");
-            }
-        }
-        commit_partial(tmp, target);
-    };
+    // The report's files are one unit: all written beside their names, then renamed into place together, so a
+    // failure (a full disk) leaves an old report whole instead of a new JSON beside an old Markdown.
+    OutputGroup group;
+    auto write = [&](const std::string& name, const std::string& text) { write_file_whole((fs::path(dir) / name).string(), text); };
     write("report.json", report_json_text(r));
     write("model_after.json", params_to_json_text(r.after.p));
     if (with_plots) plots(r, dir);
     write("report.md", markdown(r, with_plots));
+    group.commit();
 }
 
 }  // namespace impactlab::identify

@@ -508,22 +508,23 @@ void save_png(const Image& image, const std::string& path) {
     const std::size_t n = image.rgba.size() / 4;
     bool opaque = true;
     for (std::size_t i = 0; i < n && opaque; ++i) opaque = image.rgba[i * 4 + 3] == 255;
+    // Encoded in memory, then written whole by write_file_whole: stb's own file writer leaves its fwrite and
+    // fclose unchecked, so a full disk gave an empty PNG and success.
+    std::string png;
+    const auto append = [](void* ctx, void* data, int size) {
+        static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+    };
     int ok = 0;
-    // Written beside the target and renamed over it: a failed write never leaves half a PNG or clobbers an old one.
-    const std::string tmp = partial_path(path);
     if (opaque) {   // what render() makes: store RGB, a quarter smaller
         std::vector<std::uint8_t> rgb(n * 3);
         for (std::size_t i = 0; i < n; ++i)
             for (std::size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = image.rgba[i * 4 + c];
-        ok = stbi_write_png(tmp.c_str(), image.width, image.height, 3, rgb.data(), image.width * 3);
+        ok = stbi_write_png_to_func(append, &png, image.width, image.height, 3, rgb.data(), image.width * 3);
     } else {
-        ok = stbi_write_png(tmp.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4);
+        ok = stbi_write_png_to_func(append, &png, image.width, image.height, 4, image.rgba.data(), image.width * 4);
     }
-    if (ok == 0) {
-        discard_partial(tmp);
-        throw std::runtime_error(path + ": cannot write PNG");
-    }
-    commit_partial(tmp, path);
+    if (ok == 0) throw std::runtime_error(path + ": cannot encode the PNG");
+    write_file_whole(path, png);
 }
 
 void save_png(const Figure& fig, const std::string& path) { save_png(render(fig), path); }

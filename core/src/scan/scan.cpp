@@ -257,7 +257,7 @@ void scan_rows(const Params& p, const ScanSpec& spec, const std::vector<int>& to
     for (auto& t : pool) t.join();
 }
 
-void write_scan_csv(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, std::ostream& out) {
+void write_scan_csv_header(const ScanSpec& spec, std::ostream& out) {
     const ScanMeasures& m = spec.measures;
     out << spec.x.name() << ',' << spec.y.name();
     if (m.period) out << ",period";
@@ -265,25 +265,33 @@ void write_scan_csv(const ScanSpec& spec, const std::vector<std::vector<ScanPoin
     if (m.impacts) out << ",impacts";
     if (m.xrange) out << ",xmin,xmax";
     out << '\n';
+}
+
+void write_scan_csv_row(const ScanSpec& spec, int j, const std::vector<ScanPoint>& row, std::ostream& out) {
+    const ScanMeasures& m = spec.measures;
     char buf[64];
     auto put = [&](double v) {
         std::snprintf(buf, sizeof buf, ",%.17g", v);
         out << buf;
     };
-    for (int j = 0; j < spec.y.n; ++j)
-        for (int i = 0; i < spec.x.n; ++i) {
-            const ScanPoint& pt = rows[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)];
-            std::snprintf(buf, sizeof buf, "%.10g,%.10g", spec.x.at(i), spec.y.at(j));
-            out << buf;
-            if (m.period) put(pt.period);
-            if (m.lyapunov) put(pt.lyapunov);
-            if (m.impacts) put(pt.impacts);
-            if (m.xrange) {
-                put(pt.xmin);
-                put(pt.xmax);
-            }
-            out << '\n';
+    for (int i = 0; i < spec.x.n; ++i) {
+        const ScanPoint& pt = row[static_cast<std::size_t>(i)];
+        std::snprintf(buf, sizeof buf, "%.10g,%.10g", spec.x.at(i), spec.y.at(j));
+        out << buf;
+        if (m.period) put(pt.period);
+        if (m.lyapunov) put(pt.lyapunov);
+        if (m.impacts) put(pt.impacts);
+        if (m.xrange) {
+            put(pt.xmin);
+            put(pt.xmax);
         }
+        out << '\n';
+    }
+}
+
+void write_scan_csv(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, std::ostream& out) {
+    write_scan_csv_header(spec, out);
+    for (int j = 0; j < spec.y.n; ++j) write_scan_csv_row(spec, j, rows[static_cast<std::size_t>(j)], out);
 }
 
 namespace {
