@@ -102,7 +102,7 @@ nlohmann::json fit_summary(const id::FitReport& r) {
     j["before"] = errors(r.error_before);
     j["after"] = errors(r.error_after);
     j["at_noise_floor"] = r.verdict.find("is at its noise floor") != std::string::npos;
-    j["gate_passed"] = r.gate_passed;
+    j["gate_passed"] = r.gate_passed.substr(0, r.gate_passed.find(" ("));   // the step, not its printed percentage
     return j;
 }
 
