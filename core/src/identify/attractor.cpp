@@ -31,16 +31,6 @@ double wasserstein1(std::vector<double> a, std::vector<double> b) {
     return s / kQ;
 }
 
-double stdev(const std::vector<double>& v) {
-    if (v.size() < 2) return 0.0;
-    double m = 0;
-    for (double x : v) m += x;
-    m /= static_cast<double>(v.size());
-    double s = 0;
-    for (double x : v) s += (x - m) * (x - m);
-    return std::sqrt(s / static_cast<double>(v.size() - 1));
-}
-
 }  // namespace
 
 // Passages between the two wells: crossings of the band [mid - band, mid + band] from one side to the other.
@@ -137,14 +127,14 @@ AttractorStats attractor_stats(const Prep& pr, const std::vector<double>& sim, s
     // A run that stalled part of the way has no attractor to compare: every unit missing.
     if (d.size() < 4 * kBlocks || static_cast<double>(d.size()) < 0.9 * static_cast<double>(finite_data)) return st;
     st.ok = true;
-    const double sd = std::max(stdev(d), 1e-300);
+    const double sd = std::max(stdev(d, 0, d.size()), 1e-300);
     // Velocities by central differences of the samples: the same operator on both, noise and all.
     auto diff = [&](const std::vector<double>& x, std::vector<double>& out) {
         for (std::size_t i = 1; i + 1 < x.size(); ++i) out.push_back((x[i + 1] - x[i - 1]) / (2.0 * pr.dt));
     };
     diff(d, dv);
     diff(s, sv);
-    const double sdv = std::max(stdev(dv), 1e-300);
+    const double sdv = std::max(stdev(dv, 0, dv.size()), 1e-300);
     const WellBand wb = well_band(d);
     const double seconds = static_cast<double>(d.size()) * pr.dt;
     const double rate_d = wb.found ? static_cast<double>(well_changes(d, wb.hilltop, wb.band)) / seconds : 0.0;

@@ -11,23 +11,6 @@
 
 namespace impactlab::identify::detail {
 
-namespace {
-
-double stdev(const std::vector<double>& v, std::size_t a, std::size_t b) {
-    double m = 0, s = 0, c = 0;
-    for (std::size_t i = a; i < b; ++i)
-        if (std::isfinite(v[i])) {
-            m += v[i];
-            c += 1;
-        }
-    if (c < 2) return 0;
-    m /= c;
-    for (std::size_t i = a; i < b; ++i)
-        if (std::isfinite(v[i])) s += (v[i] - m) * (v[i] - m);
-    return std::sqrt(s / (c - 1));
-}
-
-}  // namespace
 
 DataHorizon data_horizon(const Prep& pr) {
     DataHorizon h;

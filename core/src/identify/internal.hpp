@@ -46,6 +46,8 @@ Kernel make_kernel(int H, double dt);
 // omega(t) piecewise linear with knots every `spacing` seconds, fitted to the unwrapped phi by least squares
 // (phi itself being the exact integral); rms: fit residual [rad].
 Drive fit_drive(const std::vector<double>& t, const std::vector<double>& phi, double spacing, double& rms);
+// Sample standard deviation of the finite values of v[a, b) (0 for fewer than two).
+double stdev(const std::vector<double>& v, std::size_t a, std::size_t b);
 // The period of the strongest spectral line of x (detrended) [s].
 double dominant_period(const std::vector<double>& x, double dt);
 

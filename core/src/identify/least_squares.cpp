@@ -29,7 +29,8 @@ public:
     // mean the same in any units of the record: a cubic in strain has a gradient of 1e-20 in its own units.
     KnobCost(std::vector<Knob>& knobs, const ResidualFn& eval, const StepFn& step_of, int m, double huber_delta,
              std::vector<double> scale, double r_scale)
-        : knobs_(knobs), eval_(eval), step_of_(step_of), huber_(huber_delta), scale_(std::move(scale)), r_scale_(r_scale) {
+        : knobs_(knobs), eval_(eval), step_of_(step_of), huber_(huber_delta), scale_(std::move(scale)), r_scale_(r_scale),
+          x_(knobs.size()) {
         set_num_residuals(m);
         mutable_parameter_block_sizes()->push_back(static_cast<int>(knobs.size()));
     }
@@ -40,7 +41,7 @@ public:
         // The budget is checked between iterations (the callback below): a failed evaluation would make Ceres
         // log an error to the user's terminal, and an iteration costs at most knobs + 2 evaluations.
         ++evaluations_;
-        std::vector<double> x(p);
+        std::vector<double>& x = x_;
         for (std::size_t k = 0; k < p; ++k) *knobs_[k].value = x[k] = z[k] * scale_[k];
         if (!(eval_(R_) < INFINITY) || R_.size() != num_residuals()) return false;
         robust(R_);
@@ -89,6 +90,7 @@ private:
     double huber_;
     std::vector<double> scale_;
     double r_scale_;
+    mutable std::vector<double> x_;   // the knobs' values at the point evaluated
     mutable long evaluations_ = 0;
     long max_evaluations_ = 0;
     double max_seconds_ = 0;
@@ -128,7 +130,7 @@ LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const
         if (!(scale[k] > 0) || !std::isfinite(scale[k])) scale[k] = 1.0;
         x[k] = v / scale[k];
     }
-    const double r_scale = std::sqrt(ss0 / static_cast<double>(R.size())) > 0 ? std::sqrt(ss0 / static_cast<double>(R.size())) : 1.0;
+    const double r_rms = std::sqrt(ss0 / static_cast<double>(R.size())), r_scale = r_rms > 0 ? r_rms : 1.0;
     ceres::Problem::Options po;
     po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
     po.loss_function_ownership = ceres::TAKE_OWNERSHIP;

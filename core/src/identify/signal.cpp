@@ -235,6 +235,20 @@ Drive fit_drive(const std::vector<double>& t, const std::vector<double>& phi, do
     return d;
 }
 
+double stdev(const std::vector<double>& v, std::size_t a, std::size_t b) {
+    double m = 0, s = 0, c = 0;
+    for (std::size_t i = a; i < b; ++i)
+        if (std::isfinite(v[i])) {
+            m += v[i];
+            c += 1;
+        }
+    if (c < 2) return 0;
+    m /= c;
+    for (std::size_t i = a; i < b; ++i)
+        if (std::isfinite(v[i])) s += (v[i] - m) * (v[i] - m);
+    return std::sqrt(s / (c - 1));
+}
+
 double dominant_period(const std::vector<double>& x, double dt) {
     std::size_t N = 1;
     while (N < x.size()) N <<= 1;

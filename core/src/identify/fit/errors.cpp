@@ -105,8 +105,10 @@ void errors_stage(FitSession& fs) {
             e.attractor_x_w1 = AttractorStats::mean(p.attractor.hist_x);
             e.attractor_v_w1 = AttractorStats::mean(p.attractor.hist_v);
             e.attractor_spectrum_db = p.attractor.spectrum_db.empty() ? -1.0 : AttractorStats::mean(p.attractor.spectrum_db);
-            if (p.attractor.wells_found) e.attractor_wells_per_s = p.attractor.rate_sim;
-            if (p.attractor.wells_found) rep.data_well_changes_per_s = p.attractor.rate_data;
+            if (p.attractor.wells_found) {
+                e.attractor_wells_per_s = p.attractor.rate_sim;
+                rep.data_well_changes_per_s = p.attractor.rate_data;
+            }
         }
     };
     fill(pg, rep.error_before);

@@ -175,7 +175,6 @@ double group_z_dss(const Eigen::MatrixXd& J, const Eigen::VectorXd& R, const std
 
 std::vector<Knob> base_knobs(Model& m, const std::vector<std::string>& names, const Prep& pr) {
     std::vector<Knob> knobs;
-    const Model shape = m;
     for (const auto& b : base_params(m, names)) {
         // Unbounded but for the physics (Ceres leaves a bound beyond 1e11 unset), whatever the record's units.
         double lo = -INFINITY, hi = INFINITY;
@@ -184,7 +183,7 @@ std::vector<Knob> base_knobs(Model& m, const std::vector<std::string>& names, co
         if (b.name == "b2") lo = -50;   // the magnets' law is the rig's, in metres: 1 + b2 x^2 > 0 on the rail
         // The step follows the value, or the record's own scale of the parameter when the value is near zero
         // (a cubic started at 0 in units of 1e-4 would otherwise move no force at all).
-        knobs.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6 * base_scale(b.name, pr, shape)), lo, hi, b.name});
+        knobs.push_back({b.value, std::max(1e-4 * std::abs(*b.value), 1e-6 * base_scale(b.name, pr, m)), lo, hi, b.name});
     }
     return knobs;
 }
