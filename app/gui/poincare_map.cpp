@@ -82,7 +82,7 @@ bool PoincareMap::dying_alternation(int period) const {
     const auto k = static_cast<std::size_t>(period);
     const std::size_t n = recent_.size();
     std::size_t first = n;
-    while (first > k && recurs(first - 1, k, cfg_.break_factor)) --first;
+    while (first > k && recurs(first - 1, k, cfg_.loose_factor)) --first;
     // Samples over the newer half of the stretch, whole cycles apart: the older half still holds the faster
     // modes and the nonlinear start, which make an early decay look as if it levelled off.
     const std::size_t m = (n - first) / (4 * k) * k;
@@ -159,7 +159,7 @@ void PoincareMap::push(const MapInput& in) {
 
     if (status_ == Status::Periodic) {
         const auto k = static_cast<std::size_t>(period_);
-        if (n > k && recurs(n - 1, k, cfg_.break_factor)) {
+        if (n > k && recurs(n - 1, k, cfg_.hold_factor)) {
             unsettled_ = 0;
             points_.push({in.x, in.v, in.impacts});
             const std::size_t keep = k * static_cast<std::size_t>(std::max(cfg_.periodic_cycles, 1));

@@ -25,7 +25,10 @@ struct PoincareConfig {
     int max_period = 32;          // the largest period recognised; beyond it an orbit reads as chaos
                                   // (A3C at 18.1608 rad/s has a stable period 24, lambda_max < 0)
     double rel_tol = 1e-3;        // recurrence: |dx| / size_x and |dv| / size_v both below this
-    double break_factor = 10;     // a settled orbit breaks when a point misses by break_factor * rel_tol
+    double hold_factor = 2;       // a settled orbit breaks when a point misses by hold_factor * rel_tol: a
+                                  // settled orbit recurs at the integrator's accuracy, far below rel_tol, while
+                                  // a period 24 passed off as its unstable period 12 misses by 4 (A3C, 18.1608)
+    double loose_factor = 10;     // a dying alternation's stretch: recurring within loose_factor * rel_tol
     int chaos_after = 64;         // section points without any recurrence before "chaos" is said
     int provisional_after = 16;   // undecided points before the newer half is shown (no period said)
     int periodic_cycles = 4;      // a periodic orbit shows its last few cycles: where it is, not where it
