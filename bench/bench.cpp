@@ -33,6 +33,8 @@ struct Options {
     bool quick = false;
     bool cf = true, ef = true, fit = false, scan = false, analysis = false;
     int identify = 0;   // records of the loop's randomized benchmark (0: not run)
+    int record = 0;     // > 0: that record of the benchmark alone
+    std::string report; // its fit's report folder
     unsigned seed = 1;
     std::vector<std::string> only;   // empty: the paper's versions
     impactlab::Tolerances tol;
@@ -49,7 +51,8 @@ struct Options {
         "  --scan        only impactlab scan's thread pool: points per second on 1 thread and on every core\n"
         "  --analysis    only the analysis jobs: Lyapunov sweep and strip, basins on 2 threads, continuation\n"
         "  --identify N  only the loop's randomized benchmark: N records of effects the library has no name for, and\n"
-        "                a null family; the rates of false claims, better models and honest verdicts (--seed S, default 1)\n",
+        "                a null family; the rates of false claims, better models and honest verdicts (--seed S, default 1);\n"
+        "                --record K fits record K alone (its row, its injected laws) and --report DIR writes its report\n",
         impactlab::Tolerances{}.rtol);
     std::exit(rc);
 }
@@ -72,6 +75,8 @@ Options parse(int argc, char** argv) {
         else if (a == "--analysis") o.analysis = true;
         else if (a == "--identify") o.identify = std::stoi(value());
         else if (a == "--seed") o.seed = static_cast<unsigned>(std::stoul(value()));
+        else if (a == "--record") o.record = std::stoi(value());
+        else if (a == "--report") o.report = value();
         else if (a == "-h" || a == "--help") usage(0);
         else {
             std::fprintf(stderr, "bench: unknown option '%s'\n", a.c_str());
@@ -277,22 +282,26 @@ void bench_analysis() {
 }
 
 // The loop's randomized benchmark: each record's family, what the fit named, and the rates.
-int bench_identify(int n, unsigned seed) {
+int bench_identify(int n, unsigned seed, int record, const std::string& report) {
     namespace id = impactlab::identify;
     id::IdentifyBenchOptions bo;
     bo.records = n;
     bo.seed = seed;
+    bo.only = record;
+    bo.report_dir = report;
     std::printf("identify: %d records of 30 s at 1 kHz, seed %u (versions A1H A1C A1G A3G; periodic, chaotic, steps; noise 1-10 um)\n\n",
                 n, seed);
     std::printf("%4s %-22s %-5s %-9s %8s %10s %10s %5s %5s %5s %7s  %s\n", "#", "family", "model", "regime", "noise[um]", "before[um]",
                 "after[um]", "false", "better", "honest", "wall[s]", "named");
-    bo.progress = [](int done, int, const id::IdentifyBenchRecord& r) {
+    bo.progress = [record](int done, int, const id::IdentifyBenchRecord& r) {
+        if (record > 0) done = record;
         std::string named;
         for (const auto& x : r.named) named += (named.empty() ? "" : " ") + x;
         if (!r.error.empty()) named = "ERROR: " + r.error;
         std::printf("%4d %-22s %-5s %-9s %8.2f %10.3g %10.3g %5s %5s %5s %7.2f  %s\n", done, r.family.c_str(), r.version.c_str(),
                     r.regime.c_str(), r.noise * 1e6, r.before * 1e6, r.after * 1e6, r.false_claim ? "yes" : "-",
                     r.null_family ? "n/a" : (r.better ? "yes" : "no"), r.honest ? "yes" : "no", r.runtime_s, named.c_str());
+        if (record > 0) std::printf("     injected: %s\n", r.truth.c_str());
         std::fflush(stdout);
     };
     const Times t = timed([&] {
@@ -309,7 +318,7 @@ int bench_identify(int n, unsigned seed) {
 
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
-    if (o.identify > 0) return bench_identify(o.identify, o.seed);
+    if (o.identify > 0) return bench_identify(o.identify, o.seed, o.record, o.report);
     if (o.analysis) {
         bench_analysis();
         return 0;

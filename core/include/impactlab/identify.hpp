@@ -351,11 +351,14 @@ struct IdentifyBenchRecord {
     bool before_at_floor = false;
     double before = 0, after = 0, runtime_s = 0;
     std::string error;          // the fit's error, if it failed
+    std::string truth;          // the injected laws and their coefficients, e.g. "bench_poly_x(0, 0, 0.12, 0, -0.3, 0)"
 };
 struct IdentifyBenchOptions {
     int records = 200;
     unsigned seed = 1;
     double duration = 30.0;     // [s] per record, at 1 kHz
+    int only = 0;               // > 0: fit record `only` (1-based) alone; the others are drawn, not fitted
+    std::string report_dir;     // with only: that fit's report written here (report.md, report.json)
     const std::atomic<bool>* cancel = nullptr;
     std::function<void(int done, int total, const IdentifyBenchRecord& last)> progress;
 };

@@ -94,6 +94,9 @@ struct EffectFitHint {
     bool generic = false;                         // a last-resort smooth force named by its variable
     bool test_first_only = false;                 // significance of the first parameter alone (no null shape)
     bool from_reversals = false;                  // proposed from velocity reversals in the data, never screened
+    // The generic term of the law's variable (unexplained_x for a spring, unexplained_v for a damper): the law
+    // is named only where that term, added beside it, does not predict held-out data better.
+    const char* rival = nullptr;
 };
 
 struct Params;

@@ -24,9 +24,12 @@ std::string describe(const double* p, const double* s, const EffectReportContext
 }  // namespace
 
 const EffectLaw& magnet_offset_law() {
-    static const EffectLaw law =
-        magnet_effect_law("magnet_offset", "the fixed magnet sits d off x = 0 (misaligned magnets): F_mag acts at x - d",
-                          "d", "m", force, describe);
+    static const EffectLaw law = [] {
+        EffectLaw l = magnet_effect_law("magnet_offset", "the fixed magnet sits d off x = 0 (misaligned magnets): F_mag acts at x - d",
+                                        "d", "m", force, describe);
+        l.fit.rival = "unexplained_x";
+        return l;
+    }();
     return law;
 }
 }  // namespace impactlab::effects

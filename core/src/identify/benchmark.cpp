@@ -191,6 +191,16 @@ IdentifyBenchResult run_identify_bench(const IdentifyBenchOptions& o) {
         }
         so.x0 = uni(rng, -0.014, -0.008);
         row.noise = so.noise;
+        for (const EffectInstance& e : truth.p.effects) {
+            row.truth += (row.truth.empty() ? "" : " + ") + std::string(e.law->id) + "(";
+            for (std::size_t k = 0; k < 6; ++k) {
+                char buf[32];
+                std::snprintf(buf, sizeof buf, "%s%.3g", k ? ", " : "", e.p[k]);
+                row.truth += buf;
+            }
+            row.truth += ")";
+        }
+        if (o.only > 0 && i + 1 != o.only) continue;   // every draw above is made: the records keep their numbers
         const auto t0 = std::chrono::steady_clock::now();
         try {
             MeasuredData d = synthesize(truth, so);
@@ -198,6 +208,7 @@ IdentifyBenchResult run_identify_bench(const IdentifyBenchOptions& o) {
             FitOptions fo;
             fo.plots = false;
             const FitReport r = run_fit(d, resolve_fit_model(row.version, Forcing::Unbalance), fo);
+            if (o.only > 0 && !o.report_dir.empty()) write_report(r, o.report_dir, false);
             for (const auto& f : r.effects_found) {
                 row.named.push_back(f.id);
                 const bool generic = f.id.rfind("unexplained", 0) == 0;

@@ -16,6 +16,7 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/fit/refit.cpp
   src/identify/fit/impact_law.cpp
   src/identify/fit/validation.cpp
+  src/identify/fit/shape.cpp
   src/identify/fit/errors.cpp
   src/identify/fit/held_out.cpp
   src/identify/fit/tools.cpp

@@ -304,6 +304,9 @@ void validate_effects(FitSession& fs) {
         e_cur = e_alt;
         kept.push_back({step_name(names + " replaced by " + cg.id, c), cur, rep.effects_found, total(e_cur), false});
     }
+    // Each named law kept against the generic term of its variable.
+    named_against_generic(fs, HeldOutJudge{held_out, compare, [&](const Compare& c) { return better_beyond_noise(pr, wins, c); }, total},
+                          refit_base, cur, e_cur, kept);
     if (!rep.effects_found.empty()) {
         const Compare c = compare(e_base, e_cur);
         if (!(c.sum_new < c.sum_cur)) {   // never a worse model than the baseline
