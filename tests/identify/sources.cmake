@@ -17,4 +17,5 @@ set(IMPACTLAB_IDENTIFY_TEST_SOURCES
   identify/features_test.cpp
   identify/drift_test.cpp
   identify/metamorphic_test.cpp
+  identify/shape_test.cpp
 )

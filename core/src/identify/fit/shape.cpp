@@ -59,16 +59,27 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
                      fx.end());
             return out;
         };
-        // The named laws give way to the generic term: rejected with `why`, the generic term found (or kept) in
-        // their place, the model `m` fitted on the whole record.
-        auto give_way = [&](const Model& m, const std::vector<double>& e_m, const Compare& c, const std::string& why, const std::string& note) {
+        // Model m, fitted on the whole record, becomes the current one with held-out errors e_m, unless unphysical.
+        auto adopt = [&](const Model& m, const std::vector<double>& e_m) {
             const Model fitted = fitted_whole(fs, m, refit_base);
-            if (!unphysical(fitted).empty()) return;
+            if (!unphysical(fitted).empty()) return false;
             cur = fitted;
             e_cur = e_m;
+            return true;
+        };
+        auto generic_found = [&](const Compare& c) {
             FoundEffect g;
             g.id = rival;
             g.evidence = Evidence::EquationError;
+            g.validation_gain = c.gain;
+            g.validation_z = c.z;
+            return g;
+        };
+        // The named laws give way to the generic term: rejected with `why`, the generic term found (or kept) in
+        // their place, the model `m` fitted on the whole record.
+        auto give_way = [&](const Model& m, const std::vector<double>& e_m, const Compare& c, const std::string& why, const std::string& note) {
+            if (!adopt(m, e_m)) return;
+            FoundEffect g = generic_found(c);
             for (const std::string& id : ids) {
                 const auto it = std::find_if(rep.effects_found.begin(), rep.effects_found.end(), [&](const FoundEffect& f) { return f.id == id; });
                 g.explained_fraction += it->explained_fraction;
@@ -81,8 +92,6 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
                 g.z = old->z;
                 rep.effects_found.erase(old);
             }
-            g.validation_gain = c.gain;
-            g.validation_z = c.z;
             for (const EffectInstance& e : cur.p.effects)
                 if (e.law->id == rival) g.parameters = named(e);
             g.sentence = sentence(g.id, fs.base, g.parameters, g.sigma, fs.sc);
@@ -113,15 +122,8 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
         if (judge.better(added)) {
             if (judge.better(named_adds)) {
                 // Both are needed: the named laws, and a shape of their variable beyond them.
-                const Model fitted = fitted_whole(fs, both, refit_base);
-                if (!unphysical(fitted).empty()) continue;
-                cur = fitted;
-                e_cur = e_both;
-                FoundEffect g;
-                g.id = rival;
-                g.evidence = Evidence::EquationError;
-                g.validation_gain = added.gain;
-                g.validation_z = added.z;
+                if (!adopt(both, e_both)) continue;
+                FoundEffect g = generic_found(added);
                 g.parameters = named(cur.p.effects.back());
                 g.sentence = sentence(g.id, fs.base, g.parameters, g.sigma, fs.sc);
                 rep.effects_found.push_back(g);
