@@ -216,6 +216,9 @@ double median(std::vector<double> v);
 // left out; 0 for none.
 double median_se(const std::vector<double>& x, double center, double floor = 0.0);
 double quantile(std::vector<double> v, double q);
+// Wasserstein-1 distance of two sorted, non-empty samples: the mean gap between their quantile functions at
+// `quantiles` mid-points (k + 1/2) / quantiles.
+double wasserstein1_sorted(const std::vector<double>& a, const std::vector<double>& b, int quantiles);
 
 // ---- shooting.cpp -------------------------------------------------------------------------------------
 // Simulates samples i0..i1 from the state estimated at i0 (refined by Gauss-Newton if asked); returns the

@@ -343,17 +343,10 @@ double diagram_distance(const std::vector<std::pair<double, double>>& a, const s
         if (p.size() < 5 || q.size() < 5) continue;
         std::sort(p.begin(), p.end());
         std::sort(q.begin(), q.end());
-        constexpr int kQ = 200;
-        double w1 = 0;
-        for (int k = 0; k < kQ; ++k) {
-            const double qq = (k + 0.5) / kQ;
-            const double xa = p[std::min(p.size() - 1, static_cast<std::size_t>(qq * static_cast<double>(p.size())))];
-            const double xb = q[std::min(q.size() - 1, static_cast<std::size_t>(qq * static_cast<double>(q.size())))];
-            w1 += std::abs(xa - xb);
-        }
-        total += w1 / kQ;
+        const double w1 = wasserstein1_sorted(p, q, 200);
+        total += w1;
         ++bins;
-        if (per_bin) per_bin->emplace_back((static_cast<double>(key) + 0.5) * bin, w1 / kQ);
+        if (per_bin) per_bin->emplace_back((static_cast<double>(key) + 0.5) * bin, w1);
     }
     return bins ? total / static_cast<double>(bins) : -1;
 }

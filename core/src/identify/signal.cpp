@@ -5,8 +5,6 @@
 #include <cmath>
 #include <complex>
 #include <unsupported/Eigen/FFT>
-#include <complex>
-#include <unsupported/Eigen/FFT>
 
 #include "identify/internal.hpp"
 
@@ -30,6 +28,17 @@ double quantile(std::vector<double> v, double q) {
     if (k + 1 >= v.size()) return a;
     const double b = *std::min_element(v.begin() + static_cast<long>(k) + 1, v.end());
     return a + (pos - static_cast<double>(k)) * (b - a);
+}
+
+double wasserstein1_sorted(const std::vector<double>& a, const std::vector<double>& b, int quantiles) {
+    double s = 0;
+    for (int k = 0; k < quantiles; ++k) {
+        const double q = (k + 0.5) / quantiles;
+        const auto ia = static_cast<std::size_t>(q * static_cast<double>(a.size()));
+        const auto ib = static_cast<std::size_t>(q * static_cast<double>(b.size()));
+        s += std::abs(a[std::min(ia, a.size() - 1)] - b[std::min(ib, b.size() - 1)]);
+    }
+    return s / quantiles;
 }
 
 double noise_sigma(const std::vector<double>& x) {
