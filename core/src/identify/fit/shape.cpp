@@ -34,14 +34,14 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
         const EffectLaw* law = find_effect(f.id);
         if (law && law->fit.rival && std::find(rivals.begin(), rivals.end(), law->fit.rival) == rivals.end()) rivals.push_back(law->fit.rival);
     }
+    auto in_model = [&](const Model& m, const std::string& id) {   // among the effects the fit added
+        return std::any_of(m.p.effects.begin() + static_cast<std::ptrdiff_t>(fs.base.p.effects.size()), m.p.effects.end(),
+                           [&](const EffectInstance& e) { return e.law->id == id; });
+    };
     for (const std::string& rival : rivals) {
         const auto cg = std::find_if(fs.screen.cands.begin(), fs.screen.cands.end(),
                                      [&](const Candidate& c) { return c.law && c.id == rival; });
         if (cg == fs.screen.cands.end()) continue;   // not offered for this record (no phase, say)
-        auto in_model = [&](const Model& m, const std::string& id) {
-            return std::any_of(m.p.effects.begin() + static_cast<std::ptrdiff_t>(fs.base.p.effects.size()), m.p.effects.end(),
-                               [&](const EffectInstance& e) { return e.law->id == id; });
-        };
         // The named laws of this variable that were kept as instances.
         std::vector<std::string> ids;
         for (const FoundEffect& f : rep.effects_found) {
@@ -116,11 +116,14 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
         Model both = cur, alone = without_named(cur);
         both.p.effects.push_back(g0);
         alone.p.effects.push_back(g0);
-        const std::vector<double> e_both = judge.errors(both), e_alone = judge.errors(alone);
-        const Compare added = judge.compare(e_cur, e_both), named_adds = judge.compare(e_alone, e_both);
+        const std::vector<double> e_both = judge.errors(both);
+        const Compare added = judge.compare(e_cur, e_both);
+        // One law whose rival adds nothing beside it stands; only otherwise is the rival alone worth judging.
+        if (!judge.better(added) && ids.size() < 2) continue;
+        const std::vector<double> e_alone = judge.errors(alone);
         const Compare replaced = judge.compare(e_cur, e_alone);
         if (judge.better(added)) {
-            if (judge.better(named_adds)) {
+            if (judge.better(judge.compare(e_alone, e_both))) {
                 // Both are needed: the named laws, and a shape of their variable beyond them.
                 if (!adopt(both, e_both)) continue;
                 FoundEffect g = generic_found(added);
@@ -143,7 +146,7 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
         }
         // Several laws of one variable fitted together are a polynomial in it: named only where they predict
         // held-out data better than one smooth force of that variable.
-        if (ids.size() >= 2 && !judge.better(judge.compare(e_alone, e_cur))) {
+        if (!judge.better(judge.compare(e_alone, e_cur))) {
             std::snprintf(buf, sizeof buf, "with the other laws of its variable it predicts held-out data no better than the generic %s alone "
                           "(error %s by %.2f %% in its place): the data show a shape, not these laws", rival.c_str(),
                           replaced.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(replaced.gain));
