@@ -20,6 +20,18 @@
 using namespace impactlab;
 using namespace impactlab::gui;
 
+namespace {
+// What parse_options says of args: its error message, or "accepted".
+std::string error(const std::vector<std::string>& args) {
+    try {
+        parse_options(args);
+    } catch (const OptionsError& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+}  // namespace
+
 TEST_CASE("history: overwrites the oldest, indexes oldest first, finds times") {
     History<int> h(4);
     CHECK(h.empty());
@@ -118,14 +130,6 @@ TEST_CASE("options: the W0:W1 ranges and the ramp's W1:RATE, with the flag in ev
     CHECK(o.bif_zoom_hi == 25.0);
     CHECK(o.ramp_to == 20.0);
     CHECK(o.ramp_rate == 0.05);
-    auto error = [](std::vector<std::string> args) {
-        try {
-            parse_options(args);
-        } catch (const OptionsError& e) {
-            return std::string(e.what());
-        }
-        return std::string("accepted");
-    };
     CHECK(error({"--bif-range", "14:8"}) == "--bif-range: 14:8 is empty (W0 < W1 wanted)");
     CHECK(error({"--bif-box", "12:12.01"}) == "--bif-box: 12:12.01 is too narrow (W0 < W1 by at least 0.02 rad/s wanted)");
     CHECK(error({"--bif-zoom", "12"}) == "--bif-zoom: '12' is not W0:W1");
@@ -163,14 +167,6 @@ TEST_CASE("presets: every model's presets land on the attractor they name") {
 }
 
 TEST_CASE("options: a curve start outside the physical range and a --param without a value are refused, naming key and value") {
-    auto error = [](std::vector<std::string> args) {
-        try {
-            parse_options(args);
-        } catch (const OptionsError& e) {
-            return std::string(e.what());
-        }
-        return std::string("accepted");
-    };
     CHECK(error({"--plane-fold", "1e-300,-0.0157,0.0023"}).find("--plane-fold: '1e-300,-0.0157,0.0023' is neither auto nor") == 0);
     CHECK(error({"--plane-grazing", "1e300,1e300,0"}).find("--plane-grazing: '1e300,1e300,0'") == 0);
     CHECK(error({"--param", "xI="}) == "--param xI: '' is not a number");
