@@ -45,22 +45,8 @@ namespace {
 
 // Welch's one-sided PSD of x (Hann segments of `seg` samples, half overlapping, mean removed), bins 0..seg/2.
 std::vector<double> welch(const std::vector<double>& x, std::size_t seg) {
-    std::vector<double> psd(seg / 2 + 1, 0.0);
-    if (x.size() < seg) return {};
-    Eigen::FFT<double> fft;
-    std::vector<double> w(seg), buf(seg);
-    for (std::size_t k = 0; k < seg; ++k) w[k] = 0.5 - 0.5 * std::cos(2.0 * kPi * static_cast<double>(k) / static_cast<double>(seg));
-    std::vector<std::complex<double>> spec;
     std::size_t count = 0;
-    for (std::size_t a = 0; a + seg <= x.size(); a += seg / 2) {
-        double mean = 0;
-        for (std::size_t k = 0; k < seg; ++k) mean += x[a + k];
-        mean /= static_cast<double>(seg);
-        for (std::size_t k = 0; k < seg; ++k) buf[k] = (x[a + k] - mean) * w[k];
-        fft.fwd(spec, buf);
-        for (std::size_t k = 0; k <= seg / 2; ++k) psd[k] += std::norm(spec[k]);
-        ++count;
-    }
+    std::vector<double> psd = welch_sum(x, seg, false, count);
     for (double& p : psd) p /= static_cast<double>(count);
     return psd;
 }

@@ -26,6 +26,10 @@ double noise_sigma(const std::vector<double>& x);
 // signal itself has power up to a good part of the band (where 4th differences see signal). +inf for fewer
 // than 2048 samples.
 double noise_sigma_spectral(const std::vector<double>& x);
+// Welch's periodogram: the sum over Hann segments of `seg` samples, half overlapping, each with its mean (and
+// with remove_line its straight line) removed, of |FFT|^2 at bins 0..seg/2; `segments` says how many were
+// summed. Empty when x is shorter than one segment.
+std::vector<double> welch_sum(const std::vector<double>& x, std::size_t seg, bool remove_line, std::size_t& segments);
 // Savitzky-Golay weights c[0..2M] (offsets -M..M) of the `deriv`-th derivative of a degree-`degree` fit.
 std::vector<double> savgol(int half, int degree, int deriv, double dt);
 // Centred FIR: y[i] = sum_k c[k] x[i + k - M]; NaN where the window leaves the data.

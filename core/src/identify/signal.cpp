@@ -51,35 +51,45 @@ double noise_sigma(const std::vector<double>& x) {
     return median(std::move(d)) / 0.6745 / std::sqrt(70.0);
 }
 
+std::vector<double> welch_sum(const std::vector<double>& x, std::size_t seg, bool remove_line, std::size_t& segments) {
+    segments = 0;
+    if (x.size() < seg) return {};
+    std::vector<double> win(seg);
+    for (std::size_t k = 0; k < seg; ++k) win[k] = 0.5 - 0.5 * std::cos(2.0 * kPi * static_cast<double>(k) / static_cast<double>(seg));
+    Eigen::FFT<double> fft;
+    std::vector<double> buf(seg), psd(seg / 2 + 1, 0.0);
+    std::vector<std::complex<double>> spec;
+    const double c = 0.5 * static_cast<double>(seg - 1);
+    for (std::size_t a = 0; a + seg <= x.size(); a += seg / 2) {
+        // The segment's mean (and drift) would leak into every bin.
+        double sx = 0, sxy = 0;
+        for (std::size_t k = 0; k < seg; ++k) {
+            sx += x[a + k];
+            if (remove_line) sxy += (static_cast<double>(k) - c) * x[a + k];
+        }
+        const double mean = sx / static_cast<double>(seg);
+        const double slope = remove_line ? sxy / (static_cast<double>(seg) * (static_cast<double>(seg) * static_cast<double>(seg) - 1) / 12.0) : 0.0;
+        for (std::size_t k = 0; k < seg; ++k)
+            buf[k] = (remove_line ? x[a + k] - mean - slope * (static_cast<double>(k) - c) : x[a + k] - mean) * win[k];
+        fft.fwd(spec, buf);
+        for (std::size_t k = 0; k <= seg / 2; ++k) psd[k] += std::norm(spec[k]);
+        ++segments;
+    }
+    return psd;
+}
+
 double noise_sigma_spectral(const std::vector<double>& x) {
     // Welch: Hann-windowed segments of 1024 samples, half overlapping, each detrended; the one-sided PSD of
     // white noise of variance s^2 is 2 s^2 / fs, so s^2 = PSD * fs / 2 with the PSD in units of 1/fs.
     constexpr std::size_t kSeg = 1024;
     if (x.size() < 2 * kSeg) return INFINITY;
-    std::vector<double> win(kSeg);
     double wss = 0;
     for (std::size_t k = 0; k < kSeg; ++k) {
-        win[k] = 0.5 - 0.5 * std::cos(2.0 * kPi * static_cast<double>(k) / static_cast<double>(kSeg));
-        wss += win[k] * win[k];
+        const double w = 0.5 - 0.5 * std::cos(2.0 * kPi * static_cast<double>(k) / static_cast<double>(kSeg));
+        wss += w * w;
     }
-    Eigen::FFT<double> fft;
-    std::vector<double> seg(kSeg), psd(kSeg / 2 + 1, 0.0);
-    std::vector<std::complex<double>> spec;
     std::size_t count = 0;
-    for (std::size_t a = 0; a + kSeg <= x.size(); a += kSeg / 2) {
-        // Remove the segment's straight line (its mean and drift would leak into every bin).
-        double sx = 0, sxy = 0;
-        const double c = 0.5 * static_cast<double>(kSeg - 1);
-        for (std::size_t k = 0; k < kSeg; ++k) {
-            sx += x[a + k];
-            sxy += (static_cast<double>(k) - c) * x[a + k];
-        }
-        const double mean = sx / kSeg, slope = sxy / (static_cast<double>(kSeg) * (static_cast<double>(kSeg) * kSeg - 1) / 12.0);
-        for (std::size_t k = 0; k < kSeg; ++k) seg[k] = (x[a + k] - mean - slope * (static_cast<double>(k) - c)) * win[k];
-        fft.fwd(spec, seg);
-        for (std::size_t k = 0; k <= kSeg / 2; ++k) psd[k] += std::norm(spec[k]);
-        ++count;
-    }
+    const std::vector<double> psd = welch_sum(x, kSeg, true, count);
     // The floor: the median over the top fifth of the band (below Nyquist), where a sampled mechanical
     // signal has least power. |X_k|^2 / sum(w^2) is the two-sided periodogram's variance density per bin.
     std::vector<double> top;
