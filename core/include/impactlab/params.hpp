@@ -94,9 +94,10 @@ struct EffectFitHint {
     bool generic = false;                         // a last-resort smooth force named by its variable
     bool test_first_only = false;                 // significance of the first parameter alone (no null shape)
     bool from_reversals = false;                  // proposed from velocity reversals in the data, never screened
-    // The generic term of the law's variable (unexplained_x for a spring, unexplained_v for a damper): the law
-    // is named only where that term, added beside it, does not predict held-out data better.
-    const char* rival = nullptr;
+    // The generic terms of the law's variables (unexplained_x for a spring, unexplained_v for a damper, and a
+    // second where its shape may also be read from another variable): the law is named only where none of them,
+    // added beside it, predicts held-out data better.
+    std::array<const char*, 2> rivals{};
 };
 
 struct Params;

@@ -20,7 +20,7 @@ const EffectLaw& constant_force_law() {
     static const EffectLaw law = [] {
         EffectLaw l{"constant_force", "a constant force along the rail (a tilted rail)", {"F0", nullptr}, {"N", nullptr}, {0.0}, force};
         l.fit = hint({0}, {1.0});
-        l.fit.rival = "unexplained_x";
+        l.fit.rivals = {"unexplained_x"};
         l.describe = describe;
         return l;
     }();

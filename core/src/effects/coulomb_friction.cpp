@@ -25,7 +25,7 @@ const EffectLaw& coulomb_friction_law() {
         EffectLaw l{"coulomb_friction", "a change of the dry rolling resistance, -dT sign(v)", {"dT", nullptr}, {"N", nullptr},
                     {0.0}, force};
         l.fit = hint({0}, {1.0});
-        l.fit.rival = "unexplained_v";
+        l.fit.rivals = {"unexplained_v"};
         l.fit.needs = FitNeeds::DryFriction;
         l.fit.absorbed_by = "T";
         l.describe = describe;

@@ -23,7 +23,7 @@ const EffectLaw& cubic_stiffness_law() {
         EffectLaw l{"cubic_stiffness", "a cubic stiffness term -k3 x^3 (hardening or softening springs)", {"k3", nullptr},
                     {"N/m^3", nullptr}, {0.0}, force};
         l.fit = hint({0}, {1.0});
-        l.fit.rival = "unexplained_x";
+        l.fit.rivals = {"unexplained_x"};
         l.fit.absorbed_by = "a3";
         l.describe = describe;
         return l;

@@ -30,6 +30,7 @@ const EffectLaw& sensor_delay_law();
 const EffectLaw& unexplained_x_law();
 const EffectLaw& unexplained_v_law();
 const EffectLaw& unexplained_x_signv_law();
+const EffectLaw& unexplained_x_v_law();
 const EffectLaw& unexplained_phi_law();
 const EffectLaw& unexplained_x_local_law();
 const EffectLaw& unexplained_v_local_law();

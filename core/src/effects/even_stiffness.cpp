@@ -21,7 +21,7 @@ const EffectLaw& even_stiffness_law() {
         EffectLaw l{"even_stiffness", "an even stiffness term -k2 x^2 (asymmetric magnets or springs)", {"k2", nullptr},
                     {"N/m^2", nullptr}, {0.0}, force};
         l.fit = hint({0}, {1.0});
-        l.fit.rival = "unexplained_x";
+        l.fit.rivals = {"unexplained_x"};
         l.describe = describe;
         return l;
     }();

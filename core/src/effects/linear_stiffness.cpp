@@ -17,7 +17,7 @@ const EffectLaw& linear_stiffness_law() {
     static const EffectLaw law = [] {
         EffectLaw l{"linear_stiffness", "a change of the spring rate, -dk x", {"dk", nullptr}, {"N/m", nullptr}, {0.0}, force};
         l.fit = hint({0}, {1.0});
-        l.fit.rival = "unexplained_x";
+        l.fit.rivals = {"unexplained_x"};
         l.fit.absorbed_by = "k";
         l.describe = describe;
         return l;

@@ -27,7 +27,7 @@ const EffectLaw& magnet_offset_law() {
     static const EffectLaw law = [] {
         EffectLaw l = magnet_effect_law("magnet_offset", "the fixed magnet sits d off x = 0 (misaligned magnets): F_mag acts at x - d",
                                         "d", "m", force, describe);
-        l.fit.rival = "unexplained_x";
+        l.fit.rivals = {"unexplained_x"};
         return l;
     }();
     return law;

@@ -24,7 +24,7 @@ const EffectLaw& phase_offset_law() {
         EffectLaw l{"phase_offset", "the unbalance leads the measured angle by delta (encoder mark off)", {"delta", nullptr},
                     {"rad", nullptr}, {0.0}, force};
         l.fit = hint({0}, {1e-4});
-        l.fit.rival = "unexplained_phi";
+        l.fit.rivals = {"unexplained_phi"};
         l.fit.needs = FitNeeds::Phi;
         l.describe = describe;
         return l;

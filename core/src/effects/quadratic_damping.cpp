@@ -23,7 +23,7 @@ const EffectLaw& quadratic_damping_law() {
         EffectLaw l{"quadratic_damping", "a resistance growing with the square of speed, -cq v|v|", {"cq", nullptr},
                     {"N s^2/m^2", nullptr}, {0.0}, force};
         l.fit = hint({0}, {1.0});
-        l.fit.rival = "unexplained_v";
+        l.fit.rivals = {"unexplained_v"};
         l.fit.lo[0] = 0.0;   // a resistance never pushes
         l.describe = describe;
         return l;

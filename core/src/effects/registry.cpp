@@ -41,6 +41,7 @@ std::vector<EffectLaw>& table() {
             effects::unexplained_x_law(),
             effects::unexplained_v_law(),
             effects::unexplained_x_signv_law(),
+            effects::unexplained_x_v_law(),
             effects::unexplained_phi_law(),
             effects::unexplained_x_local_law(),
             effects::unexplained_v_local_law(),

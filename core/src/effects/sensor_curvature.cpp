@@ -31,7 +31,7 @@ const EffectLaw& sensor_curvature_law() {
         l.curved = true;
         // As for a gain error: with fitted base parameters the curve and the springs trade against each other.
         l.fit = hint({0}, {1e-3});
-        l.fit.rival = "unexplained_x";
+        l.fit.rivals = {"unexplained_x", "unexplained_v"};
         l.fit.needs = FitNeeds::FixedBaseline;
         l.fit.lo[0] = -50.0;   // 1/m: 5 mm off at 10 mm, far beyond any usable sensor
         l.fit.hi[0] = 50.0;

@@ -22,7 +22,7 @@ const EffectLaw& sensor_gain_law() {
         l.kind = EffectKind::Sensor;
         // A gain error rescales every term of the equation: with fitted base parameters it is not identifiable.
         l.fit = hint({0}, {1e-3});
-        l.fit.rival = "unexplained_x";
+        l.fit.rivals = {"unexplained_x"};
         l.fit.needs = FitNeeds::FixedBaseline;
         l.fit.lo[0] = 0.5;
         l.fit.hi[0] = 2.0;

@@ -19,7 +19,7 @@ const EffectLaw& sensor_offset_law() {
                     {"m", nullptr}, {0.0}, force};
         l.kind = EffectKind::Sensor;
         l.fit = hint({0}, {1e-5});
-        l.fit.rival = "unexplained_x";
+        l.fit.rivals = {"unexplained_x"};
         l.fit.absorbed_by = "gain";
         l.measure = measure;
         l.describe = describe;

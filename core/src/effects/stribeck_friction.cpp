@@ -36,7 +36,7 @@ const EffectLaw& stribeck_friction_law() {
         // of a millisecond, so speeds below a few mm/s are out of reach (a "negative Stribeck" there only
         // smooths the friction step and is not physics).
         l.fit = hint({0, 1}, {1.0, 1e-4}, 1);
-        l.fit.rival = "unexplained_v";
+        l.fit.rivals = {"unexplained_v"};
         l.fit.starts = {0.005, 0.0075, 0.01, 0.015, 0.02, 0.03, 0.05, 0.075, 0.1};
         l.fit.n_starts = 9;
         l.fit.positive = true;

@@ -23,7 +23,7 @@ const EffectLaw& tangential_unbalance_law() {
         EffectLaw l{"tangential_unbalance", "the unbalance's tangential force -m0e phi'' cos(phi) (motor speed changes)",
                     {"scale", nullptr}, {"-", nullptr}, {1.0}, force};
         l.fit = hint({0}, {1.0});
-        l.fit.rival = "unexplained_phi";
+        l.fit.rivals = {"unexplained_phi"};
         l.fit.needs = FitNeeds::Phi | FitNeeds::SpeedChanges;
         l.describe = describe;
         return l;

@@ -21,7 +21,7 @@ const EffectLaw& unbalance_scale_law() {
     static const EffectLaw law = [] {
         EffectLaw l{"unbalance_scale", "the unbalance is (1 + s) m0e instead of m0e", {"s", nullptr}, {"-", nullptr}, {0.0}, force};
         l.fit = hint({0}, {1.0});
-        l.fit.rival = "unexplained_phi";
+        l.fit.rivals = {"unexplained_phi"};
         l.fit.needs = FitNeeds::Phi;
         l.fit.absorbed_by = "m0e";
         l.describe = describe;

@@ -3,6 +3,7 @@
 //   unexplained_x        F = S(x)                    S a cubic B-spline on [lo, hi], 6 coefficients [N]
 //   unexplained_v        F = S(v)                    (held constant outside [lo, hi])
 //   unexplained_x_signv  F = S(x) v/sqrt(v^2+eps^2)  (a position-dependent dry friction or hysteresis)
+//   unexplained_x_v      F = S(x) v                  (a damping that depends on position) [S in N s/m]
 //   unexplained_phi      F = sum_k a_k cos(k phi) + b_k sin(k phi), k = 1..3 [N]
 //   unexplained_x_local  F = S(x) over a narrow range where the residual has a feature (a rail defect)
 //   unexplained_v_local  F = S(v) likewise (a friction bump near v = 0)
@@ -60,6 +61,11 @@ EffectForce force_x_signv(const double* p, const ForceContext& c) {
     return {s.S * sg, s.dS * sg, s.S * dsg, 0.0};
 }
 
+EffectForce force_x_v(const double* p, const ForceContext& c) {
+    const Value s = spline(p, c.x);
+    return {s.S * c.v, s.dS * c.v, s.S, 0.0};
+}
+
 EffectForce force_phi(const double* p, const ForceContext& c) {
     double F = 0.0, dF = 0.0;
     for (int k = 1; k <= 3; ++k) {
@@ -73,18 +79,20 @@ EffectForce force_phi(const double* p, const ForceContext& c) {
 
 
 
-enum class Var { X, V, XSignV, Phi };
+enum class Var { X, V, XSignV, XV, Phi };
 
 // Where the fitted force is largest, and the sentence that names the variable it depends on.
 std::string describe_var(Var var, EffectForceFn force, const double* p, const EffectReportContext& c) {
     const char* name = var == Var::X ? "the position x" : var == Var::V ? "the velocity v" : var == Var::Phi ? "the unbalance angle phi"
-                                                                                                      : "the position x, with the sign of v";
+                     : var == Var::XV                                                                      ? "the position x, times v"
+                                                                                                           : "the position x, with the sign of v";
     const bool periodic = var == Var::Phi;
     const double lo = periodic ? 0.0 : p[0], hi = periodic ? 2 * kPi : p[1];
     double best = 0, at = lo;
     for (int k = 0; k <= 200; ++k) {
         const double q = lo + (hi - lo) * k / 200.0;
         ForceContext ctx{0.0, 0.0, 1.0, 0.0, 0.0, 0.0, c.model ? c.model->m0e : 0.0, c.model ? c.model->xI : 0.0};
+        if (var == Var::XV) ctx.v = 1.0;   // S(x) itself: the damping coefficient at x
         if (var == Var::V) ctx.v = q;
         else if (periodic) ctx.phi = q;
         else ctx.x = q;
@@ -96,6 +104,9 @@ std::string describe_var(Var var, EffectForceFn force, const double* p, const Ef
     }
     const std::string where = var == Var::V ? "v = " + fmt("%.3g", at) + " m/s" : periodic ? "phi = " + fmt("%.2f", at) + " rad"
                                                                                           : "x = " + fmt("%.3g", at * 1e3) + " mm";
+    if (var == Var::XV)
+        return "no library effect explains this part of the residual; a damping force S(x) v that depends on the position does, "
+               "its coefficient S up to " + fmt("%.2g", best) + " N s/m at " + where + ": the missing physics is a damping that varies along the rail";
     return std::string("no library effect explains this part of the residual; a smooth force of ") + name + " does, up to " +
            fmt("%.2g", best) + " N at " + where + (var == Var::XSignV ? " (for v > 0; reversed for v < 0)" : "") +
            ": the missing physics depends on " + name;
@@ -106,6 +117,7 @@ std::string describe_v(const double* p, const double*, const EffectReportContext
 std::string describe_x_signv(const double* p, const double*, const EffectReportContext& c) {
     return describe_var(Var::XSignV, force_x_signv, p, c);
 }
+std::string describe_x_v(const double* p, const double*, const EffectReportContext& c) { return describe_var(Var::XV, force_x_v, p, c); }
 std::string describe_phi(const double* p, const double*, const EffectReportContext& c) { return describe_var(Var::Phi, force_phi, p, c); }
 
 // The spline's range: where the data go (in the variable of the law).
@@ -133,6 +145,7 @@ constexpr Names kSpline{kSplineNames[0], kSplineNames[1], kSplineNames[2], kSpli
                         kSplineNames[4], kSplineNames[5], kSplineNames[6], kSplineNames[7]};
 constexpr Names kSplineXUnits{"m", "m", "N", "N", "N", "N", "N", "N"};
 constexpr Names kSplineVUnits{"m/s", "m/s", "N", "N", "N", "N", "N", "N"};
+constexpr Names kSplineXVUnits{"m", "m", "N s/m", "N s/m", "N s/m", "N s/m", "N s/m", "N s/m"};
 
 EffectLaw spline_law(const char* id, const char* meaning, const Names& units, EffectForceFn f, EffectDescribeFn d, EffectStartFn st) {
     EffectLaw l{id, meaning, kSpline, units, {0.0}, f};
@@ -167,6 +180,11 @@ const EffectLaw& unexplained_x_signv_law() {
     static const EffectLaw law =
         spline_law("unexplained_x_signv", "a force S(x) sign(v) (position-dependent friction) no named effect explains", kSplineXUnits,
                    force_x_signv, describe_x_signv, start_x);
+    return law;
+}
+const EffectLaw& unexplained_x_v_law() {
+    static const EffectLaw law = spline_law("unexplained_x_v", "a damping force S(x) v (a damping that varies along the rail) no named effect explains",
+                                            kSplineXVUnits, force_x_v, describe_x_v, start_x);
     return law;
 }
 const EffectLaw& unexplained_x_local_law() {

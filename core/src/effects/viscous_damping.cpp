@@ -18,7 +18,7 @@ const EffectLaw& viscous_damping_law() {
         EffectLaw l{"viscous_damping", "a change of the viscous bearing resistance, -dc v", {"dc", nullptr}, {"N s/m", nullptr},
                     {0.0}, force};
         l.fit = hint({0}, {1.0});
-        l.fit.rival = "unexplained_v";
+        l.fit.rivals = {"unexplained_v", "unexplained_x_v"};
         l.fit.absorbed_by = "c";
         l.describe = describe;
         return l;

@@ -137,7 +137,7 @@ struct HeldOutJudge {
     std::function<bool(const Compare&)> better;
     std::function<double(const std::vector<double>&)> rms;   // the held-out shooting RMS of an error set [m]
 };
-// shape.cpp: the last pass of 6, each named law kept against the generic term of its variable (fit.rival):
+// shape.cpp: the last pass of 6, each named law kept against the generic terms of its variables (fit.rivals):
 // replaced by it where the generic term beside it predicts held-out data better and does as well without it;
 // the generic term added beside it where both are needed. cur, e_cur and kept follow the changes.
 void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit_base, Model& cur, std::vector<double>& e_cur,

@@ -1,5 +1,5 @@
-// Stage 6, its last pass: each named law kept is held against the generic term of its variable (its law's
-// fit.rival), on held-out data. The law stands where the generic term beside it adds nothing. Where it adds:
+// Stage 6, its last pass: each named law kept is held against the generic terms of its variables (its law's
+// fit.rivals), on held-out data. The law stands where the generic term beside it adds nothing. Where it adds:
 // the generic term replaces the law if it does as well without it (an x^4 force read as an even stiffness),
 // and joins it if both are needed. Two or more laws of one variable together are a polynomial in it: they
 // stand only where they predict better than the generic term alone. A law beside its own generic term
@@ -30,10 +30,13 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
     if (e_cur.empty()) return;
     // The rivals in the order their laws were kept, each once.
     std::vector<std::string> rivals;
-    for (const FoundEffect& f : rep.effects_found) {
-        const EffectLaw* law = find_effect(f.id);
-        if (law && law->fit.rival && std::find(rivals.begin(), rivals.end(), law->fit.rival) == rivals.end()) rivals.push_back(law->fit.rival);
-    }
+    for (const FoundEffect& f : rep.effects_found)
+        if (const EffectLaw* law = find_effect(f.id))
+            for (const char* r : law->fit.rivals)
+                if (r && std::find(rivals.begin(), rivals.end(), r) == rivals.end()) rivals.push_back(r);
+    auto has_rival = [](const EffectLaw* law, const std::string& r) {
+        return law && std::any_of(law->fit.rivals.begin(), law->fit.rivals.end(), [&](const char* q) { return q && r == q; });
+    };
     auto in_model = [&](const Model& m, const std::string& id) {   // among the effects the fit added
         return std::any_of(m.p.effects.begin() + static_cast<std::ptrdiff_t>(fs.base.p.effects.size()), m.p.effects.end(),
                            [&](const EffectInstance& e) { return e.law->id == id; });
@@ -46,7 +49,7 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
         std::vector<std::string> ids;
         for (const FoundEffect& f : rep.effects_found) {
             const EffectLaw* law = find_effect(f.id);
-            if (law && law->fit.rival && rival == law->fit.rival && in_model(cur, f.id)) ids.push_back(f.id);
+            if (has_rival(law, rival) && in_model(cur, f.id)) ids.push_back(f.id);
         }
         if (ids.empty()) continue;
         std::string names;
