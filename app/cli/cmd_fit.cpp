@@ -188,6 +188,7 @@ int cmd_fit(const std::vector<std::string>& argv) {
                     w.side.empty() ? "side unclear" : w.side.c_str(), w.omega / (2 * 3.141592653589793), w.somega / (2 * 3.141592653589793),
                     w.k2, w.sk2);
     if (!r.wells_from_data.empty()) std::printf("wells from the data: %s\n", r.wells_from_data.c_str());
+    if (!r.well_frequency.empty()) std::printf("%s\n", r.well_frequency.c_str());
     const auto& wa = r.wells_after;
     if (wa.wells.size() == 2 && std::isfinite(wa.hill_x)) {
         const double s = r.metres() ? 1e3 : 1.0;

@@ -18,4 +18,5 @@ set(IMPACTLAB_IDENTIFY_TEST_SOURCES
   identify/drift_test.cpp
   identify/metamorphic_test.cpp
   identify/shape_test.cpp
+  identify/attractor_test.cpp
 )

@@ -269,6 +269,9 @@ struct FitReport {
     // Each run's well measured from the data, and what they say of an asymmetry (empty: not measured).
     std::vector<RunWell> data_wells;
     std::string wells_from_data;
+    // Where the record cannot pin its well's frequency (the model's and the data's own disagree, or k trades
+    // off against another parameter), the sentence that says so; empty otherwise.
+    std::string well_frequency;
     std::string gate_passed;
     std::vector<std::string> gate_within;   // printed errors that rose, within their scatter (said beside the table)
     // The fitted base parameters of the model written, with their standard errors, and the pairs the data

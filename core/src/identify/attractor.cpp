@@ -39,6 +39,37 @@ std::size_t well_changes(const std::vector<double>& x, double mid, double band) 
     return n;
 }
 
+namespace {
+// The fraction of the visits to either side of [mid - band, mid + band] in which the motion turns back at least
+// twice (by more than the band: noise does not turn it).
+double oscillating_visits(const std::vector<double>& x, double mid, double band) {
+    int side = 0, dir = 0, turns = 0;
+    double ext = 0;
+    std::size_t visits = 0, oscillating = 0;
+    for (double s : x) {
+        if (!std::isfinite(s)) continue;
+        const int at = s > mid + band ? 1 : s < mid - band ? -1 : 0;
+        if (at != 0 && at != side) {
+            if (side != 0) {
+                ++visits;
+                if (turns >= 2) ++oscillating;
+            }
+            side = dir = at;
+            turns = 0;
+            ext = s;
+        }
+        if (side == 0) continue;
+        if (dir * (s - ext) > 0) ext = s;   // still going the same way: the extremum moves on
+        else if (dir * (ext - s) > band) {   // turned back
+            ++turns;
+            dir = -dir;
+            ext = s;
+        }
+    }
+    return visits ? static_cast<double>(oscillating) / static_cast<double>(visits) : 0.0;
+}
+}  // namespace
+
 std::size_t well_changes(const std::vector<double>& x, const WellBand& wb) { return wb.found ? well_changes(x, wb.hilltop, wb.band) : 0; }
 
 namespace {
@@ -84,9 +115,14 @@ WellBand well_band(const std::vector<double>& x) {
     if (dip == left || dip == right || !(*dip < 0.5 * std::min(*left, *right))) return wb;
     const double bw = (hi - lo) / kBins;
     const double xl = lo + (static_cast<double>(left - sm.begin()) + 0.5) * bw, xr = lo + (static_cast<double>(right - sm.begin()) + 0.5) * bw;
+    const double hilltop = lo + (static_cast<double>(dip - sm.begin()) + 0.5) * bw, band = 0.15 * (xr - xl);
+    // A well is a place the motion oscillates in. A steady oscillation about one well also has two humps (the
+    // arcsine density of its turning points), but it visits each side for one swing only: a pair of wells
+    // needs some visits that turn back and forth inside one side (a chaotic cross-well record: 19-25 %).
+    if (oscillating_visits(v, hilltop, band) < 0.05) return wb;
     wb.found = true;
-    wb.hilltop = lo + (static_cast<double>(dip - sm.begin()) + 0.5) * bw;
-    wb.band = 0.15 * (xr - xl);
+    wb.hilltop = hilltop;
+    wb.band = band;
     return wb;
 }
 

@@ -175,4 +175,32 @@ std::string wells_asymmetry(const std::vector<RunWell>& wells, const std::string
     return buf;
 }
 
+std::string well_frequency_identifiability(const std::vector<RunWell>& wells, const WellReport& model_wells,
+                                           const std::vector<UnseparatedPair>& unseparated) {
+    const UnseparatedPair* traded = nullptr;
+    for (const UnseparatedPair& u : unseparated)
+        if (u.a == "k" || u.b == "k") traded = &u;
+    constexpr double kTwoPi = 2 * 3.141592653589793, kApart = 0.15;
+    std::string out;
+    for (const RunWell& w : wells) {
+        if (!(w.omega > 0) || !std::isfinite(w.somega)) continue;
+        const Well* near = nullptr;   // the model's well nearest the run's own
+        for (const Well& m : model_wells.wells)
+            if (m.omega > 0 && (!near || std::abs(m.x - w.x0) < std::abs(near->x - w.x0))) near = &m;
+        if (!near) continue;
+        const double apart = std::abs(near->omega - w.omega) / w.omega;
+        if (apart <= kApart && !traded) continue;
+        const std::string trade = traded ? ", and k trades off against " + (traded->a == "k" ? traded->b : traded->a) + " in the fit" : "";
+        char buf[400];
+        std::snprintf(buf, sizeof buf,
+                      "run %zu: the well's frequency is not identifiable from this record: the model written puts it at %.3g Hz, the "
+                      "run's own local law at %.3g +/- %.2g Hz (%.0f %% apart)%s. The record does not pin it (steady forcing at one "
+                      "frequency lets k trade off against the gain and the damping; a transient would separate them): neither "
+                      "value is a finding",
+                      w.run + 1, near->omega / kTwoPi, w.omega / kTwoPi, w.somega / kTwoPi, 100.0 * apart, trade.c_str());
+        out += (out.empty() ? "" : "; ") + std::string(buf);
+    }
+    return out;
+}
+
 }  // namespace impactlab::identify::detail

@@ -265,6 +265,10 @@ std::vector<std::pair<std::string, double>> remainder_dependence(const Prep& pr,
 // Each run's own well from its data (input-forced records only), and the sentence on the asymmetry they show.
 std::vector<RunWell> data_wells(const Prep& pr, int hac_lag);
 std::string wells_asymmetry(const std::vector<RunWell>& wells, const std::string& x_unit);
+// Whether the record pins its well's frequency: not where the model written and the run's own local law put it
+// more than 15 % apart, or where k and another base parameter trade off. The sentence, or empty.
+std::string well_frequency_identifiability(const std::vector<RunWell>& wells, const WellReport& model_wells,
+                                           const std::vector<UnseparatedPair>& unseparated);
 
 // ---- horizon.cpp ----------------------------------------------------------------------------------------
 // The record's predictability from the data alone: nearest returns of the measured trajectory in a delay

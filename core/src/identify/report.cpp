@@ -293,6 +293,7 @@ std::string markdown(const FitReport& r, bool with_plots) {
                << g3(w.k2, "%.3g") << " +/- " << g3(w.sk2, "%.2g") << " | " << (std::isfinite(w.depth) ? g3(w.depth, "%.3g") : std::string("-"))
                << " |\n";
         if (!r.wells_from_data.empty()) md << "\n" << r.wells_from_data << ".\n";
+        if (!r.well_frequency.empty()) md << "\n" << r.well_frequency << ".\n";
         md << "\n";
     }
     const auto& wa = r.wells_after;
@@ -504,6 +505,7 @@ std::string report_json_text(const FitReport& r) {
         j["data_wells"].push_back({{"run", w.run + 1}, {"side", w.side}, {"x0", num(w.x0)}, {"omega", num(w.omega)}, {"omega_sigma", num(w.somega)},
                                    {"k2", num(w.k2)}, {"k2_sigma", num(w.sk2)}, {"depth", num(w.depth)}});
     j["wells_from_data"] = r.wells_from_data;
+    j["well_frequency"] = r.well_frequency;
     j["base_parameters"] = json::array();
     for (const auto& b : r.base_estimates) j["base_parameters"].push_back({{"name", b.name}, {"value", num(b.value)}, {"sigma", num(b.sigma)}});
     j["unseparated"] = json::array();

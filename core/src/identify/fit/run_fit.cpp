@@ -214,6 +214,7 @@ FitReport run_fit(const MeasuredData& data, const Model& given, const FitOptions
     rep.data_wells = data_wells(pr, hac_lag);
     rep.wells_from_data = wells_asymmetry(rep.data_wells, rep.x_unit());
     rep.wells_after = well_report(after, rep.effects_found, pr);
+    rep.well_frequency = well_frequency_identifiability(rep.data_wells, rep.wells_after, rep.unseparated);
     // Never a report whose headline numbers are not numbers: name the first and refuse to hand it over.
     const std::pair<const char*, double> headline[] = {
         {"sensor noise", rep.sigma_x},
