@@ -84,8 +84,7 @@ enum class Var { X, V, XSignV, XV, Phi };
 // Where the fitted force is largest, and the sentence that names the variable it depends on.
 std::string describe_var(Var var, EffectForceFn force, const double* p, const EffectReportContext& c) {
     const char* name = var == Var::X ? "the position x" : var == Var::V ? "the velocity v" : var == Var::Phi ? "the unbalance angle phi"
-                     : var == Var::XV                                                                      ? "the position x, times v"
-                                                                                                           : "the position x, with the sign of v";
+                                                                                                      : "the position x, with the sign of v";
     const bool periodic = var == Var::Phi;
     const double lo = periodic ? 0.0 : p[0], hi = periodic ? 2 * kPi : p[1];
     double best = 0, at = lo;

@@ -26,12 +26,17 @@ double wasserstein1(std::vector<double> a, std::vector<double> b) {
 }  // namespace
 
 // Passages between the two wells: crossings of the band [mid - band, mid + band] from one side to the other.
+namespace {
+// Which side of the band [mid - band, mid + band] s is on: +1 above, -1 below, 0 inside.
+int band_side(double s, double mid, double band) { return s > mid + band ? 1 : s < mid - band ? -1 : 0; }
+}  // namespace
+
 std::size_t well_changes(const std::vector<double>& x, double mid, double band) {
     int side = 0;
     std::size_t n = 0;
     for (double v : x) {
         if (!std::isfinite(v)) continue;
-        const int s = v > mid + band ? 1 : v < mid - band ? -1 : 0;
+        const int s = band_side(v, mid, band);
         if (s == 0) continue;
         if (side != 0 && s != side) ++n;
         side = s;
@@ -48,7 +53,7 @@ double oscillating_visits(const std::vector<double>& x, double mid, double band)
     std::size_t visits = 0, oscillating = 0;
     for (double s : x) {
         if (!std::isfinite(s)) continue;
-        const int at = s > mid + band ? 1 : s < mid - band ? -1 : 0;
+        const int at = band_side(s, mid, band);
         if (at != 0 && at != side) {
             if (side != 0) {
                 ++visits;

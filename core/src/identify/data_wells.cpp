@@ -180,7 +180,7 @@ std::string well_frequency_identifiability(const std::vector<RunWell>& wells, co
     const UnseparatedPair* traded = nullptr;
     for (const UnseparatedPair& u : unseparated)
         if (u.a == "k" || u.b == "k") traded = &u;
-    constexpr double kTwoPi = 2 * 3.141592653589793, kApart = 0.15;
+    constexpr double kApart = 0.15;
     std::string out;
     for (const RunWell& w : wells) {
         if (!(w.omega > 0) || !std::isfinite(w.somega)) continue;
