@@ -306,7 +306,8 @@ int bench_identify(int n, unsigned seed, int record, const std::string& report) 
     };
     const Times t = timed([&] {
         const id::IdentifyBenchResult res = id::run_identify_bench(bo);
-        std::printf("\nfalse physical claims: %.1f %% of %zu records; null family: %zu claims in %zu records\n",
+        std::printf("\n(a law marked ? stays in the model, but the data do not resolve its shape from another law's: no claim)\n");
+        std::printf("false physical claims: %.1f %% of %zu records; null family: %zu claims in %zu records\n",
                     100.0 * res.false_claim_rate, res.rows.size() - res.errors, res.null_claims, res.null_records);
         std::printf("better (1-period shooting down 3x or to 1.5x the noise): %.1f %% of %zu records not at the noise before\n",
                     100.0 * res.better_rate, res.better_records);

@@ -162,8 +162,12 @@ int cmd_fit(const std::vector<std::string>& argv) {
         std::printf("%s: %zu samples, model %s (%s), sensor noise %.3g (%s)\n", printable(path).c_str(), r.samples, printable(r.before.p.name).c_str(),
                     identify::baseline_name(r.baseline), r.sigma_x, r.x_unit());
     if (r.effects_found.empty()) std::printf("effects found: none\n");
-    for (const auto& f : r.effects_found)
+    for (const auto& f : r.effects_found) {
         std::printf("effect %-22s explains %5.1f %%  z = %6.1f  %s\n", f.id.c_str(), 100 * f.explained_fraction, f.z, f.sentence.c_str());
+        if (!f.not_told_from.empty())
+            std::printf("       its shape is not resolved: the data do not tell it from %s (a force of this size, no finding of its law)\n",
+                        f.not_told_from.c_str());
+    }
     for (const auto& f : r.effects_rejected) std::printf("rejected %-22s %s\n", f.id.c_str(), f.reason.c_str());
     if (r.horizon_periods > 0)
         std::printf("validated on %zu held-out windows of %.3g forcing periods (within the predictability horizon): shooting RMS %.3g -> %.3g %s\n",

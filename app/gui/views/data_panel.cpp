@@ -282,7 +282,9 @@ void DataPanel::draw_effects() {
         }
         ImGui::Indent();
         ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-        text_wrapped_at_spaces((f.sentence + " (" + identify::evidence_name(f.evidence) + ")").c_str());
+        text_wrapped_at_spaces((f.sentence + " (" + identify::evidence_name(f.evidence) + ")" +
+                                (f.not_told_from.empty() ? std::string() : "; its shape is not resolved from " + f.not_told_from + ", so its law is no finding"))
+                                   .c_str());
         ImGui::PopStyleColor();
         ImGui::Unindent();
     }

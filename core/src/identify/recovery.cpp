@@ -54,7 +54,7 @@ RecoveryResult run_recovery(const RecoveryCase& c, double duration, unsigned see
     if (rep.effects_found.empty()) return r;
     const FoundEffect& f = rep.effects_found.front();
     r.first = f.id;
-    r.named_first = f.id == c.effect;
+    r.named_first = f.id == c.effect && f.not_told_from.empty();
     for (const auto& [k, v] : f.parameters)
         if (k == c.param) r.estimate = v;
     for (const auto& [k, v] : f.sigma)

@@ -233,10 +233,13 @@ std::string markdown(const FitReport& r, bool with_plots) {
     } else {
         int k = 1;
         for (const auto& f : r.effects_found) {
-            md << k++ << ". **" << f.id << "** (explains " << g3(100 * f.explained_fraction, "%.1f") << " % of the "
+            md << k++ << ". **" << f.id << "**" << (f.not_told_from.empty() ? "" : ", its shape not resolved,") << " (explains " << g3(100 * f.explained_fraction, "%.1f") << " % of the "
                << (f.evidence == Evidence::ImpactLaw ? "impact-law error" : f.evidence == Evidence::StrayImpacts ? "reversals" : "residual") << ", z = " << g3(f.z, "%.1f") << "): "
                << f.sentence << ". Held-out simulation error " << g3(-100 * f.validation_gain, "%+.1f") << " % (paired z = "
-               << g3(f.validation_z, "%.1f") << ").\n";
+               << g3(f.validation_z, "%.1f") << ")."
+               << (f.not_told_from.empty() ? "" : " The data do not tell its shape from " + f.not_told_from +
+                                                      ": a force of this size, kept because it predicts best, and no finding of this law.")
+               << "\n";
         }
         md << "\n";
     }
@@ -458,6 +461,8 @@ std::string report_json_text(const FitReport& r) {
         e["sentence"] = f.sentence;
         e["validation_gain"] = num(f.validation_gain);
         e["validation_z"] = num(f.validation_z);
+        e["shape_resolved"] = f.not_told_from.empty();
+        if (!f.not_told_from.empty()) e["not_told_from"] = f.not_told_from;
         j["effects_found"].push_back(e);
     }
     j["candidates"] = json::array();

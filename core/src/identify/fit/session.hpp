@@ -181,8 +181,10 @@ Knob base_change_knob(const Candidate& c, Model& m, const Model& base);
 // The value of a base-changing candidate's parameter in model m (what it moved from the base model).
 double base_change(const Candidate& c, const Model& m, const Model& base);
 // Knobs of the effects a fit added to model m (the effects after base's, and a base parameter a
-// base-changing candidate moved), as their candidates fit them.
-std::vector<Knob> found_effect_knobs(Model& m, const Model& base, const std::vector<Candidate>& cands);
+// base-changing candidate moved), as their candidates fit them. With `owner`: each knob's index in
+// m.p.effects (SIZE_MAX for a base parameter).
+std::vector<Knob> found_effect_knobs(Model& m, const Model& base, const std::vector<Candidate>& cands,
+                                     std::vector<std::size_t>* owner = nullptr);
 // Why a model is not physical, or empty: what a fit must never write.
 std::string unphysical(const Model& m);
 ImpactLawError impact_error(const Prep& pr, const PredictedImpacts& pred);

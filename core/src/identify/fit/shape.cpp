@@ -22,6 +22,75 @@ Model fitted_whole(const FitSession& fs, const Model& m, bool refit_base) {
     }
     return out;
 }
+
+// How far each group of the model's added effects stands out of the whole record's equation error, all of
+// them refitted together (the base too where the stage refits it): the z of the sum of squares a group's
+// linear parameters remove, from their null values, with the others refitted (group_z_dss).
+std::vector<double> equation_z(const FitSession& fs, const Model& m, bool refit_base, const std::vector<std::vector<std::string>>& groups) {
+    Model out = m;
+    std::vector<std::size_t> owner;
+    std::vector<Knob> knobs = found_effect_knobs(out, fs.base, fs.screen.cands, &owner);
+    if (refit_base)
+        for (const Knob& k : base_knobs(out, fs.base_names, fs.prep)) {
+            knobs.push_back(k);
+            owner.push_back(SIZE_MAX);
+        }
+    std::vector<double> z(groups.size(), 0.0);
+    Eigen::VectorXd R;
+    Eigen::MatrixXd J;
+    lm_residual(fs.prep, out, knobs, 20, R, J);
+    if (!R.allFinite() || !J.allFinite() || J.cols() != static_cast<Eigen::Index>(knobs.size())) return z;
+    for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+        std::vector<int> sub;
+        std::vector<double> delta;
+        for (std::size_t k = 0; k < knobs.size(); ++k) {
+            if (owner[k] == SIZE_MAX) continue;
+            const EffectInstance& e = out.p.effects[owner[k]];
+            if (std::find(groups[gi].begin(), groups[gi].end(), e.law->id) == groups[gi].end()) continue;
+            const auto c = std::find_if(fs.screen.cands.begin(), fs.screen.cands.end(), [&](const Candidate& q) { return q.law == e.law; });
+            if (c == fs.screen.cands.end()) continue;
+            const auto i = static_cast<int>(knobs[k].value - e.p.data());
+            const bool linear = std::any_of(c->linear.begin(), c->linear.end(), [&](int li) { return c->free[static_cast<std::size_t>(li)] == i; });
+            if (!linear) continue;
+            sub.push_back(static_cast<int>(k));
+            delta.push_back(*knobs[k].value - start_instance(*c, out, fs.prep, 0.0).p[static_cast<std::size_t>(i)]);
+        }
+        if (!sub.empty())
+            z[gi] = group_z_dss(J, R, sub, Eigen::Map<const Eigen::VectorXd>(delta.data(), static_cast<Eigen::Index>(delta.size())),
+                                2 * fs.hac_lag);
+    }
+    return z;
+}
+
+// A law of the same variable (one sharing a rival) that law `id` is not told from in the whole record's
+// equation error: fitted beside it, `id` adds nothing out of the noise. Among the three that explained most
+// alone in the screening; empty when `id` stands beside each.
+std::pair<std::string, double> sibling_alike(const FitSession& fs, const Model& cur, bool refit_base, const std::string& id) {
+    const EffectLaw* law = find_effect(id);
+    if (!law) return {};
+    auto shares_rival = [&](const EffectLaw* other) {
+        for (const char* a : law->fit.rivals)
+            for (const char* b : other->fit.rivals)
+                if (a && b && std::string(a) == b) return true;
+        return false;
+    };
+    std::vector<std::pair<double, const Candidate*>> sib;
+    for (const Candidate& c : fs.screen.cands) {
+        if (!c.law || c.generic || c.law == law || !shares_rival(c.law)) continue;
+        if (std::any_of(cur.p.effects.begin(), cur.p.effects.end(), [&](const EffectInstance& e) { return e.law == c.law; })) continue;
+        const auto sc = std::find_if(fs.rep.candidates.begin(), fs.rep.candidates.end(), [&](const CandidateScore& q) { return q.id == c.id; });
+        if (sc != fs.rep.candidates.end() && sc->cv_gain > 0) sib.push_back({sc->cv_gain, &c});
+    }
+    std::sort(sib.begin(), sib.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    if (sib.size() > 3) sib.resize(3);
+    for (const auto& [gain, c] : sib) {
+        Model m = cur;
+        m.p.effects.push_back(start_instance(*c, cur, fs.prep, c->starts.empty() ? 0.0 : c->starts.front()));
+        const double z = equation_z(fs, m, refit_base, {{id}})[0];
+        if (z < fs.o.z_threshold) return {c->id, z};
+    }
+    return {};
+}
 }  // namespace
 
 void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit_base, Model& cur, std::vector<double>& e_cur,
@@ -102,13 +171,35 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
             rep.notes.push_back(note);
             kept.push_back({names + " replaced by " + rival, cur, rep.effects_found, judge.rms(e_cur), false});
         };
+        // A law that stays in the model although the data do not tell its shape from `from`: a force of its
+        // size, no finding of its law (in the report and in every step the final gate may go back to).
+        auto mark_unresolved = [&](const std::string& id, const std::string& from, const std::string& why) {
+            auto mark = [&](std::vector<FoundEffect>& found) {
+                for (FoundEffect& f : found)
+                    if (f.id == id) f.not_told_from = from;
+            };
+            mark(rep.effects_found);
+            for (ChainStep& st : kept) mark(st.found);
+            rep.notes.push_back(id + " " + why + ", but the data do not tell its shape from " + from + ": it stays as a force of its size, and its law is no finding");
+        };
+        // Laws that stand (beside the generic term, or together) are still findings only where the data tell
+        // each from the other laws of its variable.
+        auto siblings_resolved = [&](const std::string& why) {
+            for (const std::string& id : ids) {
+                const std::string sibling = sibling_alike(fs, cur, refit_base, id).first;
+                if (!sibling.empty()) mark_unresolved(id, sibling, why);
+            }
+        };
         char buf[320];
         if (in_model(cur, rival)) {
             // Beside the generic term of their variable, which spans their shapes, the named laws must still add.
             const Model alone = without_named(cur);
             const std::vector<double> e_alone = judge.errors(alone);
             const Compare c = judge.compare(e_alone, e_cur);
-            if (judge.better(c)) continue;
+            if (judge.better(c)) {
+                siblings_resolved("adds to the generic " + rival + " on held-out data");
+                continue;
+            }
             std::snprintf(buf, sizeof buf, "beside the generic %s it adds nothing on held-out data (error %s by %.2f %%, paired z = %.1f): "
                           "the data show a shape, not this law", rival.c_str(), c.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(c.gain), c.z);
             give_way(alone, e_alone, judge.compare(e_cur, e_alone), buf,
@@ -121,8 +212,36 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
         alone.p.effects.push_back(g0);
         const std::vector<double> e_both = judge.errors(both);
         const Compare added = judge.compare(e_cur, e_both);
-        // One law whose rival adds nothing beside it stands; only otherwise is the rival alone worth judging.
-        if (!judge.better(added) && ids.size() < 2) continue;
+        if (!judge.better(added) && ids.size() < 2) {
+            // The held-out shooting cannot tell them apart; the whole record's equation error, with the law
+            // refitted beside the generic term, can: the law stands unless the generic term stands out there and
+            // the law adds nothing beside it (x^5 read as a cubic spring), and held-out data prefer it no more.
+            const std::vector<double> z = equation_z(fs, both, refit_base, {{rival}, ids});
+            const bool other_shape = z[0] >= fs.o.z_threshold && z[1] < fs.o.z_threshold;
+            // Nor is a shape resolved that a law of the same variable explains as well (v|v| against v on a
+            // faint force of v): the data show a force of that variable, not this law.
+            const auto [sibling, z_sib] = other_shape ? std::pair<std::string, double>{} : sibling_alike(fs, cur, refit_base, ids[0]);
+            if (!other_shape && sibling.empty()) continue;
+            const std::vector<double> e_alone = judge.errors(alone);
+            if (judge.better(judge.compare(e_alone, e_cur))) {   // held-out data prefer the law: it stays, unresolved
+                mark_unresolved(ids[0], other_shape ? "the generic " + rival : sibling, "predicts held-out data better than the generic " + rival);
+                continue;
+            }
+            if (other_shape) {
+                std::snprintf(buf, sizeof buf, "beside it the generic %s stands out of the whole record's equation error (z = %.1f) and it adds "
+                              "nothing beside the generic (z = %.1f): the data show a shape this law does not have", rival.c_str(), z[0], z[1]);
+                give_way(alone, e_alone, judge.compare(e_cur, e_alone), buf,
+                         names + " left a shape in its variable that the generic " + rival + " follows in the whole record's equation error, where " +
+                             names + " adds nothing beside it: the generic stands and no physics is named for it");
+            } else {
+                std::snprintf(buf, sizeof buf, "beside %s it adds nothing out of the noise of the whole record's equation error (z = %.1f): "
+                              "the data do not resolve its shape", sibling.c_str(), z_sib);
+                give_way(alone, e_alone, judge.compare(e_cur, e_alone), buf,
+                         "the data do not tell " + names + " from " + sibling + ": a force of the same variable whose shape they do not resolve, "
+                             "so the generic " + rival + " stands and no physics is named for it");
+            }
+            continue;
+        }
         const std::vector<double> e_alone = judge.errors(alone);
         const Compare replaced = judge.compare(e_cur, e_alone);
         if (judge.better(added)) {
@@ -136,6 +255,7 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
                 rep.notes.push_back("a smooth force of the same variable beside " + names + " predicts held-out data better: " + rival +
                                     " added for the shape they leave");
                 kept.push_back({"added " + rival + " beside " + names, cur, rep.effects_found, judge.rms(e_cur), false});
+                siblings_resolved("stands beside the generic " + rival);
                 continue;
             }
             // The generic term alone does as well as both: the data do not single out the named laws.
@@ -156,6 +276,8 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
             give_way(alone, e_alone, replaced, buf,
                      names + " together predict held-out data no better than the generic " + rival +
                          ": the generic stands and no physics is named for them");
+        } else {
+            siblings_resolved("predicts held-out data better, with " + names + ", than the generic " + rival);
         }
     }
 }

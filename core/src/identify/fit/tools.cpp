@@ -207,16 +207,18 @@ Knob base_change_knob(const Candidate& c, Model& m, const Model& base) {
 
 double base_change(const Candidate& c, const Model& m, const Model& base) { return base_value(m, c.base) - base_value(base, c.base); }
 
-std::vector<Knob> found_effect_knobs(Model& m, const Model& base, const std::vector<Candidate>& cands) {
+std::vector<Knob> found_effect_knobs(Model& m, const Model& base, const std::vector<Candidate>& cands, std::vector<std::size_t>* owner) {
     std::vector<Knob> knobs;
     for (std::size_t k = base.p.effects.size(); k < m.p.effects.size(); ++k)
         for (const auto& c : cands)
             if (c.law && c.id == m.p.effects[k].law->id) {
                 effect_knobs(c, m.p.effects[k], knobs);
+                if (owner) owner->resize(knobs.size(), k);
                 break;
             }
     for (const auto& c : cands)
         if (c.base && base_change(c, m, base) != 0.0) knobs.push_back(base_change_knob(c, m, base));
+    if (owner) owner->resize(knobs.size(), SIZE_MAX);
     return knobs;
 }
 
