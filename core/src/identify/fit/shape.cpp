@@ -9,6 +9,8 @@
 namespace impactlab::identify::detail {
 
 namespace {
+// The least share of the law's remaining equation error a generic term beside it must take to show another shape.
+constexpr double kOtherShapeShare = 0.02;
 // The model's force effects fitted on the whole record's equation error (a generic term enters at zero).
 Model fitted_whole(const FitSession& fs, const Model& m, bool refit_base) {
     Model out = m;
@@ -25,8 +27,10 @@ Model fitted_whole(const FitSession& fs, const Model& m, bool refit_base) {
 
 // How far each group of the model's added effects stands out of the whole record's equation error, all of
 // them refitted together (the base too where the stage refits it): the z of the sum of squares a group's
-// linear parameters remove, from their null values, with the others refitted (group_z_dss).
-std::vector<double> equation_z(const FitSession& fs, const Model& m, bool refit_base, const std::vector<std::vector<std::string>>& groups) {
+// linear parameters remove, from their null values, with the others refitted (group_z_dss); with `sse`, the
+// sum of squares of the equation error all of them leave.
+std::vector<double> equation_z(const FitSession& fs, const Model& m, bool refit_base, const std::vector<std::vector<std::string>>& groups,
+                               double* sse = nullptr) {
     Model out = m;
     std::vector<std::size_t> owner;
     std::vector<Knob> knobs = found_effect_knobs(out, fs.base, fs.screen.cands, &owner);
@@ -40,6 +44,7 @@ std::vector<double> equation_z(const FitSession& fs, const Model& m, bool refit_
     Eigen::MatrixXd J;
     lm_residual(fs.prep, out, knobs, 20, R, J);
     if (!R.allFinite() || !J.allFinite() || J.cols() != static_cast<Eigen::Index>(knobs.size())) return z;
+    if (sse) *sse = R.squaredNorm();
     for (std::size_t gi = 0; gi < groups.size(); ++gi) {
         std::vector<int> sub;
         std::vector<double> delta;
@@ -216,8 +221,15 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
             // The held-out shooting cannot tell them apart; the whole record's equation error, with the law
             // refitted beside the generic term, can: the law stands unless the generic term stands out there and
             // the law adds nothing beside it (x^5 read as a cubic spring), and held-out data prefer it no more.
-            const std::vector<double> z = equation_z(fs, both, refit_base, {{rival}, ids});
-            const bool other_shape = z[0] >= fs.o.z_threshold && z[1] < fs.o.z_threshold;
+            double sse_both = NAN;
+            const std::vector<double> z = equation_z(fs, both, refit_base, {{rival}, ids}, &sse_both);
+            // And by a share that matters: a long clean record puts a generic term out of the noise on the
+            // smallest remainder (a sensor offset explaining 97 % leaves one), not only on another shape.
+            Eigen::VectorXd R_cur;
+            std::vector<double> pw;
+            residual(fs.prep, cur, R_cur, pw);
+            const double share = (R_cur.squaredNorm() - sse_both) / R_cur.squaredNorm();
+            const bool other_shape = z[0] >= fs.o.z_threshold && z[1] < fs.o.z_threshold && share >= kOtherShapeShare;
             // Nor is a shape resolved that a law of the same variable explains as well (v|v| against v on a
             // faint force of v): the data show a force of that variable, not this law.
             const auto [sibling, z_sib] = other_shape ? std::pair<std::string, double>{} : sibling_alike(fs, cur, refit_base, ids[0]);
