@@ -3,7 +3,11 @@
 // the generic term replaces the law if it does as well without it (an x^4 force read as an even stiffness),
 // and joins it if both are needed. Two or more laws of one variable together are a polynomial in it: they
 // stand only where they predict better than the generic term alone. A law beside its own generic term
-// (which spans its shape) must still add to it.
+// (which spans its shape) must still add to it. Where held-out shooting cannot tell shapes apart, the whole
+// record's equation error does: a law is a finding only where its shape is resolved there (equation_z,
+// sibling_alike); otherwise it gives way to the generic term, or stays marked as a force of its size.
+#include <optional>
+
 #include "identify/fit/session.hpp"
 
 namespace impactlab::identify::detail {
@@ -45,6 +49,8 @@ std::vector<double> equation_z(const FitSession& fs, const Model& m, bool refit_
     lm_residual(fs.prep, out, knobs, 20, R, J);
     if (!R.allFinite() || !J.allFinite() || J.cols() != static_cast<Eigen::Index>(knobs.size())) return z;
     if (sse) *sse = R.squaredNorm();
+    // Each effect's null instance, once (a start takes the data's quantiles).
+    std::vector<std::optional<EffectInstance>> nulls(out.p.effects.size());
     for (std::size_t gi = 0; gi < groups.size(); ++gi) {
         std::vector<int> sub;
         std::vector<double> delta;
@@ -58,7 +64,9 @@ std::vector<double> equation_z(const FitSession& fs, const Model& m, bool refit_
             const bool linear = std::any_of(c->linear.begin(), c->linear.end(), [&](int li) { return c->free[static_cast<std::size_t>(li)] == i; });
             if (!linear) continue;
             sub.push_back(static_cast<int>(k));
-            delta.push_back(*knobs[k].value - start_instance(*c, out, fs.prep, 0.0).p[static_cast<std::size_t>(i)]);
+            std::optional<EffectInstance>& null = nulls[owner[k]];
+            if (!null) null = start_instance(*c, out, fs.prep, 0.0);
+            delta.push_back(*knobs[k].value - null->p[static_cast<std::size_t>(i)]);
         }
         if (!sub.empty())
             z[gi] = group_z_dss(J, R, sub, Eigen::Map<const Eigen::VectorXd>(delta.data(), static_cast<Eigen::Index>(delta.size())),
@@ -225,11 +233,13 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
             const std::vector<double> z = equation_z(fs, both, refit_base, {{rival}, ids}, &sse_both);
             // And by a share that matters: a long clean record puts a generic term out of the noise on the
             // smallest remainder (a sensor offset explaining 97 % leaves one), not only on another shape.
-            Eigen::VectorXd R_cur;
-            std::vector<double> pw;
-            residual(fs.prep, cur, R_cur, pw);
-            const double share = (R_cur.squaredNorm() - sse_both) / R_cur.squaredNorm();
-            const bool other_shape = z[0] >= fs.o.z_threshold && z[1] < fs.o.z_threshold && share >= kOtherShapeShare;
+            auto share_taken = [&] {
+                Eigen::VectorXd R_cur;
+                std::vector<double> pw;
+                residual(fs.prep, cur, R_cur, pw);
+                return (R_cur.squaredNorm() - sse_both) / R_cur.squaredNorm();
+            };
+            const bool other_shape = z[0] >= fs.o.z_threshold && z[1] < fs.o.z_threshold && share_taken() >= kOtherShapeShare;
             // Nor is a shape resolved that a law of the same variable explains as well (v|v| against v on a
             // faint force of v): the data show a force of that variable, not this law.
             const auto [sibling, z_sib] = other_shape ? std::pair<std::string, double>{} : sibling_alike(fs, cur, refit_base, ids[0]);
