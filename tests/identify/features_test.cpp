@@ -1,6 +1,8 @@
 // Narrow features the library has no name for: a bump in the rail 2 mm wide. The residual shows it in a few
 // bins of x; the local generic term puts its knots there, follows it to near the noise, and no named effect
 // is claimed for it. A record without one shows no feature, so the local terms are never offered there.
+// A spring rate that cycles in time is found at its period, followed by the cycling generic term, and named
+// no drift.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -71,6 +73,7 @@ TEST_CASE("features: records without a narrow feature show none") {
         id::detail::locate_features(pr, m, R);
         CHECK_FALSE(pr.x_feature.found());
         CHECK_FALSE(pr.v_feature.found());
+        CHECK_FALSE(pr.cycle.found());
     }
 }
 
@@ -106,4 +109,55 @@ TEST_CASE("features: a friction bump near v = 0 of a shape the library lacks is 
     CHECK(r.error_after.shooting_rms_1_m < 0.4 * r.error_before.shooting_rms_1_m);
     // The shape it could not follow is not called noise.
     CHECK(r.verdict.find("misses something") != std::string::npos);
+}
+
+namespace {
+// A spring rate that cycles: F = -dk sin(2 pi t / P) x (p: dk [N/m], P [s]). Never screened.
+EffectForce cycling_k(const double* p, const ForceContext& c) {
+    const double w = 2.0 * impactlab::effects::kPi / p[1], s = std::sin(w * c.t);
+    return {-p[0] * s * c.x, -p[0] * s, 0.0, -p[0] * w * std::cos(w * c.t) * c.x};
+}
+EffectLaw cycling_k_law() {
+    return EffectLaw{"test_cycling_k", "a spring rate that cycles", {"dk", "P", nullptr}, {"N/m", "s", nullptr}, {0.0, 1.0}, cycling_k};
+}
+double param(const id::FoundEffect& e, const std::string& name) {
+    for (const auto& [n, v] : e.parameters)
+        if (n == name) return v;
+    return NAN;
+}
+}  // namespace
+
+TEST_CASE("features: a spring rate cycling with a 5 s period is found at its period and followed, no drift named") {
+    const impactlab::effects::ScopedEffectLaw added(cycling_k_law());
+    id::Model truth = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
+    const double dk = 40.0, P = 5.0;   // 3.6 % of k
+    id::apply_effect(truth, "test_cycling_k", {{"dk", dk}, {"P", P}});
+    const id::MeasuredData data = id::synthesize(truth, short_run(5));
+    const id::Model given = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
+    {
+        std::vector<std::string> notes;
+        id::FitOptions o;
+        id::detail::Prep pr = id::detail::prepare(data, given, o, notes);
+        Eigen::VectorXd R;
+        std::vector<double> pw;
+        id::detail::residual(pr, given, R, pw);
+        id::detail::locate_features(pr, given, R);
+        REQUIRE(pr.cycle.found());
+        CHECK(pr.cycle.period == doctest::Approx(P).epsilon(0.05));   // the grid's spacing at 5 s over 20 s
+    }
+    id::FitOptions fo;
+    fo.plots = false;
+    const id::FitReport r = id::run_fit(data, given, fo);
+    CAPTURE(r.verdict);
+    CAPTURE(r.error_before.shooting_rms_1_m);
+    CAPTURE(r.error_after.shooting_rms_1_m);
+    REQUIRE(r.effects_found.size() == 1);
+    const id::FoundEffect& e = r.effects_found[0];
+    CHECK(e.id == "unexplained_x_cycle");
+    CHECK(param(e, "P") == doctest::Approx(P).epsilon(0.01));
+    // -dk sin(w t) = -(a sin + b cos) at t0 = 0: a = dk, b = 0.
+    CHECK(std::hypot(param(e, "a"), param(e, "b")) == doctest::Approx(dk).epsilon(0.1));
+    CHECK(e.sentence.find("cycles in time") != std::string::npos);
+    CHECK(r.error_after.shooting_rms_1_m < 0.3 * r.error_before.shooting_rms_1_m);
+    CHECK(r.error_after.shooting_rms_1_m < 2.0 * r.sigma_x);
 }

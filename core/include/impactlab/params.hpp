@@ -74,6 +74,7 @@ struct FitNeeds {
     static constexpr unsigned FixedBaseline = 16; // only when the base parameters are not fitted
     static constexpr unsigned XFeature = 32;      // the residual shows a narrow feature in x (identify/features.cpp)
     static constexpr unsigned VFeature = 64;      // ... in v
+    static constexpr unsigned Cycle = 128;        // the residual's spring rate cycles slowly (identify/features.cpp)
 };
 
 inline constexpr std::array<double, kMaxLawParams> kUnboundedBelow{-1e12, -1e12, -1e12, -1e12, -1e12, -1e12, -1e12, -1e12};
@@ -117,6 +118,7 @@ struct EffectStartContext {
     double x_lo = 0, x_hi = 0, v_lo = 0, v_hi = 0, start = 0;
     // Where the residual shows its narrowest strong feature in x and in v (lo == hi: none), true coordinates.
     double x_feature_lo = 0, x_feature_hi = 0, v_feature_lo = 0, v_feature_hi = 0;
+    double cycle_period = 0;   // [s] the period of a slow cycle of the residual's spring rate (0: none)
 };
 using EffectStartFn = void (*)(double* p, const EffectStartContext& c);
 // A sensor effect: what the sensor reads for the true position x (affine in x, unless the law is `curved`).

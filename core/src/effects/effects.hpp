@@ -34,6 +34,7 @@ const EffectLaw& unexplained_x_v_law();
 const EffectLaw& unexplained_phi_law();
 const EffectLaw& unexplained_x_local_law();
 const EffectLaw& unexplained_v_local_law();
+const EffectLaw& unexplained_x_cycle_law();
 
 // A law added to the registry for this object's lifetime, after the table's own. The test that adding an
 // effect is one file plus one registry line adds one this way; no simulation or fit may run meanwhile on

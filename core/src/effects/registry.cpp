@@ -45,6 +45,7 @@ std::vector<EffectLaw>& table() {
             effects::unexplained_phi_law(),
             effects::unexplained_x_local_law(),
             effects::unexplained_v_local_law(),
+            effects::unexplained_x_cycle_law(),
         };
         t.reserve(t.size() + kSpare);
         return t;

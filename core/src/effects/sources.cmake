@@ -23,4 +23,5 @@ set(IMPACTLAB_EFFECT_SOURCES
   src/effects/sensor_curvature.cpp
   src/effects/sensor_delay.cpp
   src/effects/unexplained.cpp
+  src/effects/unexplained_cycle.cpp
 )

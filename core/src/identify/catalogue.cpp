@@ -203,6 +203,7 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
         if ((h.needs & FitNeeds::FixedBaseline) && o.fit_baseline) continue;
         if ((h.needs & FitNeeds::XFeature) && !pr.x_feature.found()) continue;
         if ((h.needs & FitNeeds::VFeature) && !pr.v_feature.found()) continue;
+        if ((h.needs & FitNeeds::Cycle) && !pr.cycle.found()) continue;
         if (h.absorbed_by && fitted(h.absorbed_by)) continue;
         Candidate c;
         c.id = id;
@@ -251,7 +252,8 @@ EffectInstance start_instance(const Candidate& c, const Model& m, const Prep& pr
                                pr.x_feature.lo,
                                pr.x_feature.hi,
                                pr.v_feature.lo,
-                               pr.v_feature.hi};
+                               pr.v_feature.hi,
+                               pr.cycle.period};
         c.law->start(e.p.data(), ctx);
     }
     // A law with a time origin (the drifts) measures time from the record's start, so a record on a late clock

@@ -2,7 +2,8 @@
 // generic force with its knots spread over the whole travel cannot follow one; the local generic terms put
 // theirs where this finds it. The residual is binned against the variable; a feature is a run of bins whose
 // means stand out of a running median of their neighbours (so a smooth trend, which the other terms take,
-// is not one), by far more than their scatter.
+// is not one), by far more than their scatter. It also finds a slow cycle of the spring rate in the residual,
+// where the cycling generic term starts its period.
 #include <algorithm>
 #include <cmath>
 
@@ -88,6 +89,48 @@ Prep::Feature narrow_feature(const std::vector<double>& s, const Eigen::VectorXd
     return f;
 }
 
+// A slow cycle of the spring rate: the residual's part x S(t), S periodic. For each trial frequency (a
+// 4-times oversampled grid from 1.5 cycles of the record to one cycle in 6 forcing periods) the sum of squares
+// that x sin and x cos remove beside x and x t (the spring rate and its drift, which other terms take). The
+// peak counts against the grid's median, the periodogram's own noise level (a chi-square of 2 degrees each).
+constexpr double kMinCycles = 1.5;      // slower is a drift, which the drift laws take
+constexpr double kMinPeriods = 6.0;     // faster is no slow change of the spring but the motion's own harmonics
+constexpr double kCycleChi2 = 25.0;     // the peak against the noise level (a chance of e^-12.5 per frequency)
+constexpr int kMinFrequencies = 12;     // below this the median is no noise level
+constexpr std::size_t kCycleRows = 20000;   // rows used at most (the residual is correlated over a window anyway)
+
+Prep::Cycle slow_cycle(const std::vector<double>& t, const std::vector<double>& x, const Eigen::VectorXd& R, double period) {
+    Prep::Cycle c;
+    const std::size_t n = t.size();
+    if (n < 200 || !(period > 0)) return c;
+    const double T = t.back() - t.front(), tm = 0.5 * (t.front() + t.back());
+    const double f_lo = kMinCycles / T, f_hi = 1.0 / (kMinPeriods * period), df = 1.0 / (4.0 * T);
+    if (!(T > 0) || !(f_hi > f_lo) || (f_hi - f_lo) / df < kMinFrequencies) return c;
+    const std::size_t stride = std::max<std::size_t>(1, n / kCycleRows);
+    std::vector<double> freqs, dss;
+    for (double f = f_lo; f <= f_hi; f += df) {
+        Eigen::Matrix4d G = Eigen::Matrix4d::Zero();
+        Eigen::Vector4d b = Eigen::Vector4d::Zero();
+        for (std::size_t i = 0; i < n; i += stride) {
+            const double w = kTwoPi * f * (t[i] - t.front());
+            const Eigen::Vector4d col(x[i], x[i] * (t[i] - tm) / T, x[i] * std::sin(w), x[i] * std::cos(w));
+            G.noalias() += col * col.transpose();
+            b.noalias() += col * R[static_cast<Eigen::Index>(i)];
+        }
+        const Eigen::Vector2d b2 = b.head<2>();
+        const double full = b.dot(G.ldlt().solve(b)), nuisance = b2.dot(G.topLeftCorner<2, 2>().ldlt().solve(b2));
+        freqs.push_back(f);
+        dss.push_back(std::isfinite(full - nuisance) ? std::max(0.0, full - nuisance) : 0.0);
+    }
+    const auto peak = static_cast<std::size_t>(std::max_element(dss.begin(), dss.end()) - dss.begin());
+    const double level = median(dss) / (2.0 * std::log(2.0));   // the median of a chi-square of 2 is 2 ln 2
+    if (!(level > 0)) return c;
+    const double chi2 = dss[peak] / level;
+    // The grid point: within an eighth of a cycle over the record, which the fit's refinement of P takes.
+    if (chi2 >= kCycleChi2) c = {1.0 / freqs[peak], chi2};
+    return c;
+}
+
 }  // namespace
 
 void locate_features(Prep& pr, const Model& m, const Eigen::VectorXd& R) {
@@ -106,6 +149,13 @@ void locate_features(Prep& pr, const Model& m, const Eigen::VectorXd& R) {
     const auto corr = static_cast<std::size_t>(2 * pr.K.H + 1);
     pr.x_feature = narrow_feature(xs, R, pr.rows, corr);
     pr.v_feature = narrow_feature(vs, R, pr.rows, corr);
+    pr.cycle = {};
+    if (pr.run_start.size() == 1) {   // a cycle runs through one clock: across separate runs it means nothing
+        std::vector<double> ts;
+        ts.reserve(pr.rows.size());
+        for (std::size_t r : pr.rows) ts.push_back(d.t[r]);
+        pr.cycle = slow_cycle(ts, xs, R, pr.period);
+    }
 }
 
 }  // namespace impactlab::identify::detail

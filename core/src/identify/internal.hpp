@@ -105,6 +105,12 @@ struct Prep {
         double lo = 0, hi = 0, z = 0;
         bool found() const { return hi > lo; }
     } x_feature, v_feature;
+    // A slow cycle of the residual's spring rate (features.cpp): the residual's part x S(t) with S periodic
+    // over at least 1.5 cycles of the record and 6 forcing periods or more; period 0: none.
+    struct Cycle {
+        double period = 0, chi2 = 0;   // [s], the peak's reduction of the residual against the periodogram's
+        bool found() const { return period > 0; }
+    } cycle;
     std::vector<std::size_t> rows;           // centres of the residual windows used
     std::size_t j_lo = 0, j_hi = 0;          // samples the rows' windows touch [j_lo, j_hi)
     FitProgress* progress = nullptr;         // run_fit's, if any: checked for cancellation per simulation
@@ -257,7 +263,7 @@ Horizon predictability_horizon(const Prep& pr, const Model& m, double rtol);
 // The share of the residual R (at pr.rows) that smooth functions of each variable alone explain, cross-validated
 // over contiguous blocks, largest first: "a constant", "x", "v", "the forcing phase", "time", "the time since an
 // impact".
-// Finds Prep::x_feature and v_feature in the residual R (one value per row) of the model m.
+// Finds Prep::x_feature, v_feature and cycle in the residual R (one value per row) of the model m.
 void locate_features(Prep& pr, const Model& m, const Eigen::VectorXd& R);
 std::vector<std::pair<std::string, double>> remainder_dependence(const Prep& pr, const Eigen::VectorXd& R);
 
