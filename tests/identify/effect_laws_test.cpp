@@ -87,7 +87,8 @@ TEST_CASE("effect laws carry their own metadata: fit hints in range, a sentence,
             CHECK(h.step[i] > 0);
             CHECK(h.lo[i] < h.hi[i]);
         }
-        if (h.n_free > h.n_linear) CHECK(h.n_starts > 0);   // a nonlinear parameter needs trial values
+        // A nonlinear parameter needs trial values, or a start the data give (the period of a cycle they show).
+        if (h.n_free > h.n_linear) CHECK((h.n_starts > 0 || (h.needs & FitNeeds::Cycle) != 0));
         REQUIRE(static_cast<bool>(law.describe));
         std::array<double, kMaxLawParams> p = law.defaults, s{};
         p[0] = law.kind == EffectKind::Sensor && std::string(law.id) == "sensor_gain" ? 1.02 : 0.3;
