@@ -116,7 +116,7 @@ TEST_CASE("shape: a v^3 + v^4 force is no quadratic damping, the data not tellin
     CHECK(r.truth.find("bench_poly_v(0, 0, -0.25, 0.116") != std::string::npos);
     CHECK(r.named == std::vector<std::string>{"unexplained_v"});
     CHECK_FALSE(r.false_claim);
-    CHECK(r.better);
+    CHECK(r.after < 0.7 * r.before);   // 2.6 -> 1.5 um beside 1.1 um of noise: "better" sits on its edge here
     std::ifstream md(dir / "report.md");
     std::stringstream ms;
     ms << md.rdbuf();
@@ -125,9 +125,13 @@ TEST_CASE("shape: a v^3 + v^4 force is no quadratic damping, the data not tellin
 }
 
 TEST_CASE("shape: x^4 + x^5 beside a damping that varies with position is no cubic spring") {
+    // The generic terms that describe it depend on the last bits (S(x) v here, a force of v with processor
+    // features masked); that no law is named does not.
     const id::IdentifyBenchRecord r = bench_record(111);
     CHECK(r.truth.find("bench_poly_x(0, 0, 0, 0, 0.0578, 0.0287)") != std::string::npos);
-    CHECK(r.named == std::vector<std::string>{"unexplained_x", "unexplained_x_v"});
+    REQUIRE_FALSE(r.named.empty());
+    CHECK(r.named.front() == "unexplained_x");
+    for (const std::string& n : r.named) CHECK(n.rfind("unexplained_", 0) == 0);
     CHECK_FALSE(r.false_claim);
     CHECK(r.better);
 }
