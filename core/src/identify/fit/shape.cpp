@@ -5,7 +5,8 @@
 // stand only where they predict better than the generic term alone. A law beside its own generic term
 // (which spans its shape) must still add to it. Where held-out shooting cannot tell shapes apart, the whole
 // record's equation error does: a law is a finding only where its shape is resolved there (equation_z,
-// sibling_alike); otherwise it gives way to the generic term, or stays marked as a force of its size.
+// sibling_alike: told from the other laws of its variable and, for a power law, from the next power of its
+// symmetry); otherwise it gives way to the generic term, or stays marked as a force of its size.
 #include <cmath>
 #include <optional>
 #include <string>
