@@ -36,6 +36,18 @@ EffectLaw rail_bump_law() {
                      rail_bump};
 }
 
+// The data prepared for the model m, with the features of m's residual located (what run_fit does first).
+id::detail::Prep features_of(const id::MeasuredData& d, const id::Model& m) {
+    std::vector<std::string> notes;
+    id::FitOptions o;
+    id::detail::Prep pr = id::detail::prepare(d, m, o, notes);
+    Eigen::VectorXd R;
+    std::vector<double> pw;
+    id::detail::residual(pr, m, R, pw);
+    id::detail::locate_features(pr, m, R);
+    return pr;
+}
+
 }  // namespace
 
 TEST_CASE("features: a 2 mm bump in the rail is followed by the local generic term, and nothing named is claimed") {
@@ -64,13 +76,7 @@ TEST_CASE("features: records without a narrow feature show none") {
         CAPTURE(version);
         const id::Model m = id::resolve_fit_model(version, id::Forcing::Unbalance);
         const id::MeasuredData d = id::synthesize(m, short_run(6));
-        std::vector<std::string> notes;
-        id::FitOptions o;
-        id::detail::Prep pr = id::detail::prepare(d, m, o, notes);
-        Eigen::VectorXd R;
-        std::vector<double> pw;
-        id::detail::residual(pr, m, R, pw);
-        id::detail::locate_features(pr, m, R);
+        const id::detail::Prep pr = features_of(d, m);
         CHECK_FALSE(pr.x_feature.found());
         CHECK_FALSE(pr.v_feature.found());
         CHECK_FALSE(pr.cycle.found());
@@ -135,13 +141,7 @@ TEST_CASE("features: a spring rate cycling with a 5 s period is found at its per
     const id::MeasuredData data = id::synthesize(truth, short_run(5));
     const id::Model given = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
     {
-        std::vector<std::string> notes;
-        id::FitOptions o;
-        id::detail::Prep pr = id::detail::prepare(data, given, o, notes);
-        Eigen::VectorXd R;
-        std::vector<double> pw;
-        id::detail::residual(pr, given, R, pw);
-        id::detail::locate_features(pr, given, R);
+        const id::detail::Prep pr = features_of(data, given);
         REQUIRE(pr.cycle.found());
         CHECK(pr.cycle.period == doctest::Approx(P).epsilon(0.05));   // the grid's spacing at 5 s over 20 s
     }
