@@ -137,7 +137,8 @@ struct FoundEffect {
     // effect's parameters were not fitted to, and the paired z of that fall over the windows.
     double validation_gain = 0, validation_z = 0;
     // A law or shape of the same variable the data do not tell this one from (empty: its shape is resolved).
-    // Then it is a force of the size fitted, kept because it predicts best, and no finding of its law.
+    // Then it is a force of the size fitted, kept because it predicts held-out data at least as well as the
+    // alternatives, and no finding of its law.
     std::string not_told_from;
 };
 

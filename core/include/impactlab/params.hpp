@@ -99,6 +99,10 @@ struct EffectFitHint {
     // second where its shape may also be read from another variable): the law is named only where none of them,
     // added beside it, predicts held-out data better.
     std::array<const char*, 2> rivals{};
+    // A law that is a power n of one variable s (x or v), F = -c s|s|^(n-1) (odd) or -c |s|^n (even): its
+    // shape is resolved only where the data tell it from the next power of its symmetry, n + 1 (0: not one).
+    int power = 0;
+    bool power_of_v = false, power_odd = true;
 };
 
 struct Params;

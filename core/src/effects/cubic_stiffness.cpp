@@ -24,6 +24,7 @@ const EffectLaw& cubic_stiffness_law() {
                     {"N/m^3", nullptr}, {0.0}, force};
         l.fit = hint({0}, {1.0});
         l.fit.rivals = {"unexplained_x"};
+        l.fit.power = 3;
         l.fit.absorbed_by = "a3";
         l.describe = describe;
         return l;

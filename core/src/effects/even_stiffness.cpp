@@ -22,6 +22,8 @@ const EffectLaw& even_stiffness_law() {
                     {"N/m^2", nullptr}, {0.0}, force};
         l.fit = hint({0}, {1.0});
         l.fit.rivals = {"unexplained_x"};
+        l.fit.power = 2;
+        l.fit.power_odd = false;
         l.describe = describe;
         return l;
     }();

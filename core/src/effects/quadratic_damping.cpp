@@ -24,6 +24,8 @@ const EffectLaw& quadratic_damping_law() {
                     {"N s^2/m^2", nullptr}, {0.0}, force};
         l.fit = hint({0}, {1.0});
         l.fit.rivals = {"unexplained_v"};
+        l.fit.power = 2;
+        l.fit.power_of_v = true;
         l.fit.lo[0] = 0.0;   // a resistance never pushes
         l.describe = describe;
         return l;

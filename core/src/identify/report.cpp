@@ -238,7 +238,7 @@ std::string markdown(const FitReport& r, bool with_plots) {
                << f.sentence << ". Held-out simulation error " << g3(-100 * f.validation_gain, "%+.1f") << " % (paired z = "
                << g3(f.validation_z, "%.1f") << ")."
                << (f.not_told_from.empty() ? "" : " The data do not tell its shape from " + f.not_told_from +
-                                                      ": a force of this size, kept because it predicts best, and no finding of this law.")
+                                                      ": a force of this size, kept because it predicts held-out data at least as well as the alternatives, and no finding of this law.")
                << "\n";
         }
         md << "\n";

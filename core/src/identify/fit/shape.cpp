@@ -5,8 +5,12 @@
 // stand only where they predict better than the generic term alone. A law beside its own generic term
 // (which spans its shape) must still add to it. Where held-out shooting cannot tell shapes apart, the whole
 // record's equation error does: a law is a finding only where its shape is resolved there (equation_z,
-// sibling_alike); otherwise it gives way to the generic term, or stays marked as a force of its size.
+// sibling_alike: told from the other laws of its variable and, for a power law, from the next power of its
+// symmetry); otherwise it gives way to the generic term, or stays marked as a force of its size (always so
+// against the nameless next power, unless the generic term predicts held-out data better).
+#include <cmath>
 #include <optional>
+#include <string>
 
 #include "identify/fit/session.hpp"
 
@@ -34,10 +38,11 @@ Model fitted_whole(const FitSession& fs, const Model& m, bool refit_base) {
 // linear parameters remove, from their null values, with the others refitted (group_z_dss); with `sse`, the
 // sum of squares of the equation error all of them leave.
 std::vector<double> equation_z(const FitSession& fs, const Model& m, bool refit_base, const std::vector<std::vector<std::string>>& groups,
-                               double* sse = nullptr) {
+                               double* sse = nullptr, const std::vector<Candidate>* with = nullptr) {
+    const std::vector<Candidate>& cands = with ? *with : fs.screen.cands;
     Model out = m;
     std::vector<std::size_t> owner;
-    std::vector<Knob> knobs = found_effect_knobs(out, fs.base, fs.screen.cands, &owner);
+    std::vector<Knob> knobs = found_effect_knobs(out, fs.base, cands, &owner);
     if (refit_base)
         for (const Knob& k : base_knobs(out, fs.base_names, fs.prep)) {
             knobs.push_back(k);
@@ -58,8 +63,8 @@ std::vector<double> equation_z(const FitSession& fs, const Model& m, bool refit_
             if (owner[k] == SIZE_MAX) continue;
             const EffectInstance& e = out.p.effects[owner[k]];
             if (std::find(groups[gi].begin(), groups[gi].end(), e.law->id) == groups[gi].end()) continue;
-            const auto c = std::find_if(fs.screen.cands.begin(), fs.screen.cands.end(), [&](const Candidate& q) { return q.law == e.law; });
-            if (c == fs.screen.cands.end()) continue;
+            const auto c = std::find_if(cands.begin(), cands.end(), [&](const Candidate& q) { return q.law == e.law; });
+            if (c == cands.end()) continue;
             const auto i = static_cast<int>(knobs[k].value - e.p.data());
             const bool linear = std::any_of(c->linear.begin(), c->linear.end(), [&](int li) { return c->free[static_cast<std::size_t>(li)] == i; });
             if (!linear) continue;
@@ -75,10 +80,44 @@ std::vector<double> equation_z(const FitSession& fs, const Model& m, bool refit_
     return z;
 }
 
+// The next power of a power law's variable, F = -c s|s|^(n-1) (odd) or -c |s|^n (even), s = x or v; p: c, n,
+// odd (1/0), of v (1/0). Never in the registry: it lives only in the models shape.cpp tests a law beside.
+EffectForce next_power(const double* p, const ForceContext& ctx) {
+    const bool of_v = p[3] > 0.5, odd = p[2] > 0.5;
+    const double s = of_v ? ctx.v : ctx.x, a = std::abs(s), sg = s >= 0 ? 1.0 : -1.0;
+    const double an = std::pow(a, p[1]), dan = p[1] * std::pow(a, p[1] - 1.0);
+    const double F = -p[0] * (odd ? sg * an : an), dF = -p[0] * (odd ? dan : sg * dan);
+    return of_v ? EffectForce{F, 0.0, dF, 0.0} : EffectForce{F, dF, 0.0, 0.0};
+}
+const EffectLaw& next_power_law() {
+    static const EffectLaw law = [] {
+        EffectLaw l{"next_power", "the next power of a power law's variable", {"c", "n", "odd", "of_v", nullptr},
+                    {"", "", "", "", nullptr}, {0.0, 0.0, 0.0, 0.0}, next_power};
+        l.fit.free[0] = 0;
+        l.fit.n_free = 1;
+        l.fit.n_linear = 1;
+        l.fit.step[0] = 1.0;
+        return l;
+    }();
+    return law;
+}
+// Its name as a shape: "v^3", "x^3 |x|", "|x|^3".
+std::string power_name(int n, bool of_v, bool odd) {
+    const std::string s = of_v ? "v" : "x";
+    if (!odd) return n % 2 == 0 ? s + "^" + std::to_string(n) : "|" + s + "|^" + std::to_string(n);
+    return n % 2 == 1 ? s + "^" + std::to_string(n) : s + "^" + std::to_string(n - 1) + " |" + s + "|";
+}
+
 // A law of the same variable (one sharing a rival) that law `id` is not told from in the whole record's
 // equation error: fitted beside it, `id` adds nothing out of the noise. Among the three that explained most
 // alone in the screening; empty when `id` stands beside each.
-std::pair<std::string, double> sibling_alike(const FitSession& fs, const Model& cur, bool refit_base, const std::string& id) {
+// What law `id` is not told from: a law of the library, or (nameless) the next power of its own shape.
+struct Alike {
+    std::string from;
+    double z = 0.0;
+    bool nameless = false;
+};
+Alike sibling_alike(const FitSession& fs, const Model& cur, bool refit_base, const std::string& id) {
     const EffectLaw* law = find_effect(id);
     if (!law) return {};
     auto shares_rival = [&](const EffectLaw* other) {
@@ -100,7 +139,24 @@ std::pair<std::string, double> sibling_alike(const FitSession& fs, const Model& 
         Model m = cur;
         m.p.effects.push_back(start_instance(*c, cur, fs.prep, c->starts.empty() ? 0.0 : c->starts.front()));
         const double z = equation_z(fs, m, refit_base, {{id}})[0];
-        if (z < fs.o.z_threshold) return {c->id, z};
+        if (z < fs.o.z_threshold) return {c->id, z, false};
+    }
+    // A power law is told from the next power of its symmetry too (v|v| from v^3, x^3 from x^3 |x|): over the
+    // range one motion spans, a neighbouring power is the closest shape the library has no law for.
+    const EffectFitHint& h = law->fit;
+    if (h.power > 0) {
+        Candidate probe;
+        probe.id = next_power_law().id;
+        probe.law = &next_power_law();
+        probe.free = {0};
+        probe.step = {1.0};
+        probe.linear = {0};
+        std::vector<Candidate> cands = fs.screen.cands;
+        cands.push_back(probe);
+        Model m = cur;
+        m.p.effects.push_back({&next_power_law(), {0.0, h.power + 1.0, h.power_odd ? 1.0 : 0.0, h.power_of_v ? 1.0 : 0.0}});
+        const double z = equation_z(fs, m, refit_base, {{id}}, nullptr, &cands)[0];
+        if (z < fs.o.z_threshold) return {"a force of " + power_name(h.power + 1, h.power_of_v, h.power_odd), z, true};
     }
     return {};
 }
@@ -199,7 +255,7 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
         // each from the other laws of its variable.
         auto siblings_resolved = [&](const std::string& why) {
             for (const std::string& id : ids) {
-                const std::string sibling = sibling_alike(fs, cur, refit_base, id).first;
+                const std::string sibling = sibling_alike(fs, cur, refit_base, id).from;
                 if (!sibling.empty()) mark_unresolved(id, sibling, why);
             }
         };
@@ -242,11 +298,19 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
             const bool other_shape = z[0] >= fs.o.z_threshold && z[1] < fs.o.z_threshold && share_taken() >= kOtherShapeShare;
             // Nor is a shape resolved that a law of the same variable explains as well (v|v| against v on a
             // faint force of v): the data show a force of that variable, not this law.
-            const auto [sibling, z_sib] = other_shape ? std::pair<std::string, double>{} : sibling_alike(fs, cur, refit_base, ids[0]);
+            const Alike alike = other_shape ? Alike{} : sibling_alike(fs, cur, refit_base, ids[0]);
+            const std::string& sibling = alike.from;
+            const double z_sib = alike.z;
             if (!other_shape && sibling.empty()) continue;
             const std::vector<double> e_alone = judge.errors(alone);
             if (judge.better(judge.compare(e_alone, e_cur))) {   // held-out data prefer the law: it stays, unresolved
                 mark_unresolved(ids[0], other_shape ? "the generic " + rival : sibling, "predicts held-out data better than the generic " + rival);
+                continue;
+            }
+            // Against a shape with no name, a named law is preferred to a curve fit that does no better: it
+            // stays, unresolved, unless the generic term predicts held-out data better.
+            if (alike.nameless && !judge.better(judge.compare(e_cur, e_alone))) {
+                mark_unresolved(ids[0], sibling, "predicts held-out data as well as the generic " + rival);
                 continue;
             }
             if (other_shape) {
