@@ -61,8 +61,8 @@ std::vector<std::pair<std::string, double>> remainder_dependence(const Prep& pr,
         if (impacts) {
             while (next_impact < pr.impacts.size() && pr.impacts[next_impact].t_out <= d.t[i]) last_impact = pr.impacts[next_impact++].t_out;
             const double since = (d.t[i] - last_impact) / pr.period;   // forcing periods since the last impact
-            const auto bin = static_cast<Eigen::Index>(std::floor(since / 0.25));
-            if (since >= 0 && bin < kImpactBins) X(r, ci + bin) = 1.0;
+            // Before the first impact `since` is infinite: it is tested before it becomes an index.
+            if (since >= 0 && since < 0.25 * kImpactBins) X(r, ci + static_cast<Eigen::Index>(std::floor(since / 0.25))) = 1.0;
         }
     }
     const Folds f = make_folds(X, R, 5);
