@@ -182,6 +182,23 @@ void apply_effect(Model& m, const std::string& id, const std::vector<std::pair<s
 
 namespace impactlab::identify::detail {
 
+Candidate candidate_of(const EffectLaw& law) {
+    const EffectFitHint& h = law.fit;
+    Candidate c;
+    c.id = law.id;
+    c.law = &law;
+    for (int k = 0; k < h.n_free; ++k) {
+        c.free.push_back(h.free[static_cast<std::size_t>(k)]);
+        c.step.push_back(h.step[static_cast<std::size_t>(h.free[static_cast<std::size_t>(k)])]);
+    }
+    for (int k = 0; k < h.n_linear; ++k) c.linear.push_back(k);
+    c.starts.assign(h.starts.begin(), h.starts.begin() + h.n_starts);
+    c.generic = h.generic;
+    c.sensor = law.kind == EffectKind::Sensor;
+    c.positive = h.positive;
+    return c;
+}
+
 std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const FitOptions& o) {
     std::vector<Candidate> out;
     double alpha_rms = 0;
@@ -205,19 +222,7 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
         if ((h.needs & FitNeeds::VFeature) && !pr.v_feature.found()) continue;
         if ((h.needs & FitNeeds::Cycle) && !pr.cycle.found()) continue;
         if (h.absorbed_by && fitted(h.absorbed_by)) continue;
-        Candidate c;
-        c.id = id;
-        c.law = &law;
-        for (int k = 0; k < h.n_free; ++k) {
-            c.free.push_back(h.free[static_cast<std::size_t>(k)]);
-            c.step.push_back(h.step[static_cast<std::size_t>(h.free[static_cast<std::size_t>(k)])]);
-        }
-        for (int k = 0; k < h.n_linear; ++k) c.linear.push_back(k);
-        c.starts.assign(h.starts.begin(), h.starts.begin() + h.n_starts);
-        c.generic = h.generic;
-        c.sensor = law.kind == EffectKind::Sensor;
-        c.positive = h.positive;
-        out.push_back(std::move(c));
+        out.push_back(candidate_of(law));
     }
     // The base-changing effects the screening looks for (a wrong cart mass: the acceleration's column).
     for (const auto& b : base_effects()) {

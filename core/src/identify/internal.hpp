@@ -399,6 +399,8 @@ struct Candidate {
     const char* param = nullptr;   // its parameter's name ("dm")
     double lo = 0, hi = 0;
 };
+// How the selection treats library law `law`: its fitted parameters, steps and starts from its fit hint.
+Candidate candidate_of(const EffectLaw& law);
 std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const FitOptions& o);
 // The instance a candidate starts from: shape parameters from the model, the free ones at their null value
 // (or `start` for the nonlinear one); an empty instance (no law) for a base-changing candidate.

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "effects/law_helpers.hpp"
 #include "identify/fit/session.hpp"
 
 namespace impactlab::identify::detail {
@@ -93,10 +94,7 @@ const EffectLaw& next_power_law() {
     static const EffectLaw law = [] {
         EffectLaw l{"next_power", "the next power of a power law's variable", {"c", "n", "odd", "of_v", nullptr},
                     {"", "", "", "", nullptr}, {0.0, 0.0, 0.0, 0.0}, next_power};
-        l.fit.free[0] = 0;
-        l.fit.n_free = 1;
-        l.fit.n_linear = 1;
-        l.fit.step[0] = 1.0;
+        l.fit = effects::hint({0}, {1.0});
         return l;
     }();
     return law;
@@ -108,15 +106,15 @@ std::string power_name(int n, bool of_v, bool odd) {
     return n % 2 == 1 ? s + "^" + std::to_string(n) : s + "^" + std::to_string(n - 1) + " |" + s + "|";
 }
 
-// A law of the same variable (one sharing a rival) that law `id` is not told from in the whole record's
-// equation error: fitted beside it, `id` adds nothing out of the noise. Among the three that explained most
-// alone in the screening; empty when `id` stands beside each.
 // What law `id` is not told from: a law of the library, or (nameless) the next power of its own shape.
 struct Alike {
     std::string from;
     double z = 0.0;
     bool nameless = false;
 };
+// A law of the same variable (one sharing a rival) that law `id` is not told from in the whole record's
+// equation error: fitted beside it, `id` adds nothing out of the noise. Among the three that explained most
+// alone in the screening; empty when `id` stands beside each.
 Alike sibling_alike(const FitSession& fs, const Model& cur, bool refit_base, const std::string& id) {
     const EffectLaw* law = find_effect(id);
     if (!law) return {};
@@ -145,14 +143,8 @@ Alike sibling_alike(const FitSession& fs, const Model& cur, bool refit_base, con
     // range one motion spans, a neighbouring power is the closest shape the library has no law for.
     const EffectFitHint& h = law->fit;
     if (h.power > 0) {
-        Candidate probe;
-        probe.id = next_power_law().id;
-        probe.law = &next_power_law();
-        probe.free = {0};
-        probe.step = {1.0};
-        probe.linear = {0};
         std::vector<Candidate> cands = fs.screen.cands;
-        cands.push_back(probe);
+        cands.push_back(candidate_of(next_power_law()));
         Model m = cur;
         m.p.effects.push_back({&next_power_law(), {0.0, h.power + 1.0, h.power_odd ? 1.0 : 0.0, h.power_of_v ? 1.0 : 0.0}});
         const double z = equation_z(fs, m, refit_base, {{id}}, nullptr, &cands)[0];
