@@ -48,6 +48,8 @@ constexpr const char* kFitHelp =
     "  --knots S               knot spacing of the omega(t) fitted to phi [s] (default 0.5)\n"
     "  --omega-bin W           omega bin of the diagram distance [rad/s] (default 0.25)\n"
     "  --rtol R                integrator tolerance of the simulations (default 1e-8)\n"
+    "  --x-highpass HZ         the record's x was high-passed at HZ (FFT bins below it zeroed, as when x is\n"
+    "                          integrated from v): the model's free runs are filtered alike before any comparison\n"
     "  --no-plots              skip the PNGs\n";
 
 
@@ -62,7 +64,7 @@ int cmd_fit(const std::vector<std::string>& argv) {
     const Args a("fit", argv,
                  {"--model", "--xI", "--m0e", "--rtol", "--report", "--baseline", "--fit-params", "--gain", "--t-col", "--x-col",
                   "--phi-col", "--u-col", "--rate", "--x-scale", "--u-scale", "--phi-scale", "--t-scale", "--rows", "--test-rows",
-                  "--window", "--z", "--min-gain", "--max-effects", "--only", "--exclude", "--knots", "--omega-bin"},
+                  "--window", "--z", "--min-gain", "--max-effects", "--only", "--exclude", "--knots", "--omega-bin", "--x-highpass"},
                  {"--no-generic", "--no-refine", "--no-plots"}, /*takes_files=*/true);
     if (a.positional().empty()) throw UsageError("fit: give a data file, or several runs of one rig (see impactlab fit --help)");
     const std::vector<std::string> paths = a.positional();
@@ -134,6 +136,7 @@ int cmd_fit(const std::vector<std::string>& argv) {
     o.knot_spacing = a.num("--knots", 0.5, 1e-3, 1e6);
     o.omega_bin = a.num("--omega-bin", 0.25, 1e-6, 1e3);
     o.rtol = a.num("--rtol", 1e-8, 1e-13, 1e-2);
+    o.x_highpass_hz = a.num("--x-highpass", 0.0, 0.0, 1e9);
     o.plots = !a.has("--no-plots");
     for (const auto& id : o.only)
         if (!identify::find_catalogue_effect(id)) throw UsageError("fit: --only: unknown effect '" + id + "'");
@@ -183,7 +186,9 @@ int cmd_fit(const std::vector<std::string>& argv) {
     for (const auto& g : r.gate) std::printf("final gate: %s\n", g.c_str());
     std::printf("final gate passed: %s\n", r.gate_passed.c_str());
     std::printf("verdict: %s\n", r.verdict.c_str());
-    for (const auto& bp : r.base_estimates) std::printf("base parameter %s = %.6g +/- %.2g\n", bp.name.c_str(), bp.value, bp.sigma);
+    for (const auto& bp : r.base_estimates)
+        std::printf("base parameter %s = %.6g +/- %.2g%s\n", bp.name.c_str(), bp.value, bp.sigma,
+                    bp.stood_in_by.empty() ? "" : (" (not separated from " + bp.stood_in_by + ": no finding)").c_str());
     for (const auto& u : r.unseparated)
         std::printf("the data do not separate %s and %s (correlation %.4f): they pin %s %s %s = %.6g +/- %.2g\n", u.a.c_str(), u.b.c_str(),
                     u.correlation, u.a.c_str(), u.ratio ? "/" : "*", u.b.c_str(), u.value, u.sigma);

@@ -20,7 +20,7 @@ std::vector<std::string> paths_arg(const py::handle& records) {
 
 py::object fit(const py::handle& records, const py::handle& model, std::optional<std::string> baseline,
                const std::vector<std::string>& only, const std::vector<std::string>& exclude, int max_effects, bool generic,
-               double rtol, const py::object& report, bool plots, const py::object& progress) {
+               double rtol, double x_highpass, const py::object& report, bool plots, const py::object& progress) {
     const std::vector<std::string> paths = paths_arg(records);
     identify::LoadOptions lo;
     std::vector<identify::MeasuredData> runs;
@@ -46,6 +46,8 @@ py::object fit(const py::handle& records, const py::handle& model, std::optional
     o.generic = generic;
     check_range("fit", "rtol", rtol, 1e-13, 1e-2);
     o.rtol = rtol;
+    check_range("fit", "x_highpass", x_highpass, 0.0, 1e9);
+    o.x_highpass_hz = x_highpass;
     const std::optional<std::string> dir = report.is_none() ? std::nullopt : std::optional<std::string>(fspath(report));
     o.plots = plots && dir.has_value();
     for (const auto& id : o.only)
@@ -82,10 +84,11 @@ void bind_fit(py::module_& m) {
     using namespace pybind11::literals;
     m.def("fit", &fit, "records"_a, "model"_a = "A1H", py::kw_only(), "baseline"_a = py::none(),
           "only"_a = std::vector<std::string>{}, "exclude"_a = std::vector<std::string>{}, "max_effects"_a = 4, "generic"_a = true,
-          "rtol"_a = 1e-8, "report"_a = py::none(), "plots"_a = true, "progress"_a = py::none(),
+          "rtol"_a = 1e-8, "x_highpass"_a = 0.0, "report"_a = py::none(), "plots"_a = true, "progress"_a = py::none(),
           R"(Fits the model to measured records: `impactlab fit`. records: a CSV file (plain or .gz, the MODEL.md layout)
 or a list of runs of one rig fitted together. model: an impactlab.Model, a version name, a parameter file or
-"duffing". baseline: "fixed" (default with a bumper) or "fit". only / exclude: effect ids. report: a directory to
+"duffing". baseline: "fixed" (default with a bumper) or "fit". only / exclude: effect ids. x_highpass: the cut [Hz] of
+a high-pass the record's x went through (as `--x-highpass`), applied to the model's free runs. report: a directory to
 write report.json, report.md, model_after.json (and the PNGs unless plots=False), as the CLI does. Returns the
 report as a dict (report.json's keys) with model_before and model_after as impactlab.Model, and trace (t,
 measured, before, after: x(t) as the report plots it) and residual (x, v, phi, before, after: the equation

@@ -1,9 +1,11 @@
 // The signal tools of the fit (core/src/identify/signal.cpp): noise estimates, Savitzky-Golay weights, FIR,
-// the weak-form kernel, the drive fitted to phi and the dominant period.
+// the weak-form kernel, the drive fitted to phi, the dominant period and the high-pass of a declared chain.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "identify/internal.hpp"
 
@@ -78,4 +80,30 @@ TEST_CASE("signal: fit_drive recovers a piecewise-linear omega from phi, dominan
     CHECK(d.omega(3.0) == doctest::Approx(13.0).epsilon(1e-4));
     CHECK(d.phi(7.0) == doctest::Approx(10.0 * 7.0 + 0.5 * 49.0).epsilon(1e-6));
     CHECK(dt::dominant_period(x, 1e-3) == doctest::Approx(0.25).epsilon(0.02));
+}
+
+TEST_CASE("signal: highpass_fft removes what lies below its cut and keeps what lies above, at any record length") {
+    // Two slow cycles over the record (0.04 Hz, a slow drift of the wells) under a 5 Hz oscillation, at 200 Hz:
+    // a 0.1 Hz cut leaves the 5 Hz part away from the ends. Lengths 2^11 * 5 (the FFT's own) and a prime
+    // (bridged to the next length without large prime factors).
+    for (std::size_t n : {std::size_t{10240}, std::size_t{10247}}) {
+        CAPTURE(n);
+        const double dt = 0.005;
+        std::vector<double> x(n), fast(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const double t = static_cast<double>(i) * dt;
+            fast[i] = 1e-3 * std::sin(2 * M_PI * 5.0 * t);
+            x[i] = 0.01 + 0.02 * std::sin(2 * M_PI * 2.0 * t / (static_cast<double>(n) * dt)) + fast[i];
+        }
+        const std::vector<double> y = dt::highpass_fft(x, dt, 0.1);
+        REQUIRE(y.size() == n);
+        double worst = 0;
+        for (std::size_t i = n / 5; i < 4 * n / 5; ++i) worst = std::max(worst, std::abs(y[i] - fast[i]));
+        CHECK(worst < 1e-4);   // a tenth of the fast part, of a slow part 20 times larger
+        // No cut, or a sample that is not a number: x as it is.
+        CHECK(dt::highpass_fft(x, dt, 0.0) == x);
+        std::vector<double> bad = x;
+        bad[7] = std::nan("");
+        CHECK(std::isnan(dt::highpass_fft(bad, dt, 0.1)[7]));
+    }
 }

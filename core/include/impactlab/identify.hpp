@@ -83,6 +83,10 @@ struct FitOptions {
     double omega_bin = 0.25;             // [rad/s] bins of the diagram distance
     double rtol = 1e-8;                  // integrator tolerance for the shooting
     bool plots = true;
+    // The measurement chain: the record's x was high-passed at this frequency [Hz] (every FFT bin below it
+    // zeroed, as when x is integrated from a velocity). The model's free runs are filtered the same way before
+    // any comparison with x; 0: x is the displacement itself.
+    double x_highpass_hz = 0.0;
 
     // Whether `only` and `exclude` let effect `id` into the fit: never when excluded; with an `only` list,
     // just the ids on it. The screening's candidate list and the end-stop stage both ask this.
@@ -211,6 +215,7 @@ enum class FitUnits { Metres, DataUnits };
 struct BaseEstimate {
     std::string name;
     double value = 0, sigma = 0;
+    std::string stood_in_by;   // the effects found that can stand in for it (then its value is no finding), or empty
 };
 // Two base parameters the data do not separate (correlation beyond 0.98): what they pin is their ratio a/b
 // (correlated) or their product a*b (anticorrelated), with its standard error.
@@ -257,6 +262,7 @@ struct FitReport {
     std::vector<std::pair<double, double>> diagram_measured, diagram_before, diagram_after;   // (omega, x)
     std::vector<std::string> notes;
     double runtime_s = 0;
+    double x_highpass_hz = 0;   // the high-pass declared for x (FitOptions::x_highpass_hz); 0: none
     FitUnits units = FitUnits::Metres;
     bool metres() const { return units == FitUnits::Metres; }
     const char* x_unit() const { return metres() ? "m" : "data units"; }

@@ -89,7 +89,7 @@ std::vector<double> welch(const std::vector<double>& x, std::size_t seg) {
 
 }  // namespace
 
-WellBand well_band(const std::vector<double>& x) {
+WellBand well_band(const std::vector<double>& x, bool chaotic) {
     WellBand wb;
     std::vector<double> v;
     for (double s : x)
@@ -97,6 +97,18 @@ WellBand well_band(const std::vector<double>& x) {
     if (v.size() < 200) return wb;
     const double lo = quantile(v, 0.01), hi = quantile(v, 0.99);
     if (!(hi > lo)) return wb;
+    // A chaotic motion between wells can fill the dip with its fast swings through the hilltop (the mismatch
+    // set's asymmetric chaos, x high-passed, has none). Its visits to either side of the median still turn back
+    // and forth inside one well (18-26 % of them), where a periodic motion about one well swings once per visit.
+    auto by_median = [&]() {
+        const double mid = quantile(v, 0.5), band = 0.15 * (quantile(v, 0.75) - quantile(v, 0.25));
+        if (chaotic && band > 0 && oscillating_visits(v, mid, band) >= 0.15) {
+            wb.found = true;
+            wb.hilltop = mid;
+            wb.band = band;
+        }
+        return wb;
+    };
     // A histogram of 40 bins, smoothed over three: two humps with a dip between them below half the lower hump
     // are two wells; the dip's bin is the hilltop.
     constexpr int kBins = 40;
@@ -117,14 +129,14 @@ WellBand well_band(const std::vector<double>& x) {
     const auto left = std::max_element(sm.begin(), sm.begin() + kBins / 2);
     const auto right = std::max_element(sm.begin() + kBins / 2, sm.end());
     const auto dip = std::min_element(left, right + 1);
-    if (dip == left || dip == right || !(*dip < 0.5 * std::min(*left, *right))) return wb;
+    if (dip == left || dip == right || !(*dip < 0.5 * std::min(*left, *right))) return by_median();
     const double bw = (hi - lo) / kBins;
     const double xl = lo + (static_cast<double>(left - sm.begin()) + 0.5) * bw, xr = lo + (static_cast<double>(right - sm.begin()) + 0.5) * bw;
     const double hilltop = lo + (static_cast<double>(dip - sm.begin()) + 0.5) * bw, band = 0.15 * (xr - xl);
     // A well is a place the motion oscillates in. A steady oscillation about one well also has two humps (the
     // arcsine density of its turning points), but it visits each side for one swing only: a pair of wells
     // needs some visits that turn back and forth inside one side (a chaotic cross-well record: 19-25 %).
-    if (oscillating_visits(v, hilltop, band) < 0.05) return wb;
+    if (oscillating_visits(v, hilltop, band) < 0.05) return by_median();
     wb.found = true;
     wb.hilltop = hilltop;
     wb.band = band;
@@ -154,7 +166,7 @@ AttractorStats attractor_stats(const Prep& pr, const std::vector<double>& sim, s
     diff(d, dv);
     diff(s, sv);
     const double sdv = std::max(stdev(dv, 0, dv.size()), 1e-300);
-    const WellBand wb = well_band(d);
+    const WellBand wb = well_band(d, pr.predictability.measured && !pr.predictability.regular);
     const double seconds = static_cast<double>(d.size()) * pr.dt;
     const double rate_d = wb.found ? static_cast<double>(well_changes(d, wb.hilltop, wb.band)) / seconds : 0.0;
     // The spectrum by bands one forcing frequency wide, each around a harmonic (and one below the first, for

@@ -24,6 +24,9 @@ std::vector<RunWell> data_wells(const Prep& pr, int hac_lag) {
         for (std::size_t i : pr.rows)
             if (pr.run_of(i) == run) rows.push_back(i);
         if (rows.size() < 200) continue;
+        // A run that changes wells (a chaotic record) has no one well to measure.
+        const std::vector<double> xr(d.x.begin() + static_cast<long>(rows.front()), d.x.begin() + static_cast<long>(rows.back()) + 1);
+        if (const WellBand wb = well_band(xr, pr.predictability.measured && !pr.predictability.regular); well_changes(xr, wb) >= 4) continue;
         double xm = 0;
         for (std::size_t i : rows) xm += d.x[i];
         runs.push_back(run);

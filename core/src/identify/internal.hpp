@@ -54,6 +54,10 @@ Drive fit_drive(const std::vector<double>& t, const std::vector<double>& phi, do
 double stdev(const std::vector<double>& v, std::size_t a, std::size_t b);
 // The period of the strongest spectral line of x (detrended) [s].
 double dominant_period(const std::vector<double>& x, double dt);
+// x with every Fourier component below `cut_hz` removed (the mean too), as a record integrated by FFT with the
+// bins below the cut zeroed. A length with a prime factor above 7 is bridged to the next that has none (the
+// FFT's cost stays N log N). Non-finite samples leave x as it is.
+std::vector<double> highpass_fft(const std::vector<double>& x, double dt, double cut_hz);
 
 // ---- impacts.cpp --------------------------------------------------------------------------------------
 struct ImpactObs {
@@ -77,6 +81,7 @@ struct Prep {
     // the inertial force m a they imply. Steps, floors and ceilings are set from them, never absolutely.
     double x_typ = 0, v_typ = 0, u_typ = 0, f_typ = 0;
     bool phi_forced = true;
+    double x_highpass_hz = 0;                // FitOptions::x_highpass_hz: applied to every free run before comparison
     // One drive per run (MeasuredData::run_starts): omega(t) fitted to the run's phi, or its input u(t).
     std::vector<Drive> drives;
     std::vector<std::size_t> run_start;   // first sample of each run, ascending, run_start[0] = 0
@@ -332,11 +337,12 @@ inline constexpr const char* kErrWells = "attractor: well changes per second, |l
 inline constexpr const char* kErrSpectrum = "attractor: power spectrum, RMS dB";
 // Two wells in a record's x: a dip in its histogram below half of both humps; the hilltop at the dip and a
 // band of 15 % of the humps' distance on either side, which a passage must cross to count as a well change.
+// A chaotic record without the dip: the median, if its sides' visits oscillate inside them.
 struct WellBand {
     bool found = false;
     double hilltop = 0, band = 0;
 };
-WellBand well_band(const std::vector<double>& x);
+WellBand well_band(const std::vector<double>& x, bool chaotic = false);
 std::size_t well_changes(const std::vector<double>& x, double mid, double band);
 std::size_t well_changes(const std::vector<double>& x, const WellBand& wb);
 // A free run's statistics against the record's, by blocks of the samples both define (from sample `from`):

@@ -223,6 +223,9 @@ std::string markdown(const FitReport& r, bool with_plots) {
     md << "Model **" << r.before.p.name << "** (" << (r.baseline == Baseline::Fit ? "parameters fitted to the data" : "parameters fixed")
        << "), forcing " << r.forcing << ". " << r.samples << " samples, " << g3(r.duration) << " s at " << g3(1.0 / r.dt)
        << " Hz; sensor noise about " << (r.metres() ? g3(r.sigma_x * 1e6) + " um" : g3(r.sigma_x) + " (" + r.x_unit() + ")") << ".\n\n";
+    if (r.x_highpass_hz > 0)
+        md << "The record's x went through a high-pass at " << g3(r.x_highpass_hz)
+           << " Hz (declared): every free run of a model is filtered alike before it is compared with x.\n\n";
     md << "The equation error is the local average over a smooth window of half-width " << g3(r.window_s * 1e3)
        << " ms of m x'' + F_R + F_SA + F_I - forcing, on " << r.rows_used
        << " free-flight windows (impacts left out); its noise floor is about " << g3(r.noise_floor_N) << " " << r.force_unit() << ".\n\n";
@@ -277,7 +280,10 @@ std::string markdown(const FitReport& r, bool with_plots) {
     if (!r.base_estimates.empty()) {
         md << "## The base parameters written, with what the data tell of them\n\nStandard errors from the equation error (its "
               "variance and correlation time); inf: the data do not see the parameter.\n\n| parameter | value | standard error |\n|---|---|---|\n";
-        for (const auto& b : r.base_estimates) md << "| " << b.name << " | " << g3(b.value, "%.6g") << " | " << g3(b.sigma, "%.2g") << " |\n";
+        for (const auto& b : r.base_estimates)
+            md << "| " << b.name << " | " << g3(b.value, "%.6g") << " | " << g3(b.sigma, "%.2g")
+               << (b.stood_in_by.empty() ? "" : " (not separated from " + b.stood_in_by + ": the model's total force is what the data pin; no finding)")
+               << " |\n";
         for (const auto& u : r.unseparated)
             md << "\nThe data do not separate " << u.a << " and " << u.b << " (correlation " << g3(u.correlation, "%.4f")
                << "): what they pin is " << u.a << (u.ratio ? " / " : " * ") << u.b << " = " << g3(u.value, "%.6g") << " +/- "
@@ -512,7 +518,10 @@ std::string report_json_text(const FitReport& r) {
     j["wells_from_data"] = r.wells_from_data;
     j["well_frequency"] = r.well_frequency;
     j["base_parameters"] = json::array();
-    for (const auto& b : r.base_estimates) j["base_parameters"].push_back({{"name", b.name}, {"value", num(b.value)}, {"sigma", num(b.sigma)}});
+    for (const auto& b : r.base_estimates) {
+        j["base_parameters"].push_back({{"name", b.name}, {"value", num(b.value)}, {"sigma", num(b.sigma)}});
+        if (!b.stood_in_by.empty()) j["base_parameters"].back()["not_separated_from"] = b.stood_in_by;
+    }
     j["unseparated"] = json::array();
     for (const auto& u : r.unseparated)
         j["unseparated"].push_back({{"a", u.a},
@@ -538,6 +547,7 @@ std::string report_json_text(const FitReport& r) {
     j["notes"] = r.notes;
     j["gate"] = {{"undone", r.gate}, {"passed", r.gate_passed}, {"rose_within_scatter", r.gate_within}};
     j["runtime_s"] = r.runtime_s;
+    j["x_highpass_hz"] = r.x_highpass_hz;
     return json_dump(std::move(j), 2) + "\n";   // a file name in any bytes
 }
 

@@ -64,6 +64,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     Prep pr;
     pr.data = &d;
     pr.n = d.size();
+    pr.x_highpass_hz = o.x_highpass_hz;
     const std::size_t n = pr.n;
     if (n < 200) throw DataError(d.source + ": only " + std::to_string(n) + " samples; impactlab fit needs at least 200");
     pr.dt = (d.t.back() - d.t.front()) / static_cast<double>(n - 1);

@@ -254,7 +254,8 @@ std::vector<double> free_run(const Prep& pr, const Model& m, double rtol) {
         const std::size_t last = pr.run_last(first);
         const std::size_t a = usable_start(pr, first, last);
         if (a + 2 >= last) continue;
-        const std::vector<double> sim = simulate_window(pr, m, a, last, false, rtol);
+        std::vector<double> sim = simulate_window(pr, m, a, last, false, rtol);
+        if (pr.x_highpass_hz > 0) sim = highpass_fft(sim, pr.dt, pr.x_highpass_hz);   // like with like: the record's chain
         std::copy(sim.begin(), sim.end(), out.begin() + static_cast<long>(a));
     }
     return out;

@@ -268,6 +268,44 @@ double stdev(const std::vector<double>& v, std::size_t a, std::size_t b) {
     return std::sqrt(s / (c - 1));
 }
 
+std::vector<double> highpass_fft(const std::vector<double>& x, double dt, double cut_hz) {
+    if (x.size() < 4 || !(cut_hz > 0) || !(dt > 0)) return x;
+    double mean = 0;
+    for (double v : x) {
+        if (!std::isfinite(v)) return x;
+        mean += v;
+    }
+    mean /= static_cast<double>(x.size());
+    // The least length from n up with no prime factor above 7 (the FFT's cost stays N log N; they lie within a
+    // few percent of any n), the gap bridged by a straight line from the last sample back to the first, so
+    // that the periodic signal the transform sees is the record's own.
+    auto smooth7 = [](std::size_t m) {
+        for (std::size_t f : {2, 3, 5, 7})
+            while (m % f == 0) m /= f;
+        return m == 1;
+    };
+    const std::size_t n = x.size();
+    std::size_t N = n;
+    while (!smooth7(N)) ++N;
+    std::vector<double> buf(N, 0.0);
+    for (std::size_t i = 0; i < n; ++i) buf[i] = x[i] - mean;
+    for (std::size_t i = n; i < N; ++i) {
+        const double w = static_cast<double>(i - n + 1) / static_cast<double>(N - n + 1);
+        buf[i] = (1.0 - w) * buf[n - 1] + w * buf[0];
+    }
+    Eigen::FFT<double> fft;
+    std::vector<std::complex<double>> spec;
+    fft.fwd(spec, buf);
+    const double df = 1.0 / (static_cast<double>(N) * dt);
+    for (std::size_t k = 0; k < spec.size(); ++k) {
+        const std::size_t fk = std::min(k, N - k);   // the negative frequencies mirror the positive ones
+        if (static_cast<double>(fk) * df < cut_hz) spec[k] = 0.0;
+    }
+    fft.inv(buf, spec);
+    buf.resize(x.size());
+    return buf;
+}
+
 double dominant_period(const std::vector<double>& x, double dt) {
     std::size_t N = 1;
     while (N < x.size()) N <<= 1;

@@ -59,6 +59,7 @@ FitReport run_fit(const MeasuredData& data, const Model& given, const FitOptions
     rep.model_name = model0.p.name;
     rep.forcing = data.has_phi() ? "phi (unbalance)" : "u (measured input)";
     rep.baseline = o.fit_baseline ? Baseline::Fit : Baseline::Fixed;
+    rep.x_highpass_hz = o.x_highpass_hz;
     if (model0.p.stiffness_id == "duffing") rep.units = FitUnits::DataUnits;
     validate(model0.p, "model");
     check_plausible(data, model0, o);

@@ -85,12 +85,18 @@ void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_i
     const std::size_t b = oe_fit_end(pr, a, kOeSamples);
     // The fit needs the simulation far more accurate than the sensor, not to the reporting tolerance.
     const double fit_rtol = std::max(rtol, 1e-6);
+    // A declared high-pass of the record's x acts on both over the stretch fitted: like with like.
+    const bool hp = pr.x_highpass_hz > 0;
+    const std::vector<double> xd = hp ? highpass_fft(std::vector<double>(d.x.begin() + static_cast<long>(a), d.x.begin() + static_cast<long>(b) + 1),
+                                                     pr.dt, pr.x_highpass_hz)
+                                      : std::vector<double>(d.x.begin() + static_cast<long>(a), d.x.begin() + static_cast<long>(b) + 1);
     auto err = [&](Eigen::VectorXd& e) {
-        const std::vector<double> fr = simulate_window(pr, m, a, b, false, fit_rtol);
+        std::vector<double> fr = simulate_window(pr, m, a, b, false, fit_rtol);
+        if (hp && fr.size() == xd.size()) fr = highpass_fft(fr, pr.dt, pr.x_highpass_hz);
         e.resize(static_cast<Eigen::Index>(b - a + 1));
         double ss = 0;
         for (std::size_t i = 0; i + a <= b; ++i) {
-            const double r = i < fr.size() && std::isfinite(fr[i]) ? fr[i] - d.x[a + i] : 0.0;
+            const double r = i < fr.size() && std::isfinite(fr[i]) ? fr[i] - xd[i] : 0.0;
             e[static_cast<Eigen::Index>(i)] = r;
             ss += r * r;
         }

@@ -1,4 +1,6 @@
 // Stage 6 of the fit: the held-out validation of the effects found, and the output-error refit.
+#include <map>
+
 #include "identify/fit/session.hpp"
 
 namespace impactlab::identify::detail {
@@ -60,6 +62,37 @@ void validate_effects(FitSession& fs) {
         return e;
     };
     auto held_out = [&](const Model& m) { return held_out_folds({m, m}); };
+    // The effects' values on the whole record's equation error, with the knobs each fold refits.
+    const bool joint_base = o.fit_baseline && !base_names.empty() && !refit_base;
+    // Their standard errors (HAC) by effect, from the same fit.
+    std::map<std::string, std::vector<std::pair<std::string, double>>> whole_sigma;
+    auto whole_record = [&](Model& m) {
+        std::vector<std::size_t> owner;
+        std::vector<Knob> knobs = found_effect_knobs(m, base, cands, &owner);
+        if (knobs.empty() || pr.rows.size() < 20) return;
+        Eigen::VectorXd R;
+        Eigen::MatrixXd J;
+        lm_residual(pr, m, knobs, 15, R, J);
+        const Eigen::MatrixXd V = hac_cov(-J, R, fs.hac_lag);
+        whole_sigma.clear();
+        for (std::size_t k = 0; k < knobs.size(); ++k)
+            if (owner[k] != SIZE_MAX && V.allFinite())
+                whole_sigma[m.p.effects[owner[k]].law->id].emplace_back(
+                    knobs[k].name, std::sqrt(std::max(0.0, V(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)))));
+    };
+    auto values_in = [&](const Model& m, const FoundEffect& f) {
+        for (const auto& c : cands)
+            if (c.base && f.id == c.id) return std::vector<std::pair<std::string, double>>{{c.param, base_change(c, m, base)}};
+        for (const auto& e : m.p.effects)
+            if (f.id == e.law->id) return named(e);
+        return f.parameters;
+    };
+    // An effect's values and standard errors from the last whole-record refit, and its sentence with them.
+    auto take_whole = [&](const Model& m, FoundEffect& f) {
+        f.parameters = values_in(m, f);
+        if (const auto it = whole_sigma.find(f.id); it != whole_sigma.end()) f.sigma = it->second;
+        f.sentence = sentence(f.id, base, f.parameters, f.sigma, sc);
+    };
     // Impacts by fold (of their entry sample), for refitting an impact-law effect on one fold only.
     std::array<std::vector<char>, 2> impacts_in;
     for (std::size_t f = 0; f < 2; ++f) {
@@ -152,6 +185,13 @@ void validate_effects(FitSession& fs) {
                 apply_effect(cand, f.id, f.parameters);
             } else {
                 apply_effect(cand, f.id, f.parameters);
+                // Its values came from the joint fit that moved the base parameters too, which this model does not
+                // take: refitted here as the folds refit it, so the model kept is the model validated.
+                if (joint_base && f.evidence == Evidence::EquationError) {
+                    whole_record(cand);
+                    take_whole(cand, f);
+                    rej.parameters = f.parameters;
+                }
             }
             const std::string why = unphysical(cand);
             if (!why.empty()) {
@@ -198,6 +238,9 @@ void validate_effects(FitSession& fs) {
             }
             cur = std::move(cand);
             e_cur = e_new;
+            if (joint_base && f.evidence == Evidence::EquationError)   // the effects kept before were refitted beside it
+                for (auto& g : rep.effects_found)
+                    if (g.evidence == Evidence::EquationError) take_whole(cur, g);
             rep.effects_found.push_back(f);
             kept.push_back({step_name("added " + f.id, c), cur, rep.effects_found, total(e_cur), false});
         }
@@ -225,6 +268,7 @@ void validate_effects(FitSession& fs) {
             apply_effect(both, fb.id, fb.parameters);
             apply_effect(only_a, fa.id, fa.parameters);
             apply_effect(only_b, fb.id, fb.parameters);
+            if (joint_base) whole_record(both);
             if (!unphysical(both).empty()) continue;
             const std::vector<double> e_both = held_out(both);
             const Compare c = compare(e_cur, e_both);
@@ -235,6 +279,7 @@ void validate_effects(FitSession& fs) {
             e_cur = e_both;
             for (const auto& [fi, ri] : {small_final[a], small_final[b]}) {
                 FoundEffect& f = found[fi];
+                if (joint_base) take_whole(cur, f);
                 f.validation_gain = c.gain;
                 f.validation_z = c.z;
                 rep.effects_found.push_back(f);
