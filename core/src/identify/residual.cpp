@@ -120,7 +120,20 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
         pr.period = kTwoPi / std::max(median(pr.omega), 0.5);
     } else {
         pr.u = d.u;
-        pr.period = dominant_period(d.x, pr.dt);
+        // Each run about its own mean: runs in different wells would otherwise make their step between runs
+        // the record's "dominant period", longer than any run, and leave no shooting window at all.
+        std::vector<double> xc = d.x;
+        for (std::size_t r = 0; r < pr.run_start.size(); ++r) {
+            const std::size_t a = pr.run_start[r], b = pr.run_last(a) + 1;
+            double mean = 0, cnt = 0;
+            for (std::size_t i = a; i < b; ++i)
+                if (std::isfinite(xc[i])) {
+                    mean += xc[i];
+                    cnt += 1;
+                }
+            for (std::size_t i = a; i < b; ++i) xc[i] -= cnt > 0 ? mean / cnt : 0.0;
+        }
+        pr.period = dominant_period(xc, pr.dt);
         t_char = pr.period;
     }
     int H = o.window > 0 ? static_cast<int>(std::lround(o.window / pr.dt))
