@@ -27,7 +27,8 @@ constexpr const char* kFitHelp =
     "  --model NAME|FILE.json  version (A1H, A1G, ...), a parameter file, or 'duffing' (m y''+d y'+k y+k3 y^3 = gain u)\n"
     "  --xI X, --m0e M         override the bumper position [m] / the unbalance [kg m]\n"
     "  --baseline fixed|fit    validate the parameters as given (default; 'duffing' always fits) or fit them\n"
-    "  --fit-params LIST       base parameters to fit, comma-separated (c,T,k,a1,a3,b2,b4,m0e,gain,m,xI)\n"
+    "  --fit-params LIST       base parameters to fit, comma-separated (c,T,k,a1,a3,b2,b4,m0e,gain,m,xI;\n"
+    "                          k2 where the model carries an even_stiffness)\n"
     "  --gain G                starting gain of the input u [N per unit of u] (default 1)\n"
     "Data (MODEL.md layout: t,x and phi or u; '#' comments):\n"
     "  --t-col C, --x-col C, --phi-col C, --u-col C   map a column by header name or 1-based number\n"
@@ -183,6 +184,9 @@ int cmd_fit(const std::vector<std::string>& argv) {
                     r.data_horizon_periods, r.data_lambda);
     const auto& b = r.error_before;
     const auto& e = r.error_after;
+    for (const auto& ro : r.run_offsets)
+        std::printf("run %zu's x shifted by %+.4g +/- %.2g %s (its well's place; the chain had centred it on zero)\n", ro.run + 1, ro.offset,
+                    ro.sigma, r.x_unit());
     for (const auto& g : r.gate) std::printf("final gate: %s\n", g.c_str());
     std::printf("final gate passed: %s\n", r.gate_passed.c_str());
     std::printf("verdict: %s\n", r.verdict.c_str());

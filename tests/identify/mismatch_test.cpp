@@ -95,6 +95,25 @@ TEST_CASE("mismatch: the asymmetric rig's pair of wells names an asymmetry, the 
     CHECK(r.data_regular);   // intra-well records: judged over whole periods, not as chaos
     CHECK(r.horizon_periods >= 1.0);
     CHECK(r.verdict.find("misses something") != std::string::npos);
+    // The chain centred each run's x; the runs' local laws, tied to one cubic, put them back at their wells, and
+    // the model written holds the asymmetry: two wells, the left stiffer and deeper (truth 9.56 and 7.26 Hz,
+    // 0.065 and 0.024 (m/s)^2), a positive gain (truth 1.13) and damping.
+    REQUIRE(r.run_offsets.size() == 2);
+    CHECK(r.run_offsets[0].offset < 0);
+    CHECK(r.run_offsets[1].offset > 0);
+    REQUIRE(r.wells_after.wells.size() == 2);
+    const id::Well& left = r.wells_after.wells[0];
+    const id::Well& right = r.wells_after.wells[1];
+    CAPTURE(left.omega / (2 * 3.141592653589793));
+    CAPTURE(right.omega / (2 * 3.141592653589793));
+    CAPTURE(r.after.p.input_gain);
+    CHECK(left.omega > right.omega + 3 * std::hypot(left.somega, right.somega));
+    CHECK(left.depth > right.depth);
+    CHECK(std::abs(left.omega / (2 * 3.141592653589793) - 9.56) < 0.15 * 9.56);
+    CHECK(std::abs(right.omega / (2 * 3.141592653589793) - 7.26) < 0.15 * 7.26);
+    CHECK(r.after.p.input_gain > 0.5 * 1.13);
+    CHECK(r.after.p.input_gain < 2.0 * 1.13);
+    CHECK(r.after.p.c > 0);
 }
 
 TEST_CASE("mismatch: the symmetric rig's pair names no asymmetry; never a worse model" *

@@ -201,6 +201,13 @@ struct RunWell {
     std::string side;              // "left", "right" or "" (no clear even term)
     double depth = 0;              // by the local law's barrier, per unit mass [x unit^2 / s^2]; NaN: none within reach
     double barrier = 0;            // distance from x0 to that barrier [x unit]
+    double c = 0, gain = 0;        // the damping and input gain per unit mass the runs share in the same regression
+};
+// A run's x shifted to where its well lies (a chain that removed each run's mean, runs in different wells):
+// the offset added and its standard error, from the wells' local laws tied to one force law.
+struct RunOffset {
+    std::size_t run = 0;
+    double offset = 0, sigma = 0;   // [x unit]
 };
 
 // Whether a fit's base parameters were fitted to the data or kept as given.
@@ -278,6 +285,7 @@ struct FitReport {
     std::vector<std::pair<std::string, double>> remainder;
     // Each run's well measured from the data, and what they say of an asymmetry (empty: not measured).
     std::vector<RunWell> data_wells;
+    std::vector<RunOffset> run_offsets;   // runs shifted to their wells before the fit (empty: none)
     std::string wells_from_data;
     // Where the record cannot pin its well's frequency (the model's and the data's own disagree, or k trades
     // off against another parameter), the sentence that says so; empty otherwise.

@@ -301,7 +301,10 @@ std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& nam
         else if (n == "gain") p = &m.p.input_gain;
         else if (n == "m") p = &m.p.m;
         else if (n == "xI") p = &m.p.xI;
-        if (!p) throw ParamError("--fit-params: unknown parameter '" + n + "' (known: c, T, k, a1, a3, a5, b2, b4, m0e, gain, m, xI)");
+        else if (n == "k2")   // the model's own even stiffness (an even_stiffness effect it carries)
+            for (auto& e : m.p.effects)
+                if (e.law && std::string(e.law->id) == "even_stiffness") p = &e.p[0];
+        if (!p) throw ParamError("--fit-params: unknown parameter '" + n + "' (known: c, T, k, a1, a3, a5, b2, b4, m0e, gain, m, xI; k2 where the model carries an even_stiffness)");
         out.push_back({n, p, std::max(1e-6 * std::abs(*p), 1e-9)});
     }
     return out;
@@ -320,6 +323,7 @@ double base_scale(const std::string& name, const Prep& pr, const Model& m) {
     else if (name == "m0e") s = f / (w * w);
     else if (name == "m") s = m.p.m;
     else if (name == "b2") s = 1.0 / (x * x);
+    else if (name == "k2") s = f / (x * x);
     else if (name == "b4") s = 1.0 / (x * x * x * x);
     else if (name == "xI") s = x;
     return std::isfinite(s) && s > 0 ? s : 1.0;

@@ -83,6 +83,8 @@ std::vector<RunWell> data_wells(const Prep& pr, int hac_lag) {
         }
         RunWell w;
         w.run = runs[q];
+        w.c = beta[0];
+        w.gain = beta[1];
         w.x0 = x0 + mean_of[q];
         const double keff = k + 2 * k2 * x0 + 3 * k3 * x0 * x0, k2eff = k2 + 3 * k3 * x0;
         // Uncertainties by the delta method over (k, k2, k3, F0) through x0.

@@ -223,6 +223,13 @@ std::string markdown(const FitReport& r, bool with_plots) {
     md << "Model **" << r.before.p.name << "** (" << (r.baseline == Baseline::Fit ? "parameters fitted to the data" : "parameters fixed")
        << "), forcing " << r.forcing << ". " << r.samples << " samples, " << g3(r.duration) << " s at " << g3(1.0 / r.dt)
        << " Hz; sensor noise about " << (r.metres() ? g3(r.sigma_x * 1e6) + " um" : g3(r.sigma_x) + " (" + r.x_unit() + ")") << ".\n\n";
+    if (!r.run_offsets.empty()) {
+        md << "The runs lie in different wells, but the measurement chain centred each run's x on zero. Each run's own local law, "
+              "tied to one cubic, puts its well where it lies; the fit sees each run shifted by (a model written here simulates "
+              "the runs in these coordinates):\n\n| run | offset [" << r.x_unit() << "] |\n|---|---|\n";
+        for (const auto& o : r.run_offsets) md << "| " << o.run + 1 << " | " << g3(o.offset, "%.4g") << " +/- " << g3(o.sigma, "%.2g") << " |\n";
+        md << "\n";
+    }
     if (r.x_highpass_hz > 0)
         md << "The record's x went through a high-pass at " << g3(r.x_highpass_hz)
            << " Hz (declared): every free run of a model is filtered alike before it is compared with x.\n\n";
@@ -547,6 +554,8 @@ std::string report_json_text(const FitReport& r) {
     j["notes"] = r.notes;
     j["gate"] = {{"undone", r.gate}, {"passed", r.gate_passed}, {"rose_within_scatter", r.gate_within}};
     j["runtime_s"] = r.runtime_s;
+    j["run_offsets"] = json::array();
+    for (const auto& o : r.run_offsets) j["run_offsets"].push_back({{"run", o.run + 1}, {"offset", num(o.offset)}, {"sigma", num(o.sigma)}});
     j["x_highpass_hz"] = r.x_highpass_hz;
     return json_dump(std::move(j), 2) + "\n";   // a file name in any bytes
 }

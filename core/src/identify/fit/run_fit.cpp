@@ -40,17 +40,27 @@ void guarded(FitSession& fs, FitStage stage, Stage&& run, Undo&& undo) {
 
 }  // namespace
 
-FitReport run_fit(const MeasuredData& data, const Model& given, const FitOptions& options, const MeasuredData* test,
+FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitOptions& options, const MeasuredData* test,
                   FitProgress* progress) {
     // A model in the record's units is checked where the record lies (twice its largest |x|), not on the rail.
     Model model0 = given;
-    if (model0.p.stiffness_id == "duffing" && model0.p.x_extent == 0.0) {
+    auto extent = [&](const MeasuredData& d) {
+        if (model0.p.stiffness_id != "duffing" || given.p.x_extent != 0.0) return;
         double xmax = 0;
-        for (double x : data.x)
+        for (double x : d.x)
             if (std::isfinite(x)) xmax = std::max(xmax, std::abs(x));
         if (xmax > 0) model0.p.x_extent = 2.0 * xmax;
-    }
+    };
+    extent(data_given);
+    // Runs in different wells that the measurement chain centred on zero: each put back at its well first.
+    FitReport offsets;
+    MeasuredData shifted;
+    const bool moved = run_offsets_stage(data_given, model0, options, shifted, offsets);
+    const MeasuredData& data = moved ? shifted : data_given;
+    if (moved) extent(data);
     FitSession fs(data, model0, options, test, progress);
+    fs.rep.run_offsets = offsets.run_offsets;
+    fs.rep.notes = offsets.notes;
     FitOptions& o = fs.o;
     fs.enter(FitStage::Prepare);
     const auto clock0 = std::chrono::steady_clock::now();
@@ -93,6 +103,8 @@ FitReport run_fit(const MeasuredData& data, const Model& given, const FitOptions
     std::vector<std::string>& base_names = fs.base_names;
     base_names =
         o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0) : o.fit_params) : std::vector<std::string>{};
+    // Runs put back at their wells: the tied cubic's even term is fitted with the baseline.
+    if (o.fit_baseline && o.fit_params.empty() && !rep.run_offsets.empty()) base_names.push_back("k2");
     fit_baseline_stage(fs);
     Model& base = fs.base;
     const Model& ee_base = fs.ee_base;
