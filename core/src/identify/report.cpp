@@ -327,8 +327,8 @@ std::string markdown(const FitReport& r, bool with_plots) {
                << " +/- " << g3(w.somega, "%.2g") << " |\n";
         }
         md << "\nRight minus left: depth " << g3(wa.depth_asym, "%.3g") << " +/- " << g3(wa.sdepth_asym, "%.2g") << " " << du_ << ", omega "
-           << g3(wa.omega_asym, "%.3g") << " +/- " << g3(wa.somega_asym, "%.2g") << " rad/s (uncertainties from the effects found; "
-           << "the base parameters are taken as given). ";
+           << g3(wa.omega_asym, "%.3g") << " +/- " << g3(wa.somega_asym, "%.2g") << " rad/s (uncertainties from the effects found and a fitted "
+           << "k2; the other base parameters are taken as given). ";
         std::string visited;
         for (std::size_t k = 0; k < wa.run_wells.size(); ++k)
             visited += (k ? ", " : "") + std::string("run ") + std::to_string(k + 1) + ": " + wa.run_wells[k];

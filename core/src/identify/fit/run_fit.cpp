@@ -226,7 +226,19 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
     rep.wells_before = well_report(model0, {}, pr);
     rep.data_wells = data_wells(pr, hac_lag);
     rep.wells_from_data = wells_asymmetry(rep.data_wells, rep.x_unit());
-    rep.wells_after = well_report(after, rep.effects_found, pr);
+    {
+        // The wells' errors from every fitted term of the force: the effects found, and the even stiffness the
+        // baseline fitted as k2 (runs put back at their wells).
+        std::vector<FoundEffect> terms = rep.effects_found;
+        for (const BaseEstimate& b : rep.base_estimates)
+            if (b.name == "k2") {
+                FoundEffect k2;
+                k2.id = "even_stiffness";
+                k2.sigma = {{"k2", b.sigma}};
+                terms.push_back(std::move(k2));
+            }
+        rep.wells_after = well_report(after, terms, pr);
+    }
     rep.well_frequency = well_frequency_identifiability(rep.data_wells, rep.wells_after, rep.unseparated);
     // Never a report whose headline numbers are not numbers: name the first and refuse to hand it over.
     const std::pair<const char*, double> headline[] = {
