@@ -55,7 +55,17 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
     // Runs in different wells that the measurement chain centred on zero: each put back at its well first.
     FitReport offsets;
     MeasuredData shifted;
-    const bool moved = run_offsets_stage(data_given, model0, options, shifted, offsets);
+    bool moved = false;
+    try {
+        moved = run_offsets_stage(data_given, model0, options, shifted, offsets);
+    } catch (const FitCancelled&) {
+        throw;
+    } catch (const std::exception& e) {   // like any stage: a fault ends it with a note, never the fit
+        model0 = given;
+        extent(data_given);
+        offsets = FitReport{};
+        offsets.notes.push_back(std::string("putting the runs back at their wells failed (") + e.what() + "); the runs are fitted as recorded");
+    }
     const MeasuredData& data = moved ? shifted : data_given;
     if (moved) extent(data);
     FitSession fs(data, model0, options, test, progress);
