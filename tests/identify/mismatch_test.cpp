@@ -81,7 +81,7 @@ bool names_asymmetry(const id::FitReport& r) {
 
 }  // namespace
 
-TEST_CASE("mismatch: the asymmetric rig's pair of wells names an asymmetry, the left well stiffer; never a worse model" *
+TEST_CASE("mismatch: the asymmetric rig's pair of wells names an asymmetry, the left well stiffer, mirrored too; never a worse model" *
           doctest::skip(shared_missing("data/mismatch/asym_left.csv.gz"))) {
     const id::FitReport r = fit({"asym_left", "asym_right"}, 4096, 36864);
     never_worse(r);
@@ -114,6 +114,35 @@ TEST_CASE("mismatch: the asymmetric rig's pair of wells names an asymmetry, the 
     CHECK(r.after.p.input_gain > 0.5 * 1.13);
     CHECK(r.after.p.input_gain < 2.0 * 1.13);
     CHECK(r.after.p.c > 0);
+
+    // Mirrored (x, v, u -> -x, -v, -u), the right well's run first: put back at mirrored wells, with the same
+    // gain and the opposite k2.
+    id::MeasuredData run_l = load("asym_left", 4096, 36864), run_r = load("asym_right", 4096, 36864);
+    for (id::MeasuredData* d : {&run_l, &run_r}) {
+        for (double& x : d->x) x = -x;
+        for (double& u : d->u) u = -u;
+        for (double& v : d->v) v = -v;
+    }
+    id::FitOptions fo;
+    fo.plots = false;
+    fo.fit_baseline = true;
+    const id::FitReport m = id::run_fit(id::join_records({run_r, run_l}), id::resolve_fit_model("duffing", id::Forcing::Input), fo);
+    REQUIRE(m.run_offsets.size() == 2);
+    for (std::size_t k = 0; k < 2; ++k) {
+        const id::RunOffset& a = r.run_offsets[k];
+        const id::RunOffset& b = m.run_offsets[1 - k];
+        CHECK(std::abs(b.offset + a.offset) < 0.1 * a.sigma);   // within a tenth of its own error
+        CHECK(b.sigma == doctest::Approx(a.sigma).epsilon(0.05));
+    }
+    auto base = [](const id::FitReport& f, const char* name) {
+        for (const auto& b : f.base_estimates)
+            if (b.name == name) return b;
+        return id::BaseEstimate{name, NAN, NAN, ""};
+    };
+    const id::BaseEstimate g = base(r, "gain"), gm = base(m, "gain"), k2 = base(r, "k2"), k2m = base(m, "k2");
+    CHECK(gm.value == doctest::Approx(g.value).epsilon(1e-3));
+    CHECK(k2m.value == doctest::Approx(-k2.value).epsilon(1e-3));
+    CHECK(k2.value > 0);   // the hilltop's origin: the left well stiffer is k2 > 0 (README)
 }
 
 TEST_CASE("mismatch: the symmetric rig's pair names no asymmetry; never a worse model" *
@@ -202,37 +231,4 @@ TEST_CASE("mismatch: runs that lie at their own wells (a sensor that keeps the o
     CHECK(std::isfinite(r.error_after.shooting_rms_1_m));
     CHECK(r.data_regular);
     never_worse(r);
-}
-
-TEST_CASE("mismatch: the pair mirrored (x, v, u -> -x, -v, -u) is put back at mirrored wells with the same gain and an opposite k2" *
-          doctest::skip(shared_missing("data/mismatch/asym_left.csv.gz"))) {
-    const id::FitReport r = fit({"asym_left", "asym_right"}, 4096, 36864);
-    id::MeasuredData left = load("asym_left", 4096, 36864), right = load("asym_right", 4096, 36864);
-    for (id::MeasuredData* d : {&left, &right}) {
-        for (double& x : d->x) x = -x;
-        for (double& u : d->u) u = -u;
-        for (double& v : d->v) v = -v;
-    }
-    id::FitOptions fo;
-    fo.plots = false;
-    fo.fit_baseline = true;
-    // The right well's run first, as the left one of the mirror image.
-    const id::FitReport m = id::run_fit(id::join_records({right, left}), id::resolve_fit_model("duffing", id::Forcing::Input), fo);
-    REQUIRE(r.run_offsets.size() == 2);
-    REQUIRE(m.run_offsets.size() == 2);
-    for (std::size_t k = 0; k < 2; ++k) {
-        const id::RunOffset& a = r.run_offsets[k];
-        const id::RunOffset& b = m.run_offsets[1 - k];
-        CHECK(std::abs(b.offset + a.offset) < 0.1 * a.sigma);   // within a tenth of its own error
-        CHECK(b.sigma == doctest::Approx(a.sigma).epsilon(0.05));
-    }
-    auto base = [](const id::FitReport& f, const char* name) {
-        for (const auto& b : f.base_estimates)
-            if (b.name == name) return b;
-        return id::BaseEstimate{name, NAN, NAN, ""};
-    };
-    const id::BaseEstimate g = base(r, "gain"), gm = base(m, "gain"), k2 = base(r, "k2"), k2m = base(m, "k2");
-    CHECK(gm.value == doctest::Approx(g.value).epsilon(1e-3));
-    CHECK(k2m.value == doctest::Approx(-k2.value).epsilon(1e-3));
-    CHECK(k2.value > 0);   // the hilltop's origin: the left well stiffer is k2 > 0 (README)
 }
