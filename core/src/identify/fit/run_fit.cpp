@@ -104,8 +104,7 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
         rep.omega_min = *std::min_element(pr.omega.begin(), pr.omega.end());
         rep.omega_max = *std::max_element(pr.omega.begin(), pr.omega.end());
     }
-    const int stride = std::max(1, pr.K.H / 4);
-    fs.hac_lag = static_cast<int>(std::ceil(2.0 * (2 * pr.K.H + 1) / stride));
+    fs.hac_lag = hac_lag_of(pr);
     const int hac_lag = fs.hac_lag;
 
     fs.enter(FitStage::Baseline);

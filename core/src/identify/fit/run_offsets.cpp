@@ -97,8 +97,7 @@ bool run_offsets_stage(const MeasuredData& data, Model& model0, const FitOptions
     std::vector<std::string> notes;
     Prep pr = prepare(data, model0, o, notes);
     pr.predictability = data_horizon(pr);
-    const int stride = std::max(1, pr.K.H / 4);
-    const std::vector<RunWell> wells = data_wells(pr, static_cast<int>(std::ceil(2.0 * (2 * pr.K.H + 1) / stride)));
+    const std::vector<RunWell> wells = data_wells(pr, hac_lag_of(pr));
     bool left = false, right = false;
     for (const RunWell& w : wells) {
         left = left || w.side == "left";

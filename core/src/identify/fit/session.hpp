@@ -120,6 +120,9 @@ struct FitSession {
     }
 };
 
+// The Newey-West lag of the equation error's rows: two kernel widths, in rows (every H/4-th sample).
+int hac_lag_of(const Prep& pr);
+
 // ---- the stages, in the order run_fit calls them ------------------------------------------------------------
 // run_offsets.cpp: 0, runs in different wells whose chain centred each run's x: `shifted` gets the record with
 // each run at its well, model0 the tied cubic's starting values, rep the offsets and a note. False: nothing to do.

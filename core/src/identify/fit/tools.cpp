@@ -179,6 +179,11 @@ double group_z_dss(const Eigen::MatrixXd& J, const Eigen::VectorXd& R, const std
     return chi2_to_z(dss / std::max(s2 * tau, 1e-300), static_cast<int>(q));
 }
 
+int hac_lag_of(const Prep& pr) {
+    const int stride = std::max(1, pr.K.H / 4);
+    return static_cast<int>(std::ceil(2.0 * (2 * pr.K.H + 1) / stride));
+}
+
 std::vector<Knob> base_knobs(Model& m, const std::vector<std::string>& names, const Prep& pr) {
     std::vector<Knob> knobs;
     for (const auto& b : base_params(m, names)) {

@@ -39,21 +39,30 @@ void validate_effects(FitSession& fs) {
     const std::array<std::vector<std::size_t>, 2>& fold_wins = sp.fold_wins;
     auto fold_of = [&](std::size_t i) { return sp.fold_of(pr, i); };
 
+    // The force effects of m (and the base, where refitted) refitted on the equation error of `on`'s rows; the
+    // knobs, and the instance each belongs to (SIZE_MAX: a base parameter). Empty: nothing to refit there.
+    auto refit_effects = [&](const Prep& on, Model& m, std::vector<std::size_t>& owner, Eigen::VectorXd& R, Eigen::MatrixXd& J) {
+        owner.clear();
+        std::vector<Knob> knobs = found_effect_knobs(m, base, cands, &owner);
+        if (refit_base)
+            for (const Knob& k : base_knobs(m, base_names, pr)) {
+                knobs.push_back(k);
+                owner.push_back(SIZE_MAX);
+            }
+        if (knobs.empty() || on.rows.size() < 20) return std::vector<Knob>{};
+        lm_residual(on, m, knobs, 15, R, J);
+        return knobs;
+    };
     // Held-out SSE of each window: fold f's windows simulated with model_for[f], its force effects refitted
     // on the other fold's rows (the impact-law effects come refitted on the other fold's impacts).
     auto held_out_folds = [&](const std::array<Model, 2>& model_for) {
         std::vector<double> e(wins.size(), INFINITY);
         for (std::size_t f = 0; f < 2; ++f) {
             Model mf = model_for[f];
-            std::vector<Knob> knobs = found_effect_knobs(mf, base, cands);
-            if (refit_base)
-                for (const Knob& k : base_knobs(mf, base_names, pr)) knobs.push_back(k);
-            const Prep& fit_on = fold_pr[1 - f];
-            if (!knobs.empty() && fit_on.rows.size() >= 20) {
-                Eigen::VectorXd R;
-                Eigen::MatrixXd J;
-                lm_residual(fit_on, mf, knobs, 15, R, J);
-            }
+            std::vector<std::size_t> owner;
+            Eigen::VectorXd R;
+            Eigen::MatrixXd J;
+            refit_effects(fold_pr[1 - f], mf, owner, R, J);
             std::vector<std::pair<std::size_t, std::size_t>> sub;
             for (std::size_t w : fold_wins[f]) sub.push_back(wins[w]);
             const std::vector<double> ef = window_sse(pr, mf, sub, o.refine_shooting, o.rtol);
@@ -68,11 +77,10 @@ void validate_effects(FitSession& fs) {
     std::map<std::string, std::vector<std::pair<std::string, double>>> whole_sigma;
     auto whole_record = [&](Model& m) {
         std::vector<std::size_t> owner;
-        std::vector<Knob> knobs = found_effect_knobs(m, base, cands, &owner);
-        if (knobs.empty() || pr.rows.size() < 20) return;
         Eigen::VectorXd R;
         Eigen::MatrixXd J;
-        lm_residual(pr, m, knobs, 15, R, J);
+        const std::vector<Knob> knobs = refit_effects(pr, m, owner, R, J);
+        if (knobs.empty()) return;
         const Eigen::MatrixXd V = hac_cov(-J, R, fs.hac_lag);
         whole_sigma.clear();
         for (std::size_t k = 0; k < knobs.size(); ++k)
@@ -83,8 +91,8 @@ void validate_effects(FitSession& fs) {
     auto values_in = [&](const Model& m, const FoundEffect& f) {
         for (const auto& c : cands)
             if (c.base && f.id == c.id) return std::vector<std::pair<std::string, double>>{{c.param, base_change(c, m, base)}};
-        for (const auto& e : m.p.effects)
-            if (f.id == e.law->id) return named(e);
+        for (auto e = m.p.effects.rbegin(); e != m.p.effects.rend(); ++e)   // the last instance of its law
+            if (f.id == e->law->id) return named(*e);
         return f.parameters;
     };
     // An effect's values and standard errors from the last whole-record refit, and its sentence with them.
@@ -383,13 +391,9 @@ void validate_effects(FitSession& fs) {
             }
         }
         for (auto& f : rep.effects_found) {
-            for (const auto& e : cur.p.effects)
-                if (f.id == e.law->id) f.parameters = named(e);
-            for (const auto& c : cands)
-                if (c.base && f.id == c.id) {
-                    f.parameters = {{c.param, base_change(c, cur, base)}};
-                    f.sentence = sentence(f.id, base, f.parameters, f.sigma, sc);
-                }
+            f.parameters = values_in(cur, f);
+            if (std::any_of(cands.begin(), cands.end(), [&](const Candidate& c) { return c.base && f.id == c.id; }))
+                f.sentence = sentence(f.id, base, f.parameters, f.sigma, sc);
         }
     }
     if (!rep.effects_found.empty() && refitted) {
