@@ -38,3 +38,41 @@ TEST_CASE("residual: noise floor for the true model, the missing force otherwise
     CHECK(X.mean() == doctest::Approx(1.0).epsilon(1e-9));
     CHECK((r_given + 0.3 * X - r_true).cwiseAbs().maxCoeff() < 1e-9);
 }
+
+// A least-squares pass evaluates the residual through ResidualCache, which re-evaluates only the force effect
+// whose parameters moved: its values must be residual()'s bit for bit, whatever moves (one effect, two, a
+// sensor's map, a base parameter) and back.
+TEST_CASE("residual: the cache of a least-squares pass gives residual()'s values bit for bit") {
+    id::Model truth = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
+    id::apply_effect(truth, "constant_force", {{"F0", -0.3}});
+    const id::MeasuredData data = id::synthesize(truth, id::test::short_run(7));
+    for (const char* sensor : {"sensor_offset", "sensor_curvature"}) {
+        CAPTURE(sensor);
+        id::Model m = id::resolve_fit_model("A1H", id::Forcing::Unbalance);
+        std::vector<std::string> notes;
+        const dt::Prep pr = dt::prepare(data, m, id::FitOptions{}, notes);
+        id::apply_effect(m, "constant_force", {{"F0", -0.2}});
+        id::apply_effect(m, "quadratic_damping", {{"cq", 1.5}});
+        id::apply_effect(m, sensor, {});
+        REQUIRE(m.p.effects.size() == 3);
+        std::vector<dt::Knob> knobs = {{&m.p.effects[0].p[0], 1e-3, -10, 10, "F0"},
+                                       {&m.p.effects[1].p[0], 1e-3, 0, 100, "cq"},
+                                       {&m.p.effects[2].p[0], 1e-6, -1, 1, sensor},
+                                       {&m.p.k, 1e-3, 0, 1e5, "k"}};
+        dt::ResidualCache cache(pr, m, knobs);
+        std::vector<double> pw;
+        Eigen::VectorXd r_cache, r_plain;
+        // Each entry moves the knobs to these offsets from their starts (the steps of a Jacobian, a trial point).
+        const std::vector<std::vector<double>> moves = {{0, 0, 0, 0},    {1e-3, 0, 0, 0}, {0, 0, 0, 0},    {0, 2e-3, 0, 0},
+                                                        {0.1, 0.5, 0, 0}, {0.1, 0.6, 0, 0}, {0.1, 0.5, 1e-5, 0}, {0.1, 0.5, 1e-5, 3.0},
+                                                        {0.2, 0.5, 1e-5, 3.0}, {0.2, 0.5, 1e-5, 3.0}};
+        const std::vector<double> start = {m.p.effects[0].p[0], m.p.effects[1].p[0], m.p.effects[2].p[0], m.p.k};
+        for (const auto& mv : moves) {
+            for (std::size_t k = 0; k < knobs.size(); ++k) *knobs[k].value = start[k] + mv[k];
+            cache.eval(r_cache);
+            dt::residual(pr, m, r_plain, pw);
+            REQUIRE(r_cache.size() == r_plain.size());
+            CHECK((r_cache.array() == r_plain.array()).all());
+        }
+    }
+}

@@ -188,6 +188,9 @@ struct LsqOptions {
     double huber_delta = 0;             // > 0: Huber loss with this scale on each residual (outliers, saturated samples)
     long max_evaluations = 0;           // residual evaluations (a Jacobian costs one per knob); 0: 2 (knobs + 2) per iteration
     double max_seconds = 0;             // wall clock, a safety net for evaluations that turn slow; 0: none
+    // The residual at given knob values (in the knobs' order) without touching the knobs, safe to call from
+    // several threads at once; where set, a Jacobian's columns are evaluated in parallel, with the same values.
+    std::function<bool(const std::vector<double>& values, Eigen::VectorXd& R)> eval_at;
 };
 struct LsqSummary {
     double initial_cost = 0, final_cost = 0;   // |R|^2
@@ -199,6 +202,32 @@ struct LsqSummary {
 // solution, the residual there in R and, if J is given, its forward-difference Jacobian dR/dknob.
 LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const StepFn& step_of, const LsqOptions& options,
                          Eigen::VectorXd& R, Eigen::MatrixXd* J = nullptr);
+
+// ---- residual.cpp, for the least-squares passes ---------------------------------------------------------
+// The weak-form residual of one model while a least-squares pass moves its knobs (the knobs must point into
+// `m`, which outlives the cache): each sample's rig forces and each effect's force are kept from the last full
+// evaluation, so a step of a force effect's parameters alone (a Jacobian column) re-evaluates that effect only.
+// Its values are residual()'s bit for bit: the same terms, summed in the same order.
+class ResidualCache {
+public:
+    ResidualCache(const Prep& pr, const Model& m, const std::vector<Knob>& knobs);
+    void eval(Eigen::VectorXd& R);   // at the knobs' current values
+
+private:
+    void full(Eigen::VectorXd& R);
+    void finish(Eigen::VectorXd& R) const;   // pw_ -> R with the rows' kept accelerations
+    const Prep& pr_;
+    const Model& m_;
+    const std::vector<Knob>& knobs_;
+    std::vector<int> owner_;                   // a knob's force effect, -1: the base or a sensor (a full evaluation)
+    std::vector<double> at_;                   // the knobs' values at the kept evaluation
+    bool kept_ = false;
+    std::vector<double> unbalance_, resistance_, spring_magnet_, impact_, x_, v_;   // per sample
+    std::vector<std::vector<double>> effect_;  // per effect, per sample
+    std::vector<double> acc_;                  // per row: m's factor, sum w2 x (no knob moves it but a sensor's)
+    std::vector<double> pw_;
+    double scale_ = 1.0;
+};
 
 // ---- wells.cpp ----------------------------------------------------------------------------------------
 WellReport well_report(const Model& m, const std::vector<FoundEffect>& found, const Prep& pr);

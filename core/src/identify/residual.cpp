@@ -6,6 +6,7 @@
 
 #include "identify/internal.hpp"
 #include "impactlab/forces.hpp"
+#include "impactlab/rig.hpp"
 #include "impactlab/simulator.hpp"
 
 namespace impactlab::identify::detail {
@@ -290,6 +291,107 @@ void residual(const Prep& pr, const Model& m, Eigen::VectorXd& R, std::vector<do
             frc += pr.K.w[k] * pw[a + k];
         }
         R[static_cast<Eigen::Index>(r)] = m.p.m * acc * scale + frc;
+    }
+}
+
+ResidualCache::ResidualCache(const Prep& pr, const Model& m, const std::vector<Knob>& knobs)
+    : pr_(pr), m_(m), knobs_(knobs), owner_(knobs.size(), -1), at_(knobs.size(), 0.0), effect_(m.p.effects.size()) {
+    for (std::size_t k = 0; k < knobs.size(); ++k)
+        for (std::size_t e = 0; e < m.p.effects.size(); ++e) {
+            const EffectInstance& fx = m.p.effects[e];
+            const double* p0 = fx.p.data();
+            if (knobs[k].value >= p0 && knobs[k].value < p0 + fx.p.size() && fx.law->kind == EffectKind::Force)
+                owner_[k] = static_cast<int>(e);
+        }
+}
+
+void ResidualCache::eval(Eigen::VectorXd& R) {
+    // The one force effect whose parameters moved since the kept evaluation, if that is all that moved.
+    int moved = -1;
+    bool partial = kept_;
+    for (std::size_t k = 0; k < knobs_.size() && partial; ++k) {
+        if (*knobs_[k].value == at_[k]) continue;
+        if (owner_[k] < 0 || (moved >= 0 && owner_[k] != moved)) partial = false;
+        else moved = owner_[k];
+    }
+    if (!partial) return full(R);
+    const MeasuredData& d = *pr_.data;
+    const Params& p = m_.p;
+    const EffectInstance* fx = moved >= 0 ? &p.effects[static_cast<std::size_t>(moved)] : nullptr;
+    const bool input = !pr_.phi_forced;
+    for (std::size_t j = pr_.j_lo; j < pr_.j_hi; ++j) {
+        double sum = 0.0;   // effects_at's order
+        for (std::size_t e = 0; e < effect_.size(); ++e) {
+            if (fx && e == static_cast<std::size_t>(moved)) {
+                const ForceContext c{d.t[j], x_[j], v_[j], pr_.phi[j], pr_.omega[j], pr_.alpha[j], p.m0e, p.xI};
+                sum += fx->law->force(fx->p.data(), c).F;
+            } else {
+                sum += effect_[e][j];
+            }
+        }
+        const ForceTerms f{resistance_[j], spring_magnet_[j], impact_[j], unbalance_[j], effect_.empty() ? 0.0 : sum};
+        double val = -f.net();
+        if (input) val -= p.input_gain * pr_.u[j];
+        pw_[j] = val;
+    }
+    finish(R);
+}
+
+void ResidualCache::full(Eigen::VectorXd& R) {
+    const MeasuredData& d = *pr_.data;
+    const Model& m = m_;
+    const double g = m.sensor_gain(), o = m.sensor_offset(), ig = 1.0 / g;
+    const std::size_t n = pr_.n;
+    for (auto* v : {&unbalance_, &resistance_, &spring_magnet_, &impact_, &x_, &v_, &pw_}) v->assign(n, 0.0);
+    for (auto& v : effect_) v.assign(n, 0.0);
+    const bool input = !pr_.phi_forced;
+    const bool curved = m.sensor_curved();
+    std::vector<double> xt, vt;
+    if (curved) true_states(pr_, m, xt, vt);
+    Params base = m.p;   // the rig's own terms (force_terms without the effects, which are kept one by one)
+    base.effects.clear();
+    for (std::size_t j = pr_.j_lo; j < pr_.j_hi; ++j) {
+        const double x = curved ? xt[j] : (d.x[j] - o) * ig, v = curved ? vt[j] : pr_.vs[j] * ig;
+        const RigForces r = rig_forces(base, d.t[j], x, v, pr_.phi[j], pr_.omega[j], pr_.alpha[j], 0.0, base.compliant());
+        const ForceContext c{d.t[j], x, v, pr_.phi[j], pr_.omega[j], pr_.alpha[j], m.p.m0e, m.p.xI};
+        double sum = 0.0;
+        for (std::size_t e = 0; e < effect_.size(); ++e) sum += effect_[e][j] = m.p.effects[e].law->force(m.p.effects[e].p.data(), c).F;
+        unbalance_[j] = r.unbalance;
+        resistance_[j] = r.resistance;
+        spring_magnet_[j] = r.spring_magnet;
+        impact_[j] = r.impact;
+        x_[j] = x;
+        v_[j] = v;
+        const ForceTerms f{r.resistance, r.spring_magnet, r.impact, r.unbalance, effect_.empty() ? 0.0 : sum};
+        double val = -f.net();
+        if (input) val -= m.p.input_gain * pr_.u[j];
+        pw_[j] = val;
+    }
+    const std::vector<double>& xa = curved ? xt : d.x;
+    scale_ = curved ? 1.0 : ig;
+    const int H = pr_.K.H;
+    const std::size_t len = static_cast<std::size_t>(2 * H + 1);
+    acc_.assign(pr_.rows.size(), 0.0);
+    for (std::size_t r = 0; r < pr_.rows.size(); ++r) {
+        const std::size_t a = pr_.rows[r] - static_cast<std::size_t>(H);
+        double acc = 0;
+        for (std::size_t k = 0; k < len; ++k) acc += pr_.K.w2[k] * xa[a + k];
+        acc_[r] = acc;
+    }
+    for (std::size_t k = 0; k < knobs_.size(); ++k) at_[k] = *knobs_[k].value;
+    kept_ = true;
+    finish(R);
+}
+
+void ResidualCache::finish(Eigen::VectorXd& R) const {
+    const int H = pr_.K.H;
+    const std::size_t len = static_cast<std::size_t>(2 * H + 1);
+    R.resize(static_cast<Eigen::Index>(pr_.rows.size()));
+    for (std::size_t r = 0; r < pr_.rows.size(); ++r) {
+        const std::size_t a = pr_.rows[r] - static_cast<std::size_t>(H);
+        double frc = 0;
+        for (std::size_t k = 0; k < len; ++k) frc += pr_.K.w[k] * pw_[a + k];
+        R[static_cast<Eigen::Index>(r)] = m_.p.m * acc_[r] * scale_ + frc;
     }
 }
 

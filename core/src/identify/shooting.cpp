@@ -6,6 +6,7 @@
 #include <map>
 
 #include "identify/internal.hpp"
+#include "identify/parallel.hpp"
 #include "impactlab/forces.hpp"
 #include "impactlab/simulator.hpp"
 
@@ -177,14 +178,14 @@ std::vector<std::pair<std::size_t, std::size_t>> windows(const Prep& pr, double 
 
 std::vector<double> window_sse(const Prep& pr, const Model& m, const std::vector<std::pair<std::size_t, std::size_t>>& wins,
                                bool refine, double rtol) {
-    std::vector<double> out;
-    out.reserve(wins.size());
-    for (const auto& [a, b] : wins) {
+    std::vector<double> out(wins.size(), INFINITY);
+    for_each_index(wins.size(), [&](std::size_t w) {
+        const auto [a, b] = wins[w];
         const std::vector<double> sim = simulate_window(pr, m, a, b, refine, rtol);
         double e = sim.empty() ? INFINITY : 0.0;
         for (std::size_t k = 0; k < sim.size(); ++k) e += (sim[k] - pr.data->x[a + k]) * (sim[k] - pr.data->x[a + k]);
-        out.push_back(std::isfinite(e) ? e : INFINITY);
-    }
+        out[w] = std::isfinite(e) ? e : INFINITY;
+    });
     return out;
 }
 

@@ -4,9 +4,9 @@
 namespace impactlab::identify::detail {
 
 void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_iter, Eigen::VectorXd& R, Eigen::MatrixXd& J) {
-    std::vector<double> pw;
+    ResidualCache cache(pr, m, knobs);
     auto eval = [&](Eigen::VectorXd& out) {
-        residual(pr, m, out, pw);
+        cache.eval(out);
         return out.squaredNorm();
     };
     // The knob's own step, taken downwards where upwards would leave its bounds.
@@ -74,6 +74,40 @@ double free_run_rms(const std::vector<double>& fr, const std::vector<double>& x,
 }
 
 
+namespace {
+// Where a knob of a model lies, so that the same knob can be set in a copy: an effect's parameter by instance
+// and index, or a base parameter by its offset in the Model object.
+struct KnobPlace {
+    std::ptrdiff_t effect = -1;   // -1: `at` is the byte offset in the Model
+    std::size_t at = 0;
+};
+bool knob_places(const Model& m, const std::vector<Knob>& knobs, std::vector<KnobPlace>& out) {
+    const char* base = reinterpret_cast<const char*>(&m);
+    for (const Knob& k : knobs) {
+        const char* v = reinterpret_cast<const char*>(k.value);
+        KnobPlace pl;
+        if (v >= base && v + sizeof(double) <= base + sizeof(Model)) {
+            pl.at = static_cast<std::size_t>(v - base);
+        } else {
+            for (std::size_t e = 0; e < m.p.effects.size() && pl.effect < 0; ++e) {
+                const auto& q = m.p.effects[e].p;
+                if (k.value >= q.data() && k.value < q.data() + q.size()) {
+                    pl.effect = static_cast<std::ptrdiff_t>(e);
+                    pl.at = static_cast<std::size_t>(k.value - q.data());
+                }
+            }
+            if (pl.effect < 0) return false;
+        }
+        out.push_back(pl);
+    }
+    return true;
+}
+double* place_in(Model& c, const KnobPlace& pl) {
+    if (pl.effect < 0) return reinterpret_cast<double*>(reinterpret_cast<char*>(&c) + pl.at);
+    return &c.p.effects[static_cast<std::size_t>(pl.effect)].p[pl.at];
+}
+}  // namespace
+
 void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_iter, double rtol) {
     const auto p = static_cast<Eigen::Index>(knobs.size());
     if (p == 0) return;
@@ -90,8 +124,8 @@ void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_i
     const std::vector<double> xd = hp ? highpass_fft(std::vector<double>(d.x.begin() + static_cast<long>(a), d.x.begin() + static_cast<long>(b) + 1),
                                                      pr.dt, pr.x_highpass_hz)
                                       : std::vector<double>(d.x.begin() + static_cast<long>(a), d.x.begin() + static_cast<long>(b) + 1);
-    auto err = [&](Eigen::VectorXd& e) {
-        std::vector<double> fr = simulate_window(pr, m, a, b, false, fit_rtol);
+    auto err_of = [&](const Model& mm, Eigen::VectorXd& e) {
+        std::vector<double> fr = simulate_window(pr, mm, a, b, false, fit_rtol);
         if (hp && fr.size() == xd.size()) fr = highpass_fft(fr, pr.dt, pr.x_highpass_hz);
         e.resize(static_cast<Eigen::Index>(b - a + 1));
         double ss = 0;
@@ -102,6 +136,7 @@ void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_i
         }
         return std::isfinite(ss) ? ss : INFINITY;
     };
+    auto err = [&](Eigen::VectorXd& e) { return err_of(m, e); };
     auto step_of = [](const Knob& kb, double v0) {
         const double h = std::max(1e-5 * std::abs(v0), kb.step);
         return v0 + h > kb.hi ? -h : h;
@@ -119,6 +154,14 @@ void lm_simulation(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_i
     // A trial model whose free run turns slow (a stiff or nearly unstable one) must not hold the fit: the
     // solve ends, at its best point, after a time in proportion to the samples it fits.
     lo.max_seconds = 20.0 + 1e-3 * static_cast<double>(b - a);
+    // Each Jacobian column is a free run of its own: they run side by side, each on a copy of the model.
+    std::vector<KnobPlace> places;
+    if (knob_places(m, knobs, places))
+        lo.eval_at = [&](const std::vector<double>& values, Eigen::VectorXd& out) {
+            Model c = m;
+            for (std::size_t k = 0; k < values.size(); ++k) *place_in(c, places[k]) = values[k];
+            return err_of(c, out) < INFINITY;
+        };
     least_squares(knobs, err, step_of, lo, e);
 }
 
