@@ -153,7 +153,7 @@ void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, con
     e = Vec2(e[0] / kXScale, e[1] / kVScale);
     if (e.norm() == 0) return;
     e.normalize();
-    jobs_.push_back({2 * k, branch, best.u, Vec3(e[0], e[1], 0.0), false, 0});
+    jobs_.push_back({2 * k, branch, best.u, Vec3(e[0], e[1], 0.0), false, JobMode::Start});
 }
 
 void Continuer::follow(const Job& job, Branch& br) {
@@ -177,7 +177,7 @@ void Continuer::follow(const Job& job, Branch& br) {
         Vec3 t = dir == 0 ? job.t : Vec3(-job.t);
         Sol cur;
         double ds = spec_.ds;
-        if (job.both_ways || job.mode == 2) {   // the start is a converged point of this branch
+        if (job.both_ways || job.mode == JobMode::Onward) {   // the start is a converged point of this branch
             if (!correct(job.u, t, k, cur)) {
                 end = "the start did not converge";
                 continue;
@@ -189,7 +189,7 @@ void Continuer::follow(const Job& job, Branch& br) {
             cur.r = map(job.u, k, true);
             pts.push_back(point_of(cur, k));
         }
-        bool first = !job.both_ways && job.mode != 2;
+        bool first = !job.both_ways && job.mode != JobMode::Onward;
         bool clipped = false;
         while (true) {
             if (cancelled()) {
@@ -280,7 +280,7 @@ void Continuer::follow(const Job& job, Branch& br) {
                                       "so the map jumps there)";
                             if (continuous_law && cur.r.impacts == 0) {
                                 const BifPoint& g0 = result_.points[static_cast<std::size_t>(last_located_)];
-                                jobs_.push_back({k, br.id, u_of(g0.y, g0.param), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, 1});
+                                jobs_.push_back({k, br.id, u_of(g0.y, g0.param), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, JobMode::Grazing});
                             }
                         }
                     }
@@ -341,7 +341,7 @@ void Continuer::follow(const Job& job, Branch& br) {
                 pts.push_back(point_of(next, k));
                 Branch rest;
                 rest.id = br.id;
-                Job on{k, job.parent, next.u, t, false, 3};
+                Job on{k, job.parent, next.u, t, false, JobMode::SlowImpacts};
                 ++handoffs_;
                 follow_impacting(on, rest);
                 pts.insert(pts.end(), rest.points.begin(), rest.points.end());
@@ -435,7 +435,7 @@ ContinuationResult Continuer::run() {
         result_.branches.push_back(b);
         return std::move(result_);
     }
-    jobs_.push_back({spec_.period, -1, u_of(o.y, q0), Vec3(0, 0, 1), q0 > lo && q0 < hi, 0});
+    jobs_.push_back({spec_.period, -1, u_of(o.y, q0), Vec3(0, 0, 1), q0 > lo && q0 < hi, JobMode::Start});
     if (!(q0 > lo && q0 < hi) && q0 >= hi) jobs_.back().t = Vec3(0, 0, -1);
     while (!jobs_.empty() && static_cast<int>(result_.branches.size()) < spec_.max_branches) {
         const Job job = jobs_.front();
@@ -449,7 +449,7 @@ ContinuationResult Continuer::run() {
         // phase): each is compared.
         bool known = false;
         for (const auto& b : result_.branches)
-            if (job.mode == 0 && b.period == job.period)
+            if (job.mode == JobMode::Start && b.period == job.period)
                 for (const auto& pt : b.points)
                     if (std::abs(pt.param / q_scale_ - job.u[2]) < 0.3)
                         for (const Vec2& sp : pt.sections)
@@ -459,9 +459,11 @@ ContinuationResult Continuer::run() {
         br.id = static_cast<int>(result_.branches.size());
         br.period = job.period;
         br.parent = job.parent;
-        if (job.mode == 1) follow_impacting(job, br);
-        else follow(job, br);
-        if (job.mode == 1 && br.points.empty() && br.end == "reached") continue;
+        if (job.mode == JobMode::Grazing) {
+            if (follow_impacting(job, br) == Followed::AlreadyReached) continue;
+        } else {
+            follow(job, br);
+        }
         result_.branches.push_back(std::move(br));
         branch_fraction_ += (1.0 - branch_fraction_) / static_cast<double>(1 + jobs_.size());
     }

@@ -43,6 +43,25 @@ struct Sol {
     int iterations = 0;
 };
 
+// Where a job starts: the first orbit (both ways) or a doubling's switch; a rigid grazing to cross (u: the
+// grazing orbit, t[2]: the free branch's direction there); onward from a converged point along t, one way;
+// an impacting orbit of the stroboscopic branch whose impacts are slow, followed from impact to impact.
+enum class JobMode { Start, Grazing, Onward, SlowImpacts };
+// The words a branch begun from impact to impact puts before its far end ("grazing / omega range").
+inline const char* job_mode_name(JobMode m) {
+    switch (m) {
+    case JobMode::Start: return "start";
+    case JobMode::Grazing: return "grazing";
+    case JobMode::Onward: return "onward";
+    case JobMode::SlowImpacts: return "slow impacts";
+    }
+    return "?";
+}
+
+// What following a job gave: a branch to keep, or nothing new (the grazing's impacting branch was already
+// followed up to it from another grazing).
+enum class Followed { Branch, AlreadyReached };
+
 class Continuer {
 public:
     Continuer(const Params& p, const ContinuationSpec& spec, Progress* progress)
@@ -55,9 +74,7 @@ public:
     ContinuationResult run();
 
 private:
-    // mode 0: a start (both_ways) or a doubling's switch; 1: a rigid grazing to cross (u: the grazing orbit,
-    // t[2]: the free branch's direction there); 2: onward from a converged point along t, one way.
-    struct Job { int period; int parent; Vec3 u; Vec3 t; bool both_ways; int mode = 0; };
+    struct Job { int period; int parent; Vec3 u; Vec3 t; bool both_ways; JobMode mode = JobMode::Start; };
 
     double q_of(const Vec3& u) const { return u[2] * q_scale_; }
     Vec2 y_of(const Vec3& u) const { return Vec2(u[0] * kXScale, u[1] * kVScale); }
@@ -261,8 +278,8 @@ private:
                 bool off_bumper = false);
     void follow(const Job& job, Branch& br);
     // From a rigid grazing onto the impacting branch, written from impact to impact (impact_shot) while the
-    // impacts are slow, then on with the stroboscopic map (follow, mode 2).
-    void follow_impacting(const Job& job, Branch& br);
+    // impacts are slow, then on with the stroboscopic map (follow, onward).
+    Followed follow_impacting(const Job& job, Branch& br);
     // The exponents of a crossed grazing (BifPoint::mu_exponent, speed_exponent) from the impacting orbits
     // near it; z, t: the grazing orbit from impact to impact and the impacting branch's tangent there.
     void measure_scaling(BifPoint& gp, const Vec3& z, const Vec3& t, int k);
