@@ -277,6 +277,25 @@ private:
     void locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch,
                 bool off_bumper = false);
     void follow(const Job& job, Branch& br);
+    // Why a branch ends where the corrector fails at every step down to ds_min from cur: the numerical
+    // limit, or the grazing it ran into, located on the bumperless orbit (a rigid grazing's impacting branch
+    // is queued as a job).
+    std::string corrector_limit(const Sol& cur, const Vec3& t, double ds, int k, int branch);
+    // The test functions' sign changes over the step from cur to next, each located; a rigid grazing that the
+    // corrector itself stepped across gets its scenario and exponents.
+    void locate_crossings(const Sol& cur, const Vec3& t, double ds, const Sol& next, int k, int branch);
+    // The step from a to b passes within 1e-3 (scaled) of one of pj's section points: the same orbit again.
+    bool passes_by(const BranchPoint& pj, const Vec3& a, const Vec3& b) const;
+    // A corrector that failed at a short step on a long period: the map sharpened and cur corrected on it;
+    // false where that does not apply (or was done twice).
+    bool sharpen(Sol& cur, const Vec3& t, int k, double& ds, int& sharpened);
+    // A step from cur to next that is to be taken again shorter (ds shortened): a grazing ahead, a corrector
+    // that wandered or multipliers that jumped, or once a step past the range's end (clipped).
+    bool shorten(const Sol& cur, const Vec3& t, const Sol& next, bool first, bool& clipped, double& ds) const;
+    // The share of the range a forward branch has covered at q, never backwards.
+    void report_progress(double q);
+    // On from next (slow rigid impacts) from impact to impact: its points appended to pts; returns the end.
+    std::string hand_over(const Job& job, const Sol& next, const Vec3& t, int branch, std::vector<BranchPoint>& pts);
     // From a rigid grazing onto the impacting branch, written from impact to impact (impact_shot) while the
     // impacts are slow, then on with the stroboscopic map (follow, onward).
     Followed follow_impacting(const Job& job, Branch& br);
