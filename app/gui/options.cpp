@@ -229,228 +229,263 @@ std::string version(const std::string& flag, const std::string& name) {
     }
 }
 
-}  // namespace
+// The flags as they are read: the one at i, and the argument after it as its value.
+struct FlagReader {
+    const std::vector<std::string>& args;
+    std::size_t i = 0;
+    const std::string& value() {
+        if (i + 1 >= args.size()) throw OptionsError(args[i] + ": missing value");
+        return args[++i];
+    }
+    // The next argument unless it is a flag (an optional value), else null.
+    const std::string* optional_value() {
+        if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0) return &args[++i];
+        return nullptr;
+    }
+};
 
-Options parse_options(const std::vector<std::string>& args) {
-    Options o;
+// What is settled only once every flag is read: --model's file, whether --xI was given, and the ranges that
+// are in --bif-over's units.
+struct Pending {
     std::optional<GuiModel> model_file;   // --model FILE.json
     bool xI_given = false;
-    std::map<std::string, std::string> bif_ranges;   // --bif-range, --bif-box, --bif-zoom: in --bif-over's units
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> const std::string& {
-            if (i + 1 >= args.size()) throw OptionsError(a + ": missing value");
-            return args[++i];
-        };
-        // A file flag given twice would silently drop one of the files.
-        static const char* const once[] = {"--session", "--save-session", "--data", "--plane", "--screenshot", "--state-json", "--clip-out"};
-        for (const char* f : once)
-            if (a == f && std::find(args.begin(), args.begin() + static_cast<std::ptrdiff_t>(i), a) != args.begin() + static_cast<std::ptrdiff_t>(i))
-                throw OptionsError(a + ": given twice");
-        if (a == "--help" || a == "-h") o.help = true;
-        else if (a == "--model") {
-            const std::string& v = value();
-            if (v.size() > 5 && v.substr(v.size() - 5) == ".json") {   // as every CLI --model: a parameter file
-                try {
-                    model_file = gui_model_from_file(v);
-                } catch (const ModelFileError& e) {
-                    throw OptionsError(std::string("--model: ") + e.what());
-                }
-                o.model = model_file->version;
-                o.model_file = v;
-            } else {
-                o.model = version(a, v);
-                model_file.reset();
-                o.model_file.clear();
-            }
-        }
-        else if (a == "--omega") o.omega = number(a, value(), 0.0, 30.0);
-        else if (a == "--xI" || a == "--xi") {
-            o.xI = number(a, value(), -0.02, 0.02);
-            xI_given = true;
-        }
-        else if (a == "--x0") o.x0 = number(a, value(), -0.05, 0.05);
-        else if (a == "--v0") o.v0 = number(a, value(), -2.0, 2.0);
-        else if (a == "--speed") o.speed = number(a, value(), 0.01, 100.0);
-        else if (a == "--paused") o.paused = true;
-        else if (a == "--show-help") o.show_help = true;
-        else if (a == "--data") o.data = value();
-        else if (a == "--warmup") o.warmup = number(a, value(), 0.0, 1e5);
-        else if (a == "--theme") {
-            const std::string& t = value();
-            if (t != "dark" && t != "light") throw OptionsError("--theme: '" + t + "' is neither dark nor light");
-            o.light = t == "light";
-        } else if (a == "--scale" || a == "--ui-scale") o.ui_scale = number(a, value(), 0.5, 3.0);
-        else if (a == "--presentation") {
-            o.presentation = true;
-            // An optional plot name: the next argument unless it is a flag.
-            if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0) {
-                const std::string& p = args[++i];
-                const auto id = panel_from_key(p);
-                if (!id || view_info(*id).presentation_order == 0)
-                    throw OptionsError("--presentation: '" + p + "' is not one of " + panel_keys(true));
-                o.presentation_plot = p;
-            }
-        } else if (a == "--hide") {
-            const std::string& list = value();
-            std::size_t from = 0;
-            for (;;) {
-                const std::size_t c = list.find(',', from);
-                const std::string p = list.substr(from, c == std::string::npos ? std::string::npos : c - from);
-                if (p != "controls" && !panel_from_key(p))
-                    throw OptionsError("--hide: '" + p + "' is not a panel (controls, " + panel_keys() + ")");
-                o.hide.push_back(p);
-                if (c == std::string::npos) break;
-                from = c + 1;
-            }
-        } else if (a == "--maximise" || a == "--maximize") {
-            const std::string& p = value();
-            if (!panel_from_key(p)) throw OptionsError(a + ": '" + p + "' is not a panel (" + panel_keys() + ")");
-            o.maximise = p;
-        } else if (a == "--magnify") o.magnify = number(a, value(), 1.0, 10.0);
-        else if (a == "--size") {
-            const std::string& s = value();
-            const auto x = s.find('x');
-            if (x == std::string::npos) throw OptionsError("--size: '" + s + "' is not WIDTHxHEIGHT");
-            o.width = integer(a, s.substr(0, x), 320, 8192);
-            o.height = integer(a, s.substr(x + 1), 240, 8192);
-        } else if (a == "--frames") o.frames = integer(a, value(), 1, 10000000);
-        else if (a == "--screenshot") o.screenshot = value();
-        else if (a == "--state-json") o.state_json = value();
-        else if (a == "--preset") o.preset = integer(a, value(), 1, 100);
-        else if (a == "--then-preset") o.then_preset = integer(a, value(), 1, 100);
-        else if (a == "--then-xI" || a == "--then-xi") {
-            o.then_xI = number(a, value(), -0.02, 0.02);
-            o.then_xi = true;
-        }
-        else if (a == "--then-omega") {
-            o.then_omega = number(a, value(), 0.0, 30.0);
-            o.then_w = true;
-        }
-        else if (a == "--switch-model") o.switch_model = version(a, value());
-        else if (a == "--bifurcation") {
-            const std::string& p = value();
-            if (p != "cf-up" && p != "cf-down" && p != "ef")
-                throw OptionsError("--bifurcation: '" + p + "' is not one of cf-up, cf-down, ef");
-            o.bifurcation = p;
-        } else if (a == "--bif-steps") o.bif_steps = integer(a, value(), 10, 2000);
-        else if (a == "--bif-zoom" || a == "--bif-range" || a == "--bif-box") bif_ranges[a] = value();   // once --bif-over is known
-        else if (a == "--bif-over") {
-            o.bif_over = value();
-            if (!parse_sweep_param(o.bif_over)) throw OptionsError("--bif-over: '" + o.bif_over + "' is not one of omega, xI, m0e");
-        }
-        else if (a == "--ramp")
-            std::tie(o.ramp_to, o.ramp_rate) = number_pair(a, value(), "W1:RATE (target rad/s : rad/s per s)", 0.0, 30.0, 1e-3, 2.0);
-        else if (a == "--bif-y") {
-            o.bif_y = value();
-            if (o.bif_y != "x" && o.bif_y != "v") throw OptionsError("--bif-y: '" + o.bif_y + "' is not x or v");
-        }
-        else if (a == "--bif-lyapunov") o.bif_lyapunov = true;
-        else if (a == "--lyap-steps") o.lyap_steps = integer(a, value(), 5, 300);
-        else if (a == "--bif-nowait") o.bif_nowait = true;
-        else if (a == "--plane") o.plane = value();
-        else if (a == "--continuation") o.continuation = true;
-        else if (a == "--small-plane") o.small_plane = true;
-        else if (a == "--plane-doubling") o.plane_doubling = true;
-        else if (a == "--plane-grazing" || a == "--plane-fold") {
-            const std::string& v = value();
-            if (!parse_curve_start(v))
-                throw OptionsError(a + ": '" + v + "' is neither auto nor OMEGA,X,V[,K] (a point as impactlab continue prints it, "
-                                   "omega in [0.05, 1000] rad/s, X in [-0.1, 0.1] m, V in [-10, 10] m/s, K in 1..64)");
-            (a == "--plane-fold" ? o.plane_fold : o.plane_grazing) = v;
-        }
-        else if (a == "--continue-here") o.continue_here = true;
-        else if (a == "--basins") o.basins = true;
-        else if (a == "--basins-box") {
-            // x0 on the rail, v0 within 2 m/s (the session files' limits), each range not empty.
-            const std::string& t = value();
-            const auto c = t.find(':', t.find(':') + 1);
-            if (c == std::string::npos) throw OptionsError("--basins-box: '" + t + "' is not X0:X1:V0:V1 (m, m/s)");
-            const auto [x0, x1] = number_pair(a, t.substr(0, c), "X0:X1:V0:V1 (m, m/s)", -0.05, 0.05, -0.05, 0.05);
-            const auto [v0, v1] = number_pair(a, t.substr(c + 1), "X0:X1:V0:V1 (m, m/s)", -2.0, 2.0, -2.0, 2.0);
-            if (!(x0 < x1) || !(v0 < v1)) throw OptionsError("--basins-box: " + t + " is empty (X0 < X1 and V0 < V1 wanted)");
-            o.basins_box = {x0, x1, v0, v1};
-            o.basins = true;
-        }
-        else if (a == "--session") o.session = value();
-        else if (a == "--browse") o.browse = value();
-        else if (a == "--double-click") o.double_clicks.push_back(value());
-        else if (a == "--save-session") o.save_session = value();
-        else if (a == "--clip-out") o.clip_out = value();
-        else if (a == "--clip-seconds") o.clip_seconds = number(a, value(), 0.1, 60.0);
-        else if (a == "--replay-back") o.replay_back = number(a, value(), 0.001, 3600.0);
-        else if (a == "--replay-continue") o.replay_continue = true;
-        else if (a == "--twin") o.twin = true;
-        else if (a == "--ghost") o.ghost = version(a, value());
-        else if (a == "--set-state") {
-            const std::string& sv = value();
-            const auto c = sv.find(',');
-            if (c == std::string::npos) throw OptionsError("--set-state: '" + sv + "' is not X,V (metres, m/s)");
-            o.set_x = number(a, sv.substr(0, c), -0.05, 0.05);
-            o.set_v = number(a, sv.substr(c + 1), -2.0, 2.0);
-            o.set_state = true;
-        }
-        else if (a == "--param") {
-            const std::string& kv = value();
-            const auto eq = kv.find('=');
-            if (eq == std::string::npos || eq == 0) throw OptionsError("--param: '" + kv + "' is not KEY=VALUE (e.g. k=1200)");
-            o.params.emplace_back(kv.substr(0, eq), number("--param " + kv.substr(0, eq), kv.substr(eq + 1), -1e300, 1e300));
-        }
-        else if (a == "--show-params") o.show_params = true;
-        else if (a == "--guide") o.guide = true;
-        else if (a == "--demo") o.demo = static_cast<int>(number(a, value(), 1, 5));
-        else if (a == "--details") o.details = true;
-        else if (a == "--clicker") o.clicker = true;
-        else if (a == "--phi0") o.phi0 = number(a, value(), 0.0, 2.0 * std::numbers::pi);
-        else if (a == "--then-phi0") {
-            o.then_phi0 = number(a, value(), 0.0, 2.0 * std::numbers::pi);
-            o.then_phase = true;
-        }
-        else if (a == "--orbit") {
-            const std::string& sv = value();
-            const auto c = sv.find(',');
-            if (c == std::string::npos) throw OptionsError("--orbit: '" + sv + "' is not X,V (metres, m/s)");
-            o.orbits.emplace_back(number(a, sv.substr(0, c), -0.05, 0.05), number(a, sv.substr(c + 1), -2.0, 2.0));
-        }
-        else if (a == "--strip") {
-            const std::string& list = value();
-            o.strip.clear();
-            for (std::size_t from = 0;;) {
-                const std::size_t c = list.find(',', from);
-                const std::string q = list.substr(from, c == std::string::npos ? std::string::npos : c - from);
-                if (std::find(std::begin(kStripKeys), std::end(kStripKeys), std::string_view(q)) == std::end(kStripKeys))
-                    throw OptionsError("--strip: '" + q + "' is not one of x, v, E, F, drive");
-                o.strip.push_back(q);
-                if (c == std::string::npos) break;
-                from = c + 1;
-            }
-            if (o.strip.size() > 2) throw OptionsError("--strip: at most two traces ('" + list + "')");
-        }
-        else if (a == "--press") {
-            o.press = value();
-            const std::string key = o.press.rfind("ctrl+", 0) == 0 ? o.press.substr(5) : o.press;
-            if (key.size() != 1 || key[0] < 'a' || key[0] > 'z')
-                throw OptionsError("--press: '" + o.press + "' is not a letter a-z, with or without ctrl+");
-        }
-        else if (a == "--tap") {
-            const std::string key = value();
-            if (key.size() != 1 || key[0] < 'a' || key[0] > 'z') throw OptionsError("--tap: '" + key + "' is not a letter a-z");
-            o.tap = key[0];
-        }
-        else if (a == "--soak") o.soak = number(a, value(), 1.0, 86400.0);
-        else if (a == "--bench-plot") o.bench_plot = true;
-        else if (a == "--bench-ring") o.bench_ring = true;
-        else if (a == "--bench-sim") o.bench_sim = true;
-        else if (a == "--points") o.bench_points = integer(a, value(), 1, 10000000);
-        else if (a == "--plot-backend") {
-            const std::string& b = value();
-            if (b != "raster" && b != "gpu" && b != "imgui")
-                throw OptionsError("--plot-backend: '" + b + "' is not one of raster, gpu, imgui");
-            o.plot_backend = b;
-        }
-        else throw OptionsError("unknown option '" + a + "' (see impactlab-gui --help)");
+    std::map<std::string, std::string> bif_ranges;   // --bif-range, --bif-box, --bif-zoom
+};
+
+// "A,B,C": each part checked by `check`, which throws naming it.
+template <class Check> std::vector<std::string> comma_list(const std::string& list, Check check) {
+    std::vector<std::string> out;
+    for (std::size_t from = 0;;) {
+        const std::size_t c = list.find(',', from);
+        std::string p = list.substr(from, c == std::string::npos ? std::string::npos : c - from);
+        check(p);
+        out.push_back(std::move(p));
+        if (c == std::string::npos) return out;
+        from = c + 1;
     }
-    for (const auto& [flag, text] : bif_ranges) {
+}
+
+// Each family of flags below takes flag a (and its value from r) and says whether it did.
+
+// The model and the cart's start.
+bool start_flag(const std::string& a, FlagReader& r, Options& o, Pending& pend) {
+    if (a == "--model") {
+        const std::string& v = r.value();
+        if (v.size() > 5 && v.substr(v.size() - 5) == ".json") {   // as every CLI --model: a parameter file
+            try {
+                pend.model_file = gui_model_from_file(v);
+            } catch (const ModelFileError& e) {
+                throw OptionsError(std::string("--model: ") + e.what());
+            }
+            o.model = pend.model_file->version;
+            o.model_file = v;
+        } else {
+            o.model = version(a, v);
+            pend.model_file.reset();
+            o.model_file.clear();
+        }
+    } else if (a == "--omega") o.omega = number(a, r.value(), 0.0, 30.0);
+    else if (a == "--xI" || a == "--xi") {
+        o.xI = number(a, r.value(), -0.02, 0.02);
+        pend.xI_given = true;
+    } else if (a == "--x0") o.x0 = number(a, r.value(), -0.05, 0.05);
+    else if (a == "--v0") o.v0 = number(a, r.value(), -2.0, 2.0);
+    else if (a == "--speed") o.speed = number(a, r.value(), 0.01, 100.0);
+    else if (a == "--paused") o.paused = true;
+    else if (a == "--show-help") o.show_help = true;
+    else if (a == "--data") o.data = r.value();
+    else if (a == "--warmup") o.warmup = number(a, r.value(), 0.0, 1e5);
+    else return false;
+    return true;
+}
+
+// The window: theme, scale, presentation, panels, size.
+bool layout_flag(const std::string& a, FlagReader& r, Options& o) {
+    if (a == "--theme") {
+        const std::string& t = r.value();
+        if (t != "dark" && t != "light") throw OptionsError("--theme: '" + t + "' is neither dark nor light");
+        o.light = t == "light";
+    } else if (a == "--scale" || a == "--ui-scale") o.ui_scale = number(a, r.value(), 0.5, 3.0);
+    else if (a == "--presentation") {
+        o.presentation = true;
+        if (const std::string* p = r.optional_value()) {   // an optional plot name
+            const auto id = panel_from_key(*p);
+            if (!id || view_info(*id).presentation_order == 0)
+                throw OptionsError("--presentation: '" + *p + "' is not one of " + panel_keys(true));
+            o.presentation_plot = *p;
+        }
+    } else if (a == "--hide") {
+        const std::vector<std::string> keys = comma_list(r.value(), [](const std::string& p) {
+            if (p != "controls" && !panel_from_key(p)) throw OptionsError("--hide: '" + p + "' is not a panel (controls, " + panel_keys() + ")");
+        });
+        o.hide.insert(o.hide.end(), keys.begin(), keys.end());
+    } else if (a == "--maximise" || a == "--maximize") {
+        const std::string& p = r.value();
+        if (!panel_from_key(p)) throw OptionsError(a + ": '" + p + "' is not a panel (" + panel_keys() + ")");
+        o.maximise = p;
+    } else if (a == "--magnify") o.magnify = number(a, r.value(), 1.0, 10.0);
+    else if (a == "--size") {
+        const std::string& s = r.value();
+        const auto x = s.find('x');
+        if (x == std::string::npos) throw OptionsError("--size: '" + s + "' is not WIDTHxHEIGHT");
+        o.width = integer(a, s.substr(0, x), 320, 8192);
+        o.height = integer(a, s.substr(x + 1), 240, 8192);
+    } else return false;
+    return true;
+}
+
+// A scripted run: frames, its files, what changes half-way, the keys and clicks it makes.
+bool script_flag(const std::string& a, FlagReader& r, Options& o) {
+    if (a == "--frames") o.frames = integer(a, r.value(), 1, 10000000);
+    else if (a == "--screenshot") o.screenshot = r.value();
+    else if (a == "--state-json") o.state_json = r.value();
+    else if (a == "--preset") o.preset = integer(a, r.value(), 1, 100);
+    else if (a == "--then-preset") o.then_preset = integer(a, r.value(), 1, 100);
+    else if (a == "--then-xI" || a == "--then-xi") {
+        o.then_xI = number(a, r.value(), -0.02, 0.02);
+        o.then_xi = true;
+    } else if (a == "--then-omega") {
+        o.then_omega = number(a, r.value(), 0.0, 30.0);
+        o.then_w = true;
+    } else if (a == "--then-phi0") {
+        o.then_phi0 = number(a, r.value(), 0.0, 2.0 * std::numbers::pi);
+        o.then_phase = true;
+    } else if (a == "--switch-model") o.switch_model = version(a, r.value());
+    else if (a == "--set-state") {
+        const std::string& sv = r.value();
+        const auto c = sv.find(',');
+        if (c == std::string::npos) throw OptionsError("--set-state: '" + sv + "' is not X,V (metres, m/s)");
+        o.set_x = number(a, sv.substr(0, c), -0.05, 0.05);
+        o.set_v = number(a, sv.substr(c + 1), -2.0, 2.0);
+        o.set_state = true;
+    } else if (a == "--orbit") {
+        const std::string& sv = r.value();
+        const auto c = sv.find(',');
+        if (c == std::string::npos) throw OptionsError("--orbit: '" + sv + "' is not X,V (metres, m/s)");
+        o.orbits.emplace_back(number(a, sv.substr(0, c), -0.05, 0.05), number(a, sv.substr(c + 1), -2.0, 2.0));
+    } else if (a == "--press") {
+        o.press = r.value();
+        const std::string key = o.press.rfind("ctrl+", 0) == 0 ? o.press.substr(5) : o.press;
+        if (key.size() != 1 || key[0] < 'a' || key[0] > 'z')
+            throw OptionsError("--press: '" + o.press + "' is not a letter a-z, with or without ctrl+");
+    } else if (a == "--tap") {
+        const std::string key = r.value();
+        if (key.size() != 1 || key[0] < 'a' || key[0] > 'z') throw OptionsError("--tap: '" + key + "' is not a letter a-z");
+        o.tap = key[0];
+    } else return false;
+    return true;
+}
+
+// The bifurcation diagram begun at launch, its ranges and its Lyapunov strip.
+bool diagram_flag(const std::string& a, FlagReader& r, Options& o, Pending& pend) {
+    if (a == "--bifurcation") {
+        const std::string& p = r.value();
+        if (p != "cf-up" && p != "cf-down" && p != "ef") throw OptionsError("--bifurcation: '" + p + "' is not one of cf-up, cf-down, ef");
+        o.bifurcation = p;
+    } else if (a == "--bif-steps") o.bif_steps = integer(a, r.value(), 10, 2000);
+    else if (a == "--bif-zoom" || a == "--bif-range" || a == "--bif-box") pend.bif_ranges[a] = r.value();   // once --bif-over is known
+    else if (a == "--bif-over") {
+        o.bif_over = r.value();
+        if (!parse_sweep_param(o.bif_over)) throw OptionsError("--bif-over: '" + o.bif_over + "' is not one of omega, xI, m0e");
+    } else if (a == "--ramp")
+        std::tie(o.ramp_to, o.ramp_rate) = number_pair(a, r.value(), "W1:RATE (target rad/s : rad/s per s)", 0.0, 30.0, 1e-3, 2.0);
+    else if (a == "--bif-y") {
+        o.bif_y = r.value();
+        if (o.bif_y != "x" && o.bif_y != "v") throw OptionsError("--bif-y: '" + o.bif_y + "' is not x or v");
+    } else if (a == "--bif-lyapunov") o.bif_lyapunov = true;
+    else if (a == "--lyap-steps") o.lyap_steps = integer(a, r.value(), 5, 300);
+    else if (a == "--bif-nowait") o.bif_nowait = true;
+    else return false;
+    return true;
+}
+
+// The analysis jobs begun at launch: planes and their curves, continuation, basins.
+bool analysis_flag(const std::string& a, FlagReader& r, Options& o) {
+    if (a == "--plane") o.plane = r.value();
+    else if (a == "--continuation") o.continuation = true;
+    else if (a == "--small-plane") o.small_plane = true;
+    else if (a == "--plane-doubling") o.plane_doubling = true;
+    else if (a == "--plane-grazing" || a == "--plane-fold") {
+        const std::string& v = r.value();
+        if (!parse_curve_start(v))
+            throw OptionsError(a + ": '" + v + "' is neither auto nor OMEGA,X,V[,K] (a point as impactlab continue prints it, "
+                               "omega in [0.05, 1000] rad/s, X in [-0.1, 0.1] m, V in [-10, 10] m/s, K in 1..64)");
+        (a == "--plane-fold" ? o.plane_fold : o.plane_grazing) = v;
+    } else if (a == "--continue-here") o.continue_here = true;
+    else if (a == "--basins") o.basins = true;
+    else if (a == "--basins-box") {
+        // x0 on the rail, v0 within 2 m/s (the session files' limits), each range not empty.
+        const std::string& t = r.value();
+        const auto c = t.find(':', t.find(':') + 1);
+        if (c == std::string::npos) throw OptionsError("--basins-box: '" + t + "' is not X0:X1:V0:V1 (m, m/s)");
+        const auto [x0, x1] = number_pair(a, t.substr(0, c), "X0:X1:V0:V1 (m, m/s)", -0.05, 0.05, -0.05, 0.05);
+        const auto [v0, v1] = number_pair(a, t.substr(c + 1), "X0:X1:V0:V1 (m, m/s)", -2.0, 2.0, -2.0, 2.0);
+        if (!(x0 < x1) || !(v0 < v1)) throw OptionsError("--basins-box: " + t + " is empty (X0 < X1 and V0 < V1 wanted)");
+        o.basins_box = {x0, x1, v0, v1};
+        o.basins = true;
+    } else return false;
+    return true;
+}
+
+// Sessions, clips and replay.
+bool session_flag(const std::string& a, FlagReader& r, Options& o) {
+    if (a == "--session") o.session = r.value();
+    else if (a == "--browse") o.browse = r.value();
+    else if (a == "--double-click") o.double_clicks.push_back(r.value());
+    else if (a == "--save-session") o.save_session = r.value();
+    else if (a == "--clip-out") o.clip_out = r.value();
+    else if (a == "--clip-seconds") o.clip_seconds = number(a, r.value(), 0.1, 60.0);
+    else if (a == "--replay-back") o.replay_back = number(a, r.value(), 0.001, 3600.0);
+    else if (a == "--replay-continue") o.replay_continue = true;
+    else return false;
+    return true;
+}
+
+// The panels' own state: the companion cart, the parameters, the guide, the clicker, the time strip.
+bool panel_flag(const std::string& a, FlagReader& r, Options& o) {
+    if (a == "--twin") o.twin = true;
+    else if (a == "--ghost") o.ghost = version(a, r.value());
+    else if (a == "--param") {
+        const std::string& kv = r.value();
+        const auto eq = kv.find('=');
+        if (eq == std::string::npos || eq == 0) throw OptionsError("--param: '" + kv + "' is not KEY=VALUE (e.g. k=1200)");
+        o.params.emplace_back(kv.substr(0, eq), number("--param " + kv.substr(0, eq), kv.substr(eq + 1), -1e300, 1e300));
+    } else if (a == "--show-params") o.show_params = true;
+    else if (a == "--guide") o.guide = true;
+    else if (a == "--demo") o.demo = static_cast<int>(number(a, r.value(), 1, 5));
+    else if (a == "--details") o.details = true;
+    else if (a == "--clicker") o.clicker = true;
+    else if (a == "--phi0") o.phi0 = number(a, r.value(), 0.0, 2.0 * std::numbers::pi);
+    else if (a == "--strip") {
+        const std::string& list = r.value();
+        o.strip = comma_list(list, [](const std::string& q) {
+            if (std::find(std::begin(kStripKeys), std::end(kStripKeys), std::string_view(q)) == std::end(kStripKeys))
+                throw OptionsError("--strip: '" + q + "' is not one of x, v, E, F, drive");
+        });
+        if (o.strip.size() > 2) throw OptionsError("--strip: at most two traces ('" + list + "')");
+    } else return false;
+    return true;
+}
+
+// The soak and the benchmarks, and the plot backend they compare.
+bool bench_flag(const std::string& a, FlagReader& r, Options& o) {
+    if (a == "--soak") o.soak = number(a, r.value(), 1.0, 86400.0);
+    else if (a == "--bench-plot") o.bench_plot = true;
+    else if (a == "--bench-ring") o.bench_ring = true;
+    else if (a == "--bench-sim") o.bench_sim = true;
+    else if (a == "--points") o.bench_points = integer(a, r.value(), 1, 10000000);
+    else if (a == "--plot-backend") {
+        const std::string& b = r.value();
+        if (b != "raster" && b != "gpu" && b != "imgui") throw OptionsError("--plot-backend: '" + b + "' is not one of raster, gpu, imgui");
+        o.plot_backend = b;
+    } else return false;
+    return true;
+}
+
+// What needs every flag read: the ranges in --bif-over's units, the presets and --param on the model given
+// (--model may come after them), the model file's values, and the flags that need another.
+void settle(Options& o, const Pending& pend) {
+    for (const auto& [flag, text] : pend.bif_ranges) {
         const auto r = bif_range(o.bif_over, flag, text);
         if (flag == "--bif-zoom") std::tie(o.bif_zoom_lo, o.bif_zoom_hi) = r;
         else if (flag == "--bif-range") std::tie(o.bif_range_lo, o.bif_range_hi) = r;
@@ -460,18 +495,17 @@ Options parse_options(const std::vector<std::string>& args) {
         throw OptionsError("--bifurcation ef: the EF ramp is a ramp of omega, not of " + o.bif_over + " (--bif-over): use cf-up or cf-down");
     if (!o.screenshot.empty() && o.frames == 0 && !o.bench_plot) throw OptionsError("--screenshot needs --frames N or --bench-plot");
     if (!o.state_json.empty() && o.frames == 0) throw OptionsError("--state-json needs --frames N");
-    // Checked once the model is known (--model may come after --preset).
     for (const auto& [flag, n] : {std::pair{"--preset", o.preset}, std::pair{"--then-preset", o.then_preset}}) {
         const std::size_t count = presets_for(o.model).size();
         if (static_cast<std::size_t>(n) > count)
             throw OptionsError(std::string(flag) + ": " + std::to_string(n) + " is out of range [1, " +
                                std::to_string(count) + "] for " + o.model);
     }
-    if (model_file) {   // the file's parameters first (a --param after them wins), its x_I unless --xI is given
-        o.params.insert(o.params.begin(), model_file->params.begin(), model_file->params.end());
-        if (!xI_given) o.xI = model_file->xI;
+    if (pend.model_file) {   // the file's parameters first (a --param after them wins), its x_I unless --xI is given
+        o.params.insert(o.params.begin(), pend.model_file->params.begin(), pend.model_file->params.end());
+        if (!pend.xI_given) o.xI = pend.model_file->xI;
     }
-    {   // --param: each value as the panel would take it, on the model given (--model may come after it)
+    {   // --param: each value as the panel would take it
         Params p = make_version(o.model);
         for (const auto& [key, value] : o.params)
             if (std::string err; !set_param(p, key, value, err)) throw OptionsError("--param " + key + ": " + err);
@@ -490,6 +524,26 @@ Options parse_options(const std::vector<std::string>& args) {
     if (o.twin && !o.ghost.empty()) throw OptionsError("--twin and --ghost: one companion cart at a time");
     if (o.then_preset > 0 && !o.switch_model.empty())
         throw OptionsError("--then-preset: half-way there is either a preset or a --switch-model, not both");
+}
+
+}  // namespace
+
+Options parse_options(const std::vector<std::string>& args) {
+    Options o;
+    Pending pend;
+    for (FlagReader r{args}; r.i < args.size(); ++r.i) {
+        const std::string& a = args[r.i];
+        // A file flag given twice would silently drop one of the files.
+        static const char* const once[] = {"--session", "--save-session", "--data", "--plane", "--screenshot", "--state-json", "--clip-out"};
+        const auto here = args.begin() + static_cast<std::ptrdiff_t>(r.i);
+        for (const char* f : once)
+            if (a == f && std::find(args.begin(), here, a) != here) throw OptionsError(a + ": given twice");
+        if (a == "--help" || a == "-h") o.help = true;
+        else if (!start_flag(a, r, o, pend) && !layout_flag(a, r, o) && !script_flag(a, r, o) && !diagram_flag(a, r, o, pend) &&
+                 !analysis_flag(a, r, o) && !session_flag(a, r, o) && !panel_flag(a, r, o) && !bench_flag(a, r, o))
+            throw OptionsError("unknown option '" + a + "' (see impactlab-gui --help)");
+    }
+    settle(o, pend);
     return o;
 }
 

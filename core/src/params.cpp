@@ -14,18 +14,31 @@ namespace impactlab {
 // Table 1 of the paper (stiffness versions), SI units.
 const std::vector<StiffnessSet>& stiffness_sets() {
     static const std::vector<StiffnessSet> table{
-        {"A1", "odd rational magnetic force of degree 1 (Table 1)", 0.025152, 1115.2, 12.373, 1.2267,
+        {"A1", StiffnessKind::Rig, "odd rational magnetic force of degree 1 (Table 1)", 0.025152, 1115.2, 12.373, 1.2267,
          {-1763.5, 0.0, 0.0, 0.0}, {4907.6, 0.0, 0.0, 0.0}},
-        {"A3", "odd rational magnetic force of degree 3 (Table 1)", 0.02476, 1149.9, 13.324, 1.1002,
+        {"A3", StiffnessKind::Rig, "odd rational magnetic force of degree 3 (Table 1)", 0.02476, 1149.9, 13.324, 1.1002,
          {-1982.3, -4.1578e6, 0.0, 0.0}, {10578.0, -0.044258, 0.0, 0.0}},
     };
     return table;
 }
 
+// m y'' + d y' + k y + k3 y^3 = gain u in a record's units: m = 1, no dry friction, no magnets' denominator.
+const StiffnessSet& duffing_stiffness() {
+    static const StiffnessSet row{"duffing", StiffnessKind::DataUnits, "plain Duffing law in the data's own units",
+                                  0.0, 1.0, 0.0, 0.0, {0.0, 0.0, 0.0, 0.0}, {0.0, 0.0, 0.0, 0.0}};
+    return row;
+}
+
 const StiffnessSet* find_stiffness(const std::string& id) {
     for (const auto& s : stiffness_sets())
         if (id == s.id) return &s;
+    if (id == duffing_stiffness().id) return &duffing_stiffness();
     return nullptr;
+}
+
+StiffnessKind stiffness_kind(const Params& p) {
+    const StiffnessSet* s = find_stiffness(p.stiffness_id);
+    return s ? s->kind : StiffnessKind::Rig;
 }
 const ImpactModel* find_impact(const std::string& id) {
     for (const auto& m : impact_models())

@@ -195,9 +195,9 @@ Params params_from_json_text(const std::string& text, const std::string& src) {
     if (j.contains("stiffness")) {
         if (!j["stiffness"].is_string()) fail(src, "key 'stiffness': expected a string");
         p.stiffness_id = j["stiffness"].get<std::string>();
-        std::string known = "duffing";
+        std::string known = duffing_stiffness().id;
         for (const auto& st : stiffness_sets()) known += ", " + std::string(st.id);
-        if (p.stiffness_id != "duffing" && !find_stiffness(p.stiffness_id))
+        if (!find_stiffness(p.stiffness_id))
             fail(src, "key 'stiffness': unknown label '" + p.stiffness_id + "' (known: " + known + ")");
     }
     read(j, "m", p.m, required, "", src);

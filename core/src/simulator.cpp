@@ -81,12 +81,8 @@ double find_root(G&& g, double a, double b, double ga, double gb) {
 
 }  // namespace
 
-double normal_force(const Params& p, const Drive& d, double t) {
-    const double w = d.omega(t), phi = d.phi(t);
-    double N = unbalance_force(p, phi, w) + p.input_gain * d.input(t) - spring_magnet(p, p.xI).F;
-    if (!p.effects.empty()) N += effects_at(p, {t, p.xI, 0.0, phi, w, d.alpha(t), p.m0e, p.xI}).F;
-    return N;
-}
+// The cart at rest on the bumper: every force of Eq. (1) but the contact's (no resistance at v = 0).
+double normal_force(const Params& p, const Drive& d, double t) { return rig_forces(p, d, t, p.xI, 0.0, false).net(); }
 
 double bumper_elastic_energy(const Params& p, double x) {
     if (!p.compliant() || x <= p.xI) return 0.0;

@@ -67,6 +67,7 @@ TEST_CASE("curves: in (omega, m0e) the doubling moves with the forcing and is fo
                                                1.2 * p.m0e, 0.02 * p.m0e);
     REQUIRE(c.points.size() > 10);
     CHECK(c.end == "m0e range / m0e range");
+    CHECK((c.below.stop == CurveStop::Range && c.above.stop == CurveStop::Range));
     CHECK(c.points.front().q < 0.82 * p.m0e);
     CHECK(c.points.back().q > 1.18 * p.m0e);
     for (std::size_t i = 1; i < c.points.size(); ++i) {
@@ -212,6 +213,8 @@ TEST_CASE("curves: the plane's automatic start finds A1G's grazing and fold, and
     CHECK(g.curve.kind == BifKind::Grazing);
     CHECK(g.curve.points.size() == 7);
     CHECK(g.curve.end == "xI range / at the axis' end");
+    CHECK(g.curve.below.stop == CurveStop::Range);
+    CHECK(g.curve.above.stop == CurveStop::AxisEnd);
     spec.kind = BifKind::Fold;
     const PlaneCurve f = curve_over_plane(p, spec);
     REQUIRE(f.found);

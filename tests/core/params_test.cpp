@@ -27,6 +27,16 @@ bool contains(const std::string& s, const std::string& part) { return s.find(par
 
 }  // namespace
 
+TEST_CASE("a stiffness law's kind is on its row: Table 1's on the rig, the plain Duffing law in data units") {
+    CHECK(stiffness_kind(make_version("A1H")) == StiffnessKind::Rig);
+    CHECK(stiffness_kind(make_version("A3none")) == StiffnessKind::Rig);
+    Params d = make_version("A1none");
+    d.stiffness_id = "duffing";
+    CHECK(stiffness_kind(d) == StiffnessKind::DataUnits);
+    for (const StiffnessSet& s : stiffness_sets()) CHECK(s.kind == StiffnessKind::Rig);   // no version is in data units
+    REQUIRE(find_stiffness("duffing") == &duffing_stiffness());
+}
+
 TEST_CASE("make_version reads Table 1 and the impact tables (MODEL.md)") {
     const Params a1h = make_version("A1H");
     CHECK(a1h.name == "A1H");

@@ -215,6 +215,26 @@ TEST_CASE("scan: a tile log is read strictly, naming the line") {
     refused(good + "\n" + scan_log_line(0, other) + "\n", "line 3: row 0 appears again with other values (first on line 2)");
 }
 
+TEST_CASE("scan: a row message carries its row and every value exactly; a short one is refused") {
+    ScanRowMessage m;
+    m.row = 41;
+    m.points = {{1, -0.25, 2, -3e-3, 4.5e-3}, {kNotSettled, NAN, 0, -INFINITY, 1e-300}};
+    const std::vector<double> buf = m.pack();
+    CHECK(buf.size() == ScanRowMessage::size(2));
+    const ScanRowMessage back = ScanRowMessage::unpack(buf, 2);
+    CHECK(back.row == 41);
+    REQUIRE(back.points.size() == 2);
+    for (std::size_t i = 0; i < 2; ++i) {
+        const ScanPoint &a = m.points[i], &b = back.points[i];
+        CHECK(same_bits(a.period, b.period));
+        CHECK(same_bits(a.lyapunov, b.lyapunov));
+        CHECK(same_bits(a.impacts, b.impacts));
+        CHECK(same_bits(a.xmin, b.xmin));
+        CHECK(same_bits(a.xmax, b.xmax));
+    }
+    CHECK_THROWS_AS(ScanRowMessage::unpack(buf, 3), ScanError);
+}
+
 TEST_CASE("scan: the last grid value is HI itself, inside the range the axis was checked in") {
     const ScanAxis a = parse_scan_axis("xI:-0.1:0.1:7");
     CHECK(a.at(6) == 0.1);

@@ -219,14 +219,26 @@ struct CurvePoint {
     double q = 0;                // the second parameter [m] or [kg m]
     Vec2 y = Vec2::Zero();       // the period-k orbit's section point there
 };
+// Why a curve stopped on one side of its start: the second parameter's range, the point lost (at q), a
+// cancel, or the end of a plane's axis where the start already lay (curve_over_plane says so).
+enum class CurveStop { Range, Lost, Cancelled, AxisEnd };
+struct CurveEnd {
+    CurveStop stop = CurveStop::Cancelled;
+    double q = 0;                     // where the point was lost [the second parameter's unit]
+};
 struct BifCurve {
     BifKind kind = BifKind::PeriodDoubling;
     ContParam second = ContParam::XI;
     int period = 1;
     std::vector<CurvePoint> points;   // ordered by q
-    std::string end;                  // why it ended at each end ("cancelled" where a cancel stopped it)
+    CurveEnd below, above;            // why it ended towards lower and higher q
+    std::string end;                  // both in words, curve_ends_name ("cancelled" where a cancel stopped it)
     bool cancelled = false;           // stopped by a cancel: the points are only those found before it
 };
+// One end in words: "xI range", "doubling lost near xI = 0.001000", "cancelled", "at the axis' end".
+std::string curve_end_name(const BifCurve& c, const CurveEnd& e);
+// Both, "below / above".
+std::string curve_ends_name(const BifCurve& c);
 BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
                                  double lo, double hi, double step, const Tolerances& sim = analysis_tolerances(),
                                  Progress* progress = nullptr);

@@ -16,10 +16,15 @@ inline constexpr std::size_t kMaxLawParams = 8;
 // beyond which a measured position is not the rig's.
 inline constexpr double kRailHalfTravel = 0.1;
 
+// Where a stiffness law's x lives: on the rig's rail in metres (Table 1), or in a record's own units (strain,
+// volts: a plain Duffing law the fit starts from, with no rail, no bumper and no newtons).
+enum class StiffnessKind { Rig, DataUnits };
+
 // Stiffness law of Eq. (3): F_SA(x) = k x + (a1 x + a3 x^3 + a5 x^5 + a7 x^7) / (1 + b2 x^2 + ... + b8 x^8).
 // Together with the bearing resistance and the unbalance it makes the "A" part of a version.
 struct StiffnessSet {
     const char* id;                 // "A1", "A3"
+    StiffnessKind kind;
     const char* summary;
     double m0e;                     // unbalance m0*e [kg m]
     double k;                       // mechanical springs [N/m]
@@ -187,7 +192,11 @@ struct ParamError : std::runtime_error { using std::runtime_error::runtime_error
 const std::vector<StiffnessSet>& stiffness_sets();
 const std::vector<ImpactModel>& impact_models();
 const std::vector<EffectLaw>& effect_laws();
+// A Table 1 row, or the plain Duffing law ("duffing", in data units), which no version is made of.
 const StiffnessSet* find_stiffness(const std::string& id);
+const StiffnessSet& duffing_stiffness();
+// The kind of p's stiffness law (Rig for an id no row has).
+StiffnessKind stiffness_kind(const Params& p);
 const ImpactModel* find_impact(const std::string& id);
 const EffectLaw* find_effect(const std::string& id);
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstddef>
 #include <functional>
 #include <iosfwd>
 #include <stdexcept>
@@ -65,6 +66,20 @@ std::vector<ScanPoint> scan_row(const Params& p, const ScanSpec& spec, int row, 
 // thread. Progress counts the rows of `todo`.
 void scan_rows(const Params& p, const ScanSpec& spec, const std::vector<int>& todo, int threads, Progress* progress,
                const Tolerances& tol, const std::function<void(int row, const std::vector<ScanPoint>&)>& on_row);
+
+// A finished row as it travels between processes (the MPI hand-out, scan_cluster.hpp): one flat array of
+// doubles, the row's index first, then each point's five values in ScanPoint's order. Exact: a row sent is
+// the row received, bit for bit.
+struct ScanRowMessage {
+    static constexpr std::size_t kPointValues = 5;
+    int row = -1;
+    std::vector<ScanPoint> points;
+
+    static std::size_t size(std::size_t nx) { return 1 + kPointValues * nx; }
+    std::vector<double> pack() const;
+    // The first size(nx) values of buf; throws ScanError if buf is shorter.
+    static ScanRowMessage unpack(const std::vector<double>& buf, std::size_t nx);
+};
 
 // The CSV: the two axis names, then one column per measure (period, lyapunov, impacts, xmin, xmax), rows
 // with the first axis fastest; numbers printed to round-trip exactly.

@@ -153,7 +153,176 @@ void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, con
     e = Vec2(e[0] / kXScale, e[1] / kVScale);
     if (e.norm() == 0) return;
     e.normalize();
-    jobs_.push_back({2 * k, branch, best.u, Vec3(e[0], e[1], 0.0), false, 0});
+    jobs_.push_back({2 * k, branch, best.u, Vec3(e[0], e[1], 0.0), false, JobMode::Start});
+}
+
+std::string Continuer::corrector_limit(const Sol& cur, const Vec3& t, double ds, int k, int branch) {
+    std::string end = "numerical limit near " + std::string(sweep_param_name(spec_.param)) + " = " + std::to_string(q_of(cur.u));
+    // An orbit about to graze: the impacting side is out of the corrector's reach (a rigid
+    // bumper, or a compliant one as stiff as C1's), the grazing itself is still located on
+    // the bumperless orbit.
+    const double g = test(BifKind::Grazing, cur);
+    // The corrector's last residual there: the numerical limit the end states.
+    double res_last = NAN;
+    {
+        const MapResult rl = map(cur.u + ds * 2 * t, k, false);
+        res_last = residual(rl, cur.u + ds * 2 * t).cwiseAbs().maxCoeff();
+    }
+    char rbuf[240];
+    std::snprintf(rbuf, sizeof rbuf, ": the corrector fails at steps down to %.1g (residual %.2g there)",
+                  spec_.ds_min, res_last);
+    end += rbuf;
+    if (work_.has_bumper() && std::abs(g) < 0.01) {
+        std::snprintf(rbuf, sizeof rbuf, ", the orbit's largest x %.3g mm %s the bumper (a grazing ahead or begun)",
+                      std::abs(g) * kXScale * 1e3, g < 0 ? "short of" : "into");
+        end += rbuf;
+    }
+    // A compliant contact's orbit that has just begun to press the bumper (inside its first
+    // millimetre): the grazing it came from is located on the bumperless orbit and named.
+    if (work_.has_bumper() && !work_.rigid() && g >= 0 && g < 0.1) {
+        // Located already as the corrector stepped in (the test's sign change): that one, to
+        // its bracket; else located now, back along the branch on the bumperless orbit.
+        last_located_ = -1;
+        for (std::size_t qi = 0; qi < result_.points.size(); ++qi) {
+            const BifPoint& q = result_.points[qi];
+            if (q.kind == BifKind::Grazing && q.period == k && std::abs(q.param - q_of(cur.u)) < 1e-3 * q_scale_ &&
+                (last_located_ < 0 || q.precision < result_.points[static_cast<std::size_t>(last_located_)].precision))
+                last_located_ = static_cast<int>(qi);
+        }
+        if (last_located_ < 0) locate(BifKind::Grazing, cur, -t, 0.05, cur, k, branch, true);
+        if (last_located_ >= 0) {
+            const BifPoint& g0 = result_.points[static_cast<std::size_t>(last_located_)];
+            char gbuf[320];
+            std::snprintf(gbuf, sizeof gbuf,
+                          "grazing at %s = %.9g, pressing the compliant contact %.3g mm deep at %s = %.9g, "
+                          "where the corrector's steps fail (residual %.2g at a step of %.1g)",
+                          sweep_param_name(spec_.param), g0.param, g * kXScale * 1e3,
+                          sweep_param_name(spec_.param), q_of(cur.u), res_last, spec_.ds_min);
+            end = gbuf;
+        }
+    }
+    if (work_.has_bumper() && g < 0 && g > -0.1) {
+        last_located_ = -1;
+        locate(BifKind::Grazing, cur, t, 0.05, cur, k, branch, true);
+        if (last_located_ >= 0) {
+            end = work_.rigid() ? "grazing (rigid impacts begin)" : "grazing (the corrector cannot step into the contacts)";
+            // A free orbit touching a rigid bumper: its impacting continuation starts there,
+            // when the law makes the map continuous at the grazing. H's zero-speed impact still
+            // holds the cart for T_imp(0) = 6.2 ms, so its map jumps there: no branch through.
+            const bool continuous_law = work_.rigid() && work_.impact->duration(work_.ip.data(), 0.0) == 0.0;
+            if (work_.rigid() && !continuous_law)
+                end = "grazing (rigid impacts begin; a zero-speed impact still sticks for T_imp(0) > 0, "
+                      "so the map jumps there)";
+            if (continuous_law && cur.r.impacts == 0) {
+                const BifPoint& g0 = result_.points[static_cast<std::size_t>(last_located_)];
+                jobs_.push_back({k, branch, u_of(g0.y, g0.param), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, JobMode::Grazing});
+            }
+        }
+    }
+    return end;
+}
+
+void Continuer::locate_crossings(const Sol& cur, const Vec3& t, double ds, const Sol& next, int k, int branch) {
+    for (BifKind kind : {BifKind::Fold, BifKind::PeriodDoubling, BifKind::NeimarkSacker, BifKind::Grazing}) {
+        const double fa = test(kind, cur), fb = test(kind, next);
+        if (!((fa > 0) != (fb > 0)) || !std::isfinite(fa) || !std::isfinite(fb)) continue;
+        if (kind == BifKind::NeimarkSacker && !(complex_pair(cur.r.M) && complex_pair(next.r.M))) continue;
+        last_located_ = -1;
+        locate(kind, cur, t, ds, next, k, branch);
+        // A rigid grazing the corrector itself stepped across (a continuous law): its scenario and
+        // exponents, from the grazing orbit.
+        if (kind == BifKind::Grazing && last_located_ >= 0 && work_.rigid() &&
+            work_.impact->duration(work_.ip.data(), 0.0) == 0.0 && (cur.r.impacts == 0) != (next.r.impacts == 0)) {
+            BifPoint& gp = result_.points[static_cast<std::size_t>(last_located_)];
+            Vec3 zg, tg;
+            Vec2 sec;
+            if (gp.scenario.empty() && grazing_start(gp.param, gp.y, k, zg, tg, sec))
+                describe_grazing(gp, cur.r.impacts == 0 ? t[2] : -t[2], zg, tg, k);
+        }
+    }
+}
+
+bool Continuer::passes_by(const BranchPoint& pj, const Vec3& a, const Vec3& b) const {
+    const double len2 = (b - a).squaredNorm();
+    for (const Vec2& sp : pj.sections) {
+        const Vec3 c = u_of(sp, pj.param);
+        const double f = len2 > 0 ? std::clamp((c - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
+        if ((a + f * (b - a) - c).norm() < 1e-3) return true;
+    }
+    return false;
+}
+
+bool Continuer::sharpen(Sol& cur, const Vec3& t, int k, double& ds, int& sharpened) {
+    // A long period (8 periods and more of a cascade) carries the integrator's error up to the corrector's
+    // tolerance, and the steps shrink for noise rather than for the branch's shape: the map is sharpened for
+    // the rest of this branch (twice at most, down to rtol 1e-12). (Not beside a bumper: there the steps
+    // shrink for the grazing, and a sharper map only costs.)
+    if (!(ds < 2e-3 && sharpened < 2 && spec_.sim.rtol > 1.5e-12 &&
+          !(work_.has_bumper() && std::abs(test(BifKind::Grazing, cur)) < 0.01)))
+        return false;
+    ++sharpened;
+    spec_.sim.rtol = std::max(spec_.sim.rtol * 0.01, 1e-12);
+    Sol again;
+    if (correct(cur.u, t, k, again)) cur = std::move(again);   // the point on the sharper map
+    ds = std::max(ds, 4e-3);
+    return true;
+}
+
+bool Continuer::shorten(const Sol& cur, const Vec3& t, const Sol& next, bool first, bool& clipped, double& ds) const {
+    // Approaching a grazing (the test function falls towards 0): shorten the step so that the corrector,
+    // whose map loses smoothness there, is not thrown across it.
+    if (work_.has_bumper() && !first) {
+        const double g0 = test(BifKind::Grazing, cur), g1 = test(BifKind::Grazing, next);
+        if (g1 < 0 && g1 > g0 && ds > std::max(4 * std::abs(g1), 20 * spec_.ds_min)) {
+            ds = std::max(2 * std::abs(g1), 10 * spec_.ds_min);
+            return true;
+        }
+    }
+    // A corrector that wandered far from the predictor, or multipliers that moved a lot in one step: the step
+    // may have left the branch's segment (the stable period 2 of A1C at 12.78 once landed on the impacting
+    // orbit at 12.96, past the fold, with a multiplier of -13). Shorter, down to a crawl: a true jump (a
+    // grazing) is then crossed in steps that bracket it.
+    // The first step off a doubling too: its branch bends back in the parameter as the square of the step, and
+    // a long first step jumps past the next doubling of a cascade (A1C's period 8 from 19.4957 landed at
+    // 19.4036, past its own doubling at 19.43, with mu = -2.1).
+    if (ds > 16 * spec_.ds_min &&
+        ((next.u - (cur.u + ds * t)).norm() > 0.5 * ds || (!first && multiplier_change(cur.r.M, next.r.M) > kMaxMultiplierStep))) {
+        ds *= 0.5;
+        return true;
+    }
+    // A step past the end of the range: once, shorten it to end there, so that the branch reaches the range's
+    // end rather than stopping up to ds_max short of it.
+    const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
+    if (const double qn = q_of(next.u); (qn < lo || qn > hi) && !clipped) {
+        clipped = true;
+        const double frac = ((qn > hi ? hi : lo) - q_of(cur.u)) / (qn - q_of(cur.u));
+        if (frac > 0 && frac < 1 && frac * ds > spec_.ds_min) {
+            ds *= 0.999 * frac;
+            return true;
+        }
+    }
+    return false;
+}
+
+void Continuer::report_progress(double q) {
+    if (!progress_) return;
+    const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
+    const double f = (q - lo) / (hi - lo);
+    const double now = std::clamp(branch_fraction_ + f / std::max<double>(1, 1 + jobs_.size()), 0.0, 1.0);
+    if (now > progress_->fraction.load(std::memory_order_relaxed))   // never backwards
+        progress_->fraction.store(now, std::memory_order_relaxed);
+}
+
+std::string Continuer::hand_over(const Job& job, const Sol& next, const Vec3& t, int branch, std::vector<BranchPoint>& pts) {
+    const int k = job.period;
+    pts.push_back(point_of(next, k));
+    Branch rest;
+    rest.id = branch;
+    Job on{k, job.parent, next.u, t, false, JobMode::SlowImpacts};
+    ++handoffs_;
+    follow_impacting(on, rest);
+    pts.insert(pts.end(), rest.points.begin(), rest.points.end());
+    return rest.end;
 }
 
 void Continuer::follow(const Job& job, Branch& br) {
@@ -177,7 +346,7 @@ void Continuer::follow(const Job& job, Branch& br) {
         Vec3 t = dir == 0 ? job.t : Vec3(-job.t);
         Sol cur;
         double ds = spec_.ds;
-        if (job.both_ways || job.mode == 2) {   // the start is a converged point of this branch
+        if (job.both_ways || job.mode == JobMode::Onward) {   // the start is a converged point of this branch
             if (!correct(job.u, t, k, cur)) {
                 end = "the start did not converge";
                 continue;
@@ -189,7 +358,7 @@ void Continuer::follow(const Job& job, Branch& br) {
             cur.r = map(job.u, k, true);
             pts.push_back(point_of(cur, k));
         }
-        bool first = !job.both_ways && job.mode != 2;
+        bool first = !job.both_ways && job.mode != JobMode::Onward;
         bool clipped = false;
         while (true) {
             if (cancelled()) {
@@ -202,88 +371,14 @@ void Continuer::follow(const Job& job, Branch& br) {
             }
             Sol next;
             if (!correct(cur.u + ds * t, t, k, next)) {
-                // A long period (8 periods and more of a cascade) carries the integrator's error up to the
-                // corrector's tolerance, and the steps shrink for noise rather than for the branch's shape:
-                // the map is sharpened for the rest of this branch (twice at most, down to rtol 1e-12).
-                // (Not beside a bumper: there the steps shrink for the grazing, and a sharper map only costs.)
-                if (ds < 2e-3 && sharpened < 2 && spec_.sim.rtol > 1.5e-12 &&
-                    !(work_.has_bumper() && std::abs(test(BifKind::Grazing, cur)) < 0.01)) {
-                    ++sharpened;
-                    spec_.sim.rtol = std::max(spec_.sim.rtol * 0.01, 1e-12);
-                    Sol again;
-                    if (correct(cur.u, t, k, again)) cur = std::move(again);   // the point on the sharper map
-                    ds = std::max(ds, 4e-3);
-                    continue;
-                }
+                if (sharpen(cur, t, k, ds, sharpened)) continue;
                 ds *= 0.5;
                 if (ds < spec_.ds_min) {
                     // A cart held by dry friction (a real multiplier within 1 % of +1: the creeping mode)
                     // has a nearly singular M - I, and the corrector fails where the damped Newton of
                     // find_orbit still converges: restart a little further on at fixed q, the same branch.
                     if (restart(cur, t, k, ds, skipped)) continue;
-                    end = "numerical limit near " + std::string(sweep_param_name(spec_.param)) + " = " +
-                          std::to_string(q_of(cur.u));
-                    // An orbit about to graze: the impacting side is out of the corrector's reach (a rigid
-                    // bumper, or a compliant one as stiff as C1's), the grazing itself is still located on
-                    // the bumperless orbit.
-                    const double g = test(BifKind::Grazing, cur);
-                    // The corrector's last residual there: the numerical limit the end states.
-                    double res_last = NAN;
-                    {
-                        const MapResult rl = map(cur.u + ds * 2 * t, k, false);
-                        res_last = residual(rl, cur.u + ds * 2 * t).cwiseAbs().maxCoeff();
-                    }
-                    char rbuf[240];
-                    std::snprintf(rbuf, sizeof rbuf, ": the corrector fails at steps down to %.1g (residual %.2g there)",
-                                  spec_.ds_min, res_last);
-                    end += rbuf;
-                    if (work_.has_bumper() && std::abs(g) < 0.01) {
-                        std::snprintf(rbuf, sizeof rbuf, ", the orbit's largest x %.3g mm %s the bumper (a grazing ahead or begun)",
-                                      std::abs(g) * kXScale * 1e3, g < 0 ? "short of" : "into");
-                        end += rbuf;
-                    }
-                    // A compliant contact's orbit that has just begun to press the bumper (inside its first
-                    // millimetre): the grazing it came from is located on the bumperless orbit and named.
-                    if (work_.has_bumper() && !work_.rigid() && g >= 0 && g < 0.1) {
-                        // Located already as the corrector stepped in (the test's sign change): that one, to
-                        // its bracket; else located now, back along the branch on the bumperless orbit.
-                        last_located_ = -1;
-                        for (std::size_t qi = 0; qi < result_.points.size(); ++qi) {
-                            const BifPoint& q = result_.points[qi];
-                            if (q.kind == BifKind::Grazing && q.period == k && std::abs(q.param - q_of(cur.u)) < 1e-3 * q_scale_ &&
-                                (last_located_ < 0 || q.precision < result_.points[static_cast<std::size_t>(last_located_)].precision))
-                                last_located_ = static_cast<int>(qi);
-                        }
-                        if (last_located_ < 0) locate(BifKind::Grazing, cur, -t, 0.05, cur, k, br.id, true);
-                        if (last_located_ >= 0) {
-                            const BifPoint& g0 = result_.points[static_cast<std::size_t>(last_located_)];
-                            char gbuf[320];
-                            std::snprintf(gbuf, sizeof gbuf,
-                                          "grazing at %s = %.9g, pressing the compliant contact %.3g mm deep at %s = %.9g, "
-                                          "where the corrector's steps fail (residual %.2g at a step of %.1g)",
-                                          sweep_param_name(spec_.param), g0.param, g * kXScale * 1e3,
-                                          sweep_param_name(spec_.param), q_of(cur.u), res_last, spec_.ds_min);
-                            end = gbuf;
-                        }
-                    }
-                    if (work_.has_bumper() && g < 0 && g > -0.1) {
-                        last_located_ = -1;
-                        locate(BifKind::Grazing, cur, t, 0.05, cur, k, br.id, true);
-                        if (last_located_ >= 0) {
-                            end = work_.rigid() ? "grazing (rigid impacts begin)" : "grazing (the corrector cannot step into the contacts)";
-                            // A free orbit touching a rigid bumper: its impacting continuation starts there,
-                            // when the law makes the map continuous at the grazing. H's zero-speed impact still
-                            // holds the cart for T_imp(0) = 6.2 ms, so its map jumps there: no branch through.
-                            const bool continuous_law = work_.rigid() && work_.impact->duration(work_.ip.data(), 0.0) == 0.0;
-                            if (work_.rigid() && !continuous_law)
-                                end = "grazing (rigid impacts begin; a zero-speed impact still sticks for T_imp(0) > 0, "
-                                      "so the map jumps there)";
-                            if (continuous_law && cur.r.impacts == 0) {
-                                const BifPoint& g0 = result_.points[static_cast<std::size_t>(last_located_)];
-                                jobs_.push_back({k, br.id, u_of(g0.y, g0.param), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, 1});
-                            }
-                        }
-                    }
+                    end = corrector_limit(cur, t, ds, k, br.id);
                     break;
                 }
                 continue;
@@ -303,71 +398,16 @@ void Continuer::follow(const Job& job, Branch& br) {
                     break;
                 }
             }
-            // Approaching a grazing (the test function falls towards 0): shorten the step so that the
-            // corrector, whose map loses smoothness there, is not thrown across it.
-            if (work_.has_bumper() && !first) {
-                const double g0 = test(BifKind::Grazing, cur), g1 = test(BifKind::Grazing, next);
-                if (g1 < 0 && g1 > g0 && ds > std::max(4 * std::abs(g1), 20 * spec_.ds_min)) {
-                    ds = std::max(2 * std::abs(g1), 10 * spec_.ds_min);
-                    continue;
-                }
-            }
-            // A corrector that wandered far from the predictor, or multipliers that moved a lot in one step:
-            // the step may have left the branch's segment (the stable period 2 of A1C at 12.78 once landed
-            // on the impacting orbit at 12.96, past the fold, with a multiplier of -13). Shorter, down to
-            // a crawl: a true jump (a grazing) is then crossed in steps that bracket it.
-            // The first step off a doubling too: its branch bends back in the parameter as the square of the
-            // step, and a long first step jumps past the next doubling of a cascade (A1C's period 8 from
-            // 19.4957 landed at 19.4036, past its own doubling at 19.43, with mu = -2.1).
-            if (ds > 16 * spec_.ds_min &&
-                ((next.u - (cur.u + ds * t)).norm() > 0.5 * ds || (!first && multiplier_change(cur.r.M, next.r.M) > kMaxMultiplierStep))) {
-                ds *= 0.5;
-                continue;
-            }
-            // A step past the end of the range: once, shorten it to end there, so that the branch reaches
-            // the range's end rather than stopping up to ds_max short of it.
-            if (const double qn = q_of(next.u); (qn < lo || qn > hi) && !clipped) {
-                clipped = true;
-                const double frac = ((qn > hi ? hi : lo) - q_of(cur.u)) / (qn - q_of(cur.u));
-                if (frac > 0 && frac < 1 && frac * ds > spec_.ds_min) {
-                    ds *= 0.999 * frac;
-                    continue;
-                }
-            }
+            if (shorten(cur, t, next, first, clipped, ds)) continue;
             // Slow rigid impacts (near a grazing): the stroboscopic map's derivative grows as 1/v-, and its
             // corrector crawls or jumps across; on from impact to impact, where the grazing can be reached.
             if (work_.rigid() && !first && next.r.impacts == 1 && cur.r.impacts == 1 && handoffs_ < 16 &&
                 next.r.min_impact_speed < 0.8 * kHandover) {
-                pts.push_back(point_of(next, k));
-                Branch rest;
-                rest.id = br.id;
-                Job on{k, job.parent, next.u, t, false, 3};
-                ++handoffs_;
-                follow_impacting(on, rest);
-                pts.insert(pts.end(), rest.points.begin(), rest.points.end());
-                end = rest.end;
+                end = hand_over(job, next, t, br.id, pts);
                 break;
             }
             const Vec3 t_next = tangent_of(next, t);
-            if (!first) {
-                for (BifKind kind : {BifKind::Fold, BifKind::PeriodDoubling, BifKind::NeimarkSacker, BifKind::Grazing}) {
-                    const double fa = test(kind, cur), fb = test(kind, next);
-                    if (!((fa > 0) != (fb > 0)) || !std::isfinite(fa) || !std::isfinite(fb)) continue;
-                    if (kind == BifKind::NeimarkSacker && !(complex_pair(cur.r.M) && complex_pair(next.r.M))) continue;
-                    last_located_ = -1;
-                    locate(kind, cur, t, ds, next, k, br.id);
-                    // A rigid grazing the corrector itself stepped across (a continuous law): its scenario and
-                    // exponents, from the grazing orbit.
-                    if (kind == BifKind::Grazing && last_located_ >= 0 && work_.rigid() &&
-                        work_.impact->duration(work_.ip.data(), 0.0) == 0.0 && (cur.r.impacts == 0) != (next.r.impacts == 0)) {
-                        BifPoint& gp = result_.points[static_cast<std::size_t>(last_located_)];
-                        Vec3 zg, tg;
-                        Vec2 sec;
-                        if (gp.scenario.empty() && grazing_start(gp.param, gp.y, k, zg, tg, sec))
-                            describe_grazing(gp, cur.r.impacts == 0 ? t[2] : -t[2], zg, tg, k);
-                    }
-                }
-            }
+            if (!first) locate_crossings(cur, t, ds, next, k, br.id);
             first = false;
             const double q = q_of(next.u);
             if (q < lo || q > hi) {
@@ -379,20 +419,10 @@ void Continuer::follow(const Job& job, Branch& br) {
             // Back at an earlier orbit of the branch (or at one of its k phases, the same orbit): a closed
             // branch, an isola. Without this it would be followed round again up to the point limit.
             if (pts.size() > 8) {
-                const Vec3 a = cur.u, b = next.u;
-                const double len2 = (b - a).squaredNorm();
-                auto near = [&](const BranchPoint& pj) {
-                    for (const Vec2& sp : pj.sections) {
-                        const Vec3 c = u_of(sp, pj.param);
-                        const double f = len2 > 0 ? std::clamp((c - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
-                        if ((a + f * (b - a) - c).norm() < 1e-3) return true;
-                    }
-                    return false;
-                };
                 // Only orbits at least 0.5 (scaled arclength) behind: a branch's own last steps are always near.
                 for (std::size_t j = 0; j + 8 < pts.size() && !closed; ++j)
-                    if (arc.back() - arc[j] > 0.5) closed = near(pts[j]);
-                if (!closed && dir == 1 && !fwd.empty() && arc.back() > 0.5) closed = near(fwd.front());
+                    if (arc.back() - arc[j] > 0.5) closed = passes_by(pts[j], cur.u, next.u);
+                if (!closed && dir == 1 && !fwd.empty() && arc.back() > 0.5) closed = passes_by(fwd.front(), cur.u, next.u);
                 if (closed) {
                     end = "closed loop (back at an earlier orbit)";
                     break;
@@ -400,12 +430,7 @@ void Continuer::follow(const Job& job, Branch& br) {
             }
             cur = std::move(next);
             t = t_next;
-            if (progress_ && dir == 0) {
-                const double f = (q - lo) / (hi - lo);
-                const double now = std::clamp(branch_fraction_ + f / std::max<double>(1, 1 + jobs_.size()), 0.0, 1.0);
-                if (now > progress_->fraction.load(std::memory_order_relaxed))   // never backwards
-                    progress_->fraction.store(now, std::memory_order_relaxed);
-            }
+            if (dir == 0) report_progress(q);
             // Step control: grow after an easy correction, shrink after a hard one.
             ds = cur.iterations <= 2 ? std::min(ds * 1.5, spec_.ds_max) : cur.iterations >= 5 ? ds * 0.6 : ds;
         }
@@ -435,7 +460,7 @@ ContinuationResult Continuer::run() {
         result_.branches.push_back(b);
         return std::move(result_);
     }
-    jobs_.push_back({spec_.period, -1, u_of(o.y, q0), Vec3(0, 0, 1), q0 > lo && q0 < hi, 0});
+    jobs_.push_back({spec_.period, -1, u_of(o.y, q0), Vec3(0, 0, 1), q0 > lo && q0 < hi, JobMode::Start});
     if (!(q0 > lo && q0 < hi) && q0 >= hi) jobs_.back().t = Vec3(0, 0, -1);
     while (!jobs_.empty() && static_cast<int>(result_.branches.size()) < spec_.max_branches) {
         const Job job = jobs_.front();
@@ -449,7 +474,7 @@ ContinuationResult Continuer::run() {
         // phase): each is compared.
         bool known = false;
         for (const auto& b : result_.branches)
-            if (job.mode == 0 && b.period == job.period)
+            if (job.mode == JobMode::Start && b.period == job.period)
                 for (const auto& pt : b.points)
                     if (std::abs(pt.param / q_scale_ - job.u[2]) < 0.3)
                         for (const Vec2& sp : pt.sections)
@@ -459,9 +484,11 @@ ContinuationResult Continuer::run() {
         br.id = static_cast<int>(result_.branches.size());
         br.period = job.period;
         br.parent = job.parent;
-        if (job.mode == 1) follow_impacting(job, br);
-        else follow(job, br);
-        if (job.mode == 1 && br.points.empty() && br.end == "reached") continue;
+        if (job.mode == JobMode::Grazing) {
+            if (follow_impacting(job, br) == Followed::AlreadyReached) continue;
+        } else {
+            follow(job, br);
+        }
         result_.branches.push_back(std::move(br));
         branch_fraction_ += (1.0 - branch_fraction_) / static_cast<double>(1 + jobs_.size());
     }

@@ -58,37 +58,34 @@ bool Continuer::correct_impacting(const Vec3& z_pred, const Vec3& n, int k, Vec3
     return false;
 }
 
-void Continuer::follow_impacting(const Job& job, Branch& br) {
+Followed Continuer::follow_impacting(const Job& job, Branch& br) {
     const int k = job.period;
     const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
     Vec3 z, t;
     Eigen::Matrix<double, 2, 3> J;
     Vec2 section;
-    if (job.mode == 1) {
+    if (job.mode == JobMode::Grazing) {
         if (!grazing_start(q_of(job.u), y_of(job.u), k, z, t, section)) {
             br.end = "the grazing orbit did not converge from impact to impact";
-            return;
+            return Followed::Branch;
         }
         for (BifPoint& b : result_.points)
             if (b.kind == BifKind::Grazing && b.param == q_of(job.u) && b.scenario.empty()) describe_grazing(b, job.t[2], z, t, k);
         // Its impacting branch already followed to here from another grazing: not again.
         for (double qr : reached_)
-            if (std::abs(qr - q_of(job.u)) < 1e-5 * q_scale_) {
-                br.end = "reached";
-                return;
-            }
+            if (std::abs(qr - q_of(job.u)) < 1e-5 * q_scale_) return Followed::AlreadyReached;
     } else {
-        // From an impacting orbit of the stroboscopic branch whose impacts are slow (mode 3).
+        // From an impacting orbit of the stroboscopic branch whose impacts are slow.
         double theta = 0, vm = 0;
         if (!first_impact(work_, apply(q_of(job.u)), y_of(job.u), k, spec_.sim, theta, vm) ||
             !correct_impacting(Vec3(theta, vm / kVScale, job.u[2]), Vec3(0, 0, 1), k, z, J, section)) {
             br.end = "the impacting orbit did not converge from impact to impact";
-            return;
+            return Followed::Branch;
         }
         t = Vec3(J.row(0).transpose()).cross(Vec3(J.row(1).transpose()));
         if (!(t.norm() > 0) || !t.allFinite()) {
             br.end = "singular impact-to-impact equations";
-            return;
+            return Followed::Branch;
         }
         t.normalize();
         if (t[2] * job.t[2] < 0) t = -t;   // the way the stroboscopic branch was going in the parameter
@@ -183,14 +180,15 @@ void Continuer::follow_impacting(const Job& job, Branch& br) {
         }
     }
     if (!handed) {
-        br.end = (job.mode == 1 ? "grazing / " : "slow impacts / ") + end;
-        return;
+        br.end = std::string(job_mode_name(job.mode)) + " / " + end;
+        return Followed::Branch;
     }
     Branch onward;
     onward.id = br.id;
-    follow({k, job.parent, u_of(section, q_of(z)), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, 2}, onward);
+    follow({k, job.parent, u_of(section, q_of(z)), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, JobMode::Onward}, onward);
     br.points.insert(br.points.end(), onward.points.begin(), onward.points.end());
-    br.end = (job.mode == 1 ? "grazing / " : "slow impacts / ") + onward.end;
+    br.end = std::string(job_mode_name(job.mode)) + " / " + onward.end;
+    return Followed::Branch;
 }
 
 void Continuer::locate_impacting(BifKind kind, const Vec3& z, const Vec3& t, double ds, const Sol& a, const Sol& b,

@@ -43,6 +43,25 @@ struct Sol {
     int iterations = 0;
 };
 
+// Where a job starts: the first orbit (both ways) or a doubling's switch; a rigid grazing to cross (u: the
+// grazing orbit, t[2]: the free branch's direction there); onward from a converged point along t, one way;
+// an impacting orbit of the stroboscopic branch whose impacts are slow, followed from impact to impact.
+enum class JobMode { Start, Grazing, Onward, SlowImpacts };
+// The words a branch begun from impact to impact puts before its far end ("grazing / omega range").
+inline const char* job_mode_name(JobMode m) {
+    switch (m) {
+    case JobMode::Start: return "start";
+    case JobMode::Grazing: return "grazing";
+    case JobMode::Onward: return "onward";
+    case JobMode::SlowImpacts: return "slow impacts";
+    }
+    return "?";
+}
+
+// What following a job gave: a branch to keep, or nothing new (the grazing's impacting branch was already
+// followed up to it from another grazing).
+enum class Followed { Branch, AlreadyReached };
+
 class Continuer {
 public:
     Continuer(const Params& p, const ContinuationSpec& spec, Progress* progress)
@@ -55,9 +74,7 @@ public:
     ContinuationResult run();
 
 private:
-    // mode 0: a start (both_ways) or a doubling's switch; 1: a rigid grazing to cross (u: the grazing orbit,
-    // t[2]: the free branch's direction there); 2: onward from a converged point along t, one way.
-    struct Job { int period; int parent; Vec3 u; Vec3 t; bool both_ways; int mode = 0; };
+    struct Job { int period; int parent; Vec3 u; Vec3 t; bool both_ways; JobMode mode = JobMode::Start; };
 
     double q_of(const Vec3& u) const { return u[2] * q_scale_; }
     Vec2 y_of(const Vec3& u) const { return Vec2(u[0] * kXScale, u[1] * kVScale); }
@@ -260,9 +277,28 @@ private:
     void locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch,
                 bool off_bumper = false);
     void follow(const Job& job, Branch& br);
+    // Why a branch ends where the corrector fails at every step down to ds_min from cur: the numerical
+    // limit, or the grazing it ran into, located on the bumperless orbit (a rigid grazing's impacting branch
+    // is queued as a job).
+    std::string corrector_limit(const Sol& cur, const Vec3& t, double ds, int k, int branch);
+    // The test functions' sign changes over the step from cur to next, each located; a rigid grazing that the
+    // corrector itself stepped across gets its scenario and exponents.
+    void locate_crossings(const Sol& cur, const Vec3& t, double ds, const Sol& next, int k, int branch);
+    // The step from a to b passes within 1e-3 (scaled) of one of pj's section points: the same orbit again.
+    bool passes_by(const BranchPoint& pj, const Vec3& a, const Vec3& b) const;
+    // A corrector that failed at a short step on a long period: the map sharpened and cur corrected on it;
+    // false where that does not apply (or was done twice).
+    bool sharpen(Sol& cur, const Vec3& t, int k, double& ds, int& sharpened);
+    // A step from cur to next that is to be taken again shorter (ds shortened): a grazing ahead, a corrector
+    // that wandered or multipliers that jumped, or once a step past the range's end (clipped).
+    bool shorten(const Sol& cur, const Vec3& t, const Sol& next, bool first, bool& clipped, double& ds) const;
+    // The share of the range a forward branch has covered at q, never backwards.
+    void report_progress(double q);
+    // On from next (slow rigid impacts) from impact to impact: its points appended to pts; returns the end.
+    std::string hand_over(const Job& job, const Sol& next, const Vec3& t, int branch, std::vector<BranchPoint>& pts);
     // From a rigid grazing onto the impacting branch, written from impact to impact (impact_shot) while the
-    // impacts are slow, then on with the stroboscopic map (follow, mode 2).
-    void follow_impacting(const Job& job, Branch& br);
+    // impacts are slow, then on with the stroboscopic map (follow, onward).
+    Followed follow_impacting(const Job& job, Branch& br);
     // The exponents of a crossed grazing (BifPoint::mu_exponent, speed_exponent) from the impacting orbits
     // near it; z, t: the grazing orbit from impact to impact and the impacting branch's tangent there.
     void measure_scaling(BifPoint& gp, const Vec3& z, const Vec3& t, int k);

@@ -138,8 +138,8 @@ using Locate = std::function<Located(const Params& work, double omega, const Vec
 // The curves' one following loop: natural-parameter steps in the second parameter from its model value to
 // each end of [lo, hi], the point located again at each from the last two points extrapolated. A step the
 // predictor cannot bridge is halved, down to step / 64. The cancel is looked at before every step.
-BifCurve follow_curve(const Params& p, BifKind kind, const char* what, ContParam second, double omega0, const Vec2& y0,
-                      int period, double lo, double hi, double step, Progress* progress, const Locate& locate) {
+BifCurve follow_curve(const Params& p, BifKind kind, ContParam second, double omega0, const Vec2& y0, int period,
+                      double lo, double hi, double step, Progress* progress, const Locate& locate) {
     BifCurve c;
     c.kind = kind;
     c.second = second;
@@ -148,7 +148,8 @@ BifCurve follow_curve(const Params& p, BifKind kind, const char* what, ContParam
     double& q_ref = second == ContParam::XI ? work.xI : work.m0e;
     const double q0 = q_ref;
     std::vector<CurvePoint> sides[2];
-    std::string ends[2];
+    CurveEnd* ends[2] = {&c.above, &c.below};
+    bool ended[2] = {false, false};
     double covered[2] = {0, 0};   // how far each side has come [the second parameter's unit]
     for (int side = 0; side < 2 && !c.cancelled; ++side) {
         const double dir = side == 0 ? 1.0 : -1.0;
@@ -161,12 +162,14 @@ BifCurve follow_curve(const Params& p, BifKind kind, const char* what, ContParam
         while (true) {
             if (progress && progress->cancel.load(std::memory_order_relaxed)) {
                 c.cancelled = true;
-                ends[side] = "cancelled";
+                *ends[side] = {CurveStop::Cancelled, 0.0};
+                ended[side] = true;
                 break;
             }
             const double q = first ? q0 : prev.q + dir * h;
             if (q > hi + 1e-12 * std::abs(hi) || q < lo - 1e-12 * std::abs(lo)) {
-                ends[side] = std::string(sweep_param_name(second)) + " range";
+                *ends[side] = {CurveStop::Range, 0.0};
+                ended[side] = true;
                 break;
             }
             q_ref = q;
@@ -185,7 +188,8 @@ BifCurve follow_curve(const Params& p, BifKind kind, const char* what, ContParam
                     h *= 0.5;
                     continue;
                 }
-                ends[side] = std::string(what) + " lost near " + sweep_param_name(second) + " = " + std::to_string(q);
+                *ends[side] = {CurveStop::Lost, q};
+                ended[side] = true;
                 break;
             }
             pts.push_back({at.omega, q, at.y});
@@ -201,12 +205,11 @@ BifCurve follow_curve(const Params& p, BifKind kind, const char* what, ContParam
                 progress->fraction.store(std::min(1.0, (covered[0] + covered[1]) / (hi - lo)), std::memory_order_relaxed);
         }
     }
-    if (c.cancelled)   // the side a cancel kept from starting
-        for (std::string& e : ends)
-            if (e.empty()) e = "cancelled";
+    for (int side = 0; side < 2; ++side)   // the side a cancel kept from starting
+        if (!ended[side]) *ends[side] = {CurveStop::Cancelled, 0.0};
     c.points.assign(sides[1].rbegin(), sides[1].rend());
     c.points.insert(c.points.end(), sides[0].begin(), sides[0].end());
-    c.end = ends[1] + " / " + ends[0];
+    c.end = curve_ends_name(c);
     return c;
 }
 
@@ -218,10 +221,25 @@ void check_curve(const char* what, ContParam second, double lo, double hi, doubl
 
 }  // namespace
 
+std::string curve_end_name(const BifCurve& c, const CurveEnd& e) {
+    switch (e.stop) {
+    case CurveStop::Range: return std::string(sweep_param_name(c.second)) + " range";
+    case CurveStop::Lost: {
+        const char* what = c.kind == BifKind::Fold ? "fold" : c.kind == BifKind::Grazing ? "grazing" : "doubling";
+        return std::string(what) + " lost near " + sweep_param_name(c.second) + " = " + std::to_string(e.q);
+    }
+    case CurveStop::Cancelled: return "cancelled";
+    case CurveStop::AxisEnd: return "at the axis' end";
+    }
+    return "?";
+}
+
+std::string curve_ends_name(const BifCurve& c) { return curve_end_name(c, c.below) + " / " + curve_end_name(c, c.above); }
+
 BifCurve continue_fold_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period, double lo,
                              double hi, double step, const Tolerances& sim, Progress* progress) {
     check_curve("fold", second, lo, hi, step);
-    return follow_curve(p, BifKind::Fold, "fold", second, omega0, y0, period, lo, hi, step, progress,
+    return follow_curve(p, BifKind::Fold, second, omega0, y0, period, lo, hi, step, progress,
                         [&](const Params& work, double w, const Vec2& y) {
                             const Located at = fold_newton(work, w, y, period, sim);
                             return at.ok && scaled_norm(at.y - y) <= 0.5 ? at : Located{};
@@ -232,7 +250,7 @@ BifCurve continue_grazing_curve(const Params& p, ContParam second, double omega0
                                 double hi, double step, const Tolerances& sim, Progress* progress) {
     check_curve("grazing", second, lo, hi, step);
     if (!p.has_bumper()) throw std::invalid_argument("a grazing curve needs a bumper");
-    return follow_curve(p, BifKind::Grazing, "grazing", second, omega0, y0, period, lo, hi, step, progress,
+    return follow_curve(p, BifKind::Grazing, second, omega0, y0, period, lo, hi, step, progress,
                         [&](const Params& work, double w, const Vec2& y) {
                             // Zero gap: the bumperless orbit's largest x at xI.
                             return secant(w, y, 0.0, 30, 1.0, 1e-8, [&](double wt, const Vec2& yt) {
@@ -244,7 +262,7 @@ BifCurve continue_grazing_curve(const Params& p, ContParam second, double omega0
 BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
                                  double lo, double hi, double step, const Tolerances& sim, Progress* progress) {
     check_curve("doubling", second, lo, hi, step);
-    return follow_curve(p, BifKind::PeriodDoubling, "doubling", second, omega0, y0, period, lo, hi, step, progress,
+    return follow_curve(p, BifKind::PeriodDoubling, second, omega0, y0, period, lo, hi, step, progress,
                         [&](const Params& work, double w, const Vec2& y) {
                             // The multiplier nearest -1 at -1.
                             return secant(w, y, -1.0, 20, 0.5, 1e-7, [&](double wt, const Vec2& yt) {

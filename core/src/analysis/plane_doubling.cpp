@@ -45,12 +45,9 @@ PlaneCurve follow(const Params& base, const PlaneCurveSpec& spec, double omega0,
         }
     // A side that starts at the axis' end says so (the curve functions would call it the range's end); a
     // point lost there, or a cancel, keeps its own words.
-    const std::size_t k = out.curve.end.find(" / ");
-    const std::string range = std::string(sweep_param_name(spec.second)) + " range";
-    if (k != std::string::npos) {
-        if (!(q0 > lo) && out.curve.end.substr(0, k) == range) out.curve.end = "at the axis' end" + out.curve.end.substr(k);
-        if (!(hi > q0) && out.curve.end.substr(k + 3) == range) out.curve.end = out.curve.end.substr(0, k + 3) + "at the axis' end";
-    }
+    if (!(q0 > lo) && out.curve.below.stop == CurveStop::Range) out.curve.below.stop = CurveStop::AxisEnd;
+    if (!(hi > q0) && out.curve.above.stop == CurveStop::Range) out.curve.above.stop = CurveStop::AxisEnd;
+    out.curve.end = curve_ends_name(out.curve);
     out.note += out.curve.end;
     return out;
 }

@@ -109,7 +109,7 @@ BaseEffect cart_mass() {
     // base parameters (m, or m0e or the input gain, which rescale the whole equation with it), nor for a plain
     // Duffing model (m = 1 is its unit of force).
     e.candidate = [](const Model& m, const FitOptions& o, Candidate& c) {
-        if (o.fit_baseline || m.p.stiffness_id == "duffing" || !(m.p.m > 0)) return false;
+        if (o.fit_baseline || stiffness_kind(m.p) == StiffnessKind::DataUnits || !(m.p.m > 0)) return false;
         c.base = "m";
         c.param = "dm";
         c.free = {0};

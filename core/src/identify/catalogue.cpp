@@ -67,19 +67,20 @@ Model resolve_fit_model(const std::string& name, Forcing forcing) {
     m.forcing = forcing;
     std::string lower = name;
     std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (lower == "duffing") {
+    if (lower == duffing_stiffness().id) {
         // m y'' + d y' + k y + k3 y^3 = gain u: a Params with m = 1, no dry friction, no magnets' denominator,
         // and no bumper. Starting values are placeholders: fit mode estimates d, k, k3 and the gain.
+        const StiffnessSet& s = duffing_stiffness();
         m.p = make_version("A1none");
-        m.p.name = "duffing";
-        m.p.stiffness_id = "duffing";
+        m.p.name = s.id;
+        m.p.stiffness_id = s.id;
         m.p.m = 1.0;
-        m.p.m0e = 0.0;
-        m.p.k = 1.0;
-        m.p.c = 0.0;
-        m.p.T = 0.0;
-        m.p.a = {0, 0, 0, 0};
-        m.p.b = {0, 0, 0, 0};
+        m.p.m0e = s.m0e;
+        m.p.k = s.k;
+        m.p.c = s.c;
+        m.p.T = s.T;
+        m.p.a = s.a;
+        m.p.b = s.b;
         m.p.xI = 0.0;
         m.p.input_gain = 1.0;
         m.forcing = Forcing::Input;
@@ -348,7 +349,7 @@ std::string sentence(const std::string& id, const Model& b, const std::vector<st
             p[k] = val(law->names[k]);
             sg[k] = sig(law->names[k]);
         }
-        const EffectReportContext ctx{&b.p, b.p.stiffness_id != "duffing", c.v_typ, c.x_typ};
+        const EffectReportContext ctx{&b.p, stiffness_kind(b.p) == StiffnessKind::Rig, c.v_typ, c.x_typ};
         return law->describe(p.data(), sg.data(), ctx);
     }
     // An effect that changes the base model.

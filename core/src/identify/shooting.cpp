@@ -74,7 +74,7 @@ Tolerances fit_tolerances(const Prep& pr, const Model& m, double rtol) {
     tol.rtol = rtol;
     // The rig's defaults are in metres; a model in its record's units (strain, volts) takes the record's own
     // scales, so the integrator's error is the same share of the signal in any unit.
-    if (m.p.stiffness_id == "duffing" && pr.x_typ > 0 && pr.v_typ > 0) {
+    if (stiffness_kind(m.p) == StiffnessKind::DataUnits && pr.x_typ > 0 && pr.v_typ > 0) {
         tol.x_scale = pr.x_typ;
         tol.v_scale = pr.v_typ;
     }

@@ -257,6 +257,27 @@ void scan_rows(const Params& p, const ScanSpec& spec, const std::vector<int>& to
     for (auto& t : pool) t.join();
 }
 
+std::vector<double> ScanRowMessage::pack() const {
+    std::vector<double> buf;
+    buf.reserve(size(points.size()));
+    buf.push_back(row);
+    for (const ScanPoint& pt : points) buf.insert(buf.end(), {pt.period, pt.lyapunov, pt.impacts, pt.xmin, pt.xmax});
+    return buf;
+}
+
+ScanRowMessage ScanRowMessage::unpack(const std::vector<double>& buf, std::size_t nx) {
+    if (buf.size() < size(nx))
+        throw ScanError("a row message of " + std::to_string(buf.size()) + " values, not " + std::to_string(size(nx)));
+    ScanRowMessage m;
+    m.row = static_cast<int>(buf[0]);
+    m.points.resize(nx);
+    for (std::size_t i = 0; i < nx; ++i) {
+        const double* v = &buf[1 + kPointValues * i];
+        m.points[i] = {v[0], v[1], v[2], v[3], v[4]};
+    }
+    return m;
+}
+
 void write_scan_csv_header(const ScanSpec& spec, std::ostream& out) {
     const ScanMeasures& m = spec.measures;
     out << spec.x.name() << ',' << spec.y.name();
