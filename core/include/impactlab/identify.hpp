@@ -27,6 +27,7 @@
 namespace impactlab::identify {
 
 enum class Forcing { Unbalance, Input };   // phi drives m0e phi'^2 sin(phi); or a measured input u
+inline const char* forcing_name(Forcing f) { return f == Forcing::Unbalance ? "phi (unbalance)" : "u (measured input)"; }
 
 // The model impactlab fit works with: the physical parameters (with any effects), and how the data force it.
 struct Model {
@@ -64,6 +65,11 @@ struct EffectInfo {
 };
 const std::vector<EffectInfo>& effect_catalogue();
 const EffectInfo* find_catalogue_effect(const std::string& id);
+// A generic (unexplained_*) term by its catalogue row: a shape described, no physics named.
+inline bool generic_effect(const std::string& id) {
+    const EffectInfo* e = find_catalogue_effect(id);
+    return e && e->generic;
+}
 // Sets effect `id` with its parameter values (missing ones keep their defaults) into the model: a force law
 // is appended to p.effects, a base-changing effect edits p (xI, the impact law, m). Throws ParamError.
 void apply_effect(Model& m, const std::string& id, const std::vector<std::pair<std::string, double>>& values);
@@ -234,7 +240,8 @@ struct UnseparatedPair {
 };
 
 struct FitReport {
-    std::string data_source, model_name, forcing;
+    std::string data_source, model_name;
+    Forcing forcing = Forcing::Unbalance;
     Baseline baseline = Baseline::Fixed;
     std::size_t samples = 0, rows_used = 0;
     double dt = 0, duration = 0, sigma_x = 0, window_s = 0, noise_floor_N = 0;

@@ -212,7 +212,7 @@ IdentifyBenchResult run_identify_bench(const IdentifyBenchOptions& o) {
             for (const auto& f : r.effects_found) {
                 row.named.push_back(f.not_told_from.empty() ? f.id : f.id + "?");   // ?: its shape not resolved
                 // A generic term, or a law whose shape the data did not resolve, names no physics.
-                const bool generic = f.id.rfind("unexplained", 0) == 0 || !f.not_told_from.empty();
+                const bool generic = generic_effect(f.id) || !f.not_told_from.empty();
                 if (!generic && std::find(allowed.begin(), allowed.end(), f.id) == allowed.end()) row.false_claim = true;
             }
             row.before = r.error_before.shooting_rms_1_m;

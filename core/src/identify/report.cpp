@@ -119,10 +119,10 @@ void residual_figure(const FitReport& r, const std::vector<double>& var, double 
 
 void plots(const FitReport& r, const std::string& dir) {
     namespace fs = std::filesystem;
-    const std::string xl = r.forcing.rfind("phi", 0) == 0 ? "x [mm]" : "x (as measured) x 1000";
+    const std::string xl = r.forcing == Forcing::Unbalance ? "x [mm]" : "x (as measured) x 1000";
     residual_figure(r, r.residual.x, 1e3, xl, "Residual against the position", (fs::path(dir) / "residual_x.png").string());
     residual_figure(r, r.residual.v, 1.0, "v [m/s]", "Residual against the velocity", (fs::path(dir) / "residual_v.png").string());
-    if (r.forcing.rfind("phi", 0) == 0)
+    if (r.forcing == Forcing::Unbalance)
         residual_figure(r, r.residual.phi, 1.0, "phi mod 2 pi [rad]", "Residual against the unbalance angle",
                         (fs::path(dir) / "residual_phi.png").string());
     if (!r.trace.t.empty()) {
@@ -221,7 +221,7 @@ std::string markdown(const FitReport& r, bool with_plots) {
     std::ostringstream md;
     md << "# impactlab fit: " << r.data_source << "\n\n";
     md << "Model **" << r.before.p.name << "** (" << (r.baseline == Baseline::Fit ? "parameters fitted to the data" : "parameters fixed")
-       << "), forcing " << r.forcing << ". " << r.samples << " samples, " << g3(r.duration) << " s at " << g3(1.0 / r.dt)
+       << "), forcing " << forcing_name(r.forcing) << ". " << r.samples << " samples, " << g3(r.duration) << " s at " << g3(1.0 / r.dt)
        << " Hz; sensor noise about " << (r.metres() ? g3(r.sigma_x * 1e6) + " um" : g3(r.sigma_x) + " (" + r.x_unit() + ")") << ".\n\n";
     if (!r.run_offsets.empty()) {
         md << "The runs lie in different wells, but the measurement chain centred each run's x on zero. Each run's own local law, "
@@ -423,7 +423,7 @@ std::string markdown(const FitReport& r, bool with_plots) {
     md << "The model with the effects: `model_after.json` (use it with `--model`). Runtime " << g3(r.runtime_s) << " s.\n\n";
     if (with_plots) {
         md << "![residual against x](residual_x.png)\n\n![residual against v](residual_v.png)\n\n";
-        if (r.forcing.rfind("phi", 0) == 0) md << "![residual against phi](residual_phi.png)\n\n";
+        if (r.forcing == Forcing::Unbalance) md << "![residual against phi](residual_phi.png)\n\n";
         if (!r.trace.t.empty()) md << "![measured and simulated x(t)](x_t.png)\n\n";
         if (r.impacts.size() >= 3) md << "![impact law](impacts.png)\n\n";
         if (!r.diagram_measured.empty()) md << "![bifurcation diagrams](diagram.png)\n\n";
@@ -450,7 +450,7 @@ std::string report_json_text(const FitReport& r) {
                  {"samples", r.samples},
                  {"dt_s", r.dt},
                  {"duration_s", r.duration},
-                 {"forcing", r.forcing},
+                 {"forcing", forcing_name(r.forcing)},
                  {"sigma_x_m", num(r.sigma_x)},
                  {"omega_min", num(r.omega_min)},
                  {"omega_max", num(r.omega_max)},

@@ -84,6 +84,7 @@ void fit_baseline_stage(FitSession& fs) {
                 base = ee;
             } else {
                 rep.notes.push_back("baseline refined on the free-run simulation error (output error)");
+                fs.base_refined = true;
             }
         }
         // Never a physically impossible model: a baseline fit that leaves the physical range keeps the

@@ -45,7 +45,7 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
     // A model in the record's units is checked where the record lies (twice its largest |x|), not on the rail.
     Model model0 = given;
     auto extent = [&](const MeasuredData& d) {
-        if (model0.p.stiffness_id != "duffing" || given.p.x_extent != 0.0) return;
+        if (stiffness_kind(model0.p) != StiffnessKind::DataUnits || given.p.x_extent != 0.0) return;
         double xmax = 0;
         for (double x : d.x)
             if (std::isfinite(x)) xmax = std::max(xmax, std::abs(x));
@@ -77,10 +77,10 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
     FitReport& rep = fs.rep;
     rep.data_source = data.source;
     rep.model_name = model0.p.name;
-    rep.forcing = data.has_phi() ? "phi (unbalance)" : "u (measured input)";
+    rep.forcing = forcing_of(data);
     rep.baseline = o.fit_baseline ? Baseline::Fit : Baseline::Fixed;
     rep.x_highpass_hz = o.x_highpass_hz;
-    if (model0.p.stiffness_id == "duffing") rep.units = FitUnits::DataUnits;
+    if (stiffness_kind(model0.p) == StiffnessKind::DataUnits) rep.units = FitUnits::DataUnits;
     validate(model0.p, "model");
     check_plausible(data, model0, o);
     fs.prep = prepare(data, model0, o, rep.notes);
@@ -139,12 +139,11 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
         rep.notes.push_back("the model given (" + model0.p.name +
                             ") holds starting values only: the errors 'before' and the final gate's reference are those of the "
                             "baseline fitted to the equation error");
-        if (!pr.phi_forced && std::any_of(rep.notes.begin(), rep.notes.end(),
-                                          [](const std::string& n) { return n.rfind("baseline refined on the free-run", 0) == 0; }))
+        if (!pr.phi_forced && fs.base_refined)
             chain.push_back({"the base parameters refined on the free-run simulation error", base, {}, -1, true});
     } else if (o.fit_baseline) {
         chain.push_back({"the base parameters fitted to the equation error", ee_base, {}, -1, true});
-        if (!pr.phi_forced && rep.notes.size() && rep.notes.back().rfind("baseline refined on the free-run", 0) == 0)
+        if (!pr.phi_forced && fs.base_refined)
             chain.push_back({"the base parameters refined on the free-run simulation error", base, {}, -1, true});
     }
     std::vector<double> pw;

@@ -92,6 +92,7 @@ struct FitSession {
     std::vector<std::string> base_names;      // the base parameters fitted (none for a fixed baseline)
     Model ee_base;                            // the baseline fitted to the equation error
     Model base;                               // the baseline the effects are added to
+    bool base_refined = false;                // base was refined on the free-run simulation error (output error)
     Chain chain;                              // the changes made to the model given, for the final gate
     Eigen::VectorXd R0;                       // the baseline's residual at prep.rows
     double in0 = 0;                           // its sum of squares

@@ -18,7 +18,7 @@ void lm_residual(const Prep& pr, Model& m, std::vector<Knob>& knobs, int max_ite
 }
 
 void check_plausible(const MeasuredData& data, const Model& m, const FitOptions& o) {
-    if (m.p.stiffness_id == "duffing") return;   // data units: no rail, no bumper
+    if (stiffness_kind(m.p) == StiffnessKind::DataUnits) return;   // data units: no rail, no bumper
     double x_max = 0;
     std::size_t i_max = 0;
     for (std::size_t i = 0; i < data.x.size(); ++i)

@@ -149,7 +149,7 @@ void validate_effects(FitSession& fs) {
     // Effects finally turned down for too small a fall (index into found, into effects_rejected).
     constexpr std::size_t kTaken = static_cast<std::size_t>(-1);
     std::vector<std::pair<std::size_t, std::size_t>> small_final;
-    auto f_ok_for_pair = [](const FoundEffect& f) { return f.evidence != Evidence::ImpactLaw && f.id.rfind("unexplained", 0) != 0; };
+    auto f_ok_for_pair = [](const FoundEffect& f) { return f.evidence != Evidence::ImpactLaw && !generic_effect(f.id); };
     for (int pass = 0; pass < 3 && !queue.empty(); ++pass) {
         too_small.clear();
         for (std::size_t fi : queue) {
