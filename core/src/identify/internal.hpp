@@ -205,8 +205,8 @@ LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const
 
 // ---- residual.cpp, for the least-squares passes ---------------------------------------------------------
 // The weak-form residual of one model while a least-squares pass moves its knobs (the knobs must point into
-// `m`, which outlives the cache): each sample's rig forces and each effect's force are kept from the last full
-// evaluation, so a step of a force effect's parameters alone (a Jacobian column) re-evaluates that effect only.
+// `m`, which outlives the cache): each sample's rig forces and each effect's force are kept, so a step of force
+// effects' parameters alone (a Jacobian column, a trial point of the effects) re-evaluates those effects only.
 // Its values are residual()'s bit for bit: the same terms, summed in the same order.
 class ResidualCache {
 public:
@@ -226,6 +226,7 @@ private:
     std::vector<std::vector<double>> effect_;  // per effect, per sample
     std::vector<double> acc_;                  // per row: m's factor, sum w2 x (no knob moves it but a sensor's)
     std::vector<double> pw_;
+    std::vector<char> moved_;                  // per effect: its parameters moved (scratch)
     double scale_ = 1.0;
 };
 

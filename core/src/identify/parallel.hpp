@@ -16,7 +16,11 @@ namespace impactlab::identify::detail {
 // exception thrown (a cancel, say) stops the handing out of indices and is rethrown on the caller's thread.
 template <class Fn>
 void for_each_index(std::size_t n, Fn&& fn) {
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+    const std::size_t threads = 1;   // the browser page is built without threads
+#else
     const std::size_t threads = std::min<std::size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
+#endif
     if (threads <= 1) {
         for (std::size_t i = 0; i < n; ++i) fn(i);
         return;

@@ -306,25 +306,32 @@ ResidualCache::ResidualCache(const Prep& pr, const Model& m, const std::vector<K
 }
 
 void ResidualCache::eval(Eigen::VectorXd& R) {
-    // The one force effect whose parameters moved since the kept evaluation, if that is all that moved.
-    int moved = -1;
-    bool partial = kept_;
-    for (std::size_t k = 0; k < knobs_.size() && partial; ++k) {
+    if (!kept_) return full(R);
+    // The force effects whose parameters moved since the kept evaluation; a base or sensor knob: all anew.
+    moved_.assign(effect_.size(), 0);
+    std::size_t n_moved = 0;
+    for (std::size_t k = 0; k < knobs_.size(); ++k) {
         if (*knobs_[k].value == at_[k]) continue;
-        if (owner_[k] < 0 || (moved >= 0 && owner_[k] != moved)) partial = false;
-        else moved = owner_[k];
+        if (owner_[k] < 0) return full(R);
+        char& mv = moved_[static_cast<std::size_t>(owner_[k])];
+        if (!mv) ++n_moved;
+        mv = 1;
     }
-    if (!partial) return full(R);
+    // One effect moved is a Jacobian's column, which the next evaluation takes back; several are a new point
+    // (a trial step), kept with the rig's forces, which did not move.
+    const bool keep = n_moved > 1;
     const MeasuredData& d = *pr_.data;
     const Params& p = m_.p;
-    const EffectInstance* fx = moved >= 0 ? &p.effects[static_cast<std::size_t>(moved)] : nullptr;
     const bool input = !pr_.phi_forced;
     for (std::size_t j = pr_.j_lo; j < pr_.j_hi; ++j) {
         double sum = 0.0;   // effects_at's order
         for (std::size_t e = 0; e < effect_.size(); ++e) {
-            if (fx && e == static_cast<std::size_t>(moved)) {
+            if (moved_[e]) {
+                const EffectInstance& fx = p.effects[e];
                 const ForceContext c{d.t[j], x_[j], v_[j], pr_.phi[j], pr_.omega[j], pr_.alpha[j], p.m0e, p.xI};
-                sum += fx->law->force(fx->p.data(), c).F;
+                const double F = fx.law->force(fx.p.data(), c).F;
+                if (keep) effect_[e][j] = F;
+                sum += F;
             } else {
                 sum += effect_[e][j];
             }
@@ -334,6 +341,8 @@ void ResidualCache::eval(Eigen::VectorXd& R) {
         if (input) val -= p.input_gain * pr_.u[j];
         pw_[j] = val;
     }
+    if (keep)
+        for (std::size_t k = 0; k < knobs_.size(); ++k) at_[k] = *knobs_[k].value;
     finish(R);
 }
 
