@@ -200,6 +200,7 @@ bool App::init(std::string& error) {
     cfg.speed = speed_;
     cfg.paused = (paused_ && !warming_) || bench_.on;
     sim_ = std::make_unique<SimThread>(cfg);
+    commands_.attach(sim_.get());
     sim_->start();
     xI_shown_ = xI_;
     if (!opt_.ghost.empty()) ghost_impact_ = index_of_impact(make_version(opt_.ghost).impact);
@@ -285,16 +286,21 @@ void App::toast(const std::string& msg) {
 
 // ---- actions: each one updates the UI's intent and sends a command -------------------------------------
 
+void App::send(const SimCommand& c) {
+    if (!commands_.send(c))
+        toast(std::to_string(commands_.lost()) + " command(s) to the simulation lost: it has not taken any for a while");
+}
+
 void App::set_omega(double w) {
     ramp_.stop();   // the engine ends a ramp on any set omega
     omega_ = std::clamp(w, 0.0, kMaxOmega);
-    sim_->send(SimCommand::omega(omega_));
+    send(SimCommand::omega(omega_));
 }
 
 void App::set_xi(double xI) {
     xI_ = std::clamp(xI, -kMaxAbsXI, kMaxAbsXI);
     params_.xI = xI_;
-    sim_->send(SimCommand::xi(xI_));
+    send(SimCommand::xi(xI_));
 }
 
 void App::set_model(int stiffness, int impact) {
@@ -306,7 +312,7 @@ void App::set_model(int stiffness, int impact) {
         params_.xI = xI_;
         ++params_rev_;
     }
-    sim_->send(SimCommand::set_model(model_name()));
+    send(SimCommand::set_model(model_name()));
 }
 
 bool App::set_param(const std::string& key, double value) {
@@ -315,7 +321,7 @@ bool App::set_param(const std::string& key, double value) {
     params_panel_.set_error(ok ? std::string() : key + ": " + error);
     if (!ok) return false;
     ++params_rev_;
-    sim_->send(SimCommand::set_param(key, value));
+    send(SimCommand::set_param(key, value));
     return true;
 }
 
@@ -324,7 +330,7 @@ void App::reset_params() {
     params_.xI = xI_;
     ++params_rev_;
     params_panel_.set_error("");
-    sim_->send(SimCommand::reset_params());
+    send(SimCommand::reset_params());
 }
 
 void App::run_demo(int k) {
@@ -382,22 +388,22 @@ void App::set_version(const std::string& name) {
 
 void App::set_paused(bool p) {
     paused_ = p;
-    sim_->send(SimCommand::paused(p));
+    send(SimCommand::paused(p));
 }
 
 void App::step_period() {
     paused_ = true;
-    sim_->send(SimCommand::step_period());
+    send(SimCommand::step_period());
 }
 
 void App::reset() {
     ramp_.stop();   // Reset restarts the drive at the omega reached
-    sim_->send(SimCommand::reset(x0_, 0.0));
+    send(SimCommand::reset(x0_, 0.0));
 }
 
 void App::set_speed(double s) {
     speed_ = std::clamp(s, kMinSpeed, kMaxSpeed);
-    sim_->send(SimCommand::speed(speed_));
+    send(SimCommand::speed(speed_));
 }
 
 void App::apply_preset(const Preset& p) {
@@ -405,8 +411,8 @@ void App::apply_preset(const Preset& p) {
     omega_ = p.omega;
     x0_ = p.x0;
     ramp_.stop();
-    sim_->send(SimCommand::omega(omega_));
-    sim_->send(SimCommand::reset(x0_, 0.0));
+    send(SimCommand::omega(omega_));
+    send(SimCommand::reset(x0_, 0.0));
     if (paused_) set_paused(false);
     toast(model_name() + ": " + p.label + " (ω = " + std::to_string(p.omega).substr(0, 5) + " rad/s)");
 }
@@ -599,6 +605,7 @@ void App::frame() {
     ImGui::NewFrame();
     plot_gpu::begin_frame();
     opaque_image::begin_frame();
+    commands_.flush();   // what the ring refused last frame, before this frame's own commands
     if (!bench_.on) drain_samples();
     xI_shown_ = sim_->status().xI;
     if (opt_.set_state && frame_count_ == 1) set_state(opt_.set_x, opt_.set_v);   // --set-state, as a click

@@ -16,6 +16,7 @@
 #include "omega_ramp.hpp"
 #include "views/bifurcation_panel.hpp"
 #include "clip_writer.hpp"
+#include "command_link.hpp"
 #include "companion_track.hpp"
 #include "views/data_panel.hpp"
 #include "history.hpp"
@@ -68,6 +69,9 @@ private:
     void drain_samples();
     void poll_bifurcation();
     void handle_keys();
+    // Every command to the simulation thread goes through here: one the ring refuses is resent at the next
+    // frame (commands_), and one given up is told in a toast.
+    void send(const SimCommand& c);
     void set_omega(double w);
     void start_ramp(double target, double rate);   // routing.cpp: the live omega ramp
     void draw_ramp_controls();                      // controls.cpp: its row under the omega slider
@@ -172,6 +176,7 @@ private:
     Options opt_;
     GLFWwindow* win_ = nullptr;
     std::unique_ptr<SimThread> sim_;
+    CommandLink commands_;             // what the UI sends sim_, and what waits for room in its ring
     BifurcationPanel bif_panel_;       // the diagram, its range, live points and the Lyapunov strip
     DataPanel data_panel_;             // "Measured data": load, fit, effects on and off
     bool show_data_ = false;

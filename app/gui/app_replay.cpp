@@ -67,7 +67,7 @@ void App::continue_from_replay() {
 void App::restart_sim(double x, double v, double t, double phi, double omega, bool clear_history) {
     // Restart first (its sample is at t with the new x, v), then the omega of that instant, which only
     // bumps the epoch at the same t: no sample of the old state lands after the restart.
-    sim_->send(SimCommand::restart(x, v, t, phi));
+    send(SimCommand::restart(x, v, t, phi));
     if (std::abs(omega - omega_) > 1e-12) set_omega(omega);
     restart_.pending = true;
     restart_.t = t;

@@ -112,6 +112,11 @@ void App::draw_status() {
         ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "speed %.2fx asked, %.2fx achieved (model too slow)",
                            speed_, st.achieved_speed);
     else ImGui::Text("speed %.2fx (achieved %.2fx)", speed_, st.achieved_speed);
+    if (commands_.waiting() > 0 || commands_.lost() > 0) {   // the simulation thread is not taking commands
+        ImGui::SameLine(0, 18);
+        ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "commands: %zu waiting, %llu lost", commands_.waiting(),
+                           static_cast<unsigned long long>(commands_.lost()));
+    }
     const char* help = "F1: shortcuts";
     const char* replay = "Replay";
     // The fields after the speed only where they fit before the buttons on the right (a large UI scale or a

@@ -64,7 +64,7 @@ ViewContext App::view_context() const {
 }
 
 void App::apply_view(const ViewAction& a) {
-    if (a.hold) sim_->send(SimCommand::hold(*a.hold));   // each hold restarts the companion too
+    if (a.hold) send(SimCommand::hold(*a.hold));   // each hold restarts the companion too
     if (a.set_state) set_state(a.set_state->first, a.set_state->second);
     if (a.start_orbit) restart_at_section(a.start_orbit->first, a.start_orbit->second);
     if (a.section_phase) set_section_phase(*a.section_phase);
@@ -76,7 +76,7 @@ void App::set_section_phase(double phi0) {
     // The orbits the clicker took belong to the old section: not to be mixed with the new one's points
     // (the map and the sections clear at the engine's new epoch).
     poincare_.clear_orbits();
-    sim_->send(SimCommand::section_phase(phi0));
+    send(SimCommand::section_phase(phi0));
 }
 
 void App::start_orbit(double x, double v) {
@@ -106,7 +106,7 @@ DataPanelContext App::data_context() const {
 void App::set_state(double x, double v) {
     const PickedState s = pick_state(x, v, xI_, params_.has_bumper());
     if (!s.note.empty()) toast(s.note);
-    sim_->send(SimCommand::set_state(s.x, s.v));
+    send(SimCommand::set_state(s.x, s.v));
 }
 
 void App::set_companion(CompanionMode mode) {
@@ -114,7 +114,7 @@ void App::set_companion(CompanionMode mode) {
     companion_.clear();
     const std::string ghost = std::string(stiffness_sets()[static_cast<std::size_t>(stiffness_)].id) +
                               impact_models()[static_cast<std::size_t>(ghost_impact_)].id;
-    sim_->send(SimCommand::companion(mode, ghost));
+    send(SimCommand::companion(mode, ghost));
 }
 
 void App::start_ramp(double target, double rate) {
@@ -127,7 +127,7 @@ void App::start_ramp(double target, double rate) {
         return;
     }
     ramp_.begin(omega_, target, rate);
-    sim_->send(SimCommand::ramp(target, rate));
+    send(SimCommand::ramp(target, rate));
     if (paused_) set_paused(false);
     char buf[128];
     std::snprintf(buf, sizeof buf, "ramping ω %.2f → %.2f rad/s at %.3g rad/s per s (%.0f s of simulation)", omega_,
@@ -203,7 +203,7 @@ void App::apply_analysis(const AnalysisAction& a) {
     if (a.reset) {
         // The basins start every cell at t = 0, phi = 0: the Reset command does the same from (x0, v0).
         x0_ = a.reset->first;
-        sim_->send(SimCommand::reset(a.reset->first, a.reset->second));
+        send(SimCommand::reset(a.reset->first, a.reset->second));
         if (paused_) set_paused(false);
     }
     if (!a.toast.empty()) toast(a.toast);

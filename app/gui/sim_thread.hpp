@@ -30,7 +30,7 @@ struct SimStatus {
     bool lagging = false;         // the model cannot keep up with the requested speed
     double xI = 0;                // [m] the bumper where the simulation has it now (it travels to the one asked)
     std::uint64_t dropped = 0;    // samples refused by a full ring
-    std::uint64_t commands_dropped = 0;
+    std::uint64_t commands_dropped = 0;   // commands refused by a full ring (CommandLink holds and resends them)
     EnergyBalance energy;         // since the last change of model, xI or state (the energy bar)
 };
 
@@ -51,8 +51,11 @@ public:
     void start();
     // UI thread. Idempotent.
     void stop();
-    // UI thread (the commands ring's only producer). False if the ring is full (the command is dropped).
+    // UI thread (the commands ring's only producer). False if the ring is full (the command is dropped and
+    // counted in status().commands_dropped). The app sends through a CommandLink, which resends what is refused.
     bool send(const SimCommand& c);
+    // UI thread. Like send, for a command refused before and sent again: a refusal is not counted twice.
+    bool resend(const SimCommand& c) { return commands_.try_push_no_drop(c); }
     // UI thread (the samples ring's only consumer) drains this.
     SpscRing<SimMsg>& samples() { return samples_; }
 #ifdef __EMSCRIPTEN__

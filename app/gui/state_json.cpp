@@ -69,6 +69,10 @@ bool App::write_state_json(const std::string& path) {
     j["preset"] = opt_.preset > 0 ? json(presets_for(model_name())[static_cast<std::size_t>(opt_.preset - 1)].label)
                                   : json(nullptr);
     j["sim_time"] = number(have_last_ ? last_.t : sim_->status().sim_time);
+    // Commands to the simulation thread: held back by a full ring (resent each frame), given up, and the
+    // ring's own count of refusals (each held command once).
+    j["commands"] = {{"waiting", commands_.waiting()}, {"deferred", commands_.deferred()}, {"lost", commands_.lost()},
+                     {"refused", sim_->status().commands_dropped}};
     j["fps"] = number(fps_);
     // The trajectory history (replay's range): a continued run keeps the past and drops the old future.
     j["history"] = {{"samples", traj_.size()},

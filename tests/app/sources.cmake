@@ -1,13 +1,14 @@
 # Headless tests of the visualiser's GL-free parts (paths relative to tests/): the SPSC ring buffer, the
-# simulation engine's command handling, the history and its CSV export, the options, the presets, the
-# measured-data panel's worker and effect-subset mapping, the plots' CPU rasterizer, the Poincare map's
-# settle detector, and the plots' fits (view_fit). They build into impactlab_tests, which links the app's
-# own GL-free library (impactlab_gui_core, app/gui/CMakeLists.txt) rather than compiling its sources again.
-# The test files include those headers by relative path ("../../app/gui/..."), so this list needs no
-# directory-wide include or link settings.
+# simulation engine's command handling and the UI's backlog of refused commands, the history and its CSV
+# export, the options, the presets, the measured-data panel's worker and effect-subset mapping, the plots'
+# CPU rasterizer, the Poincare map's settle detector, and the plots' fits (view_fit). They build into
+# impactlab_tests, which links the app's own GL-free library (impactlab_gui_core, app/gui/CMakeLists.txt)
+# rather than compiling its sources again. The test files include those headers by relative path
+# ("../../app/gui/..."), so this list needs no directory-wide include or link settings.
 set(IMPACTLAB_APP_TEST_SOURCES
   app/ring_buffer_test.cpp
   app/sim_commands_test.cpp
+  app/command_link_test.cpp
   app/gui_parts_test.cpp
   app/data_job_test.cpp
   app/plot_raster_test.cpp
