@@ -7,7 +7,7 @@ packages=(
   libsundials-dev libboost-dev
   libimgui-dev libglfw3-dev libgl-dev libgl1-mesa-dri xvfb xauth
   libopenmpi-dev openmpi-bin
-  clang
+  clang clang-format
   emscripten chromium dpkg-dev python3 desktop-file-utils
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-pandas
   jupyter-notebook python3-nbconvert python3-ipykernel python3-matplotlib

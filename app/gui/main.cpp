@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "app.hpp"
-#include "bench.hpp"
-#include "options.hpp"
+#include "window/app.hpp"
+#include "window/bench.hpp"
+#include "window/options.hpp"
 
 int main(int argc, char** argv) {
     using namespace impactlab::gui;

@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "app.hpp"
-#include "bench.hpp"
-#include "options.hpp"
+#include "window/app.hpp"
+#include "window/bench.hpp"
+#include "window/options.hpp"
 
 // clang-format off
 // The query string as flags, one per line ("--model\nA1H\n--presentation\n...").

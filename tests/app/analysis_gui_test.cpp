@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "../../app/gui/analysis_jobs.hpp"
-#include "../../app/gui/plane_curves.hpp"
-#include "../../app/gui/plane_data.hpp"
+#include "../../app/gui/analysis/analysis_jobs.hpp"
+#include "../../app/gui/analysis/plane_curves.hpp"
+#include "../../app/gui/analysis/plane_data.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/scan.hpp"
 

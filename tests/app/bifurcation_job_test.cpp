@@ -9,7 +9,7 @@
 #include <thread>
 #include <vector>
 
-#include "../../app/gui/bifurcation_job.hpp"
+#include "../../app/gui/analysis/bifurcation_job.hpp"
 #include "impactlab/analysis.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/sweep.hpp"

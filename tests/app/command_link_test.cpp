@@ -7,8 +7,8 @@
 #include <thread>
 #include <vector>
 
-#include "../../app/gui/command_link.hpp"
-#include "../../app/gui/sim_thread.hpp"
+#include "../../app/gui/sim/command_link.hpp"
+#include "../../app/gui/sim/sim_thread.hpp"
 #include "engine_fixtures.hpp"
 
 using namespace impactlab::gui;

@@ -10,13 +10,13 @@
 #include <thread>
 #include <vector>
 
-#include "../../app/gui/companion_track.hpp"
-#include "../../app/gui/contact_label.hpp"
-#include "../../app/gui/grazing_monitor.hpp"
-#include "../../app/gui/sim_engine.hpp"
+#include "../../app/gui/sim/companion_track.hpp"
+#include "../../app/gui/views/contact_label.hpp"
+#include "../../app/gui/sim/grazing_monitor.hpp"
+#include "../../app/gui/sim/sim_engine.hpp"
 #include "engine_fixtures.hpp"
-#include "../../app/gui/sim_thread.hpp"
-#include "../../app/gui/state_pick.hpp"
+#include "../../app/gui/sim/sim_thread.hpp"
+#include "../../app/gui/sim/state_pick.hpp"
 
 using namespace impactlab;
 using namespace impactlab::gui;

@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "../../app/gui/data_job.hpp"
-#include "../../app/gui/options.hpp"
+#include "../../app/gui/data/data_job.hpp"
+#include "../../app/gui/window/options.hpp"
 
 using namespace impactlab;
 using namespace impactlab::gui;

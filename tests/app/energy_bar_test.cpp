@@ -6,8 +6,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "../../app/gui/energy_bar.hpp"
-#include "../../app/gui/sim_engine.hpp"
+#include "../../app/gui/views/energy_bar.hpp"
+#include "../../app/gui/sim/sim_engine.hpp"
 #include "impactlab/forces.hpp"
 
 using namespace impactlab;

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "../../app/gui/sim_engine.hpp"
+#include "../../app/gui/sim/sim_engine.hpp"
 
 namespace impactlab::gui::testing {
 

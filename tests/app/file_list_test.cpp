@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "../../app/gui/file_list.hpp"
+#include "../../app/gui/files/file_list.hpp"
 
 using namespace impactlab::gui;
 

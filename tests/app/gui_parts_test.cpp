@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "../../app/gui/history.hpp"
-#include "../../app/gui/options.hpp"
-#include "../../app/gui/presets.hpp"
+#include "../../app/gui/sim/history.hpp"
+#include "../../app/gui/window/options.hpp"
+#include "../../app/gui/sim/presets.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/sweep.hpp"
 

@@ -9,9 +9,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "../../app/gui/options.hpp"
-#include "../../app/gui/plane_data.hpp"
-#include "../../app/gui/session.hpp"
+#include "../../app/gui/window/options.hpp"
+#include "../../app/gui/analysis/plane_data.hpp"
+#include "../../app/gui/files/session.hpp"
 #include "impactlab/identify_data.hpp"
 
 using namespace impactlab::gui;

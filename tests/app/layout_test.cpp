@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 
-#include "../../app/gui/layout.hpp"
+#include "../../app/gui/window/layout.hpp"
 
 using namespace impactlab::gui;
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "../../app/gui/lyapunov_live.hpp"
+#include "../../app/gui/analysis/lyapunov_live.hpp"
 #include "impactlab/params.hpp"
 
 using namespace impactlab;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "../../app/gui/sim_engine.hpp"
+#include "../../app/gui/sim/sim_engine.hpp"
 #include "engine_fixtures.hpp"
 
 using namespace impactlab;

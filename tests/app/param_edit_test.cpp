@@ -1,11 +1,11 @@
-// The parameters panel's edits (app/gui/param_edit.hpp) and the engine's SetParam / ResetParams: a value the
+// The parameters panel's edits (app/gui/sim/param_edit.hpp) and the engine's SetParam / ResetParams: a value the
 // core's validate() takes changes the model live (x, v, phi kept), one it refuses changes nothing.
 #include <doctest/doctest.h>
 
 #include <string>
 
-#include "../../app/gui/param_edit.hpp"
-#include "../../app/gui/sim_engine.hpp"
+#include "../../app/gui/sim/param_edit.hpp"
+#include "../../app/gui/sim/sim_engine.hpp"
 #include "engine_fixtures.hpp"
 
 using namespace impactlab;

@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "../../app/gui/history.hpp"
-#include "../../app/gui/plot_raster.hpp"
+#include "../../app/gui/sim/history.hpp"
+#include "../../app/gui/render/plot_raster.hpp"
 
 using namespace impactlab::gui;
 

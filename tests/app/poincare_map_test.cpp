@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "../../app/gui/poincare_map.hpp"
-#include "../../app/gui/presets.hpp"
-#include "../../app/gui/sim_engine.hpp"
+#include "../../app/gui/views/poincare_map.hpp"
+#include "../../app/gui/sim/presets.hpp"
+#include "../../app/gui/sim/sim_engine.hpp"
 
 using namespace impactlab;
 using namespace impactlab::gui;

@@ -9,9 +9,9 @@
 
 #include <unistd.h>
 
-#include "../../app/gui/clip_writer.hpp"
-#include "../../app/gui/replay.hpp"
-#include "../../app/gui/sim_engine.hpp"
+#include "../../app/gui/files/clip_writer.hpp"
+#include "../../app/gui/sim/replay.hpp"
+#include "../../app/gui/sim/sim_engine.hpp"
 
 using namespace impactlab;
 using namespace impactlab::gui;

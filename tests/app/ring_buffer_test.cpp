@@ -8,8 +8,8 @@
 #include <thread>
 #include <vector>
 
-#include "../../app/gui/sim_messages.hpp"
-#include "../../app/gui/spsc_ring.hpp"
+#include "../../app/gui/sim/sim_messages.hpp"
+#include "../../app/gui/sim/spsc_ring.hpp"
 
 using impactlab::gui::SpscRing;
 

@@ -11,7 +11,7 @@
 
 #include <unistd.h>
 
-#include "../../app/gui/session.hpp"
+#include "../../app/gui/files/session.hpp"
 
 using namespace impactlab::gui;
 namespace fs = std::filesystem;

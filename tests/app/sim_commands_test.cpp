@@ -9,9 +9,9 @@
 #include <thread>
 #include <vector>
 
-#include "../../app/gui/sim_engine.hpp"
+#include "../../app/gui/sim/sim_engine.hpp"
 #include "engine_fixtures.hpp"
-#include "../../app/gui/sim_thread.hpp"
+#include "../../app/gui/sim/sim_thread.hpp"
 
 using namespace impactlab;
 using namespace impactlab::gui;

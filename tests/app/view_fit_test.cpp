@@ -2,7 +2,7 @@
 // following the energy, and the rig's impact label in sim and wall time.
 #include <doctest/doctest.h>
 
-#include "../../app/gui/view_fit.hpp"
+#include "../../app/gui/views/view_fit.hpp"
 
 using namespace impactlab::gui;
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "../../app/gui/session.hpp"
+#include "../../app/gui/files/session.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace impactlab::gui;

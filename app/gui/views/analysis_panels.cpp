@@ -1,4 +1,4 @@
-#include "views/analysis_panels.hpp"
+#include "analysis_panels.hpp"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -12,9 +12,9 @@
 #include <utility>
 #include <vector>
 
-#include "gl_util.hpp"
-#include "theme.hpp"
-#include "widgets.hpp"
+#include "render/gl_util.hpp"
+#include "render/theme.hpp"
+#include "render/widgets.hpp"
 
 namespace impactlab::gui {
 

@@ -11,9 +11,9 @@
 #include <optional>
 #include <string>
 
-#include "analysis_jobs.hpp"
-#include "options.hpp"
-#include "plot2d.hpp"
+#include "analysis/analysis_jobs.hpp"
+#include "window/options.hpp"
+#include "render/plot2d.hpp"
 #include "views/analysis_view.hpp"
 #include "views/basins_panel.hpp"
 #include "views/plane_panel.hpp"

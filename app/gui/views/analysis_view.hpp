@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "impactlab/params.hpp"
-#include "plot2d.hpp"
+#include "render/plot2d.hpp"
 
 namespace impactlab::gui {
 

@@ -1,4 +1,4 @@
-#include "views/basins_panel.hpp"
+#include "basins_panel.hpp"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -11,11 +11,11 @@
 #include <utility>
 #include <vector>
 
-#include "gl_util.hpp"
-#include "plot2d.hpp"
-#include "theme.hpp"
+#include "render/gl_util.hpp"
+#include "render/plot2d.hpp"
+#include "render/theme.hpp"
 #include "views/map_colors.hpp"
-#include "widgets.hpp"
+#include "render/widgets.hpp"
 
 namespace impactlab::gui {
 

@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "analysis_jobs.hpp"
-#include "options.hpp"
+#include "analysis/analysis_jobs.hpp"
+#include "window/options.hpp"
 #include "views/analysis_view.hpp"
 
 namespace impactlab::gui {

@@ -1,4 +1,4 @@
-#include "views/bifurcation_panel.hpp"
+#include "bifurcation_panel.hpp"
 
 #include <imgui.h>
 
@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
-#include "gl_util.hpp"
-#include "sim_engine.hpp"   // kMaxOmega
-#include "theme.hpp"
-#include "widgets.hpp"
+#include "render/gl_util.hpp"
+#include "sim/sim_engine.hpp"   // kMaxOmega
+#include "render/theme.hpp"
+#include "render/widgets.hpp"
 
 namespace impactlab::gui {
 

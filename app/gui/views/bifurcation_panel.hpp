@@ -15,16 +15,16 @@
 #include <string>
 #include <vector>
 
-#include "analysis_jobs.hpp"
-#include "bifurcation_job.hpp"
-#include "history.hpp"
+#include "analysis/analysis_jobs.hpp"
+#include "analysis/bifurcation_job.hpp"
+#include "sim/history.hpp"
 #include "impactlab/analysis.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/sweep.hpp"
-#include "omega_ramp.hpp"
-#include "options.hpp"
-#include "plot2d.hpp"
-#include "poincare_map.hpp"
+#include "sim/omega_ramp.hpp"
+#include "window/options.hpp"
+#include "render/plot2d.hpp"
+#include "views/poincare_map.hpp"
 
 namespace impactlab::gui {
 

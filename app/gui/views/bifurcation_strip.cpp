@@ -6,10 +6,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "sim_engine.hpp"   // kMaxOmega
-#include "theme.hpp"
+#include "sim/sim_engine.hpp"   // kMaxOmega
+#include "render/theme.hpp"
 #include "views/bifurcation_panel.hpp"
-#include "widgets.hpp"
+#include "render/widgets.hpp"
 
 namespace impactlab::gui {
 

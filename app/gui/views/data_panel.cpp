@@ -1,4 +1,4 @@
-#include "views/data_panel.hpp"
+#include "data_panel.hpp"
 
 #include <imgui.h>
 
@@ -10,8 +10,8 @@
 #include <string>
 #include <utility>
 
-#include "theme.hpp"
-#include "widgets.hpp"
+#include "render/theme.hpp"
+#include "render/widgets.hpp"
 
 namespace impactlab::gui {
 

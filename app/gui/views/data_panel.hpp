@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "data_job.hpp"
-#include "plot2d.hpp"
+#include "data/data_job.hpp"
+#include "render/plot2d.hpp"
 #include "views/file_browser.hpp"
 
 namespace impactlab::gui {

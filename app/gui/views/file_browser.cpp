@@ -1,4 +1,4 @@
-#include "views/file_browser.hpp"
+#include "file_browser.hpp"
 
 #include <imgui.h>
 #include <nlohmann/json.hpp>
@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "theme.hpp"
+#include "render/theme.hpp"
 
 namespace impactlab::gui {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "file_list.hpp"
+#include "files/file_list.hpp"
 
 namespace impactlab::gui {
 

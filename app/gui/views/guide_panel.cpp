@@ -1,8 +1,8 @@
-#include "views/guide_panel.hpp"
+#include "guide_panel.hpp"
 
 #include <imgui.h>
 
-#include "theme.hpp"
+#include "render/theme.hpp"
 
 namespace impactlab::gui {
 

@@ -1,13 +1,13 @@
-#include "views/params_panel.hpp"
+#include "params_panel.hpp"
 
 #include <imgui.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include "param_edit.hpp"
-#include "theme.hpp"
-#include "widgets.hpp"
+#include "sim/param_edit.hpp"
+#include "render/theme.hpp"
+#include "render/widgets.hpp"
 
 namespace impactlab::gui {
 

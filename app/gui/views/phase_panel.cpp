@@ -1,6 +1,6 @@
 // The phase portrait (x, v): the trail of the last forcing periods, fading by age, the newest section
 // points on it, the cart now, and the companion under it. A plain click starts the cart from (x, v) there.
-#include "views/phase_panel.hpp"
+#include "phase_panel.hpp"
 
 #include <imgui.h>
 
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "plot2d.hpp"
-#include "theme.hpp"
+#include "render/plot2d.hpp"
+#include "render/theme.hpp"
 
 namespace impactlab::gui {
 

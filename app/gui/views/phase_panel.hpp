@@ -1,9 +1,9 @@
 // The phase portrait's view (views/view.hpp): its auto-fit follows the trail; a click sets the state.
 #pragma once
 
-#include "history.hpp"
-#include "plot2d.hpp"
-#include "state_pick.hpp"
+#include "sim/history.hpp"
+#include "render/plot2d.hpp"
+#include "sim/state_pick.hpp"
 #include "views/view.hpp"
 
 namespace impactlab::gui {

@@ -1,4 +1,4 @@
-#include "views/plane_panel.hpp"
+#include "plane_panel.hpp"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
-#include "gl_util.hpp"
-#include "theme.hpp"
+#include "render/gl_util.hpp"
+#include "render/theme.hpp"
 #include "views/map_colors.hpp"
-#include "widgets.hpp"
+#include "render/widgets.hpp"
 
 namespace impactlab::gui {
 

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "analysis_jobs.hpp"
-#include "options.hpp"
-#include "plane_curves.hpp"
-#include "plane_data.hpp"
+#include "analysis/analysis_jobs.hpp"
+#include "window/options.hpp"
+#include "analysis/plane_curves.hpp"
+#include "analysis/plane_data.hpp"
 #include "views/analysis_view.hpp"
 
 namespace impactlab::gui {

@@ -1,7 +1,7 @@
 // The Poincare map: the settle detector's points only (views/poincare_panel.hpp), coloured by the impacts
 // in the forcing period before them and fading with age in chaos, numbered in the order of the visits when
 // periodic, under a label that says what the map knows.
-#include "views/poincare_panel.hpp"
+#include "poincare_panel.hpp"
 
 #include <imgui.h>
 
@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "plot2d.hpp"
-#include "theme.hpp"
-#include "widgets.hpp"
+#include "render/plot2d.hpp"
+#include "render/theme.hpp"
+#include "render/widgets.hpp"
 
 namespace impactlab::gui {
 

@@ -1,6 +1,6 @@
 // The potential well V(x) of the springs and magnets, the energy as a level (its cuts are the turning
 // points), the cart on the curve and the bumper. A plain click puts the cart at x there, at rest.
-#include "views/potential_panel.hpp"
+#include "potential_panel.hpp"
 
 #include <imgui.h>
 
@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "impactlab/forces.hpp"
-#include "plot2d.hpp"
-#include "theme.hpp"
+#include "render/plot2d.hpp"
+#include "render/theme.hpp"
 
 namespace impactlab::gui {
 

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "history.hpp"
-#include "plot2d.hpp"
-#include "state_pick.hpp"
+#include "sim/history.hpp"
+#include "render/plot2d.hpp"
+#include "sim/state_pick.hpp"
 #include "views/view.hpp"
 
 namespace impactlab::gui {

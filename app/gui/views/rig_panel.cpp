@@ -1,6 +1,6 @@
 // The rig, drawn to scale (RigView renders it on the GPU from a draw-list callback), with its labels placed
 // in order of importance where they fit, the companion's outline, and the cart dragged with the mouse.
-#include "views/rig_panel.hpp"
+#include "rig_panel.hpp"
 
 #include <imgui.h>
 
@@ -11,11 +11,11 @@
 #include <string>
 #include <utility>
 
-#include "contact_label.hpp"
+#include "views/contact_label.hpp"
 #include "impactlab/drive.hpp"
 #include "impactlab/forces.hpp"
-#include "layout.hpp"
-#include "theme.hpp"
+#include "window/layout.hpp"
+#include "render/theme.hpp"
 
 namespace impactlab::gui {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "rig_view.hpp"
+#include "render/rig_view.hpp"
 #include "views/view.hpp"
 
 namespace impactlab::gui {

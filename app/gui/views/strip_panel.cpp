@@ -1,7 +1,7 @@
 // The time strip: one or two traces (x by default; v, E, the bumper force, the drive) over the last seconds
 // with the section points (and the bumper on x), and beside them, with a companion cart, their separation
 // log10 |dx| since the restart.
-#include "views/strip_panel.hpp"
+#include "strip_panel.hpp"
 #include "views/strip_keys.hpp"
 
 #include <imgui.h>
@@ -15,8 +15,8 @@
 #include <string_view>
 #include <vector>
 
-#include "plot2d.hpp"
-#include "theme.hpp"
+#include "render/plot2d.hpp"
+#include "render/theme.hpp"
 
 namespace impactlab::gui {
 

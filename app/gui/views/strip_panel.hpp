@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
-#include "history.hpp"
-#include "plot2d.hpp"
+#include "sim/history.hpp"
+#include "render/plot2d.hpp"
 #include "views/view.hpp"
 
 namespace impactlab::gui {

@@ -1,6 +1,6 @@
-#include "views/view.hpp"
+#include "view.hpp"
 
-#include "theme.hpp"
+#include "render/theme.hpp"
 
 namespace impactlab::gui {
 

@@ -11,13 +11,13 @@
 #include <string>
 #include <utility>
 
-#include "companion_track.hpp"
-#include "history.hpp"
+#include "sim/companion_track.hpp"
+#include "sim/history.hpp"
 #include "impactlab/params.hpp"
-#include "poincare_map.hpp"
-#include "sim_messages.hpp"
-#include "state_pick.hpp"
-#include "view_fit.hpp"
+#include "views/poincare_map.hpp"
+#include "sim/sim_messages.hpp"
+#include "sim/state_pick.hpp"
+#include "views/view_fit.hpp"
 
 namespace impactlab::gui {
 
