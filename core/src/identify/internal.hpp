@@ -208,6 +208,8 @@ LsqSummary least_squares(std::vector<Knob>& knobs, const ResidualFn& eval, const
 // `m`, which outlives the cache): each sample's rig forces and each effect's force are kept, so a step of force
 // effects' parameters alone (a Jacobian column, a trial point of the effects) re-evaluates those effects only.
 // Its values are residual()'s bit for bit: the same terms, summed in the same order.
+// The index of the effect instance of `m` whose parameters hold `value`, or -1 (a base parameter).
+int effect_holding(const Model& m, const double* value);
 class ResidualCache {
 public:
     ResidualCache(const Prep& pr, const Model& m, const std::vector<Knob>& knobs);
@@ -216,6 +218,7 @@ public:
 private:
     void full(Eigen::VectorXd& R);
     void finish(Eigen::VectorXd& R) const;   // pw_ -> R with the rows' kept accelerations
+    void pointwise(std::size_t j, double effects);   // pw_[j] from the kept rig forces and the effects' sum
     const Prep& pr_;
     const Model& m_;
     const std::vector<Knob>& knobs_;

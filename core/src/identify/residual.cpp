@@ -294,15 +294,27 @@ void residual(const Prep& pr, const Model& m, Eigen::VectorXd& R, std::vector<do
     }
 }
 
+int effect_holding(const Model& m, const double* value) {
+    for (std::size_t e = 0; e < m.p.effects.size(); ++e) {
+        const auto& q = m.p.effects[e].p;
+        if (value >= q.data() && value < q.data() + q.size()) return static_cast<int>(e);
+    }
+    return -1;
+}
+
 ResidualCache::ResidualCache(const Prep& pr, const Model& m, const std::vector<Knob>& knobs)
     : pr_(pr), m_(m), knobs_(knobs), owner_(knobs.size(), -1), at_(knobs.size(), 0.0), effect_(m.p.effects.size()) {
-    for (std::size_t k = 0; k < knobs.size(); ++k)
-        for (std::size_t e = 0; e < m.p.effects.size(); ++e) {
-            const EffectInstance& fx = m.p.effects[e];
-            const double* p0 = fx.p.data();
-            if (knobs[k].value >= p0 && knobs[k].value < p0 + fx.p.size() && fx.law->kind == EffectKind::Force)
-                owner_[k] = static_cast<int>(e);
-        }
+    for (std::size_t k = 0; k < knobs.size(); ++k) {
+        const int e = effect_holding(m, knobs[k].value);
+        if (e >= 0 && m.p.effects[static_cast<std::size_t>(e)].law->kind == EffectKind::Force) owner_[k] = e;
+    }
+}
+
+void ResidualCache::pointwise(std::size_t j, double effects) {
+    const ForceTerms f{resistance_[j], spring_magnet_[j], impact_[j], unbalance_[j], effects};
+    double val = -f.net();
+    if (!pr_.phi_forced) val -= m_.p.input_gain * pr_.u[j];
+    pw_[j] = val;
 }
 
 void ResidualCache::eval(Eigen::VectorXd& R) {
@@ -322,7 +334,6 @@ void ResidualCache::eval(Eigen::VectorXd& R) {
     const bool keep = n_moved > 1;
     const MeasuredData& d = *pr_.data;
     const Params& p = m_.p;
-    const bool input = !pr_.phi_forced;
     for (std::size_t j = pr_.j_lo; j < pr_.j_hi; ++j) {
         double sum = 0.0;   // effects_at's order
         for (std::size_t e = 0; e < effect_.size(); ++e) {
@@ -336,10 +347,7 @@ void ResidualCache::eval(Eigen::VectorXd& R) {
                 sum += effect_[e][j];
             }
         }
-        const ForceTerms f{resistance_[j], spring_magnet_[j], impact_[j], unbalance_[j], effect_.empty() ? 0.0 : sum};
-        double val = -f.net();
-        if (input) val -= p.input_gain * pr_.u[j];
-        pw_[j] = val;
+        pointwise(j, sum);
     }
     if (keep)
         for (std::size_t k = 0; k < knobs_.size(); ++k) at_[k] = *knobs_[k].value;
@@ -353,7 +361,6 @@ void ResidualCache::full(Eigen::VectorXd& R) {
     const std::size_t n = pr_.n;
     for (auto* v : {&unbalance_, &resistance_, &spring_magnet_, &impact_, &x_, &v_, &pw_}) v->assign(n, 0.0);
     for (auto& v : effect_) v.assign(n, 0.0);
-    const bool input = !pr_.phi_forced;
     const bool curved = m.sensor_curved();
     std::vector<double> xt, vt;
     if (curved) true_states(pr_, m, xt, vt);
@@ -371,10 +378,7 @@ void ResidualCache::full(Eigen::VectorXd& R) {
         impact_[j] = r.impact;
         x_[j] = x;
         v_[j] = v;
-        const ForceTerms f{r.resistance, r.spring_magnet, r.impact, r.unbalance, effect_.empty() ? 0.0 : sum};
-        double val = -f.net();
-        if (input) val -= m.p.input_gain * pr_.u[j];
-        pw_[j] = val;
+        pointwise(j, sum);
     }
     const std::vector<double>& xa = curved ? xt : d.x;
     scale_ = curved ? 1.0 : ig;

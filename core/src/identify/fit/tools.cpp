@@ -89,14 +89,10 @@ bool knob_places(const Model& m, const std::vector<Knob>& knobs, std::vector<Kno
         if (v >= base && v + sizeof(double) <= base + sizeof(Model)) {
             pl.at = static_cast<std::size_t>(v - base);
         } else {
-            for (std::size_t e = 0; e < m.p.effects.size() && pl.effect < 0; ++e) {
-                const auto& q = m.p.effects[e].p;
-                if (k.value >= q.data() && k.value < q.data() + q.size()) {
-                    pl.effect = static_cast<std::ptrdiff_t>(e);
-                    pl.at = static_cast<std::size_t>(k.value - q.data());
-                }
-            }
-            if (pl.effect < 0) return false;
+            const int e = effect_holding(m, k.value);
+            if (e < 0) return false;
+            pl.effect = e;
+            pl.at = static_cast<std::size_t>(k.value - m.p.effects[static_cast<std::size_t>(e)].p.data());
         }
         out.push_back(pl);
     }
