@@ -8,6 +8,7 @@
 #    sub/ (saving into a folder means that folder).
 #  - Save, double-click on an existing file: nothing is written, the window asks "Overwrite?".
 #  - Load, double-click on "sub/": the same, nothing loaded.
+# A folder of 3,000 sessions is listed whole, but only the rows in view are built each frame.
 # Exit 77 (CTest's skip code) without xvfb-run or python3.
 # usage: gui_browser.sh IMPACTLAB_GUI OUT_DIR
 gui="$1"; dir="$2"
@@ -25,6 +26,9 @@ gui_json missing --browse "$dir/files/none" --frames 5
 gui_json into_sub --browse "$dir/files" --press ctrl+s --double-click sub/ --frames 30 --screenshot "$dir/into_sub.png"
 gui_json over_file --browse "$dir/files/sub" --press ctrl+s --double-click live.json --frames 30 --screenshot "$dir/over_file.png"
 gui_json load_sub --browse "$dir/files" --double-click sub/ --frames 30
+rm -rf "$dir/many"
+python3 -c "import os, sys; os.makedirs(sys.argv[1]); [open(os.path.join(sys.argv[1], 's%05d.json' % i), 'w').close() for i in range(3000)]" "$dir/many"
+gui_json many --browse "$dir/many" --frames 5
 
 python3 - "$dir" <<'PY'
 import json, os, sys
@@ -54,6 +58,9 @@ if o["session_window"] != "save" or os.path.realpath(o["session_overwrite_asked"
     fail.append(f"over_file: window {o['session_window']}, asked {o['session_overwrite_asked']}")
 if ls["session_window"] != "load" or os.path.realpath(ls["session_browser"]["dir"]) != sub:
     fail.append(f"load_sub: window {ls['session_window']}, folder {ls['session_browser']['dir']}")
+mb = json.load(open(f"{d}/many.json"))["session_browser"]
+if len(mb["entries"]) != 3001 or not 1 <= mb["rows_drawn"] <= 40:
+    fail.append(f"many: {len(mb['entries'])} entries listed (3001 asked), {mb['rows_drawn']} rows built in a frame (the view's, at most 40)")
 for f in fail:
     print("gui_browser:", f)
 if fail:

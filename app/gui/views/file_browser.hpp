@@ -7,6 +7,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include <cstddef>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,7 @@ public:
 
 private:
     void refresh();
+    void refresh_if_changed();
     std::vector<std::string> extensions_;
     std::string default_name_;
     RowClicks clicks_;
@@ -43,7 +45,8 @@ private:
     std::string dir_;                 // absolute, "" until first drawn
     std::vector<FileEntry> entries_;
     std::string error_;
-    double listed_at_ = -1;           // [s] ImGui time of the listing (refreshed every 2 s)
+    double listed_at_ = -1;                            // [s] ImGui time of the listing (looked at again every 2 s)
+    std::filesystem::file_time_type listed_stamp_{};   // the folder's time when listed
 };
 
 }  // namespace impactlab::gui
