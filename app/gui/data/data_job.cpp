@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <exception>
 #include <string>
+#include <stdexcept>
 #include <utility>
 
 namespace impactlab::gui {
@@ -189,7 +190,13 @@ std::uint64_t DataJob::start_fit(std::shared_ptr<const identify::MeasuredData> d
     if (fit_progress_) fit_progress_->cancel.store(true, std::memory_order_relaxed);   // a superseded fit stops
     auto progress = std::make_shared<identify::FitProgress>();
     const std::uint64_t id = launch(DataJobResult::Kind::Fit, [data, model, options, progress](DataJobResult& r) {
+#ifdef __EMSCRIPTEN__
+        // The page has no least squares (Ceres); leaving the fit's code out keeps the page small.
+        (void)r;
+        throw std::runtime_error("the fit runs in the desktop program (impactlab fit, or impactlab-gui), not in a browser");
+#else
         r.report = std::make_shared<const identify::FitReport>(identify::run_fit(*data, model, options, nullptr, progress.get()));
+#endif
     });
     fit_progress_ = std::move(progress);
     return id;
@@ -199,7 +206,11 @@ std::uint64_t DataJob::start_evaluate(std::shared_ptr<const identify::MeasuredDa
                                       const identify::FitOptions& options, std::uint32_t mask) {
     return launch(DataJobResult::Kind::Evaluate, [data, model, options, mask](DataJobResult& r) {
         r.mask = mask;
+#ifdef __EMSCRIPTEN__
+        throw std::runtime_error("the model's errors are computed in the desktop program, not in a browser");
+#else
         r.errors = identify::evaluate_model(*data, model, options);
+#endif
     });
 }
 

@@ -1,6 +1,7 @@
 #include "data_panel.hpp"
 
 #include <imgui.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -78,6 +79,17 @@ void DataPanel::load(const std::string& path, bool then_fit) {
     job_.start_load(path, load_options_from(c));
 }
 
+nlohmann::json DataPanel::state() const {
+    nlohmann::json j;
+    j["path"] = loaded_path();
+    j["samples"] = data_ ? data_->size() : 0;
+    j["duration_s"] = data_ && data_->size() > 1 ? nlohmann::json(data_->t.back() - data_->t.front()) : nlohmann::json(nullptr);
+    j["busy"] = busy();
+    j["fitted"] = has_report();
+    j["error"] = error_.empty() ? nlohmann::json(nullptr) : nlohmann::json(error_);
+    return j;
+}
+
 void DataPanel::start_fit(const DataPanelContext& ctx) {
     pending_fit_ = false;
     if (!data_) return;
@@ -104,6 +116,8 @@ void DataPanel::take(DataJobResult r, const DataPanelContext& ctx) {
     switch (r.kind) {
         case DataJobResult::Kind::Load:
             data_ = std::move(r.data);
+            if (data_->size() > 1) record_t_ = {data_->t.front(), data_->t.back()};
+            record_x_ = to_range(robust_extent({&data_->x}, 0.0, 0.08), 1e-4);
             report_.reset();
             evals_.clear();
             eval_errors_.clear();
@@ -216,9 +230,18 @@ void DataPanel::draw_fit_row(const DataPanelContext& ctx) {
     ImGui::Text("Model %s, x_I = %.2f mm", ctx.model.c_str(), ctx.xI * 1e3);
     ImGui::SameLine();
     const bool running = job_.running();
+#ifdef __EMSCRIPTEN__
+    // The page has no least squares (Ceres): the button says where the fit runs instead of failing.
+    ImGui::BeginDisabled();
+    ImGui::Button("Run fit");
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::TextDisabled("the fit runs in the desktop program (impactlab fit, or impactlab-gui)");
+#else
     ImGui::BeginDisabled(!data_ || running);
     if (ImGui::Button("Run fit")) start_fit(ctx);
     ImGui::EndDisabled();
+#endif
     if (running) {
         ImGui::SameLine();
         spinner(ImGui::GetFontSize() * 0.45f);
@@ -396,6 +419,20 @@ void DataPanel::draw_trace(ImVec2 size) {
     plot.end();
 }
 
+// The record as loaded, whole (before a fit: what the file holds, so a bad unit or column shows at once).
+void DataPanel::draw_record(ImVec2 size) {
+    if (size.y < 4.0f * ImGui::GetFontSize()) return;
+    Plot plot;
+    Axes ax;
+    ax.x_label = "t [s]";
+    ax.y_label = "x [mm]";
+    ax.y_scale = 1e3;
+    if (!plot.begin("##record", size, record_t_, record_x_, ax)) return;
+    const identify::MeasuredData& d = *data_;
+    plot.series(d.size(), [&](std::size_t i) { return XY{d.t[i], d.x[i]}; }, measured_color(), 1.3f);
+    plot.end();
+}
+
 // The Poincare points of the record (x at phi = 2 pi i, against the omega there), measured and simulated
 // over the whole record by both models: where the model reproduces the data's attractors.
 void DataPanel::draw_sections(ImVec2 size) {
@@ -448,8 +485,13 @@ void DataPanel::draw(bool* open, const DataPanelContext& ctx) {
     draw_fit_row(ctx);
     ImGui::Separator();
     if (!report_) {
-        ImGui::TextDisabled(data_ ? "Run the fit to see the residual, the effects found and the error before and after."
+#ifdef __EMSCRIPTEN__
+        ImGui::TextDisabled(data_ ? "The record's x(t)." : "Load a measured run: a CSV with t, x and phi (or an input u).");
+#else
+        ImGui::TextDisabled(data_ ? "The record's x(t). Run the fit to see the residual, the effects found and the error before and after."
                                   : "Load a measured run: a CSV (plain or gzip) with t, x and phi (or an input u).");
+#endif
+        if (data_) draw_record(ImGui::GetContentRegionAvail());
         ImGui::End();
         return;
     }

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,9 @@ public:
     bool has_report() const { return static_cast<bool>(report_); }
     const std::string& error() const { return error_; }   // the last failure of a load or fit ("" if none)
     std::string loaded_path() const { return data_ ? data_->source : std::string(); }   // "" when none (sessions)
+    // --state-json: the record loaded (its file, samples and span), whether it is being loaded or fitted, the
+    // last error and whether a fit report is shown.
+    nlohmann::json state() const;
 
 private:
     void start_fit(const DataPanelContext& ctx);
@@ -49,6 +53,7 @@ private:
     void draw_fit_row(const DataPanelContext& ctx);
     void draw_effects();
     void draw_errors();
+    void draw_record(ImVec2 size);   // the record loaded, before a fit
     void draw_trace(ImVec2 size);
     void draw_sections(ImVec2 size);
     void draw_residual(const char* id, const char* xlabel, const std::vector<double>& var, double scale, Range xr,
@@ -77,7 +82,7 @@ private:
     std::string fit_model_name_;
 
     // Display ranges of the report's plots (robust: the 0.5 % .. 99.5 % quantiles).
-    Range trace_t_, trace_x_, res_y_, res_x_, res_v_, sec_w_, sec_x_;
+    Range record_t_, record_x_, trace_t_, trace_x_, res_y_, res_x_, res_v_, sec_w_, sec_x_;
 };
 
 }  // namespace impactlab::gui

@@ -10,8 +10,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cctype>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
 #include <numbers>
 
 #include "render/gl_util.hpp"
@@ -20,6 +22,7 @@
 #include "render/plot2d.hpp"
 #include "render/plot_gpu.hpp"
 #include "impactlab/forces.hpp"
+#include "impactlab/input_file.hpp"
 #include "render/theme.hpp"
 
 namespace impactlab::gui {
@@ -44,6 +47,13 @@ int next_impact_law(int current) {
 std::vector<int> g_pressed, g_held;
 void on_key(GLFWwindow*, int key, int, int action, int) {
     if (action == GLFW_PRESS && key >= 0 && key < 512) g_pressed.push_back(key);
+}
+
+// Files dropped on the window (GLFW, also the page's canvas) or picked in the page, for the next frame.
+// UI thread.
+std::vector<std::string> g_handed;
+void on_drop(GLFWwindow*, int count, const char** paths) {
+    for (int i = 0; i < count; ++i) g_handed.emplace_back(paths[i]);
 }
 
 void glfw_error(int code, const char* text) { std::fprintf(stderr, "impactlab-gui: GLFW error %d: %s\n", code, text); }
@@ -153,6 +163,7 @@ bool App::init(std::string& error) {
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;   // the layout is computed, nothing to remember
     glfwSetKeyCallback(win_, on_key);   // before the backend, which chains to it
+    glfwSetDropCallback(win_, on_drop);
     ImGui_ImplGlfw_InitForOpenGL(win_, true);
 #ifdef __EMSCRIPTEN__
     ImGui_ImplOpenGL3_Init("#version 300 es");   // WebGL2
@@ -425,6 +436,24 @@ void App::clear_poincare() {
 
 void App::screenshot(const std::string& path) { pending_shot_ = path; }
 
+void App::open_user_file(const std::string& path) { g_handed.push_back(path); }
+
+void App::open_handed_files() {
+    std::vector<std::string> files;
+    files.swap(g_handed);
+    for (const std::string& path : files) {
+        std::string ext = std::filesystem::path(path).extension().string();
+        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (ext == ".json") {   // a session; a file of another kind is refused by the loader, which says why
+            load_session_file(path);
+            continue;
+        }
+        show_data_ = true;   // the record's window, where its load and any error show
+        data_panel_.load(path, false);
+        toast("opening " + utf8_escaped(path) + " as a measured record");
+    }
+}
+
 std::string App::screenshot_name() const { return "impactlab-" + model_name() + "-" + timestamp() + ".png"; }
 
 void App::export_csv() {
@@ -628,6 +657,7 @@ void App::frame() {
     draw_session_window();
     end_replay_frame();
     handle_session_request();
+    open_handed_files();
     ImGui::Render();
     const double t_built = now_s();
     // The previous frame is shown only now, once this one is built: under a software renderer its

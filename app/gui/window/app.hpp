@@ -59,6 +59,10 @@ public:
     bool open(std::string& error) { return init(error); }
     bool loop_once();
     int finish();   // the summary line, --state-json and the other files asked for; the exit code
+    // A file handed in from outside the program (dropped on the window, or picked in the browser page):
+    // taken up at the next frame, a session (.json) loaded as "Load session" would, any other file opened
+    // in the measured-data window. UI thread.
+    void open_user_file(const std::string& path);
 
 private:
     // app.cpp: life cycle, frame, input, actions
@@ -69,6 +73,7 @@ private:
     void drain_samples();
     void poll_bifurcation();
     void handle_keys();
+    void open_handed_files();   // what open_user_file and the window's drops queued
     // Every command to the simulation thread goes through here: one the ring refuses is resent at the next
     // frame (commands_), and one given up is told in a toast.
     void send(const SimCommand& c);

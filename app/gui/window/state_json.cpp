@@ -167,6 +167,8 @@ bool App::write_state_json(const std::string& path) {
     j["session_path"] = session_path_;
     j["session_overwrite_asked"] = overwrite_pending_.empty() ? json(nullptr) : json(overwrite_pending_);
     j["session_browser"] = session_window_ ? session_browser_.state() : json(nullptr);   // the files it lists
+    j["data"] = data_panel_.state();   // the measured record in the data window
+    j["data"]["open"] = show_data_;
     j["plane"] = analysis_.plane.state();
     j["basins"] = analysis_.basins.state();   // the basins shown: their box, grid and attractors   // the plane shown and the doubling continued over it
     if (const auto& ov = analysis_.overlay()) {   // the continued branches' special points, as the hover names them
