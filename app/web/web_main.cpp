@@ -4,11 +4,18 @@
 // animation frame, and the simulation's slice runs inside it (SimThread::pump: no threads in a file://
 // page). With frames=N, after N frames the page writes what --state-json writes into <pre id="state-json">
 // and stops.
+// Files: what the program writes into its working folder (/home/web_user: a saved session, a screenshot, a
+// CSV export) is handed to the browser as a download; a file picked with the page's "Open a file" or dropped
+// on the canvas is written into the page's memory and opened (a session, or a measured record).
 #include <emscripten.h>
 #include <emscripten/html5.h>
 #include <GLFW/glfw3.h>
 
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
+#include <map>
+#include <utility>
 #include <cstdlib>
 #include <exception>
 #include <fstream>
@@ -38,6 +45,39 @@ EM_JS(void, web_set_text, (const char* id, const char* text), {
     if (el) el.textContent = UTF8ToString(text);
 });
 EM_JS(void, web_mark_done, (int code), { document.body.setAttribute("data-exit", String(code)); });
+// The file at `path` (in the page's memory) as a download named `name`.
+EM_JS(void, web_download, (const char* path, const char* name), {
+    const data = FS.readFile(UTF8ToString(path));
+    const url = URL.createObjectURL(new Blob([data], { type: "application/octet-stream" }));
+    const a = document.createElement("a");
+    a.href = url;
+    a.download = UTF8ToString(name);
+    document.body.appendChild(a);
+    a.click();
+    setTimeout(function () { URL.revokeObjectURL(url); a.remove(); }, 5000);
+});
+// The page's "Open a file" input: each file picked is copied into /home/web_user/opened/ and handed to the
+// program (web_open_file). Drops on the canvas reach GLFW's drop callback instead.
+EM_JS(void, web_install_picker, (), {
+    const input = document.getElementById("open-file");
+    if (!input) return;
+    input.addEventListener("change", function () {
+        for (let i = 0; i < input.files.length; ++i) {
+            const file = input.files[i];
+            const reader = new FileReader();
+            reader.onload = function () {
+                const dir = "/home/web_user/opened";
+                try { FS.mkdir(dir); } catch (e) { }
+                const path = dir + "/" + file.name.split("/").join("_");
+                FS.writeFile(path, new Uint8Array(reader.result));
+                _web_open_file(stringToNewUTF8(path));
+            };
+            reader.onerror = function () { console.warn("impactlab: cannot read " + file.name + ": " + reader.error); };
+            reader.readAsArrayBuffer(file);
+        }
+        input.value = "";
+    });
+});
 EM_JS(int, web_view_width, (), { return window.innerWidth; });
 EM_JS(int, web_view_height, (), { return window.innerHeight; });
 // clang-format on
@@ -61,12 +101,34 @@ void fail(const std::string& what) {
 long g_frames = 0;
 double g_first_ms = 0, g_tick_ms = 0;   // g_tick_ms: time spent in tick() (building and submitting frames)
 
+// Downloads: the regular files directly in the working folder (a dot file is a write in progress), each
+// offered again when its size or time changes. Subfolders (a clip's frames, opened files) stay in the page.
+constexpr const char* kHome = "/home/web_user";
+std::map<std::string, std::pair<std::uintmax_t, std::filesystem::file_time_type>> g_offered;
+
+void offer_downloads() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    for (fs::directory_iterator it(kHome, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.empty() || name[0] == '.' || !it->is_regular_file(ec)) continue;
+        const auto stamp = std::make_pair(it->file_size(ec), it->last_write_time(ec));
+        if (ec) continue;
+        auto [slot, fresh] = g_offered.try_emplace(name, stamp);
+        if (!fresh && slot->second == stamp) continue;
+        slot->second = stamp;
+        web_download(it->path().c_str(), name.c_str());
+        std::printf("web: download %s (%ju bytes)\n", name.c_str(), stamp.first);
+    }
+}
+
 void finish() {
     const double s = (emscripten_get_now() - g_first_ms) / 1000.0;
     if (g_frames > 1 && s > 0)
         std::printf("web: %ld frames in %.1f s: %.1f frames per second, %.1f ms a frame in the page's code\n", g_frames - 1,
                     s, static_cast<double>(g_frames - 1) / s, g_tick_ms / static_cast<double>(g_frames));
     const int code = g_app->finish();
+    offer_downloads();   // --save-session, --screenshot and the like write at the end
     std::ifstream in(kStateFile);
     const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     web_set_text("state-json", json.c_str());
@@ -89,6 +151,7 @@ void tick() {
                 if (GLFWwindow* win = glfwGetCurrentContext()) glfwSetWindowSize(win, w, h);
             }
         }
+        if (g_frames % 15 == 0) offer_downloads();
         if (!g_app->loop_once()) {
             emscripten_cancel_main_loop();
             finish();
@@ -101,8 +164,18 @@ void tick() {
 
 }  // namespace
 
+// A file the page's picker copied into memory (web_install_picker); takes `path` (malloc'd) over.
+extern "C" EMSCRIPTEN_KEEPALIVE void web_open_file(char* path) {
+    if (g_app) g_app->open_user_file(path);
+    std::free(path);
+}
+
 int main() {
     using namespace impactlab::gui;
+    // Relative names (a session's, a screenshot's, a CSV export's) land where offer_downloads looks.
+    std::error_code ec;
+    std::filesystem::create_directories(kHome, ec);
+    std::filesystem::current_path(kHome, ec);
     std::vector<std::string> args;
     {
         char* flags = web_query_flags();
@@ -145,6 +218,7 @@ int main() {
         return 0;
     }
     web_set_text("status", "");
+    web_install_picker();
     // 0 frames per second: the browser's animation frames; no simulated infinite loop (main returns and
     // the runtime stays alive with the App in g_app).
     emscripten_set_main_loop(tick, 0, 0);

@@ -1,8 +1,7 @@
-// What the browser build of the core cannot link, stubbed: the fits' least squares (Ceres), gzip (zlib)
-// and the measured-data loader (emscripten 3.1.6's libc++ has no floating-point std::from_chars).
-// Emscripten's own zlib is a port it would download, and Ceres has none; a page cannot load a measured run
-// from disk anyway (it says so). Also the stb implementations, which the desktop build takes
-// from Debian's libstb.
+// What the browser build of the core cannot link, stubbed: the fits' least squares (Ceres) and gzip (zlib).
+// Emscripten's own zlib is a port it would download, and Ceres has none; the page reads plain records and
+// says so for gzip and for a fit. Also the stb implementations, which the desktop build takes from
+// Debian's libstb.
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb_image.h>
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -28,13 +27,6 @@ std::string gzip_stored(std::string_view) {
     throw DataError("gzip cannot be written in the browser (use the desktop impactlab)");
 }
 
-MeasuredData load_measured(const std::string& path, const LoadOptions&) { return parse_measured({}, path, {}); }
-MeasuredData parse_measured(std::string_view, const std::string& source, const LoadOptions&) {
-    throw DataError(source + ": measured data cannot be loaded in the browser (use the desktop impactlab)");
-}
-std::string read_data_file(const std::string& path) { return gunzip({}, path, 0); }
-MeasuredData join_records(const std::vector<MeasuredData>&) { return parse_measured({}, "records", {}); }
-void write_measured_csv(std::ostream&, const MeasuredData&) { gzip_stored({}); }
 
 namespace detail {
 LsqSummary least_squares(std::vector<Knob>&, const ResidualFn&, const StepFn&, const LsqOptions&, Eigen::VectorXd&,

@@ -3,9 +3,12 @@
 no network port, no extra packages), in real time: waits until the page marks itself done
 (<body data-exit="N">), then saves what it was asked for.
 
-usage: page_run.py BROWSER URL OUT_DIR [--timeout S] [--screenshot FILE] [--size WxH]
+usage: page_run.py BROWSER URL OUT_DIR [--timeout S] [--screenshot FILE] [--size WxH] [--downloads DIR]
+                   [--open FILE ...]
 Writes OUT_DIR/state.json (the text of #state-json), OUT_DIR/log.txt (the text of #log) and prints the
 page's exit code, the status line and the wall time; exit 0 if the page finished with code 0.
+--downloads DIR: the page's downloads are saved into DIR. --open FILE: once the page runs, FILE is picked in
+its "Open a file" input (#open-file), as a user would, one file at a time in the order given.
 """
 import argparse, base64, json, os, subprocess, sys, tempfile, time
 
@@ -16,6 +19,8 @@ ap.add_argument("out")
 ap.add_argument("--timeout", type=float, default=240)
 ap.add_argument("--screenshot")
 ap.add_argument("--size", default="1280x800")
+ap.add_argument("--downloads")
+ap.add_argument("--open", action="append", default=[])
 a = ap.parse_args()
 w, h = (int(v) for v in a.size.split("x"))
 
@@ -74,15 +79,32 @@ try:
     target = send("Target.createTarget", {"url": "about:blank"})["targetId"]
     session = send("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
     send("Emulation.setDeviceMetricsOverride", {"width": w, "height": h, "deviceScaleFactor": 1, "mobile": False}, session)
+    if a.downloads:
+        send("Browser.setDownloadBehavior", {"behavior": "allow", "downloadPath": os.path.abspath(a.downloads)})
     start = time.time()
     send("Page.navigate", {"url": a.url}, session)
     exit_code = None
+    to_open = list(a.open)
     while time.time() - start < a.timeout:
         time.sleep(0.5)
         exit_code = evaluate(session, "document.body && document.body.getAttribute('data-exit')")
         if exit_code is not None:
             break
+        # The page runs once its status line is cleared; then the files, one a second.
+        if to_open and evaluate(session, "(document.getElementById('status') || {}).textContent") == "":
+            doc = send("DOM.getDocument", {}, session)["root"]["nodeId"]
+            node = send("DOM.querySelector", {"nodeId": doc, "selector": "#open-file"}, session)["nodeId"]
+            send("DOM.setFileInputFiles", {"nodeId": node, "files": [os.path.abspath(to_open.pop(0))]}, session)
+            time.sleep(0.5)
+    if to_open:
+        print("page_run: %d files not opened: the page ended first" % len(to_open))
     wall = time.time() - start
+    if a.downloads:   # the page's last downloads (written as it finished) land on disk
+        for _ in range(40):
+            time.sleep(0.25)
+            names = os.listdir(a.downloads)
+            if names and not any(n.endswith(".crdownload") for n in names):
+                break
     status = evaluate(session, "(document.getElementById('status') || {}).textContent") or ""
     state = evaluate(session, "(document.getElementById('state-json') || {}).textContent") or ""
     text_log = evaluate(session, "(document.getElementById('log') || {}).textContent") or ""
@@ -92,7 +114,7 @@ try:
         shot = send("Page.captureScreenshot", {"format": "png"}, session)
         open(a.screenshot, "wb").write(base64.b64decode(shot["data"]))
     print("page_run: exit %s after %.1f s%s" % (exit_code, wall, (", status: " + status) if status.strip() else ""))
-    code = 0 if exit_code == "0" else 1
+    code = 0 if exit_code == "0" and not to_open else 1
 finally:
     try:
         send("Browser.close")

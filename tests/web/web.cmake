@@ -5,5 +5,5 @@ set(IMPACTLAB_WEB_PAGE ${PROJECT_SOURCE_DIR}/build-web/impactlab.html CACHE FILE
     "The page scripts/web.sh builds, for the web test")
 add_test(NAME web
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/web/web_test.sh ${IMPACTLAB_WEB_PAGE}
-                 $<TARGET_FILE:impactlab_png_check> ${CMAKE_CURRENT_BINARY_DIR}/web_test)
+                 $<TARGET_FILE:impactlab_png_check> ${CMAKE_CURRENT_BINARY_DIR}/web_test $<TARGET_FILE:impactlab>)
 set_tests_properties(web PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600 LABELS "web")

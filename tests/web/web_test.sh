@@ -7,9 +7,12 @@
 #   2. ?bench-sim: the simulation's rate in the page, three passes, printed for docs/visualiser.md's table
 #      (goal 1000x real time). A rate is a benchmark, not a test on a shared machine: the test asks only that
 #      the best pass of A1H's GUI engine keep far ahead of real time (100x), which a broken build would not.
+#   3. Files as a user has them: ?save-session=lesson.json must arrive as a download holding the session;
+#      a second page then opens that download and a measured record (made by CLI's synth) through its
+#      "Open a file" input: the state must show the session's model and omega and the record loaded.
 # Exit 77 (CTest's skip code) without the page (bash scripts/web.sh) or chromium (apt-get install chromium).
-# usage: web_test.sh PAGE PNG_CHECK OUT_DIR
-page="$1"; check="$2"; dir="$3"
+# usage: web_test.sh PAGE PNG_CHECK OUT_DIR CLI
+page="$1"; check="$2"; dir="$3"; cli="$4"
 here=$(cd "$(dirname "$0")" && pwd)
 if [ ! -f "$page" ]; then echo "web_test: no $page (bash scripts/web.sh builds it): skipped"; exit 77; fi
 browser=""
@@ -45,4 +48,30 @@ cat "$dir/bench/log.txt"
 rate=$(sed -n 's/^simulation A1H.*GUI engine with 1 ms samples \([0-9]*\)x.*/\1/p' "$dir/bench/log.txt" | sort -n | tail -n 1)
 [ -n "$rate" ] || { echo "web_test: no A1H rate in the benchmark's output"; exit 1; }
 [ "$rate" -ge 100 ] || { echo "web_test: A1H runs at ${rate}x real time in the page at best, below 100x"; exit 1; }
-echo "web_test: passed (A1H at ${rate}x real time at best)"
+
+# 3. A session downloaded, then it and a measured record opened from disk.
+mkdir -p "$dir/files/down" "$dir/files/save" "$dir/files/open"
+python3 "$here/page_run.py" "$browser" "file://$page?model=A1C&omega=12.5&frames=60&save-session=lesson.json" \
+    "$dir/files/save" --downloads "$dir/files/down" || { echo "web_test: the page saving a session failed"; exit 1; }
+grep '^web: download' "$dir/files/save/log.txt" | sed 's/^/web_test: /'
+[ -s "$dir/files/down/lesson.json" ] || { ls -la "$dir/files/down"; echo "web_test: the saved session did not arrive as a download"; exit 1; }
+"$cli" synth --model A1H --omega 12 --duration 4 --rate 500 --out "$dir/files/record.csv" >/dev/null \
+    || { echo "web_test: impactlab synth failed"; exit 1; }
+python3 "$here/page_run.py" "$browser" "file://$page?frames=400" "$dir/files/open" \
+    --open "$dir/files/down/lesson.json" --open "$dir/files/record.csv" || { echo "web_test: the page opening files failed"; exit 1; }
+python3 - "$dir/files/down/lesson.json" "$dir/files/open/state.json" <<'PY' || exit 1
+import json, sys
+saved = json.load(open(sys.argv[1]))
+j = json.load(open(sys.argv[2]))
+d = j.get("data") or {}
+print("web_test: opened the session (model %s, omega %s) and %s (%s samples, error %s)"
+      % (j["model"], j["omega"], d.get("path"), d.get("samples"), d.get("error")))
+errors = []
+if j["model"] != "A1C": errors.append("model %s, not the session's A1C" % j["model"])
+if abs(j["omega"] - 12.5) > 1e-9: errors.append("omega %s, not the session's 12.5" % j["omega"])
+if not str(d.get("path", "")).endswith("record.csv"): errors.append("no record loaded (data: %s)" % d)
+if d.get("samples") != 2001: errors.append("%s samples, not 2001" % d.get("samples"))
+if d.get("error") is not None: errors.append("the load failed: %s" % d.get("error"))
+if errors: sys.exit("web_test: " + "; ".join(errors))
+PY
+echo "web_test: passed (A1H at ${rate}x real time at best; a session downloaded and opened again, a record opened)"

@@ -1,7 +1,10 @@
 // The measured-data loader: MODEL.md's CSV conventions, explicit column mapping, strict checks.
 #include <algorithm>
 #include <charconv>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -46,6 +49,26 @@ void split(std::string_view line, std::vector<std::string_view>& fields) {
 
 bool all_digits(const std::string& s) {
     return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// A number taken whole, as std::from_chars reads it. Emscripten's libc++ has no floating-point from_chars
+// (the browser page reads records too): there strtod on a terminated copy, refusing what from_chars would
+// (leading space, hexadecimal), with an overflow or underflow out of range as from_chars reports it.
+std::from_chars_result read_double(const char* first, const char* last, double& v) {
+#ifdef __EMSCRIPTEN__
+    const std::string text(first, last);
+    if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])) || text.find_first_of("xX") != std::string::npos)
+        return {first, std::errc::invalid_argument};
+    char* end = nullptr;
+    errno = 0;
+    const double r = std::strtod(text.c_str(), &end);
+    if (end == text.c_str()) return {first, std::errc::invalid_argument};
+    if (errno == ERANGE) return {first + (end - text.c_str()), std::errc::result_out_of_range};
+    v = r;
+    return {first + (end - text.c_str()), std::errc()};
+#else
+    return std::from_chars(first, last, v);
+#endif
 }
 
 std::string show(std::string_view s) {
@@ -204,7 +227,7 @@ MeasuredData parse_measured(std::string_view text, const std::string& src, const
             if (f.empty()) fail(src, lineno, name + " is empty");
             if (f.front() == '+') f.remove_prefix(1);
             double v = 0;
-            const auto r = std::from_chars(f.data(), f.data() + f.size(), v);
+            const auto r = read_double(f.data(), f.data() + f.size(), v);
             if (r.ec == std::errc::result_out_of_range) fail(src, lineno, name + ": " + show(f) + " is out of range");
             if (r.ec != std::errc() || r.ptr != f.data() + f.size()) fail(src, lineno, name + ": " + show(f) + " is not a number");
             if (!std::isfinite(v)) fail(src, lineno, name + ": " + show(f) + " is not a finite number");
