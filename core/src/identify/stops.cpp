@@ -206,7 +206,7 @@ void end_stop_stage(const Prep& pr, const FitOptions& o, const SentenceContext& 
     const std::string id = law->id;
     if (!o.wants(id)) return;
     for (const auto& e : after.p.effects)
-        if (std::string(e.law->id) == "end_stop") return;   // the model given already has one
+        if (e.law == law) return;   // the model given already has one
     double se = 0;
     const std::vector<std::pair<std::string, double>> values = end_stop_values(pr, after, {}, o.rtol, &se);
     if (values.empty()) return;

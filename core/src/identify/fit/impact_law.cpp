@@ -49,8 +49,10 @@ void impact_law_stage(FitSession& fs) {
             }
         }
         // The dwell time and the restitution against the model's, impact by impact.
-        for (const char* which : {"impact_duration", "restitution"}) {
-            const bool dur = std::strcmp(which, "impact_duration") == 0;
+        for (const BaseEffect& row : base_effects()) {
+            if (row.impacts != ImpactTrait::Dwell && row.impacts != ImpactTrait::Rebound) continue;
+            const std::string& which = row.info.id;
+            const bool dur = row.impacts == ImpactTrait::Dwell;
             // The impacts the model also makes, measured and simulated.
             const ImpactLawData data = impact_law_data(pr, after, dur, pred.ok);
             const ImpactLawData simulated_data = [&] {

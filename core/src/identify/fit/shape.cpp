@@ -13,7 +13,7 @@
 #include <string>
 
 #include "effects/law_helpers.hpp"
-#include "identify/fit/session.hpp"
+#include "identify/fit/judge.hpp"
 
 namespace impactlab::identify::detail {
 
@@ -154,10 +154,12 @@ Alike sibling_alike(const FitSession& fs, const Model& cur, bool refit_base, con
 }
 }  // namespace
 
-void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit_base, Model& cur, std::vector<double>& e_cur,
-                           Chain& kept) {
+void named_against_generic(FitSession& fs, HeldOutJudge& judge) {
     FitReport& rep = fs.rep;
-    if (e_cur.empty()) return;
+    if (!judge.can_judge()) return;
+    const bool refit_base = judge.refit_base();
+    const Model& cur = judge.model();                     // the judge's model, which follows every change kept
+    const std::vector<double>& e_cur = judge.model_errors();
     // The rivals in the order their laws were kept, each once.
     std::vector<std::string> rivals;
     for (const FoundEffect& f : rep.effects_found)
@@ -196,8 +198,7 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
         auto adopt = [&](const Model& m, const std::vector<double>& e_m) {
             const Model fitted = fitted_whole(fs, m, refit_base);
             if (!unphysical(fitted).empty()) return false;
-            cur = fitted;
-            e_cur = e_m;
+            judge.set_model(fitted, e_m);
             return true;
         };
         auto generic_found = [&](const Compare& c) {
@@ -230,7 +231,7 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
             g.sentence = sentence(g.id, fs.base, g.parameters, g.sigma, fs.sc);
             rep.effects_found.push_back(g);
             rep.notes.push_back(note);
-            kept.push_back({names + " replaced by " + rival, cur, rep.effects_found, judge.rms(e_cur), false});
+            judge.record(names + " replaced by " + rival);
         };
         // A law that stays in the model although the data do not tell its shape from `from`: a force of its
         // size, no finding of its law (in the report and in every step the final gate may go back to).
@@ -240,7 +241,7 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
                     if (f.id == id) f.not_told_from = from;
             };
             mark(rep.effects_found);
-            for (ChainStep& st : kept) mark(st.found);
+            for (ChainStep& st : judge.steps()) mark(st.found);
             rep.notes.push_back(id + " " + why + ", but the data do not tell its shape from " + from + ": it stays as a force of its size, and its law is no finding");
         };
         // Laws that stand (beside the generic term, or together) are still findings only where the data tell
@@ -332,7 +333,7 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
                 rep.effects_found.push_back(g);
                 rep.notes.push_back("a smooth force of the same variable beside " + names + " predicts held-out data better: " + rival +
                                     " added for the shape they leave");
-                kept.push_back({"added " + rival + " beside " + names, cur, rep.effects_found, judge.rms(e_cur), false});
+                judge.record("added " + rival + " beside " + names);
                 siblings_resolved("stands beside the generic " + rival);
                 continue;
             }
