@@ -42,6 +42,7 @@ BaseEffect bumper_offset() {
     BaseEffect e;
     e.info = {"bumper_offset", "the bumper stands dx off the model's xI (moves xI)", {"dx"}, {"m"}, {0.0}, false, true};
     e.needs_bumper = true;
+    e.impacts = ImpactTrait::Level;
     e.apply = [](Model& m, std::vector<double>& v, const std::vector<bool>&) { m.p.xI += v[0]; };
     e.describe = [](const Model& b, const Values& v, const Values& s) {
         const double dx = get(v, "dx");
@@ -56,6 +57,7 @@ BaseEffect impact_duration() {
     e.info = {"impact_duration", "each impact holds the cart at the bumper for T_imp(v-) (sets the impact law's Ti0, Ti1, a_T)",
               {"Ti0", "Ti1", "a_T"}, {"s", "s", "s/m"}, {6.2193e-3, 4.0689e-3, 2.1733}, false, true};
     e.needs_bumper = true;
+    e.impacts = ImpactTrait::Dwell;
     e.apply = [](Model& m, std::vector<double>& v, const std::vector<bool>& given) { set_impact_law(m, 3, v, given); };
     e.describe = [](const Model& b, const Values& v, const Values& s) -> std::string {
         auto val = [&](const char* k) { return get(v, k); };
@@ -76,6 +78,7 @@ BaseEffect restitution() {
     e.info = {"restitution", "a velocity-dependent restitution kappa(v-) (sets the impact law's kappa0, kappa1, a_kappa)",
               {"kappa0", "kappa1", "a_kappa"}, {"-", "-", "s/m"}, {0.6150, 0.1350, 0.6594}, false, true};
     e.needs_bumper = true;
+    e.impacts = ImpactTrait::Rebound;
     e.apply = [](Model& m, std::vector<double>& v, const std::vector<bool>& given) { set_impact_law(m, 0, v, given); };
     e.describe = [](const Model& b, const Values& v, const Values& s) -> std::string {
         auto val = [&](const char* k) { return get(v, k); };
@@ -133,6 +136,11 @@ const BaseEffect* find_base_effect(const std::string& id) {
     for (const auto& e : base_effects())
         if (e.info.id == id) return &e;
     return nullptr;
+}
+
+ImpactTrait impact_trait(const std::string& id) {
+    const BaseEffect* b = find_base_effect(id);
+    return b ? b->impacts : ImpactTrait::None;
 }
 
 }  // namespace impactlab::identify::detail

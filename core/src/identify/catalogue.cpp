@@ -304,7 +304,7 @@ std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& nam
         else if (n == "xI") p = &m.p.xI;
         else if (n == "k2")   // the model's own even stiffness (an even_stiffness effect it carries)
             for (auto& e : m.p.effects)
-                if (e.law && std::string(e.law->id) == "even_stiffness") p = &e.p[0];
+                if (e.law && e.law == find_effect("even_stiffness")) p = &e.p[0];
         if (!p) throw ParamError("--fit-params: unknown parameter '" + n + "' (known: c, T, k, a1, a3, a5, b2, b4, m0e, gain, m, xI; k2 where the model carries an even_stiffness)");
         out.push_back({n, p, std::max(1e-6 * std::abs(*p), 1e-9)});
     }

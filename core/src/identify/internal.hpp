@@ -465,9 +465,15 @@ std::vector<std::pair<std::string, double>> end_stop_values(const Prep& pr, cons
 // An effect that changes the base model instead of adding a force (bumper_offset, impact_duration,
 // restitution, cart_mass): its catalogue entry, how it edits the model, its sentence, and, if the screening
 // looks for it, the candidate it makes.
+// What of the measured impacts a base effect changes: the flat tops' level (where the bumper stands), the dwell
+// at the bumper, the speed of the rebound; None: not an impact effect. The impact-law stage and the held-out
+// validation refit each effect by it (a bumper moved until the simulated flat tops sit on the measured ones,
+// an impact law refitted to the dwells or to the rebounds).
+enum class ImpactTrait { None, Level, Dwell, Rebound };
 struct BaseEffect {
     EffectInfo info;
     bool needs_bumper = false;
+    ImpactTrait impacts = ImpactTrait::None;
     // Edits m with the values v (defaults where not given; the row may complete v from what was given).
     void (*apply)(Model& m, std::vector<double>& v, const std::vector<bool>& given) = nullptr;
     std::string (*describe)(const Model& before, const std::vector<std::pair<std::string, double>>& values,
@@ -477,6 +483,8 @@ struct BaseEffect {
 };
 const std::vector<BaseEffect>& base_effects();
 const BaseEffect* find_base_effect(const std::string& id);
+// The impact trait of effect `id`'s row (None for a force law, or an id no row has).
+ImpactTrait impact_trait(const std::string& id);
 
 // Base parameters that `fit` mode estimates: name and address in the model.
 struct BaseParam {

@@ -109,85 +109,117 @@ MeasuredData load_measured(const std::string& path, const LoadOptions& options) 
     return parse_measured(read_data_file(path), path, options);
 }
 
-MeasuredData parse_measured(std::string_view text, const std::string& src, const LoadOptions& opt) {
-    MeasuredData d;
-    d.source = src;
-    if (text.size() >= 3 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);   // UTF-8 BOM
-    if (text.find('\0') != std::string_view::npos) fail(src, 0, "not a text file (it contains NUL bytes)");
+namespace {
 
-    enum Sig { T, X, PHI, U, OMEGA, V, NSIG };
-    const char* sig_name[NSIG] = {"t", "x", "phi", "u", "omega", "v"};
-    const std::string* mapped[NSIG] = {&opt.columns.t, &opt.columns.x, &opt.columns.phi,
-                                       &opt.columns.u, &opt.columns.omega, &opt.columns.v};
-    int col[NSIG];
-    std::fill(col, col + NSIG, -1);
+// The signals a record's columns map to, in the order their checks name them.
+enum Sig { T, X, PHI, U, OMEGA, V, NSIG };
+constexpr const char* kSigName[NSIG] = {"t", "x", "phi", "u", "omega", "v"};
+
+// A record's table as read: the header, the column of each signal (-1: none), each signal's values and the
+// file line of each data row.
+struct Table {
+    std::string src;
     std::vector<std::string> header;
     long header_line = 0;
     std::size_t ncols = 0;
-    std::vector<std::string_view> fields;
+    int col[NSIG] = {-1, -1, -1, -1, -1, -1};
     std::vector<double> rows[NSIG];
     std::vector<long> lines;
+};
 
-    auto finish_header = [&]() {
-        // Empty names are allowed only at the end (a trailing comma on every line).
-        std::size_t named = header.size();
-        while (named > 0 && header[named - 1].empty()) --named;
-        std::unordered_map<std::string_view, std::size_t> seen;   // linear in the columns (100k of them)
-        for (std::size_t k = 0; k < named; ++k) {
-            if (header[k].empty()) fail(src, header_line, "column " + std::to_string(k + 1) + " of the header has no name");
-            if (!seen.emplace(header[k], k).second)
-                fail(src, header_line, "column name '" + header[k] + "' appears twice (columns " +
-                                           std::to_string(seen[header[k]] + 1) + " and " + std::to_string(k + 1) + ")");
-        }
-        auto list = [&] {
-            std::string s;
-            for (std::size_t k = 0; k < named; ++k) s += (k ? ", " : "") + header[k];
-            return s;
-        };
-        for (int s = 0; s < NSIG; ++s) {
-            const std::string& m = *mapped[s];
-            if (m.empty()) {
-                for (std::size_t k = 0; k < named; ++k)
-                    if (header[k] == sig_name[s]) col[s] = static_cast<int>(k);
-                continue;
-            }
-            if (all_digits(m)) {
-                const long k = m.size() > 9 ? 0 : std::stol(m);   // longer: beyond any header (and stol's range)
-                if (k < 1 || static_cast<std::size_t>(k) > named)
-                    fail(src, header_line, std::string("the mapping of '") + sig_name[s] + "' to column " + m +
-                                               " names no column (the header has " + std::to_string(named) +
-                                               " columns: " + list() + ")");
-                col[s] = static_cast<int>(k - 1);
-            } else {
-                const std::string want(unquote(m));
-                for (std::size_t k = 0; k < named; ++k)
-                    if (header[k] == want) col[s] = static_cast<int>(k);
-                if (col[s] < 0)
-                    fail(src, header_line, std::string("the mapping of '") + sig_name[s] + "' to column '" + m +
-                                               "' names no column (the header has: " + list() + ")");
-            }
-        }
-        for (int s = 0; s < NSIG; ++s)
-            for (int r = 0; r < s; ++r)
-                if (col[s] >= 0 && col[s] == col[r])
-                    fail(src, header_line, std::string("'") + sig_name[r] + "' and '" + sig_name[s] +
-                                               "' are mapped to the same column");
-        if (col[X] < 0) fail(src, header_line, "no position column 'x' (the header has: " + list() + "; map one with --x-col)");
-        if (col[T] < 0 && !(opt.rate > 0))
-            fail(src, header_line, "no time column 't' and no sample rate (give --rate HZ or map --t-col)");
-        if (col[T] >= 0 && opt.rate > 0)
-            fail(src, header_line, "both a time column and a sample rate are given; use one");
-        if (col[PHI] >= 0 && col[U] >= 0) {
-            if (!opt.columns.phi.empty() && opt.columns.u.empty()) col[U] = -1;
-            else if (!opt.columns.u.empty() && opt.columns.phi.empty()) col[PHI] = -1;
-            else fail(src, header_line, "both a 'phi' and a 'u' column: say which is the forcing (--phi-col or --u-col)");
-        }
-        if (col[PHI] < 0 && col[U] < 0)
-            fail(src, header_line, "no forcing column: need the unbalance angle 'phi' or a measured input 'u' (the header has: " +
-                                       list() + ")");
-        ncols = header.size();
+// The header's names checked, and each signal mapped to its column (by name, by the mapping given, or by
+// number), with every conflict named.
+void map_columns(Table& tb, const LoadOptions& opt) {
+    const std::string& src = tb.src;
+    const std::vector<std::string>& header = tb.header;
+    const long header_line = tb.header_line;
+    int* col = tb.col;
+    const std::string* mapped[NSIG] = {&opt.columns.t, &opt.columns.x, &opt.columns.phi,
+                                       &opt.columns.u, &opt.columns.omega, &opt.columns.v};
+    // Empty names are allowed only at the end (a trailing comma on every line).
+    std::size_t named = header.size();
+    while (named > 0 && header[named - 1].empty()) --named;
+    std::unordered_map<std::string_view, std::size_t> seen;   // linear in the columns (100k of them)
+    for (std::size_t k = 0; k < named; ++k) {
+        if (header[k].empty()) fail(src, header_line, "column " + std::to_string(k + 1) + " of the header has no name");
+        if (!seen.emplace(header[k], k).second)
+            fail(src, header_line, "column name '" + header[k] + "' appears twice (columns " +
+                                       std::to_string(seen[header[k]] + 1) + " and " + std::to_string(k + 1) + ")");
+    }
+    auto list = [&] {
+        std::string s;
+        for (std::size_t k = 0; k < named; ++k) s += (k ? ", " : "") + header[k];
+        return s;
     };
+    for (int s = 0; s < NSIG; ++s) {
+        const std::string& m = *mapped[s];
+        if (m.empty()) {
+            for (std::size_t k = 0; k < named; ++k)
+                if (header[k] == kSigName[s]) col[s] = static_cast<int>(k);
+            continue;
+        }
+        if (all_digits(m)) {
+            const long k = m.size() > 9 ? 0 : std::stol(m);   // longer: beyond any header (and stol's range)
+            if (k < 1 || static_cast<std::size_t>(k) > named)
+                fail(src, header_line, std::string("the mapping of '") + kSigName[s] + "' to column " + m +
+                                           " names no column (the header has " + std::to_string(named) +
+                                           " columns: " + list() + ")");
+            col[s] = static_cast<int>(k - 1);
+        } else {
+            const std::string want(unquote(m));
+            for (std::size_t k = 0; k < named; ++k)
+                if (header[k] == want) col[s] = static_cast<int>(k);
+            if (col[s] < 0)
+                fail(src, header_line, std::string("the mapping of '") + kSigName[s] + "' to column '" + m +
+                                           "' names no column (the header has: " + list() + ")");
+        }
+    }
+    for (int s = 0; s < NSIG; ++s)
+        for (int r = 0; r < s; ++r)
+            if (col[s] >= 0 && col[s] == col[r])
+                fail(src, header_line, std::string("'") + kSigName[r] + "' and '" + kSigName[s] +
+                                           "' are mapped to the same column");
+    if (col[X] < 0) fail(src, header_line, "no position column 'x' (the header has: " + list() + "; map one with --x-col)");
+    if (col[T] < 0 && !(opt.rate > 0))
+        fail(src, header_line, "no time column 't' and no sample rate (give --rate HZ or map --t-col)");
+    if (col[T] >= 0 && opt.rate > 0)
+        fail(src, header_line, "both a time column and a sample rate are given; use one");
+    if (col[PHI] >= 0 && col[U] >= 0) {
+        if (!opt.columns.phi.empty() && opt.columns.u.empty()) col[U] = -1;
+        else if (!opt.columns.u.empty() && opt.columns.phi.empty()) col[PHI] = -1;
+        else fail(src, header_line, "both a 'phi' and a 'u' column: say which is the forcing (--phi-col or --u-col)");
+    }
+    if (col[PHI] < 0 && col[U] < 0)
+        fail(src, header_line, "no forcing column: need the unbalance angle 'phi' or a measured input 'u' (the header has: " +
+                                   list() + ")");
+    tb.ncols = header.size();
+}
 
+// One data row's fields: each mapped signal's value, a finite number.
+void read_row(Table& tb, const std::vector<std::string_view>& fields, long lineno) {
+    const std::string& src = tb.src;
+    if (fields.size() != tb.ncols)
+        fail(src, lineno, std::to_string(fields.size()) + " fields, but the header (line " + std::to_string(tb.header_line) +
+                              ") has " + std::to_string(tb.ncols));
+    for (int s = 0; s < NSIG; ++s) {
+        if (tb.col[s] < 0) continue;
+        std::string_view f = unquote(fields[static_cast<std::size_t>(tb.col[s])]);
+        const std::string name = "column '" + tb.header[static_cast<std::size_t>(tb.col[s])] + "' (" + kSigName[s] + ")";
+        if (f.empty()) fail(src, lineno, name + " is empty");
+        if (f.front() == '+') f.remove_prefix(1);
+        double v = 0;
+        const auto r = read_double(f.data(), f.data() + f.size(), v);
+        if (r.ec == std::errc::result_out_of_range) fail(src, lineno, name + ": " + show(f) + " is out of range");
+        if (r.ec != std::errc() || r.ptr != f.data() + f.size()) fail(src, lineno, name + ": " + show(f) + " is not a number");
+        if (!std::isfinite(v)) fail(src, lineno, name + ": " + show(f) + " is not a finite number");
+        tb.rows[s].push_back(v);
+    }
+    tb.lines.push_back(lineno);
+}
+
+// The text's lines: comments' "key: value" pairs into d.meta, the header, then the data rows.
+void read_lines(std::string_view text, Table& tb, MeasuredData& d, const LoadOptions& opt) {
+    std::vector<std::string_view> fields;
     long lineno = 0;
     std::size_t pos = 0;
     // Lines end in LF, CRLF or (old Mac files) a lone CR.
@@ -211,116 +243,92 @@ MeasuredData parse_measured(std::string_view text, const std::string& src, const
             continue;
         }
         split(line, fields);
-        if (header.empty()) {
-            header_line = lineno;
-            for (auto f : fields) header.emplace_back(unquote(f));
-            finish_header();
+        if (tb.header.empty()) {
+            tb.header_line = lineno;
+            for (auto f : fields) tb.header.emplace_back(unquote(f));
+            map_columns(tb, opt);
             continue;
         }
-        if (fields.size() != ncols)
-            fail(src, lineno, std::to_string(fields.size()) + " fields, but the header (line " + std::to_string(header_line) +
-                                  ") has " + std::to_string(ncols));
-        for (int s = 0; s < NSIG; ++s) {
-            if (col[s] < 0) continue;
-            std::string_view f = unquote(fields[static_cast<std::size_t>(col[s])]);
-            const std::string name = "column '" + header[static_cast<std::size_t>(col[s])] + "' (" + sig_name[s] + ")";
-            if (f.empty()) fail(src, lineno, name + " is empty");
-            if (f.front() == '+') f.remove_prefix(1);
-            double v = 0;
-            const auto r = read_double(f.data(), f.data() + f.size(), v);
-            if (r.ec == std::errc::result_out_of_range) fail(src, lineno, name + ": " + show(f) + " is out of range");
-            if (r.ec != std::errc() || r.ptr != f.data() + f.size()) fail(src, lineno, name + ": " + show(f) + " is not a number");
-            if (!std::isfinite(v)) fail(src, lineno, name + ": " + show(f) + " is not a finite number");
-            rows[s].push_back(v);
-        }
-        lines.push_back(lineno);
+        read_row(tb, fields, lineno);
     }
-    if (header.empty()) fail(src, 0, "no header row (the file is empty or holds only comments)");
-    const std::size_t n = lines.size();
-    if (n == 0) fail(src, 0, "no data rows after the header (line " + std::to_string(header_line) + ")");
+}
 
-    // Whole-file checks, before any row selection.
-    if (col[T] >= 0) {
+// Whole-file checks, before any row selection: time increases, phi is the unwrapped angle.
+void check_whole_file(const Table& tb, const LoadOptions& opt) {
+    const std::size_t n = tb.lines.size();
+    const auto& rows = tb.rows;
+    const auto& lines = tb.lines;
+    if (tb.col[T] >= 0) {
         for (std::size_t i = 1; i < n; ++i)
             if (!(rows[T][i] > rows[T][i - 1])) {
                 std::ostringstream msg;
                 msg << std::setprecision(10) << "time does not increase: t = " << rows[T][i] << " after t = " << rows[T][i - 1]
                     << " (line " << lines[i - 1] << ")";
-                fail(src, lines[i], msg.str());
+                fail(tb.src, lines[i], msg.str());
             }
     }
-    if (col[PHI] >= 0) {
+    if (tb.col[PHI] >= 0) {
         for (std::size_t i = 1; i < n; ++i) {
             const double jump = (rows[PHI][i] - rows[PHI][i - 1]) * opt.phi_scale;
             if (std::abs(jump) > 3.141592653589793) {
                 std::ostringstream msg;
                 msg << std::setprecision(6) << "phi jumps by " << jump
                     << " rad from the previous sample: phi must be the unwrapped, continuous angle";
-                fail(src, lines[i], msg.str());
+                fail(tb.src, lines[i], msg.str());
             }
         }
     }
+}
 
-    const std::size_t b = static_cast<std::size_t>(std::max(0L, opt.row_begin));
-    const std::size_t e = opt.row_end < 0 ? n : static_cast<std::size_t>(opt.row_end);
-    if (b >= n || e > n)
-        fail(src, 0, "rows " + std::to_string(opt.row_begin) + ":" + (opt.row_end < 0 ? "" : std::to_string(opt.row_end)) +
-                         " lie outside the file's " + std::to_string(n) + " data rows");
-    if (e - b < opt.min_samples)
-        fail(src, 0, "only " + std::to_string(e - b) + " samples; at least " + std::to_string(opt.min_samples) + " are needed");
-
-    auto take = [&](int s, double scale, std::vector<double>& out) {
-        if (col[s] < 0) return;
-        out.assign(rows[s].begin() + static_cast<long>(b), rows[s].begin() + static_cast<long>(e));
-        if (scale != 1.0)
-            for (std::size_t i = 0; i < out.size(); ++i) {
-                out[i] *= scale;
-                if (!std::isfinite(out[i]) || (out[i] == 0.0) != (rows[s][b + i] == 0.0)) {
-                    std::ostringstream msg;
-                    msg << "column '" << header[static_cast<std::size_t>(col[s])] << "' (" << sig_name[s] << "): "
-                        << rows[s][b + i] << " times the scale " << scale << " is not a representable number";
-                    fail(src, lines[b + i], msg.str());
-                }
+// Signal s over rows [b, e), scaled: every value representable, within what any sensor reads, and none a
+// million times the record's spread from its median (a corrupt sample).
+void take(const Table& tb, int s, double scale, std::size_t b, std::size_t e, std::vector<double>& out) {
+    const std::string& src = tb.src;
+    const auto& rows = tb.rows;
+    const auto& lines = tb.lines;
+    if (tb.col[s] < 0) return;
+    const std::string& name = tb.header[static_cast<std::size_t>(tb.col[s])];
+    out.assign(rows[s].begin() + static_cast<long>(b), rows[s].begin() + static_cast<long>(e));
+    if (scale != 1.0)
+        for (std::size_t i = 0; i < out.size(); ++i) {
+            out[i] *= scale;
+            if (!std::isfinite(out[i]) || (out[i] == 0.0) != (rows[s][b + i] == 0.0)) {
+                std::ostringstream msg;
+                msg << "column '" << name << "' (" << kSigName[s] << "): "
+                    << rows[s][b + i] << " times the scale " << scale << " is not a representable number";
+                fail(src, lines[b + i], msg.str());
             }
-        // No sensor in any unit reads beyond 1e15; a value a million times beyond the record's own spread is a
-        // corrupt sample, not a measurement. Both would overflow the fit's sums of squares.
-        if (s == X || s == U || s == V)
-            for (std::size_t i = 0; i < out.size(); ++i)
-                if (!(std::abs(out[i]) <= 1e15)) {
-                    std::ostringstream msg;
-                    msg << "column '" << header[static_cast<std::size_t>(col[s])] << "' (" << sig_name[s] << "): " << out[i]
-                        << " lies beyond 1e15: not a measurement in any unit";
-                    fail(src, lines[b + i], msg.str());
-                }
-        if (s != T && out.size() >= 8) {
-            std::vector<double> sorted(out);
-            std::sort(sorted.begin(), sorted.end());
-            const double med = sorted[sorted.size() / 2];
-            const double q_lo = sorted[sorted.size() / 100], q_hi = sorted[sorted.size() - 1 - sorted.size() / 100];
-            const double spread = std::max(q_hi - q_lo, 1e-300 + 1e-12 * std::abs(med));
-            for (std::size_t i = 0; i < out.size(); ++i)
-                if (std::abs(out[i] - med) > 1e6 * spread) {
-                    std::ostringstream msg;
-                    msg << "column '" << header[static_cast<std::size_t>(col[s])] << "' (" << sig_name[s] << "): " << out[i]
-                        << " lies " << std::abs(out[i] - med) / spread << " times the record's spread (" << spread
-                        << ") from its median: a corrupt sample; remove the row or select rows with --rows";
-                    fail(src, lines[b + i], msg.str());
-                }
         }
-    };
-    if (col[T] >= 0) {
-        take(T, opt.t_scale, d.t);
-    } else {
-        d.t.resize(e - b);
-        for (std::size_t i = b; i < e; ++i) d.t[i - b] = static_cast<double>(i) / opt.rate;
+    // No sensor in any unit reads beyond 1e15; a value a million times beyond the record's own spread is a
+    // corrupt sample, not a measurement. Both would overflow the fit's sums of squares.
+    if (s == X || s == U || s == V)
+        for (std::size_t i = 0; i < out.size(); ++i)
+            if (!(std::abs(out[i]) <= 1e15)) {
+                std::ostringstream msg;
+                msg << "column '" << name << "' (" << kSigName[s] << "): " << out[i]
+                    << " lies beyond 1e15: not a measurement in any unit";
+                fail(src, lines[b + i], msg.str());
+            }
+    if (s != T && out.size() >= 8) {
+        std::vector<double> sorted(out);
+        std::sort(sorted.begin(), sorted.end());
+        const double med = sorted[sorted.size() / 2];
+        const double q_lo = sorted[sorted.size() / 100], q_hi = sorted[sorted.size() - 1 - sorted.size() / 100];
+        const double spread = std::max(q_hi - q_lo, 1e-300 + 1e-12 * std::abs(med));
+        for (std::size_t i = 0; i < out.size(); ++i)
+            if (std::abs(out[i] - med) > 1e6 * spread) {
+                std::ostringstream msg;
+                msg << "column '" << name << "' (" << kSigName[s] << "): " << out[i]
+                    << " lies " << std::abs(out[i] - med) / spread << " times the record's spread (" << spread
+                    << ") from its median: a corrupt sample; remove the row or select rows with --rows";
+                fail(src, lines[b + i], msg.str());
+            }
     }
-    take(X, opt.x_scale, d.x);
-    take(PHI, opt.phi_scale, d.phi);
-    take(U, opt.u_scale, d.u);
-    take(OMEGA, 1.0, d.omega);
-    take(V, opt.x_scale, d.v);
-    // Time in seconds: a record within a few decades, samples at least a nanosecond apart (a unit slip makes
-    // the sample count of the span overflow every array sized from it).
+}
+
+// Time in seconds: a record within a few decades, samples at least a nanosecond apart (a unit slip makes
+// the sample count of the span overflow every array sized from it).
+void check_time_unit(const Table& tb, const MeasuredData& d, std::size_t b) {
     for (std::size_t i = 0; i < d.t.size(); ++i) {
         const bool too_far = !(std::abs(d.t[i]) <= 1e9);
         const bool too_close = i > 0 && !(d.t[i] - d.t[i - 1] >= 1e-9);
@@ -330,10 +338,47 @@ MeasuredData parse_measured(std::string_view text, const std::string& src, const
                 << (too_far ? " lies beyond 1e9 s (30 years) of the record's zero"
                             : " is within 1 ns of the previous sample")
                 << ": time must be in seconds (--t-scale, or --rate for a file without time)";
-            fail(src, col[T] >= 0 ? lines[b + i] : 0, msg.str());
+            fail(tb.src, tb.col[T] >= 0 ? tb.lines[b + i] : 0, msg.str());
         }
     }
-    d.line.assign(lines.begin() + static_cast<long>(b), lines.begin() + static_cast<long>(e));
+}
+
+}  // namespace
+
+MeasuredData parse_measured(std::string_view text, const std::string& src, const LoadOptions& opt) {
+    MeasuredData d;
+    d.source = src;
+    if (text.size() >= 3 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);   // UTF-8 BOM
+    if (text.find('\0') != std::string_view::npos) fail(src, 0, "not a text file (it contains NUL bytes)");
+    Table tb;
+    tb.src = src;
+    read_lines(text, tb, d, opt);
+    if (tb.header.empty()) fail(src, 0, "no header row (the file is empty or holds only comments)");
+    const std::size_t n = tb.lines.size();
+    if (n == 0) fail(src, 0, "no data rows after the header (line " + std::to_string(tb.header_line) + ")");
+    check_whole_file(tb, opt);
+
+    const std::size_t b = static_cast<std::size_t>(std::max(0L, opt.row_begin));
+    const std::size_t e = opt.row_end < 0 ? n : static_cast<std::size_t>(opt.row_end);
+    if (b >= n || e > n)
+        fail(src, 0, "rows " + std::to_string(opt.row_begin) + ":" + (opt.row_end < 0 ? "" : std::to_string(opt.row_end)) +
+                         " lie outside the file's " + std::to_string(n) + " data rows");
+    if (e - b < opt.min_samples)
+        fail(src, 0, "only " + std::to_string(e - b) + " samples; at least " + std::to_string(opt.min_samples) + " are needed");
+
+    if (tb.col[T] >= 0) {
+        take(tb, T, opt.t_scale, b, e, d.t);
+    } else {
+        d.t.resize(e - b);
+        for (std::size_t i = b; i < e; ++i) d.t[i - b] = static_cast<double>(i) / opt.rate;
+    }
+    take(tb, X, opt.x_scale, b, e, d.x);
+    take(tb, PHI, opt.phi_scale, b, e, d.phi);
+    take(tb, U, opt.u_scale, b, e, d.u);
+    take(tb, OMEGA, 1.0, b, e, d.omega);
+    take(tb, V, opt.x_scale, b, e, d.v);
+    check_time_unit(tb, d, b);
+    d.line.assign(tb.lines.begin() + static_cast<long>(b), tb.lines.begin() + static_cast<long>(e));
     return d;
 }
 

@@ -217,8 +217,8 @@ void plots(const FitReport& r, const std::string& dir) {
     }
 }
 
-std::string markdown(const FitReport& r, bool with_plots) {
-    std::ostringstream md;
+// The title, the record, the model and the equation error, and the verdict.
+void md_header(std::ostream& md, const FitReport& r) {
     md << "# impactlab fit: " << r.data_source << "\n\n";
     md << "Model **" << r.before.p.name << "** (" << (r.baseline == Baseline::Fit ? "parameters fitted to the data" : "parameters fixed")
        << "), forcing " << forcing_name(r.forcing) << ". " << r.samples << " samples, " << g3(r.duration) << " s at " << g3(1.0 / r.dt)
@@ -237,6 +237,10 @@ std::string markdown(const FitReport& r, bool with_plots) {
        << " ms of m x'' + F_R + F_SA + F_I - forcing, on " << r.rows_used
        << " free-flight windows (impacts left out); its noise floor is about " << g3(r.noise_floor_N) << " " << r.force_unit() << ".\n\n";
     md << "**Verdict:** " << r.verdict << ".\n\n";
+}
+
+// The effects found, each with its sentence and the held-out check that kept it.
+void md_effects(std::ostream& md, const FitReport& r) {
     md << "## Effects found\n\n";
     if (r.effects_found.empty()) {
         md << "None: no effect lowered the simulation error on held-out data beyond its noise.\n\n";
@@ -253,6 +257,10 @@ std::string markdown(const FitReport& r, bool with_plots) {
         }
         md << "\n";
     }
+}
+
+// The held-out validation: its windows, the record's and the model's horizons, and the effects turned down.
+void md_validation(std::ostream& md, const FitReport& r) {
     md << "## Validation on held-out data\n\n";
     md << "Every effect the residual points to must lower the short-horizon simulation error (multiple shooting) on the "
           "half of the record its parameters were not fitted to (alternate blocks of about an eighth of the record), "
@@ -284,6 +292,10 @@ std::string markdown(const FitReport& r, bool with_plots) {
         for (const auto& f : r.effects_rejected) md << "- **" << f.id << "**: " << f.reason << ".\n";
         md << "\n";
     }
+}
+
+// The base parameters written, with their standard errors and the pairs the data do not separate.
+void md_base_parameters(std::ostream& md, const FitReport& r) {
     if (!r.base_estimates.empty()) {
         md << "## The base parameters written, with what the data tell of them\n\nStandard errors from the equation error (its "
               "variance and correlation time); inf: the data do not see the parameter.\n\n| parameter | value | standard error |\n|---|---|---|\n";
@@ -297,6 +309,10 @@ std::string markdown(const FitReport& r, bool with_plots) {
                << g3(u.sigma, "%.2g") << "; neither value alone is a finding.\n";
         md << "\n";
     }
+}
+
+// Each run's well, measured from its data.
+void md_data_wells(std::ostream& md, const FitReport& r) {
     if (!r.data_wells.empty()) {
         const bool m = r.metres();
         md << "## Each run's well, measured from its data\n\nA local force law per unit mass, a + c v + k x + k2 x^2 + k3 x^3 - F0 = "
@@ -312,6 +328,10 @@ std::string markdown(const FitReport& r, bool with_plots) {
         if (!r.well_frequency.empty()) md << "\n" << r.well_frequency << ".\n";
         md << "\n";
     }
+}
+
+// The two wells of the model after, with their asymmetry.
+void md_model_wells(std::ostream& md, const FitReport& r) {
     const auto& wa = r.wells_after;
     if (wa.wells.size() == 2 && std::isfinite(wa.hill_x)) {
         const double xs_ = r.metres() ? 1e3 : 1.0;
@@ -338,6 +358,10 @@ std::string markdown(const FitReport& r, bool with_plots) {
                             "in both (fit them together: impactlab fit a.csv b.csv).")
            << "\n\n";
     }
+}
+
+// The final gate: what it undid, and the model written.
+void md_gate(std::ostream& md, const FitReport& r) {
     md << "## The final gate\n\nThe model written is compared with the model given on every error below, unit by unit (blocks of "
           "rows and samples, shooting windows, impacts, omega bins); a change that makes any of them worse beyond its scatter "
           "is undone, the last change first. ";
@@ -347,6 +371,10 @@ std::string markdown(const FitReport& r, bool with_plots) {
         for (const auto& g : r.gate) md << "- " << g << "\n";
         md << "\nThe model written: " << r.gate_passed << ".\n\n";
     }
+}
+
+// The error table: the model given, the fitted baseline where it is a column, and the model written.
+void md_errors(std::ostream& md, const FitReport& r) {
     const bool bc = r.baseline_column;
     if (bc)
         md << "## Error of the model given, the fitted baseline (" << r.baseline_step << ") and the model written\n\n"
@@ -404,6 +432,10 @@ std::string markdown(const FitReport& r, bool with_plots) {
         for (const auto& w : r.gate_within) md << "- " << w << "\n";
     }
     md << "\n" << b.impact.impacts << " impacts found in the data.\n\n";
+}
+
+// The first round's candidates, each alone on the baseline residual.
+void md_candidates(std::ostream& md, const FitReport& r) {
     md << "## Candidates (first round: each alone on the baseline residual)\n\n"
           "| id | share of residual (in sample) | cross-validated gain | z | coefficients alone | selected |\n|---|---|---|---|---|---|\n";
     for (const auto& c : r.candidates) {
@@ -415,6 +447,20 @@ std::string markdown(const FitReport& r, bool with_plots) {
     md << "\nA candidate is proposed when it lowers the 5-fold block cross-validated residual by at least the minimum share and "
           "its coefficient stands out of the noise (z from serially-correlation-robust standard errors); the held-out "
           "simulation error above then decides.\n\n";
+}
+
+// The report as Markdown, section by section.
+std::string markdown(const FitReport& r, bool with_plots) {
+    std::ostringstream md;
+    md_header(md, r);
+    md_effects(md, r);
+    md_validation(md, r);
+    md_base_parameters(md, r);
+    md_data_wells(md, r);
+    md_model_wells(md, r);
+    md_gate(md, r);
+    md_errors(md, r);
+    md_candidates(md, r);
     if (!r.notes.empty()) {
         md << "## Notes\n\n";
         for (const auto& n : r.notes) md << "- " << n << "\n";

@@ -61,15 +61,11 @@ void refine_reversals(const MeasuredData& d, Prep& pr) {
 
 }  // namespace
 
-Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::vector<std::string>& notes) {
-    Prep pr;
-    pr.data = &d;
-    pr.n = d.size();
-    pr.x_highpass_hz = o.x_highpass_hz;
-    const std::size_t n = pr.n;
-    if (n < 200) throw DataError(d.source + ": only " + std::to_string(n) + " samples; impactlab fit needs at least 200");
-    pr.dt = (d.t.back() - d.t.front()) / static_cast<double>(n - 1);
-    for (std::size_t i = 1; i < n; ++i) {
+namespace {
+
+// The sampling must be uniform: every step within 1 % of the mean step pr.dt.
+void check_uniform(const MeasuredData& d, const Prep& pr) {
+    for (std::size_t i = 1; i < pr.n; ++i) {
         const double step = d.t[i] - d.t[i - 1];
         if (std::abs(step - pr.dt) > 0.01 * pr.dt) {
             std::ostringstream msg;
@@ -78,16 +74,12 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
             throw DataError(msg.str());
         }
     }
-    // The sensor noise: the smaller of the two estimates, since signal can only add to either (a noise
-    // floor too high would pass a real residual off as noise).
-    pr.sigma_x = estimate_noise(d.x);
-    pr.x_span = quantile(d.x, 0.995) - quantile(d.x, 0.005);
-    pr.x_typ = std::max({0.5 * pr.x_span, 10.0 * pr.sigma_x, 1e-300});
-    pr.phi_forced = d.has_phi();
-    if (pr.phi_forced != (m.forcing == Forcing::Unbalance))
-        throw ParamError(pr.phi_forced ? "the data are forced through phi, but the model expects an input u"
-                                       : "the data carry an input u, but the model is forced by the unbalance angle phi");
+}
 
+// Each run's drive (omega(t) fitted to its phi, or its measured input u), and the record's period. Returns the
+// characteristic time the kernel's width follows.
+double drives_by_run(const MeasuredData& d, const FitOptions& o, Prep& pr) {
+    const std::size_t n = pr.n;
     double t_char;
     pr.phi.assign(n, 0.0);
     pr.omega.assign(n, 0.0);
@@ -137,32 +129,29 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
         pr.period = dominant_period(xc, pr.dt);
         t_char = pr.period;
     }
-    int H = o.window > 0 ? static_cast<int>(std::lround(o.window / pr.dt))
-                         : static_cast<int>(std::lround(t_char / (12.0 * pr.dt)));
-    H = std::clamp(H, 6, 400);
-    pr.K = make_kernel(H, pr.dt);
-    pr.Hv = std::max(3, H / 2);
-    pr.xs = apply_fir(d.x, savgol(pr.Hv, 4, 0, pr.dt));
-    pr.vs = apply_fir(d.x, savgol(pr.Hv, 3, 1, pr.dt));
-    if (d.v.size() == n) {
-        pr.vs = d.v;   // a measured velocity is used as it is (its own noise, no smoothing lag at reversals)
-    } else {
-        refine_reversals(d, pr);
-    }
-    {
-        double sv2 = 0, su2 = 0, cv = 0;
-        for (std::size_t i = 0; i < n; ++i)
-            if (std::isfinite(pr.vs[i])) {
-                sv2 += pr.vs[i] * pr.vs[i];
-                cv += 1;
-            }
-        for (double u : pr.u)
-            if (std::isfinite(u)) su2 += u * u;
-        pr.v_typ = cv > 0 ? std::sqrt(sv2 / cv) : 0.0;
-        if (!(pr.v_typ > 0)) pr.v_typ = pr.x_typ * kTwoPi / pr.period;
-        pr.u_typ = pr.u.empty() ? 0.0 : std::sqrt(su2 / static_cast<double>(pr.u.size()));
-        pr.f_typ = std::max(m.p.m * pr.v_typ * kTwoPi / pr.period, 1e-300);
-    }
+    return t_char;
+}
+
+// The record's typical speed, input and force (the scales of the fit's knobs and tolerances).
+void typical_sizes(const Model& m, Prep& pr) {
+    double sv2 = 0, su2 = 0, cv = 0;
+    for (std::size_t i = 0; i < pr.n; ++i)
+        if (std::isfinite(pr.vs[i])) {
+            sv2 += pr.vs[i] * pr.vs[i];
+            cv += 1;
+        }
+    for (double u : pr.u)
+        if (std::isfinite(u)) su2 += u * u;
+    pr.v_typ = cv > 0 ? std::sqrt(sv2 / cv) : 0.0;
+    if (!(pr.v_typ > 0)) pr.v_typ = pr.x_typ * kTwoPi / pr.period;
+    pr.u_typ = pr.u.empty() ? 0.0 : std::sqrt(su2 / static_cast<double>(pr.u.size()));
+    pr.f_typ = std::max(m.p.m * pr.v_typ * kTwoPi / pr.period, 1e-300);
+}
+
+// The zone no row's window may touch: the reach of the smoothers and the kernel (half-width H) around each
+// run's start, and the impacts (found run by run) with a margin.
+void impact_zone(const MeasuredData& d, const Model& m, int H, Prep& pr) {
+    const std::size_t n = pr.n;
     pr.zone.assign(n, 0);
     // Nothing reaches across the start of a run: the smoothers' and the kernel's reach around it is left out.
     for (std::size_t r = 1; r < pr.run_start.size(); ++r) {
@@ -170,49 +159,46 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
         const std::size_t a = pr.run_start[r] >= reach ? pr.run_start[r] - reach : 0;
         for (std::size_t j = a; j < std::min(n, pr.run_start[r] + reach); ++j) pr.zone[j] = 1;
     }
-    if (m.bumper()) {
-        // Impacts run by run, so that the jump from one run to the next is never read as one.
-        for (std::size_t r = 0; r < pr.run_start.size(); ++r) {
-            const std::size_t a = pr.run_start[r], b = pr.run_last(a) + 1;
-            const std::vector<double> t(d.t.begin() + static_cast<long>(a), d.t.begin() + static_cast<long>(b));
-            const std::vector<double> x(d.x.begin() + static_cast<long>(a), d.x.begin() + static_cast<long>(b));
-            for (ImpactObs im : find_impacts(t, x, pr.sigma_x, m.measure(m.p.xI))) {
-                im.i_first += a;
-                im.i_last += a;
-                pr.impacts.push_back(im);
-            }
-        }
-        // A margin of kMargin samples keeps the zone's edge away from the samples whose noise decided it
-        // (otherwise the windows next to it would be chosen by the noise they contain: a biased residual).
-        constexpr std::size_t kMargin = 10;
-        for (const auto& im : pr.impacts) {
-            const std::size_t a = im.i_first >= kMargin ? im.i_first - kMargin : 0, b = std::min(n - 1, im.i_last + kMargin);
-            for (std::size_t j = a; j <= b; ++j) pr.zone[j] = 1;
+    if (!m.bumper()) return;
+    // Impacts run by run, so that the jump from one run to the next is never read as one.
+    for (std::size_t r = 0; r < pr.run_start.size(); ++r) {
+        const std::size_t a = pr.run_start[r], b = pr.run_last(a) + 1;
+        const std::vector<double> t(d.t.begin() + static_cast<long>(a), d.t.begin() + static_cast<long>(b));
+        const std::vector<double> x(d.x.begin() + static_cast<long>(a), d.x.begin() + static_cast<long>(b));
+        for (ImpactObs im : find_impacts(t, x, pr.sigma_x, m.measure(m.p.xI))) {
+            im.i_first += a;
+            im.i_last += a;
+            pr.impacts.push_back(im);
         }
     }
-    find_stray_impacts(d, m, pr);
-    // Rows: window centres whose kernel (and the velocity estimates under it) stay clear of every impact,
-    // and that do not linger at v = 0: there the sign of the estimated velocity, and so the dry friction
-    // force, is unknown (a cart at rest or creeping).
-    const auto cv = savgol(pr.Hv, 3, 1, pr.dt);
-    double sv = 0;
-    for (double c : cv) sv += c * c;
-    const double slow = 3.0 * pr.sigma_x * std::sqrt(sv) + 1e-6;
-    // Grazing contacts too brief to fit as impacts: every sample at the bumper's level joins the zone.
-    if (m.bumper()) {
-        std::vector<double> lev;
-        for (const auto& im : pr.impacts) lev.push_back(im.level);
-        // The lower of the measured flat tops and the model's own bumper: past the latter the model's
-        // contact force acts, and a bumper or sensor that is off would fill the residual with it.
-        const double model_level = m.measure(m.p.xI);
-        const double level = lev.size() >= 3 ? std::min(median(lev), model_level) : model_level;
-        const double near = 8.0 * pr.sigma_x + 2e-6;
-        for (std::size_t i = 0; i < n; ++i)
-            if (d.x[i] >= level - near)
-                for (std::size_t j = i >= 10 ? i - 10 : 0; j <= std::min(n - 1, i + 10); ++j) pr.zone[j] = 1;
+    // A margin of kMargin samples keeps the zone's edge away from the samples whose noise decided it
+    // (otherwise the windows next to it would be chosen by the noise they contain: a biased residual).
+    constexpr std::size_t kMargin = 10;
+    for (const auto& im : pr.impacts) {
+        const std::size_t a = im.i_first >= kMargin ? im.i_first - kMargin : 0, b = std::min(n - 1, im.i_last + kMargin);
+        for (std::size_t j = a; j <= b; ++j) pr.zone[j] = 1;
     }
-    // Turning points where the other forces cannot overcome the dry friction: the cart may stick there for a
-    // while, and the smoothed velocity cannot tell; those stretches are left out too.
+}
+
+// Grazing contacts too brief to fit as impacts: every sample at the bumper's level joins the zone.
+void grazing_zone(const MeasuredData& d, const Model& m, Prep& pr) {
+    const std::size_t n = pr.n;
+    std::vector<double> lev;
+    for (const auto& im : pr.impacts) lev.push_back(im.level);
+    // The lower of the measured flat tops and the model's own bumper: past the latter the model's
+    // contact force acts, and a bumper or sensor that is off would fill the residual with it.
+    const double model_level = m.measure(m.p.xI);
+    const double level = lev.size() >= 3 ? std::min(median(lev), model_level) : model_level;
+    const double near = 8.0 * pr.sigma_x + 2e-6;
+    for (std::size_t i = 0; i < n; ++i)
+        if (d.x[i] >= level - near)
+            for (std::size_t j = i >= 10 ? i - 10 : 0; j <= std::min(n - 1, i + 10); ++j) pr.zone[j] = 1;
+}
+
+// Turning points where the other forces cannot overcome the dry friction: the cart may stick there for a
+// while, and the smoothed velocity cannot tell; those stretches are left out too.
+std::vector<char> stick_zone(const MeasuredData& d, const Model& m, const Prep& pr) {
+    const std::size_t n = pr.n;
     std::vector<char> stick(n, 0);
     const double Tlim = 3.0 * m.p.T;
     if (m.p.T > 0) {
@@ -229,6 +215,13 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
             }
         }
     }
+    return stick;
+}
+
+// The rows: window centres (every H/4-th sample) whose reach is clear of the zone and of the stick stretches,
+// with at most a twentieth of the window's samples slower than `slow`.
+void choose_rows(const MeasuredData& d, const std::vector<char>& stick, int H, double slow, Prep& pr) {
+    const std::size_t n = pr.n;
     std::vector<std::size_t> cum(n + 1, 0), cum_slow(n + 1, 0);
     for (std::size_t i = 0; i < n; ++i) {
         cum[i + 1] = cum[i] + (pr.zone[i] || stick[i] ? 1 : 0);
@@ -243,6 +236,54 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
                                              std::to_string(pr.rows.size()) + " windows)");
     pr.j_lo = pr.rows.front() - static_cast<std::size_t>(H);
     pr.j_hi = pr.rows.back() + static_cast<std::size_t>(H) + 1;
+}
+
+}  // namespace
+
+Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::vector<std::string>& notes) {
+    Prep pr;
+    pr.data = &d;
+    pr.n = d.size();
+    pr.x_highpass_hz = o.x_highpass_hz;
+    const std::size_t n = pr.n;
+    if (n < 200) throw DataError(d.source + ": only " + std::to_string(n) + " samples; impactlab fit needs at least 200");
+    pr.dt = (d.t.back() - d.t.front()) / static_cast<double>(n - 1);
+    check_uniform(d, pr);
+    // The sensor noise: the smaller of the two estimates, since signal can only add to either (a noise
+    // floor too high would pass a real residual off as noise).
+    pr.sigma_x = estimate_noise(d.x);
+    pr.x_span = quantile(d.x, 0.995) - quantile(d.x, 0.005);
+    pr.x_typ = std::max({0.5 * pr.x_span, 10.0 * pr.sigma_x, 1e-300});
+    pr.phi_forced = d.has_phi();
+    if (pr.phi_forced != (m.forcing == Forcing::Unbalance))
+        throw ParamError(pr.phi_forced ? "the data are forced through phi, but the model expects an input u"
+                                       : "the data carry an input u, but the model is forced by the unbalance angle phi");
+    const double t_char = drives_by_run(d, o, pr);
+    int H = o.window > 0 ? static_cast<int>(std::lround(o.window / pr.dt))
+                         : static_cast<int>(std::lround(t_char / (12.0 * pr.dt)));
+    H = std::clamp(H, 6, 400);
+    pr.K = make_kernel(H, pr.dt);
+    pr.Hv = std::max(3, H / 2);
+    pr.xs = apply_fir(d.x, savgol(pr.Hv, 4, 0, pr.dt));
+    pr.vs = apply_fir(d.x, savgol(pr.Hv, 3, 1, pr.dt));
+    if (d.v.size() == n) {
+        pr.vs = d.v;   // a measured velocity is used as it is (its own noise, no smoothing lag at reversals)
+    } else {
+        refine_reversals(d, pr);
+    }
+    typical_sizes(m, pr);
+    impact_zone(d, m, H, pr);
+    find_stray_impacts(d, m, pr);
+    // Rows: window centres whose kernel (and the velocity estimates under it) stay clear of every impact,
+    // and that do not linger at v = 0: there the sign of the estimated velocity, and so the dry friction
+    // force, is unknown (a cart at rest or creeping).
+    const auto cv = savgol(pr.Hv, 3, 1, pr.dt);
+    double sv = 0;
+    for (double c : cv) sv += c * c;
+    const double slow = 3.0 * pr.sigma_x * std::sqrt(sv) + 1e-6;
+    if (m.bumper()) grazing_zone(d, m, pr);
+    const std::vector<char> stick = stick_zone(d, m, pr);
+    choose_rows(d, stick, H, slow, pr);
     if (pr.phi_forced && pr.drive_rms > 0.05)
         notes.push_back("the fitted omega(t) leaves a phase error of " + std::to_string(pr.drive_rms) +
                         " rad RMS: phi is not a smooth rotation");

@@ -17,6 +17,7 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/fit/refit.cpp
   src/identify/fit/impact_law.cpp
   src/identify/fit/validation.cpp
+  src/identify/fit/judge.cpp
   src/identify/fit/shape.cpp
   src/identify/fit/errors.cpp
   src/identify/fit/held_out.cpp

@@ -75,6 +75,50 @@ void find_stray_impacts(const MeasuredData& d, const Model& m, Prep& pr) {
     }
 }
 
+namespace {
+// Short windows around the reversals with use[k] set (all when empty), for the simulation error of a stop.
+std::vector<std::pair<std::size_t, std::size_t>> reversal_windows(const Prep& pr, const std::vector<char>& use) {
+    std::vector<std::pair<std::size_t, std::size_t>> wins;
+    const auto reach = static_cast<std::size_t>(std::max(20.0, 0.3 * pr.period / pr.dt));
+    for (std::size_t k = 0; k < pr.stray.size(); ++k) {
+        if (!use.empty() && !use[k]) continue;
+        const ImpactObs& im = pr.stray[k];
+        const std::size_t lo = im.i_first > reach ? im.i_first - reach : 0;
+        const std::size_t a = usable_start(pr, lo, im.i_first);
+        const std::size_t b = std::min(pr.run_last(im.i_first), im.i_last + reach);
+        if (a + 8 < im.i_first && b > im.i_last) wins.emplace_back(a, b);
+    }
+    return wins;
+}
+
+// The stiffness first on a coarse grid (a stop stiffer than the sampling resolves barely moves the error, so a
+// local fit from a poor start wanders): lk gets the start with the least median window error (eval: the
+// windows' root errors at the current lk, from wins).
+template <class Eval>
+void coarse_stiffness(double& lk, const Eval& eval, std::vector<std::pair<std::size_t, std::size_t>>& wins) {
+    double best = INFINITY, best_lk = lk;
+    Eigen::VectorXd r;
+    for (double k = 1e5; k <= 1.01e9; k *= std::sqrt(10.0)) {
+        lk = std::log(k);
+        eval(r);
+        std::vector<double> a(r.data(), r.data() + r.size());
+        const double med = a.empty() ? INFINITY : median(a);
+        if (med < best) {
+            best = med;
+            best_lk = lk;
+        }
+    }
+    lk = best_lk;
+    // Windows far off the rest there (a chaotic stretch entered from a slightly wrong start diverges
+    // whatever the stop) are left out of the fit.
+    eval(r);
+    std::vector<std::pair<std::size_t, std::size_t>> kept;
+    for (std::size_t w = 0; w < wins.size(); ++w)
+        if (r[static_cast<Eigen::Index>(w)] <= 5.0 * best) kept.push_back(wins[w]);
+    if (kept.size() >= 3) wins = std::move(kept);
+}
+}  // namespace
+
 std::vector<std::pair<std::string, double>> end_stop_values(const Prep& pr, const Model& m, const std::vector<char>& use, double rtol,
                                                             double* sigma_xS) {
     std::vector<std::pair<std::string, double>> out;
@@ -114,16 +158,7 @@ std::vector<std::pair<std::string, double>> end_stop_values(const Prep& pr, cons
     double xS = level - side * penetration(std::exp(lk), zeta);
     // Then the three together on the simulation error of short windows around the reversals used: the
     // detector's plateau level and dwell are biased for a contact of a few samples, the simulation is not.
-    std::vector<std::pair<std::size_t, std::size_t>> wins;
-    const auto reach = static_cast<std::size_t>(std::max(20.0, 0.3 * pr.period / pr.dt));
-    for (std::size_t k = 0; k < pr.stray.size(); ++k) {
-        if (!use.empty() && !use[k]) continue;
-        const ImpactObs& im = pr.stray[k];
-        const std::size_t lo = im.i_first > reach ? im.i_first - reach : 0;
-        const std::size_t a = usable_start(pr, lo, im.i_first);
-        const std::size_t b = std::min(pr.run_last(im.i_first), im.i_last + reach);
-        if (a + 8 < im.i_first && b > im.i_last) wins.emplace_back(a, b);
-    }
+    std::vector<std::pair<std::size_t, std::size_t>> wins = reversal_windows(pr, use);
     Model trial = m;
     apply_effect(trial, "end_stop", {});
     EffectInstance& inst = trial.p.effects.back();
@@ -150,30 +185,7 @@ std::vector<std::pair<std::string, double>> end_stop_values(const Prep& pr, cons
             return std::isfinite(ss) ? ss : INFINITY;
         };
         auto step_of = [](const Knob& kb, double v) { return v + kb.step > kb.hi ? -kb.step : kb.step; };
-        // The stiffness first on a coarse grid (a stop stiffer than the sampling resolves barely moves the
-        // error, so a local fit from a poor start wanders): the start with the least median window error.
-        {
-            double best = INFINITY, best_lk = lk;
-            Eigen::VectorXd r;
-            for (double k = 1e5; k <= 1.01e9; k *= std::sqrt(10.0)) {
-                lk = std::log(k);
-                eval(r);
-                std::vector<double> a(r.data(), r.data() + r.size());
-                const double med = a.empty() ? INFINITY : median(a);
-                if (med < best) {
-                    best = med;
-                    best_lk = lk;
-                }
-            }
-            lk = best_lk;
-            // Windows far off the rest there (a chaotic stretch entered from a slightly wrong start diverges
-            // whatever the stop) are left out of the fit.
-            eval(r);
-            std::vector<std::pair<std::size_t, std::size_t>> kept;
-            for (std::size_t w = 0; w < wins.size(); ++w)
-                if (r[static_cast<Eigen::Index>(w)] <= 5.0 * best) kept.push_back(wins[w]);
-            if (kept.size() >= 3) wins = std::move(kept);
-        }
+        coarse_stiffness(lk, eval, wins);
         LsqOptions lo;
         lo.max_iterations = 40;
         lo.function_tolerance = 1e-6;
@@ -206,7 +218,7 @@ void end_stop_stage(const Prep& pr, const FitOptions& o, const SentenceContext& 
     const std::string id = law->id;
     if (!o.wants(id)) return;
     for (const auto& e : after.p.effects)
-        if (std::string(e.law->id) == "end_stop") return;   // the model given already has one
+        if (e.law == law) return;   // the model given already has one
     double se = 0;
     const std::vector<std::pair<std::string, double>> values = end_stop_values(pr, after, {}, o.rtol, &se);
     if (values.empty()) return;

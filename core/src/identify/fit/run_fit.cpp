@@ -38,42 +38,37 @@ void guarded(FitSession& fs, FitStage stage, Stage&& run, Undo&& undo) {
     }
 }
 
-}  // namespace
+// A model in the record's units is checked where the record lies (twice its largest |x|), not on the rail.
+void set_extent(Model& model0, const Model& given, const MeasuredData& d) {
+    if (stiffness_kind(model0.p) != StiffnessKind::DataUnits || given.p.x_extent != 0.0) return;
+    double xmax = 0;
+    for (double x : d.x)
+        if (std::isfinite(x)) xmax = std::max(xmax, std::abs(x));
+    if (xmax > 0) model0.p.x_extent = 2.0 * xmax;
+}
 
-FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitOptions& options, const MeasuredData* test,
-                  FitProgress* progress) {
-    // A model in the record's units is checked where the record lies (twice its largest |x|), not on the rail.
-    Model model0 = given;
-    auto extent = [&](const MeasuredData& d) {
-        if (stiffness_kind(model0.p) != StiffnessKind::DataUnits || given.p.x_extent != 0.0) return;
-        double xmax = 0;
-        for (double x : d.x)
-            if (std::isfinite(x)) xmax = std::max(xmax, std::abs(x));
-        if (xmax > 0) model0.p.x_extent = 2.0 * xmax;
-    };
-    extent(data_given);
-    // Runs in different wells that the measurement chain centred on zero: each put back at its well first.
-    FitReport offsets;
-    MeasuredData shifted;
-    bool moved = false;
+// Runs in different wells that the measurement chain centred on zero: each put back at its well first. Like any
+// stage, a fault ends it with a note in `offsets`, never the fit. True: the record to fit is `shifted`.
+bool runs_at_wells(const MeasuredData& data_given, const Model& given, const FitOptions& options, Model& model0, MeasuredData& shifted,
+                   FitReport& offsets) {
     try {
-        moved = run_offsets_stage(data_given, model0, options, shifted, offsets);
+        return run_offsets_stage(data_given, model0, options, shifted, offsets);
     } catch (const FitCancelled&) {
         throw;
-    } catch (const std::exception& e) {   // like any stage: a fault ends it with a note, never the fit
+    } catch (const std::exception& e) {
         model0 = given;
-        extent(data_given);
+        set_extent(model0, given, data_given);
         offsets = FitReport{};
         offsets.notes.push_back(std::string("putting the runs back at their wells failed (") + e.what() + "); the runs are fitted as recorded");
     }
-    const MeasuredData& data = moved ? shifted : data_given;
-    if (moved) extent(data);
-    FitSession fs(data, model0, options, test, progress);
-    fs.rep.run_offsets = offsets.run_offsets;
-    fs.rep.notes = offsets.notes;
+    return false;
+}
+
+// Stage 0: the record prepared for the fit, and what the report says of it.
+void prepare_stage(FitSession& fs) {
+    const MeasuredData& data = fs.data;
+    const Model& model0 = fs.model0;
     FitOptions& o = fs.o;
-    fs.enter(FitStage::Prepare);
-    const auto clock0 = std::chrono::steady_clock::now();
     FitReport& rep = fs.rep;
     rep.data_source = data.source;
     rep.model_name = model0.p.name;
@@ -85,7 +80,7 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
     check_plausible(data, model0, o);
     fs.prep = prepare(data, model0, o, rep.notes);
     Prep& prep = fs.prep;
-    prep.progress = progress;
+    prep.progress = fs.progress;
     prep.predictability = data_horizon(prep);
     const Prep& pr = prep;
     rep.samples = pr.n;
@@ -105,10 +100,14 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
         rep.omega_max = *std::max_element(pr.omega.begin(), pr.omega.end());
     }
     fs.hac_lag = hac_lag_of(pr);
-    const int hac_lag = fs.hac_lag;
+}
 
-    fs.enter(FitStage::Baseline);
-    // ---- 1. the baseline --------------------------------------------------------------------------------
+// Stage 1: the baseline, the chain's first steps, and the baseline's residual.
+void baseline_stage(FitSession& fs) {
+    const Model& model0 = fs.model0;
+    FitOptions& o = fs.o;
+    FitReport& rep = fs.rep;
+    const Prep& pr = fs.prep;
     std::vector<std::string>& base_names = fs.base_names;
     base_names =
         o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0) : o.fit_params) : std::vector<std::string>{};
@@ -149,11 +148,30 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
     std::vector<double> pw;
     Eigen::VectorXd& R0 = fs.R0;
     residual(pr, base, R0, pw);
-    locate_features(prep, base, R0);
+    locate_features(fs.prep, base, R0);
     rep.before = model0;
     fs.in0 = R0.squaredNorm();
     rep.noise_floor_N = base.p.m * pr.sigma_x * pr.K.noise_gain / base.sensor_gain();
+}
 
+// The typical speed (RMS) and position (90 % of |x|) of the rows fitted, for the effects' sentences.
+SentenceContext sentence_context(const Prep& pr, const MeasuredData& data) {
+    SentenceContext sc;
+    std::vector<double> av, ax;
+    for (std::size_t r : pr.rows) {
+        av.push_back(std::abs(pr.vs[r]));
+        ax.push_back(std::abs(data.x[r]));
+    }
+    double s = 0;
+    for (double v : av) s += v * v;
+    sc.v_typ = av.empty() ? 0.0 : std::sqrt(s / static_cast<double>(av.size()));
+    sc.x_typ = quantile(ax, 0.9);
+    return sc;
+}
+
+// Stages 2 to 6, each guarded: a stage that fails leaves the model before it (no effects, where the effects
+// were its work).
+void effect_stages(FitSession& fs) {
     auto no_effects = [&fs] {
         fs.sel = Selection{};
         fs.after = fs.base;
@@ -171,20 +189,8 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
     fs.enter(FitStage::Refit);
     // ---- 4. the model with the effects: linear estimates, then joint nonlinear refinement; an effect whose
     //         significance does not survive the joint fit is dropped and the rest refitted ------------------
-    SentenceContext& sc = fs.sc;
-    {
-        std::vector<double> av, ax;
-        for (std::size_t r : pr.rows) {
-            av.push_back(std::abs(pr.vs[r]));
-            ax.push_back(std::abs(data.x[r]));
-        }
-        double s = 0;
-        for (double v : av) s += v * v;
-        sc.v_typ = av.empty() ? 0.0 : std::sqrt(s / static_cast<double>(av.size()));
-        sc.x_typ = quantile(ax, 0.9);
-    }
+    fs.sc = sentence_context(fs.prep, fs.data);
     guarded(fs, FitStage::Refit, [&] { refit_stage(fs); }, no_effects);
-    Model& after = fs.after;
 
     fs.enter(FitStage::ImpactLaw);
     // ---- 5. the impact law: bumper position, impact duration, restitution ----------------------------------
@@ -216,39 +222,31 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
             fs.chain = chain_before;
         });
     }
+}
 
-    fs.enter(FitStage::Errors);
-    // ---- 7. the final gate, errors before and after; 8. material for the plots; the verdict ------------------
-    errors_stage(fs);
-    std::stable_sort(rep.effects_found.begin(), rep.effects_found.end(),
-                     [](const FoundEffect& a, const FoundEffect& b) { return a.explained_fraction > b.explained_fraction; });
-    if (!rep.effects_found.empty()) after.p.name = base.p.name + "+" + rep.effects_found.front().id;
-    for (std::size_t k = 1; k < rep.effects_found.size(); ++k) after.p.name += "+" + rep.effects_found[k].id;
-    rep.after = after;
-    // ---- 9. what the data tell of the base parameters written (nothing changes them here) ------------------
-    guarded(fs, FitStage::Errors, [&] { uncertainty_stage(fs); }, [&] {
-        rep.base_estimates.clear();
-        rep.unseparated.clear();
-    });
+// What the report says of the wells after the fit, from every fitted term of the force: the effects found, and
+// the even stiffness the baseline fitted as k2 (runs put back at their wells).
+void wells_after(FitSession& fs) {
+    FitReport& rep = fs.rep;
+    const Prep& pr = fs.prep;
     rep.runs = pr.run_start.size();
-    rep.wells_before = well_report(model0, {}, pr);
-    rep.data_wells = data_wells(pr, hac_lag);
+    rep.wells_before = well_report(fs.model0, {}, pr);
+    rep.data_wells = data_wells(pr, fs.hac_lag);
     rep.wells_from_data = wells_asymmetry(rep.data_wells, rep.x_unit());
-    {
-        // The wells' errors from every fitted term of the force: the effects found, and the even stiffness the
-        // baseline fitted as k2 (runs put back at their wells).
-        std::vector<FoundEffect> terms = rep.effects_found;
-        for (const BaseEstimate& b : rep.base_estimates)
-            if (b.name == "k2") {
-                FoundEffect k2;
-                k2.id = "even_stiffness";
-                k2.sigma = {{"k2", b.sigma}};
-                terms.push_back(std::move(k2));
-            }
-        rep.wells_after = well_report(after, terms, pr);
-    }
+    std::vector<FoundEffect> terms = rep.effects_found;
+    for (const BaseEstimate& b : rep.base_estimates)
+        if (b.name == "k2") {
+            FoundEffect k2;
+            k2.id = "even_stiffness";
+            k2.sigma = {{"k2", b.sigma}};
+            terms.push_back(std::move(k2));
+        }
+    rep.wells_after = well_report(fs.after, terms, pr);
     rep.well_frequency = well_frequency_identifiability(rep.data_wells, rep.wells_after, rep.unseparated);
-    // Never a report whose headline numbers are not numbers: name the first and refuse to hand it over.
+}
+
+// Never a report whose headline numbers are not numbers: name the first and refuse to hand it over.
+void check_finite(const FitReport& rep, const MeasuredData& data) {
     const std::pair<const char*, double> headline[] = {
         {"sensor noise", rep.sigma_x},
         {"noise floor", rep.noise_floor_N},
@@ -265,6 +263,48 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
             if (!std::isfinite(v))
                 throw std::runtime_error(data.source + ": effect " + e.id + "." + name + " came out " + std::to_string(v) +
                                          "; no report is written");
+}
+
+}  // namespace
+
+FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitOptions& options, const MeasuredData* test,
+                  FitProgress* progress) {
+    Model model0 = given;
+    set_extent(model0, given, data_given);
+    FitReport offsets;
+    MeasuredData shifted;
+    const bool moved = runs_at_wells(data_given, given, options, model0, shifted, offsets);
+    const MeasuredData& data = moved ? shifted : data_given;
+    if (moved) set_extent(model0, given, data);
+    FitSession fs(data, model0, options, test, progress);
+    fs.rep.run_offsets = offsets.run_offsets;
+    fs.rep.notes = offsets.notes;
+    fs.enter(FitStage::Prepare);
+    const auto clock0 = std::chrono::steady_clock::now();
+    FitReport& rep = fs.rep;
+    prepare_stage(fs);
+
+    fs.enter(FitStage::Baseline);
+    // ---- 1. the baseline --------------------------------------------------------------------------------
+    baseline_stage(fs);
+    effect_stages(fs);   // ---- 2 to 6
+
+    fs.enter(FitStage::Errors);
+    // ---- 7. the final gate, errors before and after; 8. material for the plots; the verdict ------------------
+    errors_stage(fs);
+    Model& after = fs.after;
+    std::stable_sort(rep.effects_found.begin(), rep.effects_found.end(),
+                     [](const FoundEffect& a, const FoundEffect& b) { return a.explained_fraction > b.explained_fraction; });
+    if (!rep.effects_found.empty()) after.p.name = fs.base.p.name + "+" + rep.effects_found.front().id;
+    for (std::size_t k = 1; k < rep.effects_found.size(); ++k) after.p.name += "+" + rep.effects_found[k].id;
+    rep.after = after;
+    // ---- 9. what the data tell of the base parameters written (nothing changes them here) ------------------
+    guarded(fs, FitStage::Errors, [&] { uncertainty_stage(fs); }, [&] {
+        rep.base_estimates.clear();
+        rep.unseparated.clear();
+    });
+    wells_after(fs);
+    check_finite(rep, data);
     rep.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
     if (progress) progress->fraction.store(1.0, std::memory_order_relaxed);
     return std::move(rep);

@@ -136,19 +136,11 @@ void impact_law_stage(FitSession& fs);     // impact_law.cpp: 5, bumper position
 void validate_effects(FitSession& fs);     // validation.cpp: 6, held-out validation
 void output_error_stage(FitSession& fs);   // validation.cpp: 6b, the output-error refit of an input-forced record
 
-// The held-out judge of the validation: a model's error on each held-out window (its effects refitted on the
-// other fold), two such error sets compared, and whether a change is better beyond the noise.
-struct HeldOutJudge {
-    std::function<std::vector<double>(const Model&)> errors;
-    std::function<Compare(const std::vector<double>&, const std::vector<double>&)> compare;
-    std::function<bool(const Compare&)> better;
-    std::function<double(const std::vector<double>&)> rms;   // the held-out shooting RMS of an error set [m]
-};
-// shape.cpp: the last pass of 6, each named law kept against the generic terms of its variables (fit.rivals):
-// replaced by it where the generic term beside it predicts held-out data better and does as well without it;
-// the generic term added beside it where both are needed. cur, e_cur and kept follow the changes.
-void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit_base, Model& cur, std::vector<double>& e_cur,
-                           Chain& kept);
+class HeldOutJudge;   // judge.hpp: the held-out judge of stage 6
+// shape.cpp: the last pass of 6, each named law the judge's model keeps held against the generic terms of its
+// variables (fit.rivals): replaced by it where the generic term beside it predicts held-out data better and does
+// as well without it; the generic term added beside it where both are needed. The judge follows the changes.
+void named_against_generic(FitSession& fs, HeldOutJudge& judge);
 void errors_stage(FitSession& fs);         // errors.cpp: 7 and 8, the final gate, errors, plots, verdict
 void uncertainty_stage(FitSession& fs);    // uncertainty.cpp: 9, the base parameters' standard errors
 

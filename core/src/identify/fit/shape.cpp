@@ -13,7 +13,7 @@
 #include <string>
 
 #include "effects/law_helpers.hpp"
-#include "identify/fit/session.hpp"
+#include "identify/fit/judge.hpp"
 
 namespace impactlab::identify::detail {
 
@@ -152,25 +152,240 @@ Alike sibling_alike(const FitSession& fs, const Model& cur, bool refit_base, con
     }
     return {};
 }
+// Whether law `law` names `r` among its rivals (the generic terms of its variables).
+bool has_rival(const EffectLaw* law, const std::string& r) {
+    return law && std::any_of(law->fit.rivals.begin(), law->fit.rivals.end(), [&](const char* q) { return q && r == q; });
+}
+
+// The named laws the judge's model keeps that share one rival (a generic term), held against it.
+class RivalCase {
+public:
+    RivalCase(FitSession& fs, HeldOutJudge& judge, const std::string& rival, const Candidate& cg, std::vector<std::string> ids)
+        : fs_(fs), rep_(fs.rep), judge_(judge), cur_(judge.model()), e_cur_(judge.model_errors()), refit_base_(judge.refit_base()),
+          rival_(rival), cg_(cg), ids_(std::move(ids)) {
+        for (const std::string& id : ids_) names_ += (names_.empty() ? "" : " and ") + id;
+    }
+
+    void decide() {
+        if (in_model(cur_, rival_)) {
+            beside_generic();
+            return;
+        }
+        const EffectInstance g0 = start_instance(cg_, cur_, fs_.prep, 1.0);
+        Model both = cur_, alone = without_named(cur_);
+        both.p.effects.push_back(g0);
+        alone.p.effects.push_back(g0);
+        const std::vector<double> e_both = judge_.errors(both);
+        const Compare added = judge_.compare(e_cur_, e_both);
+        if (!judge_.better(added) && ids_.size() < 2) by_equation_error(both, alone);
+        else by_held_out(both, e_both, alone, added);
+    }
+
+    // Whether law `id` is among the effects the fit added to m.
+    static bool in_model(const FitSession& fs, const Model& m, const std::string& id) {
+        return std::any_of(m.p.effects.begin() + static_cast<std::ptrdiff_t>(fs.base.p.effects.size()), m.p.effects.end(),
+                           [&](const EffectInstance& e) { return e.law->id == id; });
+    }
+
+private:
+    bool in_model(const Model& m, const std::string& id) const { return in_model(fs_, m, id); }
+
+    Model without_named(const Model& m) const {
+        Model out = m;
+        auto& fx = out.p.effects;
+        fx.erase(std::remove_if(fx.begin() + static_cast<std::ptrdiff_t>(fs_.base.p.effects.size()), fx.end(),
+                                [&](const EffectInstance& e) { return std::find(ids_.begin(), ids_.end(), e.law->id) != ids_.end(); }),
+                 fx.end());
+        return out;
+    }
+    // Model m, fitted on the whole record, becomes the current one with held-out errors e_m, unless unphysical.
+    bool adopt(const Model& m, const std::vector<double>& e_m) {
+        const Model fitted = fitted_whole(fs_, m, refit_base_);
+        if (!unphysical(fitted).empty()) return false;
+        judge_.set_model(fitted, e_m);
+        return true;
+    }
+    FoundEffect generic_found(const Compare& c) const {
+        FoundEffect g;
+        g.id = rival_;
+        g.evidence = Evidence::EquationError;
+        g.validation_gain = c.gain;
+        g.validation_z = c.z;
+        return g;
+    }
+    // The named laws give way to the generic term: rejected with `why`, the generic term found (or kept) in
+    // their place, the model `m` fitted on the whole record.
+    void give_way(const Model& m, const std::vector<double>& e_m, const Compare& c, const std::string& why, const std::string& note) {
+        if (!adopt(m, e_m)) return;
+        FoundEffect g = generic_found(c);
+        for (const std::string& id : ids_) {
+            const auto it = std::find_if(rep_.effects_found.begin(), rep_.effects_found.end(), [&](const FoundEffect& f) { return f.id == id; });
+            g.explained_fraction += it->explained_fraction;
+            rep_.effects_rejected.push_back({id, why, it->validation_gain, it->validation_z, it->parameters});
+            rep_.effects_found.erase(it);
+        }
+        const auto old = std::find_if(rep_.effects_found.begin(), rep_.effects_found.end(), [&](const FoundEffect& f) { return f.id == rival_; });
+        if (old != rep_.effects_found.end()) {   // already there: it stays, refitted
+            g.explained_fraction += old->explained_fraction;
+            g.z = old->z;
+            rep_.effects_found.erase(old);
+        }
+        for (const EffectInstance& e : cur_.p.effects)
+            if (e.law->id == rival_) g.parameters = named(e);
+        g.sentence = sentence(g.id, fs_.base, g.parameters, g.sigma, fs_.sc);
+        rep_.effects_found.push_back(g);
+        rep_.notes.push_back(note);
+        judge_.record(names_ + " replaced by " + rival_);
+    }
+    // A law that stays in the model although the data do not tell its shape from `from`: a force of its
+    // size, no finding of its law (in the report and in every step the final gate may go back to).
+    void mark_unresolved(const std::string& id, const std::string& from, const std::string& why) {
+        auto mark = [&](std::vector<FoundEffect>& found) {
+            for (FoundEffect& f : found)
+                if (f.id == id) f.not_told_from = from;
+        };
+        mark(rep_.effects_found);
+        for (ChainStep& st : judge_.steps()) mark(st.found);
+        rep_.notes.push_back(id + " " + why + ", but the data do not tell its shape from " + from + ": it stays as a force of its size, and its law is no finding");
+    }
+    // Laws that stand (beside the generic term, or together) are still findings only where the data tell
+    // each from the other laws of its variable.
+    void siblings_resolved(const std::string& why) {
+        for (const std::string& id : ids_) {
+            const std::string sibling = sibling_alike(fs_, cur_, refit_base_, id).from;
+            if (!sibling.empty()) mark_unresolved(id, sibling, why);
+        }
+    }
+
+    // The generic term is in the model already: beside it, which spans their shapes, the named laws must still add.
+    void beside_generic() {
+        char buf[320];
+        const Model alone = without_named(cur_);
+        const std::vector<double> e_alone = judge_.errors(alone);
+        const Compare c = judge_.compare(e_alone, e_cur_);
+        if (judge_.better(c)) {
+            siblings_resolved("adds to the generic " + rival_ + " on held-out data");
+            return;
+        }
+        std::snprintf(buf, sizeof buf, "beside the generic %s it adds nothing on held-out data (error %s by %.2f %%, paired z = %.1f): "
+                      "the data show a shape, not this law", rival_.c_str(), c.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(c.gain), c.z);
+        give_way(alone, e_alone, judge_.compare(e_cur_, e_alone), buf,
+                 names_ + " added nothing beside the generic " + rival_ + " on held-out data: the generic stands and no physics is named for it");
+    }
+
+    // The held-out shooting cannot tell one law from the generic term beside it; the whole record's equation
+    // error, with the law refitted beside the generic term, can: the law stands unless the generic term stands
+    // out there and the law adds nothing beside it (x^5 read as a cubic spring), and held-out data prefer it
+    // no more.
+    void by_equation_error(const Model& both, const Model& alone) {
+        char buf[320];
+        double sse_both = NAN;
+        const std::vector<double> z = equation_z(fs_, both, refit_base_, {{rival_}, ids_}, &sse_both);
+        // And by a share that matters: a long clean record puts a generic term out of the noise on the
+        // smallest remainder (a sensor offset explaining 97 % leaves one), not only on another shape.
+        auto share_taken = [&] {
+            Eigen::VectorXd R_cur;
+            std::vector<double> pw;
+            residual(fs_.prep, cur_, R_cur, pw);
+            return (R_cur.squaredNorm() - sse_both) / R_cur.squaredNorm();
+        };
+        const bool other_shape = z[0] >= fs_.o.z_threshold && z[1] < fs_.o.z_threshold && share_taken() >= kOtherShapeShare;
+        // Nor is a shape resolved that a law of the same variable explains as well (v|v| against v on a
+        // faint force of v): the data show a force of that variable, not this law.
+        const Alike alike = other_shape ? Alike{} : sibling_alike(fs_, cur_, refit_base_, ids_[0]);
+        const std::string& sibling = alike.from;
+        const double z_sib = alike.z;
+        if (!other_shape && sibling.empty()) return;
+        const std::vector<double> e_alone = judge_.errors(alone);
+        if (judge_.better(judge_.compare(e_alone, e_cur_))) {   // held-out data prefer the law: it stays, unresolved
+            mark_unresolved(ids_[0], other_shape ? "the generic " + rival_ : sibling, "predicts held-out data better than the generic " + rival_);
+            return;
+        }
+        // Against a shape with no name, a named law is preferred to a curve fit that does no better: it
+        // stays, unresolved, unless the generic term predicts held-out data better.
+        if (alike.nameless && !judge_.better(judge_.compare(e_cur_, e_alone))) {
+            mark_unresolved(ids_[0], sibling, "predicts held-out data as well as the generic " + rival_);
+            return;
+        }
+        if (other_shape) {
+            std::snprintf(buf, sizeof buf, "beside it the generic %s stands out of the whole record's equation error (z = %.1f) and it adds "
+                          "nothing beside the generic (z = %.1f): the data show a shape this law does not have", rival_.c_str(), z[0], z[1]);
+            give_way(alone, e_alone, judge_.compare(e_cur_, e_alone), buf,
+                     names_ + " left a shape in its variable that the generic " + rival_ + " follows in the whole record's equation error, where " +
+                         names_ + " adds nothing beside it: the generic stands and no physics is named for it");
+        } else {
+            std::snprintf(buf, sizeof buf, "beside %s it adds nothing out of the noise of the whole record's equation error (z = %.1f): "
+                          "the data do not resolve its shape", sibling.c_str(), z_sib);
+            give_way(alone, e_alone, judge_.compare(e_cur_, e_alone), buf,
+                     "the data do not tell " + names_ + " from " + sibling + ": a force of the same variable whose shape they do not resolve, "
+                         "so the generic " + rival_ + " stands and no physics is named for it");
+        }
+    }
+
+    // Held-out data decide: the generic term added beside the laws (both), or in their place (alone).
+    void by_held_out(const Model& both, const std::vector<double>& e_both, const Model& alone, const Compare& added) {
+        char buf[320];
+        const std::vector<double> e_alone = judge_.errors(alone);
+        const Compare replaced = judge_.compare(e_cur_, e_alone);
+        if (judge_.better(added)) {
+            if (judge_.better(judge_.compare(e_alone, e_both))) {
+                // Both are needed: the named laws, and a shape of their variable beyond them.
+                if (!adopt(both, e_both)) return;
+                FoundEffect g = generic_found(added);
+                g.parameters = named(cur_.p.effects.back());
+                g.sentence = sentence(g.id, fs_.base, g.parameters, g.sigma, fs_.sc);
+                rep_.effects_found.push_back(g);
+                rep_.notes.push_back("a smooth force of the same variable beside " + names_ + " predicts held-out data better: " + rival_ +
+                                     " added for the shape they leave");
+                judge_.record("added " + rival_ + " beside " + names_);
+                siblings_resolved("stands beside the generic " + rival_);
+                return;
+            }
+            // The generic term alone does as well as both: the data do not single out the named laws.
+            if (!(replaced.sum_new < replaced.sum_cur)) return;
+            std::snprintf(buf, sizeof buf, "the generic %s beside it predicts held-out data better (error lowered by %.2f %%, paired z = %.1f) "
+                          "and does as well without it: the data show a shape this law does not have", rival_.c_str(), 100.0 * added.gain, added.z);
+            give_way(alone, e_alone, replaced, buf,
+                     names_ + " left a shape in its variable that the generic " + rival_ +
+                         " follows on held-out data, with or without it: the generic stands and no physics is named for it");
+            return;
+        }
+        // Several laws of one variable fitted together are a polynomial in it: named only where they predict
+        // held-out data better than one smooth force of that variable.
+        if (!judge_.better(judge_.compare(e_alone, e_cur_))) {
+            std::snprintf(buf, sizeof buf, "with the other laws of its variable it predicts held-out data no better than the generic %s alone "
+                          "(error %s by %.2f %% in its place): the data show a shape, not these laws", rival_.c_str(),
+                          replaced.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(replaced.gain));
+            give_way(alone, e_alone, replaced, buf,
+                     names_ + " together predict held-out data no better than the generic " + rival_ +
+                         ": the generic stands and no physics is named for them");
+        } else {
+            siblings_resolved("predicts held-out data better, with " + names_ + ", than the generic " + rival_);
+        }
+    }
+
+    FitSession& fs_;
+    FitReport& rep_;
+    HeldOutJudge& judge_;
+    const Model& cur_;                     // the judge's model, which follows every change kept
+    const std::vector<double>& e_cur_;
+    const bool refit_base_;
+    const std::string& rival_;
+    const Candidate& cg_;
+    const std::vector<std::string> ids_;   // the named laws of the rival's variable kept as instances
+    std::string names_;                    // their ids, joined by "and"
+};
 }  // namespace
 
-void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit_base, Model& cur, std::vector<double>& e_cur,
-                           Chain& kept) {
+void named_against_generic(FitSession& fs, HeldOutJudge& judge) {
     FitReport& rep = fs.rep;
-    if (e_cur.empty()) return;
+    if (!judge.can_judge()) return;
     // The rivals in the order their laws were kept, each once.
     std::vector<std::string> rivals;
     for (const FoundEffect& f : rep.effects_found)
         if (const EffectLaw* law = find_effect(f.id))
             for (const char* r : law->fit.rivals)
                 if (r && std::find(rivals.begin(), rivals.end(), r) == rivals.end()) rivals.push_back(r);
-    auto has_rival = [](const EffectLaw* law, const std::string& r) {
-        return law && std::any_of(law->fit.rivals.begin(), law->fit.rivals.end(), [&](const char* q) { return q && r == q; });
-    };
-    auto in_model = [&](const Model& m, const std::string& id) {   // among the effects the fit added
-        return std::any_of(m.p.effects.begin() + static_cast<std::ptrdiff_t>(fs.base.p.effects.size()), m.p.effects.end(),
-                           [&](const EffectInstance& e) { return e.law->id == id; });
-    };
     for (const std::string& rival : rivals) {
         const auto cg = std::find_if(fs.screen.cands.begin(), fs.screen.cands.end(),
                                      [&](const Candidate& c) { return c.law && c.id == rival; });
@@ -179,184 +394,10 @@ void named_against_generic(FitSession& fs, const HeldOutJudge& judge, bool refit
         std::vector<std::string> ids;
         for (const FoundEffect& f : rep.effects_found) {
             const EffectLaw* law = find_effect(f.id);
-            if (has_rival(law, rival) && in_model(cur, f.id)) ids.push_back(f.id);
+            if (has_rival(law, rival) && RivalCase::in_model(fs, judge.model(), f.id)) ids.push_back(f.id);
         }
         if (ids.empty()) continue;
-        std::string names;
-        for (const std::string& id : ids) names += (names.empty() ? "" : " and ") + id;
-        auto without_named = [&](const Model& m) {
-            Model out = m;
-            auto& fx = out.p.effects;
-            fx.erase(std::remove_if(fx.begin() + static_cast<std::ptrdiff_t>(fs.base.p.effects.size()), fx.end(),
-                                    [&](const EffectInstance& e) { return std::find(ids.begin(), ids.end(), e.law->id) != ids.end(); }),
-                     fx.end());
-            return out;
-        };
-        // Model m, fitted on the whole record, becomes the current one with held-out errors e_m, unless unphysical.
-        auto adopt = [&](const Model& m, const std::vector<double>& e_m) {
-            const Model fitted = fitted_whole(fs, m, refit_base);
-            if (!unphysical(fitted).empty()) return false;
-            cur = fitted;
-            e_cur = e_m;
-            return true;
-        };
-        auto generic_found = [&](const Compare& c) {
-            FoundEffect g;
-            g.id = rival;
-            g.evidence = Evidence::EquationError;
-            g.validation_gain = c.gain;
-            g.validation_z = c.z;
-            return g;
-        };
-        // The named laws give way to the generic term: rejected with `why`, the generic term found (or kept) in
-        // their place, the model `m` fitted on the whole record.
-        auto give_way = [&](const Model& m, const std::vector<double>& e_m, const Compare& c, const std::string& why, const std::string& note) {
-            if (!adopt(m, e_m)) return;
-            FoundEffect g = generic_found(c);
-            for (const std::string& id : ids) {
-                const auto it = std::find_if(rep.effects_found.begin(), rep.effects_found.end(), [&](const FoundEffect& f) { return f.id == id; });
-                g.explained_fraction += it->explained_fraction;
-                rep.effects_rejected.push_back({id, why, it->validation_gain, it->validation_z, it->parameters});
-                rep.effects_found.erase(it);
-            }
-            const auto old = std::find_if(rep.effects_found.begin(), rep.effects_found.end(), [&](const FoundEffect& f) { return f.id == rival; });
-            if (old != rep.effects_found.end()) {   // already there: it stays, refitted
-                g.explained_fraction += old->explained_fraction;
-                g.z = old->z;
-                rep.effects_found.erase(old);
-            }
-            for (const EffectInstance& e : cur.p.effects)
-                if (e.law->id == rival) g.parameters = named(e);
-            g.sentence = sentence(g.id, fs.base, g.parameters, g.sigma, fs.sc);
-            rep.effects_found.push_back(g);
-            rep.notes.push_back(note);
-            kept.push_back({names + " replaced by " + rival, cur, rep.effects_found, judge.rms(e_cur), false});
-        };
-        // A law that stays in the model although the data do not tell its shape from `from`: a force of its
-        // size, no finding of its law (in the report and in every step the final gate may go back to).
-        auto mark_unresolved = [&](const std::string& id, const std::string& from, const std::string& why) {
-            auto mark = [&](std::vector<FoundEffect>& found) {
-                for (FoundEffect& f : found)
-                    if (f.id == id) f.not_told_from = from;
-            };
-            mark(rep.effects_found);
-            for (ChainStep& st : kept) mark(st.found);
-            rep.notes.push_back(id + " " + why + ", but the data do not tell its shape from " + from + ": it stays as a force of its size, and its law is no finding");
-        };
-        // Laws that stand (beside the generic term, or together) are still findings only where the data tell
-        // each from the other laws of its variable.
-        auto siblings_resolved = [&](const std::string& why) {
-            for (const std::string& id : ids) {
-                const std::string sibling = sibling_alike(fs, cur, refit_base, id).from;
-                if (!sibling.empty()) mark_unresolved(id, sibling, why);
-            }
-        };
-        char buf[320];
-        if (in_model(cur, rival)) {
-            // Beside the generic term of their variable, which spans their shapes, the named laws must still add.
-            const Model alone = without_named(cur);
-            const std::vector<double> e_alone = judge.errors(alone);
-            const Compare c = judge.compare(e_alone, e_cur);
-            if (judge.better(c)) {
-                siblings_resolved("adds to the generic " + rival + " on held-out data");
-                continue;
-            }
-            std::snprintf(buf, sizeof buf, "beside the generic %s it adds nothing on held-out data (error %s by %.2f %%, paired z = %.1f): "
-                          "the data show a shape, not this law", rival.c_str(), c.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(c.gain), c.z);
-            give_way(alone, e_alone, judge.compare(e_cur, e_alone), buf,
-                     names + " added nothing beside the generic " + rival + " on held-out data: the generic stands and no physics is named for it");
-            continue;
-        }
-        const EffectInstance g0 = start_instance(*cg, cur, fs.prep, 1.0);
-        Model both = cur, alone = without_named(cur);
-        both.p.effects.push_back(g0);
-        alone.p.effects.push_back(g0);
-        const std::vector<double> e_both = judge.errors(both);
-        const Compare added = judge.compare(e_cur, e_both);
-        if (!judge.better(added) && ids.size() < 2) {
-            // The held-out shooting cannot tell them apart; the whole record's equation error, with the law
-            // refitted beside the generic term, can: the law stands unless the generic term stands out there and
-            // the law adds nothing beside it (x^5 read as a cubic spring), and held-out data prefer it no more.
-            double sse_both = NAN;
-            const std::vector<double> z = equation_z(fs, both, refit_base, {{rival}, ids}, &sse_both);
-            // And by a share that matters: a long clean record puts a generic term out of the noise on the
-            // smallest remainder (a sensor offset explaining 97 % leaves one), not only on another shape.
-            auto share_taken = [&] {
-                Eigen::VectorXd R_cur;
-                std::vector<double> pw;
-                residual(fs.prep, cur, R_cur, pw);
-                return (R_cur.squaredNorm() - sse_both) / R_cur.squaredNorm();
-            };
-            const bool other_shape = z[0] >= fs.o.z_threshold && z[1] < fs.o.z_threshold && share_taken() >= kOtherShapeShare;
-            // Nor is a shape resolved that a law of the same variable explains as well (v|v| against v on a
-            // faint force of v): the data show a force of that variable, not this law.
-            const Alike alike = other_shape ? Alike{} : sibling_alike(fs, cur, refit_base, ids[0]);
-            const std::string& sibling = alike.from;
-            const double z_sib = alike.z;
-            if (!other_shape && sibling.empty()) continue;
-            const std::vector<double> e_alone = judge.errors(alone);
-            if (judge.better(judge.compare(e_alone, e_cur))) {   // held-out data prefer the law: it stays, unresolved
-                mark_unresolved(ids[0], other_shape ? "the generic " + rival : sibling, "predicts held-out data better than the generic " + rival);
-                continue;
-            }
-            // Against a shape with no name, a named law is preferred to a curve fit that does no better: it
-            // stays, unresolved, unless the generic term predicts held-out data better.
-            if (alike.nameless && !judge.better(judge.compare(e_cur, e_alone))) {
-                mark_unresolved(ids[0], sibling, "predicts held-out data as well as the generic " + rival);
-                continue;
-            }
-            if (other_shape) {
-                std::snprintf(buf, sizeof buf, "beside it the generic %s stands out of the whole record's equation error (z = %.1f) and it adds "
-                              "nothing beside the generic (z = %.1f): the data show a shape this law does not have", rival.c_str(), z[0], z[1]);
-                give_way(alone, e_alone, judge.compare(e_cur, e_alone), buf,
-                         names + " left a shape in its variable that the generic " + rival + " follows in the whole record's equation error, where " +
-                             names + " adds nothing beside it: the generic stands and no physics is named for it");
-            } else {
-                std::snprintf(buf, sizeof buf, "beside %s it adds nothing out of the noise of the whole record's equation error (z = %.1f): "
-                              "the data do not resolve its shape", sibling.c_str(), z_sib);
-                give_way(alone, e_alone, judge.compare(e_cur, e_alone), buf,
-                         "the data do not tell " + names + " from " + sibling + ": a force of the same variable whose shape they do not resolve, "
-                             "so the generic " + rival + " stands and no physics is named for it");
-            }
-            continue;
-        }
-        const std::vector<double> e_alone = judge.errors(alone);
-        const Compare replaced = judge.compare(e_cur, e_alone);
-        if (judge.better(added)) {
-            if (judge.better(judge.compare(e_alone, e_both))) {
-                // Both are needed: the named laws, and a shape of their variable beyond them.
-                if (!adopt(both, e_both)) continue;
-                FoundEffect g = generic_found(added);
-                g.parameters = named(cur.p.effects.back());
-                g.sentence = sentence(g.id, fs.base, g.parameters, g.sigma, fs.sc);
-                rep.effects_found.push_back(g);
-                rep.notes.push_back("a smooth force of the same variable beside " + names + " predicts held-out data better: " + rival +
-                                    " added for the shape they leave");
-                kept.push_back({"added " + rival + " beside " + names, cur, rep.effects_found, judge.rms(e_cur), false});
-                siblings_resolved("stands beside the generic " + rival);
-                continue;
-            }
-            // The generic term alone does as well as both: the data do not single out the named laws.
-            if (!(replaced.sum_new < replaced.sum_cur)) continue;
-            std::snprintf(buf, sizeof buf, "the generic %s beside it predicts held-out data better (error lowered by %.2f %%, paired z = %.1f) "
-                          "and does as well without it: the data show a shape this law does not have", rival.c_str(), 100.0 * added.gain, added.z);
-            give_way(alone, e_alone, replaced, buf,
-                     names + " left a shape in its variable that the generic " + rival +
-                         " follows on held-out data, with or without it: the generic stands and no physics is named for it");
-            continue;
-        }
-        // Several laws of one variable fitted together are a polynomial in it: named only where they predict
-        // held-out data better than one smooth force of that variable.
-        if (!judge.better(judge.compare(e_alone, e_cur))) {
-            std::snprintf(buf, sizeof buf, "with the other laws of its variable it predicts held-out data no better than the generic %s alone "
-                          "(error %s by %.2f %% in its place): the data show a shape, not these laws", rival.c_str(),
-                          replaced.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(replaced.gain));
-            give_way(alone, e_alone, replaced, buf,
-                     names + " together predict held-out data no better than the generic " + rival +
-                         ": the generic stands and no physics is named for them");
-        } else {
-            siblings_resolved("predicts held-out data better, with " + names + ", than the generic " + rival);
-        }
+        RivalCase(fs, judge, rival, *cg, std::move(ids)).decide();
     }
 }
 

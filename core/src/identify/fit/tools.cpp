@@ -344,7 +344,7 @@ double fit_bumper_shift(const Prep& pr, Model& m, const std::vector<char>& use, 
 
 std::vector<std::pair<std::string, double>> refit_impact_law(const Prep& pr, const Model& m, const FoundEffect& f,
                                                              const std::vector<char>& use) {
-    const ImpactLawData d = impact_law_data(pr, m, f.id == "impact_duration", use);
+    const ImpactLawData d = impact_law_data(pr, m, impact_trait(f.id) == ImpactTrait::Dwell, use);
     const auto nm = impact_law_names(d.dwell);
     auto value = [&](const char* k) {
         for (const auto& [n, v] : f.parameters)
