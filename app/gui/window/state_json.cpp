@@ -43,10 +43,10 @@ bool App::write_state_json(const std::string& path) {
                                }()}});
         j["clicker"] = {{"on", poincare_.clicker()}, {"orbits", std::move(orbits)}};
     }
-    j["guide"] = {{"open", show_guide_}, {"demo", demo_}, {"details", details_}, {"basins_open", panel_visible_[static_cast<std::size_t>(PanelId::Basins)]},
-                  {"collapsed", guide_.collapsed()},
-                  {"controls_tab", controls_tab_ < 0 || !layout_.controls_tabbed ? json(nullptr) : json(controls_tab_ == 0 ? "Run" : controls_tab_ == 1 ? "View" : "State")},
-                  {"rect", {guide_.rect()[0], guide_.rect()[1], guide_.rect()[2], guide_.rect()[3]}}};
+    j["guide"] = {{"open", demos_.show}, {"demo", demos_.last}, {"details", view_.details}, {"basins_open", layout_.panel_visible[static_cast<std::size_t>(PanelId::Basins)]},
+                  {"collapsed", demos_.panel.collapsed()},
+                  {"controls_tab", layout_.controls_tab < 0 || !layout_.frame.controls_tabbed ? json(nullptr) : json(layout_.controls_tab == 0 ? "Run" : layout_.controls_tab == 1 ? "View" : "State")},
+                  {"rect", {demos_.panel.rect()[0], demos_.panel.rect()[1], demos_.panel.rect()[2], demos_.panel.rect()[3]}}};
     {   // The time strip's traces and their y ranges [SI units].
         json traces = json::array(), views = json::array();
         traces.push_back(strip_key(strip_.first()));
@@ -59,32 +59,32 @@ bool App::write_state_json(const std::string& path) {
     }
     {   // The running model's parameters as the Parameters panel shows them, and whether any was edited.
         json ps = json::object();
-        for (const EditableParam& e : editable_params(params_)) ps[e.key] = number(e.value);
+        for (const EditableParam& e : editable_params(run_.params)) ps[e.key] = number(e.value);
         j["params"] = std::move(ps);
-        j["params_edited"] = params_edited(params_);
+        j["params_edited"] = params_edited(run_.params);
     }
-    j["omega"] = number(omega_);
-    j["xI"] = number(xI_);
-    j["speed"] = number(speed_);
+    j["omega"] = number(run_.omega);
+    j["xI"] = number(run_.xI);
+    j["speed"] = number(run_.speed);
     j["preset"] = opt_.preset > 0 ? json(presets_for(model_name())[static_cast<std::size_t>(opt_.preset - 1)].label)
                                   : json(nullptr);
-    j["sim_time"] = number(have_last_ ? last_.t : sim_->status().sim_time);
+    j["sim_time"] = number(feed_.have_last ? feed_.last.t : sim_->status().sim_time);
     // Commands to the simulation thread: held back by a full ring (resent each frame), given up, and the
     // ring's own count of refusals (each held command once).
     j["commands"] = {{"waiting", commands_.waiting()}, {"deferred", commands_.deferred()}, {"lost", commands_.lost()},
                      {"refused", sim_->status().commands_dropped}};
-    j["fps"] = number(fps_);
+    j["fps"] = number(frames_.fps);
     // The trajectory history (replay's range): a continued run keeps the past and drops the old future.
-    j["history"] = {{"samples", traj_.size()},
-                    {"t_first", traj_.empty() ? json(nullptr) : number(traj_[0].t)},
-                    {"t_last", traj_.empty() ? json(nullptr) : number(traj_.back().t)},
-                    {"replay_t", replay_.active() ? number(replay_.cursor()) : json(nullptr)}};
-    j["ramp"] = {{"active", ramp_.active()}, {"omega_from", number(ramp_.omega_start())},
-                 {"omega_to", number(ramp_.target())}, {"rate", number(ramp_.rate())},
-                 {"points", ramp_.points().size()}};
-    j["frames"] = frame_count_;
-    j["epoch"] = epoch_;
-    j["energy"] = number(last_.energy);                 // [J] now
+    j["history"] = {{"samples", feed_.traj.size()},
+                    {"t_first", feed_.traj.empty() ? json(nullptr) : number(feed_.traj[0].t)},
+                    {"t_last", feed_.traj.empty() ? json(nullptr) : number(feed_.traj.back().t)},
+                    {"replay_t", replay_.player.active() ? number(replay_.player.cursor()) : json(nullptr)}};
+    j["ramp"] = {{"active", ramp_.live.active()}, {"omega_from", number(ramp_.live.omega_start())},
+                 {"omega_to", number(ramp_.live.target())}, {"rate", number(ramp_.live.rate())},
+                 {"points", ramp_.live.points().size()}};
+    j["frames"] = frames_.count;
+    j["epoch"] = feed_.epoch;
+    j["energy"] = number(feed_.last.energy);                 // [J] now
     j["energy_max_trail"] = number(potential_.trail_energy_max());       // [J] over the phase portrait's trail
     {
         const EnergyBalance eb = sim_->status().energy;   // the energy bar's numbers [J]
@@ -96,41 +96,41 @@ bool App::write_state_json(const std::string& path) {
     {
         // The companion cart: mode, its state, its separation |dx| from the cart [m].
         json c;
-        c["mode"] = companion_mode_ == CompanionMode::Twin ? "twin" : companion_mode_ == CompanionMode::Ghost ? "ghost" : "off";
-        if (companion_mode_ != CompanionMode::Off) {
-            if (companion_mode_ == CompanionMode::Ghost)
-                c["model"] = std::string(stiffness_sets()[static_cast<std::size_t>(stiffness_)].id) +
-                             impact_models()[static_cast<std::size_t>(ghost_impact_)].id;
-            c["x"] = companion_.have() ? number(companion_.last().x) : json(nullptr);
-            c["v"] = companion_.have() ? number(companion_.last().v) : json(nullptr);
-            c["t"] = companion_.have() ? number(companion_.last().t) : json(nullptr);
-            c["separation"] = number(companion_.separation_now());
-            c["separation_start"] = number(companion_.separation_start());
-            c["separation_max"] = number(companion_.separation_max());
+        c["mode"] = companion_.mode == CompanionMode::Twin ? "twin" : companion_.mode == CompanionMode::Ghost ? "ghost" : "off";
+        if (companion_.mode != CompanionMode::Off) {
+            if (companion_.mode == CompanionMode::Ghost)
+                c["model"] = std::string(stiffness_sets()[static_cast<std::size_t>(run_.stiffness)].id) +
+                             impact_models()[static_cast<std::size_t>(companion_.ghost_impact)].id;
+            c["x"] = companion_.track.have() ? number(companion_.track.last().x) : json(nullptr);
+            c["v"] = companion_.track.have() ? number(companion_.track.last().v) : json(nullptr);
+            c["t"] = companion_.track.have() ? number(companion_.track.last().t) : json(nullptr);
+            c["separation"] = number(companion_.track.separation_now());
+            c["separation_start"] = number(companion_.track.separation_start());
+            c["separation_max"] = number(companion_.track.separation_max());
         }
         j["companion"] = std::move(c);
         // The grazing monitor over the last whole forcing period (null before one).
         json g = nullptr;
-        if (have_grazing_) {
+        if (feed_.have_grazing) {
             g = json::object();
-            g["x_max"] = number(grazing_.x);
-            g["distance"] = number(xI_shown_ - grazing_.x);   // [m] xI - max x
-            g["impacts"] = static_cast<int>(grazing_.energy);
-            g["impact_velocity"] = number(grazing_.v);         // [m/s] v- (rigid) or entry (compliant); null: none
-            g["penetration"] = number(grazing_.force);          // [m] compliant
+            g["x_max"] = number(feed_.grazing.x);
+            g["distance"] = number(feed_.xI_shown - feed_.grazing.x);   // [m] xI - max x
+            g["impacts"] = static_cast<int>(feed_.grazing.energy);
+            g["impact_velocity"] = number(feed_.grazing.v);         // [m/s] v- (rigid) or entry (compliant); null: none
+            g["penetration"] = number(feed_.grazing.force);          // [m] compliant
         }
         j["grazing"] = std::move(g);
-        j["regime_label"] = contact_label(params_, last_.regime, last_.force);   // the rig's and the status bar's
-        j["x"] = number(last_.x);
-        j["v"] = number(last_.v);
+        j["regime_label"] = contact_label(run_.params, feed_.last.regime, feed_.last.force);   // the rig's and the status bar's
+        j["x"] = number(feed_.last.x);
+        j["v"] = number(feed_.last.v);
         // The largest jump of x between two samples in the x(t) strip's window [m] (a bumper moved
         // into the cart made a staircase of x(t)).
         double step = 0;
-        const std::size_t n = traj_.size();
+        const std::size_t n = feed_.traj.size();
         if (n > 1) {
-            const double t_from = traj_.back().t - strip_window_;
-            for (std::size_t i = traj_.lower_bound(t_from, [](const SimMsg& m) { return m.t; }) + 1; i < n; ++i)
-                step = std::max(step, std::abs(traj_[i].x - traj_[i - 1].x));
+            const double t_from = feed_.traj.back().t - view_.strip_window;
+            for (std::size_t i = feed_.traj.lower_bound(t_from, [](const SimMsg& m) { return m.t; }) + 1; i < n; ++i)
+                step = std::max(step, std::abs(feed_.traj[i].x - feed_.traj[i - 1].x));
         }
         j["x_max_step"] = step;
     }
@@ -143,7 +143,7 @@ bool App::write_state_json(const std::string& path) {
     j["poincare_period"] = st == PoincareMap::Status::Settling ? json(nullptr) : json(map.period());
     j["poincare_slow"] = map.slow();   // settling on an alternation still dying out (a multiplier near -1)
     j["poincare_decay"] = std::isfinite(map.decay()) ? json(map.decay()) : json(nullptr);   // its shrink per period
-    j["poincare_omega_moving"] = ramp_.active();   // the label says omega moves
+    j["poincare_omega_moving"] = ramp_.live.active();   // the label says omega moves
     j["poincare_seen"] = map.seen();   // section points since the last change, the transient included
     j["poincare_tol"] = {map.tol_x(), map.tol_v()};
     json pts = json::array(), imp = json::array();
@@ -155,18 +155,18 @@ bool App::write_state_json(const std::string& path) {
     j["poincare_points"] = std::move(pts);
     // The section's phase asked for [rad], and the newest section point the engine sent in this epoch: its
     // t, its phi reduced to [0, 2 pi) (phi0 there, up to rounding), x and v.
-    j["poincare_phi0"] = number(section_phase_);
-    if (!sections_.empty()) {
-        const SimMsg& m = sections_.back();
+    j["poincare_phi0"] = number(view_.section_phase);
+    if (!feed_.sections.empty()) {
+        const SimMsg& m = feed_.sections.back();
         j["poincare_last_section"] = {{"t", number(m.t)}, {"phi_mod", number(m.phi - kTwoPi * std::floor(m.phi / kTwoPi))},
                                       {"x", number(m.x)}, {"v", number(m.v)}};
     } else {
         j["poincare_last_section"] = nullptr;
     }
-    j["session_window"] = session_window_ ? json(session_saving_ ? "save" : "load") : json(nullptr);
-    j["session_path"] = session_path_;
-    j["session_overwrite_asked"] = overwrite_pending_.empty() ? json(nullptr) : json(overwrite_pending_);
-    j["session_browser"] = session_window_ ? session_browser_.state() : json(nullptr);   // the files it lists
+    j["session_window"] = session_.open ? json(session_.saving ? "save" : "load") : json(nullptr);
+    j["session_path"] = session_.path;
+    j["session_overwrite_asked"] = session_.overwrite_pending.empty() ? json(nullptr) : json(session_.overwrite_pending);
+    j["session_browser"] = session_.open ? session_.browser.state() : json(nullptr);   // the files it lists
     j["plane"] = analysis_.plane.state();
     j["basins"] = analysis_.basins.state();   // the basins shown: their box, grid and attractors   // the plane shown and the doubling continued over it
     if (const auto& ov = analysis_.overlay()) {   // the continued branches' special points, as the hover names them
@@ -189,7 +189,7 @@ bool App::write_state_json(const std::string& path) {
     }
     {   // The bifurcation panel: the diagram shown (its omega range, columns done, stale after a switch) and
         // the Lyapunov strip under it.
-        const BifurcationState b = bif_panel_.state(bifurcation_context());
+        const BifurcationState b = bif_.panel.state(bifurcation_context());
         json d = b.have ? json{{"model", b.model}, {"protocol", b.protocol}, {"omega_lo", number(b.omega_lo)},
                                {"omega_hi", number(b.omega_hi)}, {"steps", b.steps}, {"levels_done", b.levels_done},
                                {"points", b.points}, {"running", b.running}, {"cancelled", b.cancelled},
@@ -212,9 +212,9 @@ bool App::write_state_json(const std::string& path) {
                             {"above", b.live.above}, {"below", b.live.below}};
         d["lyapunov"] = {{"on", b.lyap_on}, {"running", b.lyap_running}, {"steps", b.lyap_steps},
                          {"done", b.lyap_done}, {"positive", b.lyap_positive}};
-        const auto& om = bif_panel_.omega_label();
+        const auto& om = bif_.panel.omega_label();
         d["omega_label_rect"] = {om[0], om[1], om[2], om[3]};   // [px] the running omega's label
-        const auto& pr = bif_panel_.plot_rect();
+        const auto& pr = bif_.panel.plot_rect();
         d["plot_rect"] = {pr[0], pr[1], pr[2], pr[3]};   // [px] the data area drawn (zeros: not drawn)
         const auto& lg = analysis_.legend_rect();
         d["legend_rect"] = lg[2] > lg[0] ? json{lg[0], lg[1], lg[2], lg[3]} : json(nullptr);   // the branches' legend
