@@ -553,22 +553,10 @@ void App::handle_keys() {
     }
 }
 
-void App::frame() {
-    const double t_events = now_s();
-    glfwPollEvents();
-    if (opt_.tap && frames_.count == 3) {   // --tap: a press and its release in one poll, through the backend
-        const int key = GLFW_KEY_A + (opt_.tap - 'a');
-        ImGui_ImplGlfw_KeyCallback(win_, key, 0, GLFW_PRESS, 0);
-        ImGui_ImplGlfw_KeyCallback(win_, key, 0, GLFW_RELEASE, 0);
-    }
-    rebuild_fonts();
-    const double t = now_s();
-    frames_.tick(t);
-    feed_.flash *= std::exp(-frames_.dt / 0.22);
-
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    {   // a tap released within the poll it was pressed in: down for this frame, up at the next
+// frame(), after the backend's new frame: the keys the scripted runs and the taps hold for this frame.
+void App::apply_scripted_keys() {
+    // A tap released within the poll it was pressed in: down for this frame, up at the next.
+    {
         ImGuiIO& io = ImGui::GetIO();
         for (const int key : g_held)
             if (std::find(g_pressed.begin(), g_pressed.end(), key) == g_pressed.end()) io.KeysDown[key] = false;
@@ -590,13 +578,11 @@ void App::frame() {
         io.KeysDown[GLFW_KEY_LEFT_CONTROL] = down && ctrl;
         io.KeyCtrl = down && ctrl;
     }
-    script_mouse();
-    ImGui::NewFrame();
-    plot_gpu::begin_frame();
-    opaque_image::begin_frame();
-    commands_.flush();   // what the ring refused last frame, before this frame's own commands
-    if (!bench_.on) drain_samples();
-    feed_.xI_shown = sim_->status().xI;
+}
+
+// frame(), once the samples are drained: the first frame's scripted changes (--set-state, --param, --demo),
+// and the end of --warmup.
+void App::run_frame_script() {
     if (opt_.set_state && frames_.count == 1) set_state(opt_.set_x, opt_.set_v);   // --set-state, as a click
     if (frames_.count == 1)
         for (const auto& [key, value] : opt_.params) set_param(key, value);   // --param, as typed in the panel
@@ -609,25 +595,11 @@ void App::frame() {
         set_speed(demos_.speed > 0 ? demos_.speed : opt_.speed);   // a demo's own speed, once warmed up
         if (opt_.paused) set_paused(true);
     }
-    poll_bifurcation();
-    handle_keys();
-    begin_replay_frame();   // replaying: the panels draw the cursor's instant
-    layout_and_draw();
-    draw_clip_window();
-    draw_session_window();
-    end_replay_frame();
-    handle_session_request();
-    ImGui::Render();
-    const double t_built = now_s();
-    // The previous frame is shown only now, once this one is built: under a software renderer its
-    // rasterization ran on the driver's threads while this thread built the UI (one frame of latency).
-    if (frames_.pending) glfwSwapBuffers(win_);
-    frames_.pending = false;
-    const double t_shown = now_s();
-    flush_canvas_uploads();   // the plots' images, now that the rig's has had the build's time to render
-    plot_gpu::upload();
+}
 
-    int fw = 0, fh = 0;
+// frame(), once the previous frame is shown: this one rendered into the back buffer (fw x fh pixels), and
+// the screenshot asked for saved from it.
+void App::render(int& fw, int& fh) {
     glfwGetFramebufferSize(win_, &fw, &fh);
     glViewport(0, 0, fw, fh);
     const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
@@ -656,6 +628,52 @@ void App::frame() {
         }
         frames_.pending_shot.clear();
     }
+}
+
+void App::frame() {
+    const double t_events = now_s();
+    glfwPollEvents();
+    if (opt_.tap && frames_.count == 3) {   // --tap: a press and its release in one poll, through the backend
+        const int key = GLFW_KEY_A + (opt_.tap - 'a');
+        ImGui_ImplGlfw_KeyCallback(win_, key, 0, GLFW_PRESS, 0);
+        ImGui_ImplGlfw_KeyCallback(win_, key, 0, GLFW_RELEASE, 0);
+    }
+    rebuild_fonts();
+    const double t = now_s();
+    frames_.tick(t);
+    feed_.flash *= std::exp(-frames_.dt / 0.22);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    apply_scripted_keys();
+    script_mouse();
+    ImGui::NewFrame();
+    plot_gpu::begin_frame();
+    opaque_image::begin_frame();
+    commands_.flush();   // what the ring refused last frame, before this frame's own commands
+    if (!bench_.on) drain_samples();
+    feed_.xI_shown = sim_->status().xI;
+    run_frame_script();
+    poll_bifurcation();
+    handle_keys();
+    begin_replay_frame();   // replaying: the panels draw the cursor's instant
+    layout_and_draw();
+    draw_clip_window();
+    draw_session_window();
+    end_replay_frame();
+    handle_session_request();
+    ImGui::Render();
+    const double t_built = now_s();
+    // The previous frame is shown only now, once this one is built: under a software renderer its
+    // rasterization ran on the driver's threads while this thread built the UI (one frame of latency).
+    if (frames_.pending) glfwSwapBuffers(win_);
+    frames_.pending = false;
+    const double t_shown = now_s();
+    flush_canvas_uploads();   // the plots' images, now that the rig's has had the build's time to render
+    plot_gpu::upload();
+
+    int fw = 0, fh = 0;
+    render(fw, fh);
     capture_clip_frame(fw, fh);   // exporting a clip: this frame
     glFlush();   // rendering starts now; the next frame's swap shows it
     frames_.pending = true;

@@ -72,6 +72,9 @@ private:
     void shutdown();
     void rebuild_fonts();
     void frame();
+    void apply_scripted_keys();        // frame()'s pieces: --tap, --press and taps held for this frame,
+    void run_frame_script();           // the first frame's scripted changes and the end of --warmup,
+    void render(int& fw, int& fh);     // the frame rendered (its framebuffer's size out) and a screenshot saved
     void drain_samples();
     void poll_bifurcation();
     void handle_keys();
