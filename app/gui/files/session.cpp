@@ -161,23 +161,9 @@ private:
     std::string prefix_;
 };
 
-}  // namespace
-
-Session session_from_json(const json& j, const Session& base, const std::string& file) {
-    if (!j.is_object() || !j.contains("format"))
-        throw SessionError(file + ": not a session file (a JSON object with \"format\": \"" + kSessionFormat +
-                           "\" expected)");
-    const Reader top(file, j, "",
-                     {"format", "version", "model", "omega", "xI", "speed", "paused", "state", "view", "windows",
-                      "bifurcation", "data", "companion", "layout", "params", "strip", "clicker"});
-    if (!j["format"].is_string() || j["format"].get<std::string>() != kSessionFormat)
-        top.fail("format", std::string("expected \"") + kSessionFormat + "\"");
-    int version = kSessionVersion;
-    top.integer("version", version, 1, 1000000);
-    if (version != kSessionVersion)
-        top.fail("version", std::to_string(version) + " is not supported (this program reads version " +
-                                std::to_string(kSessionVersion) + ")");
-    Session s = base;
+// The sections of a session file, each checked and read into s in the order session_from_json calls them.
+// The model version, by name.
+void read_model(const Reader& top, const std::string& /*file*/, Session& s) {
     if (const json* m = top.find("model")) {
         if (!m->is_string()) top.fail("model", std::string("expected a string, got ") + m->type_name());
         const std::string name = m->get<std::string>();
@@ -189,10 +175,10 @@ Session session_from_json(const json& j, const Session& base, const std::string&
             top.fail("model", "unknown model version '" + name + "' (one of " + all + ")");
         }
     }
-    top.number("omega", s.omega, 0.0, 30.0, " rad/s");
-    top.number("xI", s.xI, -0.02, 0.02, " m");
-    top.number("speed", s.speed, 0.01, 100.0);
-    top.boolean("paused", s.paused);
+}
+
+// The cart's state: t, x, v and phi.
+void read_state(const Reader& top, const std::string& file, Session& s) {
     if (const json* st = top.find("state")) {
         const Reader r(file, *st, "state", {"t", "x", "v", "phi"});
         r.number("t", s.t, 0.0, 1e9, " s");
@@ -200,6 +186,10 @@ Session session_from_json(const json& j, const Session& base, const std::string&
         r.number("v", s.v, -2.0, 2.0, " m/s");
         r.number("phi", s.phi, -1e12, 1e12, " rad");
     }
+}
+
+// The display settings and each plot's zoom.
+void read_view(const Reader& top, const std::string& file, Session& s) {
     if (const json* vw = top.find("view")) {
         const Reader r(file, *vw, "view", {"theme", "ui_scale", "trail_periods", "strip_window", "poincare_phi0", "zoom"});
         std::string theme = s.dark ? "dark" : "light";
@@ -225,16 +215,28 @@ Session session_from_json(const json& j, const Session& base, const std::string&
             }
         }
     }
+}
+
+// The floating windows open.
+void read_windows(const Reader& top, const std::string& file, Session& s) {
     if (const json* w = top.find("windows")) {
         const Reader r(file, *w, "windows", {"data", "help"});
         r.boolean("data", s.show_data);
         r.boolean("help", s.show_help);
     }
+}
+
+// The bifurcation diagram's protocol and steps.
+void read_bifurcation(const Reader& top, const std::string& file, Session& s) {
     if (const json* b = top.find("bifurcation")) {
         const Reader r(file, *b, "bifurcation", {"protocol", "steps"});
         r.word("protocol", s.bif_protocol, {"cf-up", "cf-down", "ef"});
         r.integer("steps", s.bif_steps, 10, 2000);
     }
+}
+
+// The companion cart's mode and the ghost's impact law.
+void read_companion(const Reader& top, const std::string& file, Session& s) {
     if (const json* c = top.find("companion")) {
         const Reader r(file, *c, "companion", {"mode", "ghost_impact"});
         r.word("mode", s.companion, {"off", "twin", "ghost"});
@@ -251,6 +253,10 @@ Session session_from_json(const json& j, const Session& base, const std::string&
             s.ghost_impact = id;
         }
     }
+}
+
+// The layout: mode, hidden and maximised panels, the presentation plot, the rig's magnification.
+void read_layout(const Reader& top, const std::string& file, Session& s) {
     if (const json* l = top.find("layout")) {
         const Reader r(file, *l, "layout", {"mode", "hidden", "maximised", "presentation_plot", "magnify"});
         std::string mode = s.presentation ? "presentation" : "normal";
@@ -286,6 +292,10 @@ Session session_from_json(const json& j, const Session& base, const std::string&
             s.magnify_presentation = b;
         }
     }
+}
+
+// The edited parameters.
+void read_params(const Reader& top, const std::string& /*file*/, Session& s) {
     if (const json* ps = top.find("params")) {
         // Each value as the Parameters panel would take it, on the session's model: the core's validate()
         // decides, and its words name the problem.
@@ -307,6 +317,10 @@ Session session_from_json(const json& j, const Session& base, const std::string&
             s.params.emplace_back(item.key(), item.value().get<double>());
         }
     }
+}
+
+// The time strip's traces.
+void read_strip(const Reader& top, const std::string& /*file*/, Session& s) {
     if (const json* st = top.find("strip")) {
         if (!st->is_array() || st->empty() || st->size() > 2)
             top.fail("strip", "expected one or two of x, v, E, F, drive");
@@ -319,6 +333,10 @@ Session session_from_json(const json& j, const Session& base, const std::string&
             s.strip.push_back(e.get<std::string>());
         }
     }
+}
+
+// The Poincare clicker and its orbits.
+void read_clicker(const Reader& top, const std::string& file, Session& s) {
     if (const json* c = top.find("clicker")) {
         const Reader r(file, *c, "clicker", {"on", "orbits"});
         r.boolean("on", s.clicker);
@@ -353,6 +371,10 @@ Session session_from_json(const json& j, const Session& base, const std::string&
             }
         }
     }
+}
+
+// The measured data's file.
+void read_data(const Reader& top, const std::string& file, Session& s) {
     if (const json* d = top.find("data")) {
         if (d->is_null()) s.data.clear();
         else if (!d->is_string()) top.fail("data", std::string("expected a file name or null, got ") + d->type_name());
@@ -374,6 +396,39 @@ Session session_from_json(const json& j, const Session& base, const std::string&
             s.data = path;
         }
     }
+}
+}  // namespace
+
+Session session_from_json(const json& j, const Session& base, const std::string& file) {
+    if (!j.is_object() || !j.contains("format"))
+        throw SessionError(file + ": not a session file (a JSON object with \"format\": \"" + kSessionFormat +
+                           "\" expected)");
+    const Reader top(file, j, "",
+                     {"format", "version", "model", "omega", "xI", "speed", "paused", "state", "view", "windows",
+                      "bifurcation", "data", "companion", "layout", "params", "strip", "clicker"});
+    if (!j["format"].is_string() || j["format"].get<std::string>() != kSessionFormat)
+        top.fail("format", std::string("expected \"") + kSessionFormat + "\"");
+    int version = kSessionVersion;
+    top.integer("version", version, 1, 1000000);
+    if (version != kSessionVersion)
+        top.fail("version", std::to_string(version) + " is not supported (this program reads version " +
+                                std::to_string(kSessionVersion) + ")");
+    Session s = base;
+    read_model(top, file, s);
+    top.number("omega", s.omega, 0.0, 30.0, " rad/s");
+    top.number("xI", s.xI, -0.02, 0.02, " m");
+    top.number("speed", s.speed, 0.01, 100.0);
+    top.boolean("paused", s.paused);
+    read_state(top, file, s);
+    read_view(top, file, s);
+    read_windows(top, file, s);
+    read_bifurcation(top, file, s);
+    read_companion(top, file, s);
+    read_layout(top, file, s);
+    read_params(top, file, s);
+    read_strip(top, file, s);
+    read_clicker(top, file, s);
+    read_data(top, file, s);
     return s;
 }
 

@@ -291,51 +291,27 @@ void RigView::add_to(ImDrawList* dl, ImVec2 min) {
     dl->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
 }
 
-void RigView::render(const ImVec4& clip_rect) {
-    const ImDrawData* dd = ImGui::GetDrawData();
-    if (!dd || !shapes_prog_) return;
+// The uniforms every program of the rig takes: the view's centre, its scale, the image's size.
+void RigView::use_program(GLuint prog) const {
+    glUseProgram(prog);
+    glUniform2f(glGetUniformLocation(prog, "u_center"), static_cast<float>(cx_), static_cast<float>(cy_));
+    glUniform1f(glGetUniformLocation(prog, "u_px_per_m"), px_per_m_);
+    glUniform2f(glGetUniformLocation(prog, "u_viewport"), static_cast<float>(fb_w_), static_cast<float>(fb_h_));
+}
+
+// A rectangle of the drawing [m] through the backdrop program.
+void RigView::quad(double x0, double y0, double x1, double y1) const {
+    glUniform4f(glGetUniformLocation(backdrop_prog_, "u_quad"), static_cast<float>(x0), static_cast<float>(y0), static_cast<float>(x1),
+                static_cast<float>(y1));
+    glBindVertexArray(empty_vao_);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+}
+
+// render(): the view spans [x_lo, x_hi] x [y_lo, y_hi] [m].
+void RigView::update_backdrop(double x_lo, double y_lo, double x_hi, double y_hi) {
     const int w = fb_w_, h = fb_h_;
     const Palette& pal = pal_;
-    const RigState& s = state_;
-    // Where the image goes, in framebuffer pixels from the lower left, and the clip rectangle likewise.
-    const ImVec2 scale = dd->FramebufferScale;
-    const float fb_h = dd->DisplaySize.y * scale.y;
-    const GLint vx = static_cast<GLint>(std::lround((at_.x - dd->DisplayPos.x) * scale.x));
-    const GLint vy = static_cast<GLint>(std::lround(fb_h - (at_.y - dd->DisplayPos.y) * scale.y)) - h;
-    const float cx0 = (clip_rect.x - dd->DisplayPos.x) * scale.x, cy0 = (clip_rect.y - dd->DisplayPos.y) * scale.y;
-    const float cx1 = (clip_rect.z - dd->DisplayPos.x) * scale.x, cy1 = (clip_rect.w - dd->DisplayPos.y) * scale.y;
-    const GLint sx0 = std::max(vx, static_cast<GLint>(cx0)), sx1 = std::min(vx + w, static_cast<GLint>(cx1));
-    const GLint sy0 = std::max(vy, static_cast<GLint>(fb_h - cy1)), sy1 = std::min(vy + h, static_cast<GLint>(fb_h - cy0));
-    if (sx1 <= sx0 || sy1 <= sy0) return;
-    const auto scissor = [&](GLint x0, GLint y0, GLint x1, GLint y1) {   // image pixels, clipped to the clip rectangle
-        const GLint a = std::max(sx0, vx + x0), b = std::max(sy0, vy + y0);
-        const GLint c = std::min(sx1, vx + x1), d = std::min(sy1, vy + y1);
-        glScissor(a, b, std::max(0, c - a), std::max(0, d - b));
-    };
-
-    const float view_h = static_cast<float>(h / px_per_m_);
-    const float view_w = static_cast<float>(w / px_per_m_);
-    const auto set_common = [&](GLuint prog) {
-        glUseProgram(prog);
-        glUniform2f(glGetUniformLocation(prog, "u_center"), static_cast<float>(cx_), static_cast<float>(cy_));
-        glUniform1f(glGetUniformLocation(prog, "u_px_per_m"), px_per_m_);
-        glUniform2f(glGetUniformLocation(prog, "u_viewport"), static_cast<float>(w), static_cast<float>(h));
-    };
     const GLuint bp = backdrop_prog_;
-    const auto quad = [&](double x0, double y0, double x1, double y1) {
-        glUniform4f(glGetUniformLocation(bp, "u_quad"), static_cast<float>(x0), static_cast<float>(y0), static_cast<float>(x1),
-                    static_cast<float>(y1));
-        glBindVertexArray(empty_vao_);
-        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    };
-    const double x_lo = cx_ - 0.5 * view_w, x_hi = cx_ + 0.5 * view_w, y_lo = cy_ - 0.5 * view_h, y_hi = cy_ + 0.5 * view_h;
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    // The shapes are uploaded now, when the frame before (which drew the last ones) is done.
-    glBindBuffer(GL_ARRAY_BUFFER, vbo_);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(shapes_.size() * sizeof(Shape)), shapes_.data(), GL_STREAM_DRAW);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
-
     // The backdrop's static part and the static shapes, when what they show has changed (size, zoom,
     // magnification, palette): drawn into their own image, which each frame copies.
     const double plate_x = mag_.wall_x() + kPlateMargin;
@@ -360,7 +336,7 @@ void RigView::render(const ImVec4& clip_rect) {
         glViewport(0, 0, w, h);
         glDisable(GL_SCISSOR_TEST);
         glDisable(GL_BLEND);
-        set_common(bp);
+        use_program(bp);
         glUniform1i(glGetUniformLocation(bp, "u_mode"), 0);
         glUniform3fv(glGetUniformLocation(bp, "u_bg_top"), 1, pal.bg_top);
         glUniform3fv(glGetUniformLocation(bp, "u_bg_bottom"), 1, pal.bg_bottom);
@@ -372,7 +348,7 @@ void RigView::render(const ImVec4& clip_rect) {
         quad(x_lo, y_lo, x_hi, y_hi);
         glEnable(GL_BLEND);
         glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-        set_common(shapes_prog_);
+        use_program(shapes_prog_);
         draw_shapes(0, static_count_);
         // Read back into a plain texture: under llvmpipe, sampling a texture that has been a render target
         // made every frame wait for the renderer (5 ms); an uploaded one does not.
@@ -383,6 +359,42 @@ void RigView::render(const ImVec4& clip_rect) {
         backdrop_img_ = upload_rgba_texture(backdrop_img_, w, h, px.data());
         glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(prev));
     }
+}
+
+void RigView::render(const ImVec4& clip_rect) {
+    const ImDrawData* dd = ImGui::GetDrawData();
+    if (!dd || !shapes_prog_) return;
+    const int w = fb_w_, h = fb_h_;
+    const Palette& pal = pal_;
+    const RigState& s = state_;
+    // Where the image goes, in framebuffer pixels from the lower left, and the clip rectangle likewise.
+    const ImVec2 scale = dd->FramebufferScale;
+    const float fb_h = dd->DisplaySize.y * scale.y;
+    const GLint vx = static_cast<GLint>(std::lround((at_.x - dd->DisplayPos.x) * scale.x));
+    const GLint vy = static_cast<GLint>(std::lround(fb_h - (at_.y - dd->DisplayPos.y) * scale.y)) - h;
+    const float cx0 = (clip_rect.x - dd->DisplayPos.x) * scale.x, cy0 = (clip_rect.y - dd->DisplayPos.y) * scale.y;
+    const float cx1 = (clip_rect.z - dd->DisplayPos.x) * scale.x, cy1 = (clip_rect.w - dd->DisplayPos.y) * scale.y;
+    const GLint sx0 = std::max(vx, static_cast<GLint>(cx0)), sx1 = std::min(vx + w, static_cast<GLint>(cx1));
+    const GLint sy0 = std::max(vy, static_cast<GLint>(fb_h - cy1)), sy1 = std::min(vy + h, static_cast<GLint>(fb_h - cy0));
+    if (sx1 <= sx0 || sy1 <= sy0) return;
+    const auto scissor = [&](GLint x0, GLint y0, GLint x1, GLint y1) {   // image pixels, clipped to the clip rectangle
+        const GLint a = std::max(sx0, vx + x0), b = std::max(sy0, vy + y0);
+        const GLint c = std::min(sx1, vx + x1), d = std::min(sy1, vy + y1);
+        glScissor(a, b, std::max(0, c - a), std::max(0, d - b));
+    };
+
+    const float view_h = static_cast<float>(h / px_per_m_);
+    const float view_w = static_cast<float>(w / px_per_m_);
+    const GLuint bp = backdrop_prog_;
+    const double x_lo = cx_ - 0.5 * view_w, x_hi = cx_ + 0.5 * view_w, y_lo = cy_ - 0.5 * view_h, y_hi = cy_ + 0.5 * view_h;
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    // The shapes are uploaded now, when the frame before (which drew the last ones) is done.
+    glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(shapes_.size() * sizeof(Shape)), shapes_.data(), GL_STREAM_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+    update_backdrop(x_lo, y_lo, x_hi, y_hi);
     glEnable(GL_SCISSOR_TEST);
     scissor(0, 0, w, h);
     // The copy: one unblended plain texture copy, which the renderer draws at memory speed (a blit between
@@ -400,7 +412,7 @@ void RigView::render(const ImVec4& clip_rect) {
     const double cart_mx = mag_.draw_x(s.x);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-    set_common(bp);
+    use_program(bp);
     glUniform1i(glGetUniformLocation(bp, "u_mode"), 1);
     glUniform3fv(glGetUniformLocation(bp, "u_field"), 1, pal.field);
     glUniform2f(glGetUniformLocation(bp, "u_mag_cart"), static_cast<float>(cart_mx), static_cast<float>(kMagnetCartY));
@@ -412,7 +424,7 @@ void RigView::render(const ImVec4& clip_rect) {
     const double fx1 = std::min(x_hi, std::max(cart_mx, 0.0) + kFieldReach), fy1 = std::min(y_hi, kMagnetCartY + kFieldReach);
     quad(fx0, fy0, fx1, fy1);
     // The static shapes the lines crossed (the lower rail, the fixed magnet) go back over them, in the box only.
-    set_common(shapes_prog_);
+    use_program(shapes_prog_);
     const auto px_x = [&](double x) { return static_cast<GLint>(std::floor(0.5 * w + (x - cx_) * px_per_m_)); };
     const auto px_y = [&](double y) { return static_cast<GLint>(std::floor(0.5 * h + (y - cy_) * px_per_m_)); };
     scissor(px_x(fx0), px_y(fy0), px_x(fx1) + 1, px_y(fy1) + 1);

@@ -97,6 +97,11 @@ private:
     std::vector<Shape> shapes_;
     std::size_t static_count_ = 0;   // shapes_[0, static_count_) are the static layer's (walls, rails, ruler, fixed magnet)
     void draw_shapes(std::size_t first, std::size_t count);
+    // render()'s pieces: a program with the view's uniforms, a rectangle through the backdrop program, and
+    // the backdrop's image (its static part and the static shapes) drawn again when what it shows changed.
+    void use_program(GLuint prog) const;
+    void quad(double x0, double y0, double x1, double y1) const;
+    void update_backdrop(double x_lo, double y_lo, double x_hi, double y_hi);
 };
 
 }  // namespace impactlab::gui

@@ -147,6 +147,109 @@ void SimEngine::change_drive(const Drive& d) {
     emit_now();
 }
 
+// Ramp: omega from now to c.a at the rate |c.b| [rad/s per s].
+bool SimEngine::apply_ramp(const SimCommand& c) {
+    const double w0 = d_.omega(s_.t);
+    const double w1 = std::clamp(std::isfinite(c.a) ? c.a : w0, 0.0, kMaxOmega);
+    const double rate = std::clamp(std::isfinite(c.b) ? std::abs(c.b) : kMaxRampRate, kMinRampRate, kMaxRampRate);
+    if (std::abs(w1 - w0) < 1e-9) return true;   // nothing to ramp (and the knots must differ in t)
+    // Knots at now and at the end of the ramp: constant after it, phi continuous through both.
+    change_drive(Drive::piecewise_linear({s_.t, s_.t + std::abs(w1 - w0) / rate}, {w0, w1}, d_.phi(s_.t)));
+    return true;
+}
+
+// SetModel: another version by name (c.model); the state carries over.
+bool SimEngine::apply_model(const SimCommand& c) {
+    Params np;
+    try {
+        np = make_version(std::string(c.model, std::find(c.model, c.model + sizeof(c.model), '\0')));
+    } catch (const ParamError&) {
+        return false;
+    }
+    if (np.name == p_.name) return true;   // the same version: nothing changes, no new epoch
+    np.xI = p_.xI;
+    p_ = std::move(np);
+    // x, v and phi carry over; only the hybrid bookkeeping is made consistent with the new law.
+    Simulator::make_consistent(p_, d_, s_);
+    bump();
+    emit_now();
+    return true;
+}
+
+// SetParam (c.model names the key, c.a the value) and ResetParams (the version's own values).
+bool SimEngine::apply_params(const SimCommand& c) {
+    Params np = p_;
+    if (c.kind == CmdKind::ResetParams) {
+        try {
+            np = make_version(p_.name);
+        } catch (const ParamError&) {
+            return false;
+        }
+        np.xI = p_.xI;
+    } else if (std::string error; !set_param(np, std::string(c.model, std::find(c.model, c.model + sizeof(c.model), '\0')), c.a, error)) {
+        return false;
+    }
+    p_ = std::move(np);
+    Simulator::make_consistent(p_, d_, s_);
+    bump();
+    emit_now();
+    return true;
+}
+
+// SetSectionPhase: the Poincare section at phi = c.a + 2 pi k.
+bool SimEngine::apply_section_phase(const SimCommand& c) {
+    // The trajectory goes on; only the instants that are sections change. A new epoch: the map
+    // and the clicker's orbit of the old phase are another section's points, and the grazing
+    // monitor's periods end at the sections.
+    if (!std::isfinite(c.a) || c.a < 0.0 || c.a > kTwoPi) return false;
+    if (c.a == sim_.section_phase()) return true;
+    sim_.set_section_phase(c.a);
+    // The revolution running now may still have its section at the new phase ahead.
+    Simulator::sync_sections(d_, s_);
+    if (stepping_) step_target_ = next_section_time();
+    ++epoch_;
+    grazing_.reset();
+    emit_now();
+    return true;
+}
+
+// Reset: from (c.a, c.b) at rest at t = 0, phi = 0, the omega running now.
+bool SimEngine::apply_reset(const SimCommand& c) {
+    const double w = d_.omega(s_.t);
+    held_ = false;
+    if (p_.xI != xI_target_) Simulator::move_bumper(p_, d_, s_, xI_target_);   // no push from a ramp
+    s_ = State{};
+    s_.x = std::isfinite(c.a) ? std::clamp(c.a, -0.05, 0.05) : 0.0;
+    s_.v = std::isfinite(c.b) ? std::clamp(c.b, -2.0, 2.0) : 0.0;
+    d_ = Drive(w, 0.0, 0.0);
+    Simulator::make_consistent(p_, d_, s_);
+    stepping_ = false;
+    bump();
+    emit_now();
+    return true;
+}
+
+// Restart: from (c.a, c.b) at t = c.t0, phi = c.phi0, the omega running now.
+bool SimEngine::apply_restart(const SimCommand& c) {
+    // A replayed instant or a saved session: the clock and the phase go back (or forward) to it, the
+    // rate stays. A sticking impact in progress there restarts as contact or free flight.
+    if (!std::isfinite(c.t0) || !std::isfinite(c.phi0) || c.t0 < 0) return false;
+    const double w = d_.omega(s_.t);
+    held_ = false;
+    if (p_.xI != xI_target_) Simulator::move_bumper(p_, d_, s_, xI_target_);
+    s_ = State{};
+    s_.t = c.t0;
+    s_.x = std::isfinite(c.a) ? std::clamp(c.a, -kMaxAbsStateX, kMaxAbsStateX) : 0.0;
+    s_.v = std::isfinite(c.b) ? std::clamp(c.b, -kMaxAbsStateV, kMaxAbsStateV) : 0.0;
+    d_ = Drive(w, c.t0, c.phi0);
+    Simulator::sync_sections(d_, s_);
+    Simulator::make_consistent(p_, d_, s_);
+    stepping_ = false;
+    bump();
+    emit_now();
+    return true;
+}
+
 bool SimEngine::apply(const SimCommand& c) {
     switch (c.kind) {
         case CmdKind::SetOmega: {
@@ -155,15 +258,7 @@ bool SimEngine::apply(const SimCommand& c) {
             change_drive(Drive(w, s_.t, d_.phi(s_.t)));
             return true;
         }
-        case CmdKind::Ramp: {
-            const double w0 = d_.omega(s_.t);
-            const double w1 = std::clamp(std::isfinite(c.a) ? c.a : w0, 0.0, kMaxOmega);
-            const double rate = std::clamp(std::isfinite(c.b) ? std::abs(c.b) : kMaxRampRate, kMinRampRate, kMaxRampRate);
-            if (std::abs(w1 - w0) < 1e-9) return true;   // nothing to ramp (and the knots must differ in t)
-            // Knots at now and at the end of the ramp: constant after it, phi continuous through both.
-            change_drive(Drive::piecewise_linear({s_.t, s_.t + std::abs(w1 - w0) / rate}, {w0, w1}, d_.phi(s_.t)));
-            return true;
-        }
+        case CmdKind::Ramp: return apply_ramp(c);
         case CmdKind::SetXI: {
             xI_target_ = std::clamp(std::isfinite(c.a) ? c.a : 0.0, -kMaxAbsXI, kMaxAbsXI);
             // Running, the bumper travels there over the next steps (advance_to); paused, at once.
@@ -172,60 +267,14 @@ bool SimEngine::apply(const SimCommand& c) {
             emit_now();
             return true;
         }
-        case CmdKind::SetModel: {
-            Params np;
-            try {
-                np = make_version(std::string(c.model, std::find(c.model, c.model + sizeof(c.model), '\0')));
-            } catch (const ParamError&) {
-                return false;
-            }
-            if (np.name == p_.name) return true;   // the same version: nothing changes, no new epoch
-            np.xI = p_.xI;
-            p_ = std::move(np);
-            // x, v and phi carry over; only the hybrid bookkeeping is made consistent with the new law.
-            Simulator::make_consistent(p_, d_, s_);
-            bump();
-            emit_now();
-            return true;
-        }
+        case CmdKind::SetModel: return apply_model(c);
         case CmdKind::SetParam:
-        case CmdKind::ResetParams: {
-            Params np = p_;
-            if (c.kind == CmdKind::ResetParams) {
-                try {
-                    np = make_version(p_.name);
-                } catch (const ParamError&) {
-                    return false;
-                }
-                np.xI = p_.xI;
-            } else if (std::string error; !set_param(np, std::string(c.model, std::find(c.model, c.model + sizeof(c.model), '\0')), c.a, error)) {
-                return false;
-            }
-            p_ = std::move(np);
-            Simulator::make_consistent(p_, d_, s_);
-            bump();
-            emit_now();
-            return true;
-        }
+        case CmdKind::ResetParams: return apply_params(c);
         case CmdKind::SetPaused:
             paused_ = c.a != 0.0;
             if (!paused_) stepping_ = false;
             return true;
-        case CmdKind::SetSectionPhase: {
-            // The trajectory goes on; only the instants that are sections change. A new epoch: the map
-            // and the clicker's orbit of the old phase are another section's points, and the grazing
-            // monitor's periods end at the sections.
-            if (!std::isfinite(c.a) || c.a < 0.0 || c.a > kTwoPi) return false;
-            if (c.a == sim_.section_phase()) return true;
-            sim_.set_section_phase(c.a);
-            // The revolution running now may still have its section at the new phase ahead.
-            Simulator::sync_sections(d_, s_);
-            if (stepping_) step_target_ = next_section_time();
-            ++epoch_;
-            grazing_.reset();
-            emit_now();
-            return true;
-        }
+        case CmdKind::SetSectionPhase: return apply_section_phase(c);
         case CmdKind::StepPeriod: {
             // Run to the next section phi = phi0 + 2 pi k (one forcing period away at most), then pause.
             step_target_ = next_section_time();
@@ -233,39 +282,8 @@ bool SimEngine::apply(const SimCommand& c) {
             paused_ = true;
             return true;
         }
-        case CmdKind::Reset: {
-            const double w = d_.omega(s_.t);
-            held_ = false;
-            if (p_.xI != xI_target_) Simulator::move_bumper(p_, d_, s_, xI_target_);   // no push from a ramp
-            s_ = State{};
-            s_.x = std::isfinite(c.a) ? std::clamp(c.a, -0.05, 0.05) : 0.0;
-            s_.v = std::isfinite(c.b) ? std::clamp(c.b, -2.0, 2.0) : 0.0;
-            d_ = Drive(w, 0.0, 0.0);
-            Simulator::make_consistent(p_, d_, s_);
-            stepping_ = false;
-            bump();
-            emit_now();
-            return true;
-        }
-        case CmdKind::Restart: {
-            // A replayed instant or a saved session: the clock and the phase go back (or forward) to it, the
-            // rate stays. A sticking impact in progress there restarts as contact or free flight.
-            if (!std::isfinite(c.t0) || !std::isfinite(c.phi0) || c.t0 < 0) return false;
-            const double w = d_.omega(s_.t);
-            held_ = false;
-            if (p_.xI != xI_target_) Simulator::move_bumper(p_, d_, s_, xI_target_);
-            s_ = State{};
-            s_.t = c.t0;
-            s_.x = std::isfinite(c.a) ? std::clamp(c.a, -kMaxAbsStateX, kMaxAbsStateX) : 0.0;
-            s_.v = std::isfinite(c.b) ? std::clamp(c.b, -kMaxAbsStateV, kMaxAbsStateV) : 0.0;
-            d_ = Drive(w, c.t0, c.phi0);
-            Simulator::sync_sections(d_, s_);
-            Simulator::make_consistent(p_, d_, s_);
-            stepping_ = false;
-            bump();
-            emit_now();
-            return true;
-        }
+        case CmdKind::Reset: return apply_reset(c);
+        case CmdKind::Restart: return apply_restart(c);
         case CmdKind::SetState:
             held_ = false;
             set_state(c.a, std::isfinite(c.b) ? c.b : 0.0);

@@ -99,6 +99,13 @@ public:
 
 private:
     class Tap;   // the Observer that turns the simulator's pieces and events into records
+    // apply()'s longer commands, one each (true: applied).
+    bool apply_ramp(const SimCommand& c);
+    bool apply_model(const SimCommand& c);
+    bool apply_params(const SimCommand& c);   // SetParam and ResetParams
+    bool apply_section_phase(const SimCommand& c);
+    bool apply_reset(const SimCommand& c);
+    bool apply_restart(const SimCommand& c);
     void emit_now();
     void restart_grid();
     double next_section_time() const;   // when phi reaches the next section phi0 + 2 pi k under the current drive

@@ -68,8 +68,8 @@ AnalysisAction BasinsPanel::poll(const AnalysisContext& c, std::string& startup_
     return act;
 }
 
-AnalysisAction BasinsPanel::draw(const AnalysisContext& c) {
-    AnalysisAction act;
+// The grid, and Compute (or Cancel and the progress), and Whole window once a box was computed.
+void BasinsPanel::draw_controls(const AnalysisContext& c) {
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 7);
     ImGui::SliderInt("##grid", &grid_, 20, 200, "grid %d");
     ImGui::SameLine();
@@ -93,6 +93,32 @@ AnalysisAction BasinsPanel::draw(const AnalysisContext& c) {
             if (ImGui::IsItemHovered()) ImGui::SetTooltip("Forget the box: the rail left of the bumper, |v0| <= 0.3 m/s.");
         }
     }
+}
+
+namespace {
+// Beside the map: each attractor in its colour, with its kind, well and cells.
+void draw_legend(const analysis::BasinResult& r) {
+    ImGui::BeginGroup();
+    ImGui::TextUnformatted("attractors (cells)");
+    for (const analysis::Attractor& at : r.attractors) {
+        char buf[96];
+        const char* well = at.well < 0 ? "left" : at.well > 0 ? "right" : "centre";
+        if (at.kind == analysis::AttractorKind::Periodic)
+            std::snprintf(buf, sizeof buf, "%d: period %d, %s (%zu)", at.id, at.period, well, at.cells);
+        else
+            std::snprintf(buf, sizeof buf, "%d: %s, %s (%zu)", at.id, analysis::attractor_kind_name(at.kind), well, at.cells);
+        swatch(label_rgb(at.id), buf);
+    }
+    ImGui::Spacing();
+    ImGui::TextDisabled("dots: section points");
+    ImGui::TextDisabled("click: run from there");
+    ImGui::EndGroup();
+}
+}  // namespace
+
+AnalysisAction BasinsPanel::draw(const AnalysisContext& c) {
+    AnalysisAction act;
+    draw_controls(c);
     if (!basins_) {
         ImGui::TextDisabled("No basins yet: compute them at the current ω.");
         return act;
@@ -172,21 +198,7 @@ AnalysisAction BasinsPanel::draw(const AnalysisContext& c) {
     }
     if (!legend) return act;
     ImGui::SameLine();
-    ImGui::BeginGroup();
-    ImGui::TextUnformatted("attractors (cells)");
-    for (const analysis::Attractor& at : r.attractors) {
-        char buf[96];
-        const char* well = at.well < 0 ? "left" : at.well > 0 ? "right" : "centre";
-        if (at.kind == analysis::AttractorKind::Periodic)
-            std::snprintf(buf, sizeof buf, "%d: period %d, %s (%zu)", at.id, at.period, well, at.cells);
-        else
-            std::snprintf(buf, sizeof buf, "%d: %s, %s (%zu)", at.id, analysis::attractor_kind_name(at.kind), well, at.cells);
-        swatch(label_rgb(at.id), buf);
-    }
-    ImGui::Spacing();
-    ImGui::TextDisabled("dots: section points");
-    ImGui::TextDisabled("click: run from there");
-    ImGui::EndGroup();
+    draw_legend(r);
     return act;
 }
 

@@ -34,6 +34,7 @@ public:
     void release_gl();
 
 private:
+    void draw_controls(const AnalysisContext& c);   // draw()'s row above the map
     Job<analysis::BasinResult> job_;
     std::optional<analysis::BasinResult> basins_;
     std::string model_;

@@ -354,69 +354,49 @@ void BifurcationPanel::update_texture(int w, int h) {
     tex_ = upload_rgba_texture(static_cast<GLuint>(tex_), w, h, image_.data());
 }
 
-void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toast) {
+namespace {
+// Keeps a row's items together: the next one goes on a new line when it would not fit.
+void same_line_if(float width) {
+    ImGui::SameLine();
+    if (ImGui::GetContentRegionAvail().x < width) ImGui::NewLine();
+}
+}  // namespace
+
+// draw_header() in a short tile: one button unfolds the settings; folded (true), the compute button or the
+// progress, the branches' legend and a range error stand beside it.
+bool BifurcationPanel::draw_folded(const BifurcationContext& c, std::string& toast) {
     const float fs = ImGui::GetFontSize();
-    // A short tile (analysis tiles open, a large UI scale): the settings fold into one button, so the
-    // diagram keeps the height (a row of controls wrapped over three lines left it 50 px).
-    const bool short_tile = ImGui::GetContentRegionAvail().y < fs * 16.0f;
-    if (short_tile) {
-        if (ImGui::SmallButton(settings_open_ ? "settings ^" : "settings v")) settings_open_ = !settings_open_;
-        tooltip("The diagram's settings (parameter, protocol, steps, range), folded in a short tile.");
-        if (!settings_open_) {
+    if (ImGui::SmallButton(settings_open_ ? "settings ^" : "settings v")) settings_open_ = !settings_open_;
+    tooltip("The diagram's settings (parameter, protocol, steps, range), folded in a short tile.");
+    if (!settings_open_) {
+        ImGui::SameLine();
+        if (job_.running()) {
+            if (ImGui::SmallButton("Cancel")) job_.cancel();
             ImGui::SameLine();
-            if (job_.running()) {
-                if (ImGui::SmallButton("Cancel")) job_.cancel();
-                ImGui::SameLine();
-                ImGui::ProgressBar(static_cast<float>(job_.progress()),
-                                   ImVec2(std::max(fs * 4.0f, ImGui::GetContentRegionAvail().x - fs * 0.5f), ImGui::GetTextLineHeight()));
-            } else {
-                char label[48];
-                std::snprintf(label, sizeof label, "Compute %s", c.model.c_str());
-                ImGui::BeginDisabled(!range_error_.empty());
-                if (ImGui::SmallButton(label)) toast = start(c);
-                ImGui::EndDisabled();
-                tooltip("B: runs on a worker thread and fills in column by column; the animation goes on.");
-            }
-            if (c.overlay_legend && c.branches && !show_v_ && over_ == SweepParam::Omega) {
-                ImGui::SameLine();
-                c.overlay_legend(true);
-            }
-            if (!range_error_.empty()) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", range_error_.c_str());
-            return;
+            ImGui::ProgressBar(static_cast<float>(job_.progress()),
+                               ImVec2(std::max(fs * 4.0f, ImGui::GetContentRegionAvail().x - fs * 0.5f), ImGui::GetTextLineHeight()));
+        } else {
+            char label[48];
+            std::snprintf(label, sizeof label, "Compute %s", c.model.c_str());
+            ImGui::BeginDisabled(!range_error_.empty());
+            if (ImGui::SmallButton(label)) toast = start(c);
+            ImGui::EndDisabled();
+            tooltip("B: runs on a worker thread and fills in column by column; the animation goes on.");
         }
-        ImGui::SameLine();
+        if (c.overlay_legend && c.branches && !show_v_ && over_ == SweepParam::Omega) {
+            ImGui::SameLine();
+            c.overlay_legend(true);
+        }
+        if (!range_error_.empty()) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", range_error_.c_str());
+        return true;
     }
-    // Keeps a row's items together: the next one goes on a new line when it would not fit.
-    auto same_line_if = [&](float width) {
-        ImGui::SameLine();
-        if (ImGui::GetContentRegionAvail().x < width) ImGui::NewLine();
-    };
-    {
-        // The swept parameter: omega (the paper's diagram), or xI or m0e at the omega the simulation runs.
-        static const char* kOver[] = {"over ω", "over xI", "over m0e"};
-        int o = static_cast<int>(over_);
-        ImGui::SetNextItemWidth(fs * 6.4f);
-        if (ImGui::Combo("##bif_over", &o, kOver, 3)) set_over(static_cast<SweepParam>(o));
-        tooltip("The parameter on the diagram's horizontal axis. xI (the bumper) or m0e (the unbalance) are moved "
-                "step by step at the ω the simulation runs (set it first); CF sweeps only. The continued branches, "
-                "the ramp's points, the λ strip and a click that sets ω belong to diagrams over ω.");
-        same_line_if(fs * 6.2f);
-    }
-    const char* protos[] = {"CF up", "CF down", "EF ramp"};
-    ImGui::SetNextItemWidth(fs * 6.2f);
-    if (c.protocol) ImGui::Combo("##proto", c.protocol, protos, 3);
-    tooltip("CF: constant steps of the swept parameter, 20 transient + 70 recorded periods each, every step "
-            "starting where the last ended. EF: the experiment's slow ramp of ω (25 rad/s in 2800 s) from rest up "
-            "to ω max (over ω only).");
-    const bool ef = c.protocol && *c.protocol == 2;
-    same_line_if(fs * 6.0f);
-    ImGui::BeginDisabled(ef);
-    ImGui::SetNextItemWidth(fs * 6.0f);
-    if (c.steps) ImGui::SliderInt("##steps", c.steps, 25, 600, "%d steps");
-    tooltip("CF: the number of levels over the range (a box dragged on the diagram keeps it: finer columns).");
-    ImGui::EndDisabled();
-    // The swept range: typed (xI in mm), or dragged on the diagram with the right mouse button.
-    // The two fields and the reset button stay on one line: the button is not cut.
+    return false;
+}
+
+// The swept range: typed (xI in mm), or dragged on the diagram with the right mouse button; the two
+// fields and the reset button stay on one line.
+void BifurcationPanel::draw_range_fields(const BifurcationContext& c) {
+    const float fs = ImGui::GetFontSize();
     const OverAxis oax = over_axis(over_);
     const char* reset = over_ == SweepParam::Omega ? "0-25" : "reset";
     same_line_if(fs * 9.6f + button_width(reset) + fs * 0.2f);
@@ -454,6 +434,11 @@ void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toa
         range_error_.clear();
     }
     tooltip(over_ == SweepParam::Omega ? "The paper's range, ω from 0 to 25 rad/s." : "The default range of this parameter.");
+}
+
+// Cancel and the progress while a diagram is computed, else the compute button.
+void BifurcationPanel::draw_compute(const BifurcationContext& c, std::string& toast) {
+    const float fs = ImGui::GetFontSize();
     if (job_.running()) {
         same_line_if(fs * 10.0f);
         if (ImGui::Button("Cancel")) job_.cancel();
@@ -471,18 +456,10 @@ void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toa
         ImGui::EndDisabled();
         tooltip("B: runs on a worker thread and fills in column by column; the animation goes on.");
     }
-    same_line_if(fs * 3.2f);
-    {
-        // x or v at the sections: the same points (the sweep records both), the y axis refitted.
-        static const char* kY[] = {"x", "v"};
-        int y = show_v_ ? 1 : 0;
-        ImGui::SetNextItemWidth(fs * 3.0f);
-        if (ImGui::Combo("##bif_y", &y, kY, 2)) set_show_v(y == 1);
-        tooltip("The section points' x or v over the swept parameter (the continued branches and the ramp's "
-                "points: over x only).");
-    }
-    same_line_if(fs * 5.5f);
-    // The strip is lambda_max(omega): it belongs under a diagram over omega.
+}
+
+// The lambda strip's checkbox: lambda_max(omega) belongs under a diagram over omega.
+void BifurcationPanel::draw_strip_toggle(const BifurcationContext& c) {
     const bool strip_ok = (have_ ? shown_req_.over : over_) == SweepParam::Omega;
     ImGui::BeginDisabled(!strip_ok);
     if (ImGui::Checkbox("λ strip", &lyap_on_)) {
@@ -498,9 +475,231 @@ void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toa
                   lyap_steps_, strip_ok ? "" : " Over ω only: this diagram is over another parameter.");
     if (strip_ok) tooltip(tip);
     else if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", tip);
+}
+
+void BifurcationPanel::draw_header(const BifurcationContext& c, std::string& toast) {
+    const float fs = ImGui::GetFontSize();
+    // A short tile (analysis tiles open, a large UI scale): the settings fold into one button, so the
+    // diagram keeps the height (a row of controls wrapped over three lines left it 50 px).
+    const bool short_tile = ImGui::GetContentRegionAvail().y < fs * 16.0f;
+    if (short_tile) {
+        if (draw_folded(c, toast)) return;
+        ImGui::SameLine();
+    }
+    {
+        // The swept parameter: omega (the paper's diagram), or xI or m0e at the omega the simulation runs.
+        static const char* kOver[] = {"over ω", "over xI", "over m0e"};
+        int o = static_cast<int>(over_);
+        ImGui::SetNextItemWidth(fs * 6.4f);
+        if (ImGui::Combo("##bif_over", &o, kOver, 3)) set_over(static_cast<SweepParam>(o));
+        tooltip("The parameter on the diagram's horizontal axis. xI (the bumper) or m0e (the unbalance) are moved "
+                "step by step at the ω the simulation runs (set it first); CF sweeps only. The continued branches, "
+                "the ramp's points, the λ strip and a click that sets ω belong to diagrams over ω.");
+        same_line_if(fs * 6.2f);
+    }
+    const char* protos[] = {"CF up", "CF down", "EF ramp"};
+    ImGui::SetNextItemWidth(fs * 6.2f);
+    if (c.protocol) ImGui::Combo("##proto", c.protocol, protos, 3);
+    tooltip("CF: constant steps of the swept parameter, 20 transient + 70 recorded periods each, every step "
+            "starting where the last ended. EF: the experiment's slow ramp of ω (25 rad/s in 2800 s) from rest up "
+            "to ω max (over ω only).");
+    const bool ef = c.protocol && *c.protocol == 2;
+    same_line_if(fs * 6.0f);
+    ImGui::BeginDisabled(ef);
+    ImGui::SetNextItemWidth(fs * 6.0f);
+    if (c.steps) ImGui::SliderInt("##steps", c.steps, 25, 600, "%d steps");
+    tooltip("CF: the number of levels over the range (a box dragged on the diagram keeps it: finer columns).");
+    ImGui::EndDisabled();
+    draw_range_fields(c);
+    draw_compute(c, toast);
+    same_line_if(fs * 3.2f);
+    {
+        // x or v at the sections: the same points (the sweep records both), the y axis refitted.
+        static const char* kY[] = {"x", "v"};
+        int y = show_v_ ? 1 : 0;
+        ImGui::SetNextItemWidth(fs * 3.0f);
+        if (ImGui::Combo("##bif_y", &y, kY, 2)) set_show_v(y == 1);
+        tooltip("The section points' x or v over the swept parameter (the continued branches and the ramp's "
+                "points: over x only).");
+    }
+    same_line_if(fs * 5.5f);
+    draw_strip_toggle(c);
     draw_legend();
     if (c.overlay_legend && c.branches && !show_v_ && over_ == SweepParam::Omega) c.overlay_legend(short_tile);
     if (!range_error_.empty()) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(palette().warn), "%s", range_error_.c_str());
+}
+
+// The running attractor's section points on the line at cur (the live points): a dot per half radius of
+// height, those off the view counted in live_.
+void BifurcationPanel::draw_live_points(Plot& plot, const BifurcationContext& c, double cur, bool is_stale) {
+    const ImVec2 a = plot.area_min(), b = plot.area_max();
+    const Range vx = plot.x_range();
+    live_ = {};
+    if (c.live && !is_stale) {
+        const History<MapPoint>& h = *c.live;
+        const std::size_t n = std::min<std::size_t>(h.size(), 400), first = h.size() - n;
+        const float r = std::max(2.5f, 0.2f * ImGui::GetFontSize());
+        // All on one vertical line: a dot per half radius of height is all the eye can tell apart (a chaotic
+        // map's 400 points would otherwise cost ~20k vertices a frame, a third of the frame under llvmpipe).
+        const float step = 0.5f * r;
+        std::vector<std::uint8_t> taken(static_cast<std::size_t>(std::max(1.0f, (b.y - a.y) / step)) + 2, 0);
+        std::vector<ImVec2> dots;
+        const bool omega_in_view = cur >= vx.lo && cur <= vx.hi;
+        live_.total = n;
+        for (std::size_t i = first; i < h.size(); ++i) {
+            const ImVec2 p = plot.to_px(cur, show_v_ ? h[i].v : h[i].x);
+            // A point off the view is counted and said, never drawn at an edge as if it were there.
+            if (!omega_in_view) {
+                ++live_.beyond;
+                continue;
+            }
+            if (p.y < a.y) ++live_.above;
+            if (p.y > b.y) ++live_.below;
+            if (p.y < a.y || p.y > b.y) continue;
+            ++live_.in_view;
+            const auto cell = static_cast<std::size_t>(std::clamp((p.y - a.y) / step + 1.0f, 0.0f,
+                                                                  static_cast<float>(taken.size() - 1)));
+            if (taken[cell]) continue;
+            taken[cell] = 1;
+            dots.push_back(p);
+        }
+        // Each dot over a dark rim, the next one's rim over it (drawn into the plot's image: no triangles).
+        for (const ImVec2& p : dots) {
+            plot.dots(&p, 1, IM_COL32(0, 0, 0, 200), 2.0f * r + 2.4f);
+            plot.dots(&p, 1, kLiveColor, 2.0f * r);
+        }
+    }
+}
+
+// The value where the simulation runs, beside its line: at the top, or where no continued branch's point
+// lies under it; then how many live points the view does not hold.
+void BifurcationPanel::draw_cursor_label(Plot& plot, const BifurcationContext& c, double cur) {
+    const Palette& pal = palette();
+    const ImVec2 a = plot.area_min(), b = plot.area_max();
+    const SweepParam over = have_ ? shown_req_.over : over_;
+    const bool over_omega = over == SweepParam::Omega;
+    const OverAxis oax = over_axis(over);
+    const Range vx = plot.x_range(), vy = plot.y_range();
+    char buf[48];
+    // Beyond the diagram's range (30 rad/s over 0..25) the line is off the plot: the label says
+    // where it is, at the edge it lies beyond, inside the plot.
+    const bool beyond_hi = cur > vx.hi, beyond_lo = cur < vx.lo;
+    std::snprintf(buf, sizeof buf, "%s%s = %.*f%s%s%s", beyond_lo ? "<< " : "", oax.symbol, over == SweepParam::M0e ? 4 : 2,
+                  oax.scale * cur, over_omega ? "" : " ", over_omega ? "" : over_unit(over), beyond_hi ? " >>" : "");
+    ImVec2 p = plot.to_px(std::clamp(cur, vx.lo, vx.hi), vy.hi);
+    p.x = std::clamp(p.x, a.x, b.x);
+    // The label sits right of the line, or left of it near the right edge, so it is never cut off.
+    bool left = beyond_hi || (!beyond_lo && p.x + ImGui::CalcTextSize(buf).x + 12 > b.x);
+    // At the top of the plot, else the other side of the line, else the plot's foot: the first place
+    // where no continued branch's point lies under it.
+    if (c.branches && !show_v_ && over_omega) {
+        const ImVec2 ts = ImGui::CalcTextSize(buf);
+        const auto covers = [&](bool on_left, float y) {
+            const float lx = on_left ? p.x - 5 - ts.x : p.x + 5;
+            if (lx < a.x || lx + ts.x > b.x) return true;   // cut off: no place
+            for (const analysis::BifPoint& q : c.branches->points) {
+                const ImVec2 m = plot.to_px(q.param, q.y[0]);
+                if (m.x > lx - 9 && m.x < lx + ts.x + 9 && m.y > y - 7 && m.y < y + ts.y + 9) return true;
+            }
+            return false;
+        };
+        const float foot = b.y - ts.y - 2.0f * ImGui::GetTextLineHeightWithSpacing() - 6;
+        const std::pair<bool, float> places[] = {{left, p.y + 3}, {!left, p.y + 3}, {left, foot}, {!left, foot}};
+        for (const auto& [l, y] : places)
+            if (!covers(l, y)) {
+                left = l;
+                p.y = y - 3;
+                break;
+            }
+    }
+    plate_text(plot.draw(), ImVec2(left ? p.x - 5 : p.x + 5, p.y + 3), buf, pal.title_text, ImVec2(left ? 1.0f : 0.0f, 0));
+    {   // the label's plate (--state-json: no legend may cover it)
+        const ImVec2 ts = ImGui::CalcTextSize(buf);
+        const float lx = left ? p.x - 5 - ts.x : p.x + 5;
+        omega_label_ = {lx - 3, p.y + 2, lx + ts.x + 3, p.y + 4 + ts.y};
+    }
+    // The running attractor's section points the view does not hold: how many, and on which side.
+    const float line = ImGui::GetTextLineHeightWithSpacing();
+    const auto note = [&](std::size_t count, const char* where, float y) {
+        if (count == 0) return;
+        char text[64];
+        std::snprintf(text, sizeof text, "%zu live point%s %s", count, count == 1 ? "" : "s", where);
+        plate_text(plot.draw(), ImVec2(left ? p.x - 5 : p.x + 5, y), text, kLiveColor, ImVec2(left ? 1.0f : 0.0f, 0));
+    };
+    note(live_.beyond, beyond_hi ? "to the right" : "to the left", p.y + 3 + line);
+    note(live_.above, "above the view", p.y + 3 + line);
+    note(live_.below, "below the view", b.y - 2.0f * line - 6);
+}
+
+// A diagram of another model, omega or bumper position: says whose it is, in one line or, narrow, two.
+void BifurcationPanel::draw_stale_note(Plot& plot, const BifurcationContext& c) {
+    const Palette& pal = palette();
+    const ImVec2 a = plot.area_min(), b = plot.area_max();
+    const SweepParam over = have_ ? shown_req_.over : over_;
+    char what[120], now[160];
+    if (shown_.model != c.model) {
+        std::snprintf(what, sizeof what, "%s diagram — model is now %s;", shown_.model.c_str(), c.model.c_str());
+    } else if (over != SweepParam::Omega && std::abs(shown_req_.omega - c.omega) > 1e-9) {
+        std::snprintf(what, sizeof what, "%s diagram at ω = %.2f rad/s — ω is now %.2f;", shown_.model.c_str(),
+                      shown_req_.omega, c.omega);
+    } else {
+        std::snprintf(what, sizeof what, "%s diagram at xI = %.1f mm — xI is now %.1f mm;", shown_.model.c_str(),
+                      1e3 * shown_req_.params.xI, 1e3 * c.xI);
+    }
+    std::snprintf(now, sizeof now, "%s press B to recompute", what);
+    const float room = b.x - a.x - 16;
+    const ImVec2 at(0.5f * (a.x + b.x), a.y + ImGui::GetFontSize() * 1.6f);
+    if (ImGui::CalcTextSize(now).x <= room) {
+        plate_text(plot.draw(), at, now, pal.warn, ImVec2(0.5f, 0));
+    } else {
+        plate_text(plot.draw(), at, what, pal.warn, ImVec2(0.5f, 0));
+        plate_text(plot.draw(), ImVec2(at.x, at.y + ImGui::GetTextLineHeightWithSpacing() + 2), "press B to recompute", pal.warn,
+              ImVec2(0.5f, 0));
+    }
+}
+
+// The mouse: a click sets omega (over omega); a box dragged with the right button computes its range.
+void BifurcationPanel::handle_mouse(Plot& plot, const BifurcationContext& c, BifurcationAction& act) {
+    const Palette& pal = palette();
+    const ImVec2 a = plot.area_min(), b = plot.area_max();
+    const SweepParam over = have_ ? shown_req_.over : over_;
+    const bool over_omega = over == SweepParam::Omega;
+    const OverAxis oax = over_axis(over);
+    const Range vy = plot.y_range();
+    const ImGuiIO& io = ImGui::GetIO();
+    const SweepLimits lim = sweep_limits(over);
+    const double w_mouse = std::clamp(plot.x_at(std::clamp(io.MousePos.x, a.x, b.x)), lim.lo, lim.hi);
+    if (plot.hovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right)) {
+        box_active_ = true;
+        box_w0_ = w_mouse;
+    }
+    if (box_active_) {
+        const float x0 = plot.to_px(box_w0_, 0).x, x1 = plot.to_px(w_mouse, 0).x;
+        const ImVec2 r0(std::min(x0, x1), a.y), r1(std::max(x0, x1), b.y);
+        plot.draw()->AddRectFilled(r0, r1, IM_COL32(90, 230, 255, 40));
+        plot.draw()->AddRect(r0, r1, kLiveColor, 0.0f, 0, 1.5f);
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "%s %.3f - %.3f: release to compute", oax.symbol, oax.scale * std::min(box_w0_, w_mouse),
+                      oax.scale * std::max(box_w0_, w_mouse));
+        plate_text(plot.draw(), ImVec2(0.5f * (r0.x + r1.x), a.y + ImGui::GetFontSize() * 3.0f), buf, pal.title_text, ImVec2(0.5f, 0));
+        if (!ImGui::IsMouseDown(ImGuiMouseButton_Right)) {
+            box_active_ = false;
+            if (std::abs(x1 - x0) >= 5.0f) apply_box(c, box_w0_, w_mouse, vy);
+        }
+    } else if (plot.hovered()) {
+        plot.vline(w_mouse, pal.trace, 1.0f, true);
+        if (over_omega) {
+            ImGui::SetTooltip("ω = %.3f rad/s: click to set it\nright-drag: compute the ω range of the box\n"
+                              "wheel: zoom, drag: pan, double-click: whole diagram",
+                              w_mouse);
+            if (plot.clicked()) act.omega = w_mouse;
+        } else {
+            ImGui::SetTooltip("%s = %.*f %s (a click sets nothing: %s is set in the controls)\nright-drag: compute the "
+                              "%s range of the box\nwheel: zoom, drag: pan, double-click: whole diagram",
+                              oax.symbol, over == SweepParam::M0e ? 5 : 3, oax.scale * w_mouse, over_unit(over), oax.symbol,
+                              oax.symbol);
+        }
+    }
 }
 
 BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
@@ -565,150 +764,10 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
     // Where the simulation runs (omega, xI or m0e): a line, its value, and the Poincare map's settled points on it.
     const double cur = over == SweepParam::Omega ? c.omega : over == SweepParam::XI ? c.xI : c.params ? c.params->m0e : 0.0;
     plot.vline(cur, pal.cursor, 2.0f);
-    live_ = {};
-    if (c.live && !is_stale) {
-        const History<MapPoint>& h = *c.live;
-        const std::size_t n = std::min<std::size_t>(h.size(), 400), first = h.size() - n;
-        const float r = std::max(2.5f, 0.2f * ImGui::GetFontSize());
-        // All on one vertical line: a dot per half radius of height is all the eye can tell apart (a chaotic
-        // map's 400 points would otherwise cost ~20k vertices a frame, a third of the frame under llvmpipe).
-        const float step = 0.5f * r;
-        std::vector<std::uint8_t> taken(static_cast<std::size_t>(std::max(1.0f, (b.y - a.y) / step)) + 2, 0);
-        std::vector<ImVec2> dots;
-        const bool omega_in_view = cur >= vx.lo && cur <= vx.hi;
-        live_.total = n;
-        for (std::size_t i = first; i < h.size(); ++i) {
-            const ImVec2 p = plot.to_px(cur, show_v_ ? h[i].v : h[i].x);
-            // A point off the view is counted and said, never drawn at an edge as if it were there.
-            if (!omega_in_view) {
-                ++live_.beyond;
-                continue;
-            }
-            if (p.y < a.y) ++live_.above;
-            if (p.y > b.y) ++live_.below;
-            if (p.y < a.y || p.y > b.y) continue;
-            ++live_.in_view;
-            const auto cell = static_cast<std::size_t>(std::clamp((p.y - a.y) / step + 1.0f, 0.0f,
-                                                                  static_cast<float>(taken.size() - 1)));
-            if (taken[cell]) continue;
-            taken[cell] = 1;
-            dots.push_back(p);
-        }
-        // Each dot over a dark rim, the next one's rim over it (drawn into the plot's image: no triangles).
-        for (const ImVec2& p : dots) {
-            plot.dots(&p, 1, IM_COL32(0, 0, 0, 200), 2.0f * r + 2.4f);
-            plot.dots(&p, 1, kLiveColor, 2.0f * r);
-        }
-    }
-    {
-        char buf[48];
-        // Beyond the diagram's range (30 rad/s over 0..25) the line is off the plot: the label says
-        // where it is, at the edge it lies beyond, inside the plot.
-        const bool beyond_hi = cur > vx.hi, beyond_lo = cur < vx.lo;
-        std::snprintf(buf, sizeof buf, "%s%s = %.*f%s%s%s", beyond_lo ? "<< " : "", oax.symbol, over == SweepParam::M0e ? 4 : 2,
-                      oax.scale * cur, over_omega ? "" : " ", over_omega ? "" : over_unit(over), beyond_hi ? " >>" : "");
-        ImVec2 p = plot.to_px(std::clamp(cur, vx.lo, vx.hi), vy.hi);
-        p.x = std::clamp(p.x, a.x, b.x);
-        // The label sits right of the line, or left of it near the right edge, so it is never cut off.
-        bool left = beyond_hi || (!beyond_lo && p.x + ImGui::CalcTextSize(buf).x + 12 > b.x);
-        // At the top of the plot, else the other side of the line, else the plot's foot: the first place
-        // where no continued branch's point lies under it.
-        if (c.branches && !show_v_ && over_omega) {
-            const ImVec2 ts = ImGui::CalcTextSize(buf);
-            const auto covers = [&](bool on_left, float y) {
-                const float lx = on_left ? p.x - 5 - ts.x : p.x + 5;
-                if (lx < a.x || lx + ts.x > b.x) return true;   // cut off: no place
-                for (const analysis::BifPoint& q : c.branches->points) {
-                    const ImVec2 m = plot.to_px(q.param, q.y[0]);
-                    if (m.x > lx - 9 && m.x < lx + ts.x + 9 && m.y > y - 7 && m.y < y + ts.y + 9) return true;
-                }
-                return false;
-            };
-            const float foot = b.y - ts.y - 2.0f * ImGui::GetTextLineHeightWithSpacing() - 6;
-            const std::pair<bool, float> places[] = {{left, p.y + 3}, {!left, p.y + 3}, {left, foot}, {!left, foot}};
-            for (const auto& [l, y] : places)
-                if (!covers(l, y)) {
-                    left = l;
-                    p.y = y - 3;
-                    break;
-                }
-        }
-        plate_text(plot.draw(), ImVec2(left ? p.x - 5 : p.x + 5, p.y + 3), buf, pal.title_text, ImVec2(left ? 1.0f : 0.0f, 0));
-        {   // the label's plate (--state-json: no legend may cover it)
-            const ImVec2 ts = ImGui::CalcTextSize(buf);
-            const float lx = left ? p.x - 5 - ts.x : p.x + 5;
-            omega_label_ = {lx - 3, p.y + 2, lx + ts.x + 3, p.y + 4 + ts.y};
-        }
-        // The running attractor's section points the view does not hold: how many, and on which side.
-        const float line = ImGui::GetTextLineHeightWithSpacing();
-        const auto note = [&](std::size_t count, const char* where, float y) {
-            if (count == 0) return;
-            char text[64];
-            std::snprintf(text, sizeof text, "%zu live point%s %s", count, count == 1 ? "" : "s", where);
-            plate_text(plot.draw(), ImVec2(left ? p.x - 5 : p.x + 5, y), text, kLiveColor, ImVec2(left ? 1.0f : 0.0f, 0));
-        };
-        note(live_.beyond, beyond_hi ? "to the right" : "to the left", p.y + 3 + line);
-        note(live_.above, "above the view", p.y + 3 + line);
-        note(live_.below, "below the view", b.y - 2.0f * line - 6);
-    }
-    if (is_stale) {
-        // Says whose diagram this is, in one line or, in a narrow tile, two.
-        char what[120], now[160];
-        if (shown_.model != c.model) {
-            std::snprintf(what, sizeof what, "%s diagram — model is now %s;", shown_.model.c_str(), c.model.c_str());
-        } else if (over != SweepParam::Omega && std::abs(shown_req_.omega - c.omega) > 1e-9) {
-            std::snprintf(what, sizeof what, "%s diagram at ω = %.2f rad/s — ω is now %.2f;", shown_.model.c_str(),
-                          shown_req_.omega, c.omega);
-        } else {
-            std::snprintf(what, sizeof what, "%s diagram at xI = %.1f mm — xI is now %.1f mm;", shown_.model.c_str(),
-                          1e3 * shown_req_.params.xI, 1e3 * c.xI);
-        }
-        std::snprintf(now, sizeof now, "%s press B to recompute", what);
-        const float room = b.x - a.x - 16;
-        const ImVec2 at(0.5f * (a.x + b.x), a.y + ImGui::GetFontSize() * 1.6f);
-        if (ImGui::CalcTextSize(now).x <= room) {
-            plate_text(plot.draw(), at, now, pal.warn, ImVec2(0.5f, 0));
-        } else {
-            plate_text(plot.draw(), at, what, pal.warn, ImVec2(0.5f, 0));
-            plate_text(plot.draw(), ImVec2(at.x, at.y + ImGui::GetTextLineHeightWithSpacing() + 2), "press B to recompute", pal.warn,
-                  ImVec2(0.5f, 0));
-        }
-    }
-    // The mouse: a click sets omega (over omega); a box dragged with the right button computes its range.
-    const ImGuiIO& io = ImGui::GetIO();
-    const SweepLimits lim = sweep_limits(over);
-    const double w_mouse = std::clamp(plot.x_at(std::clamp(io.MousePos.x, a.x, b.x)), lim.lo, lim.hi);
-    if (plot.hovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right)) {
-        box_active_ = true;
-        box_w0_ = w_mouse;
-    }
-    if (box_active_) {
-        const float x0 = plot.to_px(box_w0_, 0).x, x1 = plot.to_px(w_mouse, 0).x;
-        const ImVec2 r0(std::min(x0, x1), a.y), r1(std::max(x0, x1), b.y);
-        plot.draw()->AddRectFilled(r0, r1, IM_COL32(90, 230, 255, 40));
-        plot.draw()->AddRect(r0, r1, kLiveColor, 0.0f, 0, 1.5f);
-        char buf[96];
-        std::snprintf(buf, sizeof buf, "%s %.3f - %.3f: release to compute", oax.symbol, oax.scale * std::min(box_w0_, w_mouse),
-                      oax.scale * std::max(box_w0_, w_mouse));
-        plate_text(plot.draw(), ImVec2(0.5f * (r0.x + r1.x), a.y + ImGui::GetFontSize() * 3.0f), buf, pal.title_text, ImVec2(0.5f, 0));
-        if (!ImGui::IsMouseDown(ImGuiMouseButton_Right)) {
-            box_active_ = false;
-            if (std::abs(x1 - x0) >= 5.0f) apply_box(c, box_w0_, w_mouse, vy);
-        }
-    } else if (plot.hovered()) {
-        plot.vline(w_mouse, pal.trace, 1.0f, true);
-        if (over_omega) {
-            ImGui::SetTooltip("ω = %.3f rad/s: click to set it\nright-drag: compute the ω range of the box\n"
-                              "wheel: zoom, drag: pan, double-click: whole diagram",
-                              w_mouse);
-            if (plot.clicked()) act.omega = w_mouse;
-        } else {
-            ImGui::SetTooltip("%s = %.*f %s (a click sets nothing: %s is set in the controls)\nright-drag: compute the "
-                              "%s range of the box\nwheel: zoom, drag: pan, double-click: whole diagram",
-                              oax.symbol, over == SweepParam::M0e ? 5 : 3, oax.scale * w_mouse, over_unit(over), oax.symbol,
-                              oax.symbol);
-        }
-    }
+    draw_live_points(plot, c, cur, is_stale);
+    draw_cursor_label(plot, c, cur);
+    if (is_stale) draw_stale_note(plot, c);
+    handle_mouse(plot, c, act);
     // The ramp's points and the continued branches are x at the sections over omega: drawn over the diagram of
     // x over omega only.
     if (c.ramp && !show_v_ && over_omega) draw_ramp_points(plot, *c.ramp);

@@ -129,6 +129,18 @@ private:
     double y_of(const DiagramPoint& p) const { return show_v_ ? p.v : p.x; }
     void update_texture(int w, int h);
     void draw_header(const BifurcationContext& c, std::string& toast);
+    // draw()'s layers over the plot: the live points on the running value's line, its label, a stale
+    // diagram's note, the mouse (a click, a box).
+    void draw_live_points(Plot& plot, const BifurcationContext& c, double cur, bool is_stale);
+    void draw_cursor_label(Plot& plot, const BifurcationContext& c, double cur);
+    void draw_stale_note(Plot& plot, const BifurcationContext& c);
+    void handle_mouse(Plot& plot, const BifurcationContext& c, BifurcationAction& act);
+    // draw_header()'s pieces: folded in a short tile (true: nothing more to draw), the range's fields, the
+    // compute button or the progress, the lambda strip's checkbox.
+    bool draw_folded(const BifurcationContext& c, std::string& toast);
+    void draw_range_fields(const BifurcationContext& c);
+    void draw_compute(const BifurcationContext& c, std::string& toast);
+    void draw_strip_toggle(const BifurcationContext& c);
     void draw_legend() const;   // the density colours, in the header
     // A box dragged (or scripted) from omega w0 to w1: its range computed, and the view set to it.
     void apply_box(const BifurcationContext& c, double w0, double w1, Range view_y);

@@ -74,34 +74,29 @@ void PoincarePanel::feed_orbits(const ViewContext& ctx) {
     o.taken = secs.size();
 }
 
-ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x, const AutoRange& phase_v) {
-    ViewAction act;
-    feed_orbits(ctx);
-    const History<SimMsg>& tr = *ctx.traj;
-    const Params& p = *ctx.params;
-    const Palette& pal = palette();
-    const PoincareMap& map = *ctx.map;   // replaying: as it stood at the cursor
-    const History<MapPoint>& pts = map.points();
-    const std::size_t n = pts.size();
+namespace {
+// The legend of the impacts' colours: its title, its dots' radius and its width at font size fs.
+struct Legend {
+    static constexpr const char* kNames[4] = {"0", "1", "2", "3+"};
+    const char* title = "impacts/period";
+    float r = 0, w = 0;
+};
+
+Legend legend_size(const bool (&impacts_seen)[4], float fs) {
+    Legend lg;
+    lg.r = 0.3f * fs;
+    lg.w = ImGui::CalcTextSize(lg.title).x;
+    for (int cat = 0; cat < 4; ++cat)
+        if (impacts_seen[cat]) lg.w += 0.6f * fs + 2 * lg.r + 3 + ImGui::CalcTextSize(Legend::kNames[cat]).x;
+    return lg;
+}
+
+// The label: what the map knows. The period is the settle detector's, never a guess from the transient.
+// Replaying, the map is that of the replayed instant, and says so. Short words where area_w [px] is too narrow.
+void map_label(const PoincareMap& map, const ViewContext& ctx, double area_w, char (&label)[160]) {
+    const std::size_t n = map.points().size();
     const PoincareMap::Status status = map.status();
     const bool periodic = status == PoincareMap::Status::Periodic;
-    // A periodic orbit is a few points: large. A chaotic one is thousands: small enough to show structure.
-    const float dot = periodic ? std::max(7.0f, 8.0f * ctx.ui_scale) : std::max(3.0f, 3.5f * ctx.ui_scale);
-    const float ring = std::max(dot * 0.5f + 3.0f, 6.0f * ctx.ui_scale);
-
-    // Four age bands (oldest first, fading) times four impact counts (0, 1, 2, 3+): one scatter call each.
-    for (auto& b : buckets_) b.clear();
-    bool impacts_seen[4] = {};
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t age_band = periodic ? 3 : std::min<std::size_t>(3, 4 * i / n);
-        const int cat = std::min(pts[i].impacts, 3);
-        impacts_seen[cat] = true;
-        buckets_[age_band * 4 + static_cast<std::size_t>(cat)].push_back(static_cast<std::uint32_t>(i));
-    }
-    const bool legend = impacts_seen[1] || impacts_seen[2] || impacts_seen[3];
-
-    // The label: what the map knows. The period is the settle detector's, never a guess from the transient.
-    char label[160];
     const unsigned long long seen = map.seen();
     if (seen == 0) std::snprintf(label, sizeof label, "no section yet (one per forcing period)");
     else if (map.slow() && std::isfinite(map.decay()))
@@ -113,23 +108,6 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
         std::snprintf(label, sizeof label, "settling...  %llu period%s, the transient is not drawn", seen, seen == 1 ? "" : "s");
     else if (periodic) std::snprintf(label, sizeof label, "period %d", map.period());
     else std::snprintf(label, sizeof label, "chaos: no period <= %d   %zu points", map.config().max_period, n);
-    static const char* kNames[4] = {"0", "1", "2", "3+"};
-    const char* legend_title = "impacts/period";
-    const float fs = ImGui::GetFontSize();
-    const float r_legend = 0.3f * fs;
-    float legend_w = ImGui::CalcTextSize(legend_title).x;
-    for (int cat = 0; cat < 4; ++cat)
-        if (impacts_seen[cat]) legend_w += 0.6f * fs + 2 * r_legend + 3 + ImGui::CalcTextSize(kNames[cat]).x;
-
-    // The fit, in the data area Plot::begin will lay out (its margins): the newest point's ring stays off
-    // the frame, and a band at the top for the label and the legend (a second line when they do not fit
-    // side by side) stays free of points.
-    // A row under the plot for the section's phase, unless the tile is too small to spare it.
-    ImVec2 avail = ImGui::GetContentRegionAvail();
-    const bool phase_row = avail.y > 8.0f * ImGui::GetFrameHeightWithSpacing();
-    if (phase_row) avail.y -= ImGui::GetFrameHeightWithSpacing();
-    const double area_w = avail.x - fs * 4.4f, area_h = avail.y - fs * 2.8f;
-    // Replaying, the map is that of the replayed instant, and says so.
     char when[48] = "";
     if (ctx.replay) std::snprintf(when, sizeof when, "  (replay, t = %.2f s)", ctx.last.t);
     else if (ctx.omega_moving) std::snprintf(when, sizeof when, "  (ω moving: %.3f rad/s)", ctx.last.omega);
@@ -143,13 +121,71 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
         if (ctx.replay && too_wide()) std::snprintf(when, sizeof when, "  (replay)");
         if (ctx.omega_moving && too_wide()) std::snprintf(when, sizeof when, "  (ω moving)");
     }
-    {
-        const std::size_t len = std::strlen(label);
-        std::snprintf(label + len, sizeof label - len, "%s", when);
+    const std::size_t len = std::strlen(label);
+    std::snprintf(label + len, sizeof label - len, "%s", when);
+}
+
+// The order of the visits, 1..k along the last cycle of a period-k map: points closer than a dot share one
+// label ("1,4"), so a doubled orbit's close pairs read as pairs, not as single points.
+void draw_visit_numbers(Plot& plot, const History<MapPoint>& pts, std::size_t k, float dot, float ring, float fs) {
+    const std::size_t n = pts.size();
+    std::vector<ImVec2> at(k);
+    std::vector<bool> done(k, false);
+    for (std::size_t j = 0; j < k; ++j) at[j] = plot.to_px(pts[n - k + j].x, pts[n - k + j].v);
+    for (std::size_t j = 0; j < k; ++j) {
+        if (done[j]) continue;
+        char text[64];
+        int len = std::snprintf(text, sizeof text, "%zu", j + 1);
+        for (std::size_t q = j + 1; q < k; ++q) {
+            const float dx = at[q].x - at[j].x, dy = at[q].y - at[j].y;
+            if (!done[q] && dx * dx + dy * dy < 1.44f * dot * dot) {
+                done[q] = true;
+                if (len > 0 && len < 56) len += std::snprintf(text + len, sizeof text - static_cast<std::size_t>(len), ",%zu", q + 1);
+            }
+        }
+        const float tw = ImGui::CalcTextSize(text).x;
+        const bool left = at[j].x + ring + 4 + tw > plot.area_max().x;
+        plot.draw()->AddText(ImVec2(left ? at[j].x - ring - 4 - tw : at[j].x + ring + 2, at[j].y - fs - 1),
+                             palette().axis_text, text);
     }
-    const bool two_lines = legend && ImGui::CalcTextSize(label).x + legend_w + 24 > area_w;
-    const double edge = ring + 3.0 + 0.06 * std::min(area_w, area_h);
-    const double label_band = (two_lines ? 2.1 : 1.0) * fs + 10.0;
+}
+
+// The legend, right-aligned at height y: the impact counts seen, each with its colour's dot. A narrow tile
+// (a large UI scale) takes the short title, or the dots alone, rather than clip it.
+void draw_legend(Plot& plot, Legend lg, const bool (&impacts_seen)[4], float y, float fs) {
+    const Palette& pal = palette();
+    const float room = plot.area_max().x - plot.area_min().x - 12, dots = lg.w - ImGui::CalcTextSize(lg.title).x;
+    if (dots + ImGui::CalcTextSize(lg.title).x > room) lg.title = dots + ImGui::CalcTextSize("impacts").x <= room ? "impacts" : "";
+    float x = plot.area_max().x - 6;
+    for (int cat = 3; cat >= 0; --cat) {
+        if (!impacts_seen[cat]) continue;
+        x -= ImGui::CalcTextSize(Legend::kNames[cat]).x;
+        plot.draw()->AddText(ImVec2(x, y), pal.axis_text, Legend::kNames[cat]);
+        x -= lg.r + 3;
+        plot.draw()->AddCircleFilled(ImVec2(x, y + 0.5f * fs), lg.r, impacts_color(cat, 1.0f), 12);
+        x -= lg.r + 0.6f * fs;
+    }
+    x -= ImGui::CalcTextSize(lg.title).x;
+    plot.draw()->AddText(ImVec2(x, y), pal.axis_text, lg.title);
+}
+}  // namespace
+
+void PoincarePanel::sort_points(const History<MapPoint>& pts, bool periodic, bool (&impacts_seen)[4]) {
+    // Four age bands (oldest first, fading) times four impact counts (0, 1, 2, 3+): one scatter call each.
+    const std::size_t n = pts.size();
+    for (auto& b : buckets_) b.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t age_band = periodic ? 3 : std::min<std::size_t>(3, 4 * i / n);
+        const int cat = std::min(pts[i].impacts, 3);
+        impacts_seen[cat] = true;
+        buckets_[age_band * 4 + static_cast<std::size_t>(cat)].push_back(static_cast<std::uint32_t>(i));
+    }
+}
+
+void PoincarePanel::fit_view(const ViewContext& ctx, const AutoRange& phase_x, const AutoRange& phase_v, double area_w,
+                             double area_h, double edge, double label_band) {
+    const History<MapPoint>& pts = ctx.map->points();
+    const std::size_t n = pts.size();
     bool orbit_fit = false;
     for (const ClickedOrbit& o : orbits_) orbit_fit = orbit_fit || (clicker_ && !o.pts.empty());
     if (orbit_fit) {   // the clicker's orbits, and the map: the view holds them all
@@ -184,6 +220,7 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
         fit_generation_ = ~std::uint64_t{0};
     } else if (n == 0) {
         // The phase portrait is not drawn (presentation mode): the trail's own extent, not an unset 0..1 m.
+        const History<SimMsg>& tr = *ctx.traj;
         double xl = ctx.last.x, xh = ctx.last.x, vl = ctx.last.v, vh = ctx.last.v;
         for (std::size_t i = ctx.trail_first; i < tr.size(); ++i) {
             xl = std::min(xl, tr[i].x);
@@ -209,17 +246,9 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
             v_.track({fv.lo, fv.hi}, 0.0, 1e-12, ctx.frame_dt);
         }
     }
-    Plot plot;
-    Axes ax;
-    ax.x_label = "x [mm]";
-    ax.y_label = "v [m/s]";
-    ax.x_scale = 1e3;
-    if (!plot.begin("##poincare", avail, x_.cur, v_.cur, ax)) return act;
-    if (p.has_bumper()) {   // impact law "none": no bumper to draw
-        plot.shade_right_of(ctx.xI, pal.bumper);
-        plot.vline(ctx.xI, pal.bumper, 1.5f, true);
-    }
+}
 
+void PoincarePanel::draw_points(Plot& plot, const History<MapPoint>& pts, float dot, float ring, float ui_scale) {
     // Newest band first over one shared pixel bitmap: a pixel a newer point covers is not drawn again
     // for an older one (100k points cost one pass, not sixteen).
     static constexpr float kAlpha[4] = {0.22f, 0.42f, 0.68f, 1.0f};
@@ -236,72 +265,96 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
     for (std::size_t k = 0; k < orbits_.size(); ++k) {   // the clicker's orbits over the map, each its colour
         const auto& op = orbits_[k].pts;
         plot.scatter(op.size(), [&](std::size_t j) { return XY{op[j].first, op[j].second}; }, orbit_color(k),
-                     std::max(3.0f, 3.5f * ctx.ui_scale));
+                     std::max(3.0f, 3.5f * ui_scale));
         const ImVec2 c0 = plot.to_px(orbits_[k].x0, orbits_[k].v0);   // where it was started: a cross
-        const float r = 4.0f * ctx.ui_scale;
+        const float r = 4.0f * ui_scale;
         plot.draw()->AddLine(ImVec2(c0.x - r, c0.y - r), ImVec2(c0.x + r, c0.y + r), orbit_color(k), 2.0f);
         plot.draw()->AddLine(ImVec2(c0.x - r, c0.y + r), ImVec2(c0.x + r, c0.y - r), orbit_color(k), 2.0f);
     }
-    if (n) {
+    if (pts.size() != 0) {
         const ImVec2 c = plot.to_px(pts.back().x, pts.back().v);
-        plot.draw()->AddCircle(c, ring, pal.section_new, 0, 2.0f);
+        plot.draw()->AddCircle(c, ring, palette().section_new, 0, 2.0f);
     }
-    if (periodic && n >= static_cast<std::size_t>(map.period())) {
-        // The order of the visits, 1..k along the last cycle: points closer than a dot share one label
-        // ("1,4"), so a doubled orbit's close pairs read as pairs, not as single points.
-        const std::size_t k = static_cast<std::size_t>(map.period());
-        std::vector<ImVec2> at(k);
-        std::vector<bool> done(k, false);
-        for (std::size_t j = 0; j < k; ++j) at[j] = plot.to_px(pts[n - k + j].x, pts[n - k + j].v);
-        for (std::size_t j = 0; j < k; ++j) {
-            if (done[j]) continue;
-            char text[64];
-            int len = std::snprintf(text, sizeof text, "%zu", j + 1);
-            for (std::size_t q = j + 1; q < k; ++q) {
-                const float dx = at[q].x - at[j].x, dy = at[q].y - at[j].y;
-                if (!done[q] && dx * dx + dy * dy < 1.44f * dot * dot) {
-                    done[q] = true;
-                    if (len > 0 && len < 56) len += std::snprintf(text + len, sizeof text - static_cast<std::size_t>(len), ",%zu", q + 1);
-                }
-            }
-            const float tw = ImGui::CalcTextSize(text).x;
-            const bool left = at[j].x + ring + 4 + tw > plot.area_max().x;
-            plot.draw()->AddText(ImVec2(left ? at[j].x - ring - 4 - tw : at[j].x + ring + 2, at[j].y - fs - 1),
-                                 pal.axis_text, text);
-        }
-    }
+}
 
+void PoincarePanel::draw_clicker(Plot& plot, const ViewContext& ctx, ViewAction& act) {
+    const float fs = ImGui::GetFontSize();
+    char note[64];
+    std::snprintf(note, sizeof note, "clicker: %zu orbit%s", orbits_.size(), orbits_.size() == 1 ? "" : "s");
+    plate_text(plot.draw(), ImVec2(plot.area_min().x + 6, plot.area_max().y - fs - 6), note, palette().axis_text);
+    const ImVec2 mp = ImGui::GetIO().MousePos;
+    const double mx = plot.x_at(mp.x), mv = plot.y_at(mp.y);
+    if (plot.hovered() && !plot.dragging())
+        ImGui::SetTooltip("x = %+.2f mm, v = %+.3f m/s\nclick: a new orbit from here (kept in its own colour)\n"
+                          "right-click: clicker off, clear the orbits", mx * 1e3, mv);
+    act.start_orbit = delayed_click(click_, plot.hovered(), plot.clicked(), mx, mv, ctx.now);
+    if (act.start_orbit) start_orbit(mx, mv, ctx.epoch);
+}
+
+namespace {
+// The row under the plot: the section's phase phi0.
+void draw_phase_row(const ViewContext& ctx, ViewAction& act) {
+    float phi0 = static_cast<float>(ctx.section_phase);
+    char fmt[64];
+    std::snprintf(fmt, sizeof fmt, "section φ0 = %%.2f rad (%.0f°)", ctx.section_phase * 360.0 / kTwoPi);
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::SliderFloat("##phi0", &phi0, 0.0f, static_cast<float>(kTwoPi), fmt))
+        act.section_phase = std::clamp(static_cast<double>(phi0), 0.0, kTwoPi);
+    tooltip("The section's phase: a point each time the unbalance passes φ = φ0 + 2πk (0: the stroboscopic\n"
+            "section). A change starts the map afresh and clears the clicker's orbits.");
+}
+}  // namespace
+
+ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x, const AutoRange& phase_v) {
+    ViewAction act;
+    feed_orbits(ctx);
+    const Params& p = *ctx.params;
+    const Palette& pal = palette();
+    const PoincareMap& map = *ctx.map;   // replaying: as it stood at the cursor
+    const History<MapPoint>& pts = map.points();
+    const std::size_t n = pts.size();
+    const bool periodic = map.status() == PoincareMap::Status::Periodic;
+    // A periodic orbit is a few points: large. A chaotic one is thousands: small enough to show structure.
+    const float dot = periodic ? std::max(7.0f, 8.0f * ctx.ui_scale) : std::max(3.0f, 3.5f * ctx.ui_scale);
+    const float ring = std::max(dot * 0.5f + 3.0f, 6.0f * ctx.ui_scale);
+    bool impacts_seen[4] = {};
+    sort_points(pts, periodic, impacts_seen);
+    const bool legend = impacts_seen[1] || impacts_seen[2] || impacts_seen[3];
+    const float fs = ImGui::GetFontSize();
+    const Legend lg = legend_size(impacts_seen, fs);
+
+    // The fit, in the data area Plot::begin will lay out (its margins): the newest point's ring stays off
+    // the frame, and a band at the top for the label and the legend (a second line when they do not fit
+    // side by side) stays free of points.
+    // A row under the plot for the section's phase, unless the tile is too small to spare it.
+    ImVec2 avail = ImGui::GetContentRegionAvail();
+    const bool phase_row = avail.y > 8.0f * ImGui::GetFrameHeightWithSpacing();
+    if (phase_row) avail.y -= ImGui::GetFrameHeightWithSpacing();
+    const double area_w = avail.x - fs * 4.4f, area_h = avail.y - fs * 2.8f;
+    char label[160];
+    map_label(map, ctx, area_w, label);
+    const bool two_lines = legend && ImGui::CalcTextSize(label).x + lg.w + 24 > area_w;
+    const double edge = ring + 3.0 + 0.06 * std::min(area_w, area_h);
+    const double label_band = (two_lines ? 2.1 : 1.0) * fs + 10.0;
+    fit_view(ctx, phase_x, phase_v, area_w, area_h, edge, label_band);
+
+    Plot plot;
+    Axes ax;
+    ax.x_label = "x [mm]";
+    ax.y_label = "v [m/s]";
+    ax.x_scale = 1e3;
+    if (!plot.begin("##poincare", avail, x_.cur, v_.cur, ax)) return act;
+    if (p.has_bumper()) {   // impact law "none": no bumper to draw
+        plot.shade_right_of(ctx.xI, pal.bumper);
+        plot.vline(ctx.xI, pal.bumper, 1.5f, true);
+    }
+    draw_points(plot, pts, dot, ring, ctx.ui_scale);
+    if (periodic && n >= static_cast<std::size_t>(map.period()))
+        draw_visit_numbers(plot, pts, static_cast<std::size_t>(map.period()), dot, ring, fs);
     const ImVec2 lp(plot.area_min().x + 6, plot.area_min().y + 4);
     plate_text(plot.draw(), lp, label, pal.title_text);
-    if (legend) {   // right-aligned, beside the label or on the line below it
-        // A narrow tile (a large UI scale) takes the short title, or the dots alone, rather than clip it.
-        const float room = plot.area_max().x - plot.area_min().x - 12, dots = legend_w - ImGui::CalcTextSize(legend_title).x;
-        if (dots + ImGui::CalcTextSize(legend_title).x > room) legend_title = dots + ImGui::CalcTextSize("impacts").x <= room ? "impacts" : "";
-        float x = plot.area_max().x - 6;
-        const float y = two_lines ? lp.y + fs + 4 : lp.y;
-        for (int cat = 3; cat >= 0; --cat) {
-            if (!impacts_seen[cat]) continue;
-            x -= ImGui::CalcTextSize(kNames[cat]).x;
-            plot.draw()->AddText(ImVec2(x, y), pal.axis_text, kNames[cat]);
-            x -= r_legend + 3;
-            plot.draw()->AddCircleFilled(ImVec2(x, y + 0.5f * fs), r_legend, impacts_color(cat, 1.0f), 12);
-            x -= r_legend + 0.6f * fs;
-        }
-        x -= ImGui::CalcTextSize(legend_title).x;
-        plot.draw()->AddText(ImVec2(x, y), pal.axis_text, legend_title);
-    }
-    if (clicker_) {
-        char note[64];
-        std::snprintf(note, sizeof note, "clicker: %zu orbit%s", orbits_.size(), orbits_.size() == 1 ? "" : "s");
-        plate_text(plot.draw(), ImVec2(plot.area_min().x + 6, plot.area_max().y - fs - 6), note, pal.axis_text);
-        const ImVec2 mp = ImGui::GetIO().MousePos;
-        const double mx = plot.x_at(mp.x), mv = plot.y_at(mp.y);
-        if (plot.hovered() && !plot.dragging())
-            ImGui::SetTooltip("x = %+.2f mm, v = %+.3f m/s\nclick: a new orbit from here (kept in its own colour)\n"
-                              "right-click: clicker off, clear the orbits", mx * 1e3, mv);
-        act.start_orbit = delayed_click(click_, plot.hovered(), plot.clicked(), mx, mv, ctx.now);
-        if (act.start_orbit) start_orbit(mx, mv, ctx.epoch);
-    }
+    if (legend) draw_legend(plot, lg, impacts_seen, two_lines ? lp.y + fs + 4 : lp.y, fs);   // beside the label or below it
+    if (clicker_) draw_clicker(plot, ctx, act);
     if (plot.hovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right)) ImGui::OpenPopup("##poincare_menu");
     plot.end();
     if (ImGui::BeginPopup("##poincare_menu")) {
@@ -310,16 +363,7 @@ ViewAction PoincarePanel::draw(const ViewContext& ctx, const AutoRange& phase_x,
         if (ImGui::MenuItem("Section at φ = 2πn (phase 0)", nullptr, false, ctx.section_phase != 0.0)) act.section_phase = 0.0;
         ImGui::EndPopup();
     }
-    if (phase_row) {
-        float phi0 = static_cast<float>(ctx.section_phase);
-        char fmt[64];
-        std::snprintf(fmt, sizeof fmt, "section φ0 = %%.2f rad (%.0f°)", ctx.section_phase * 360.0 / kTwoPi);
-        ImGui::SetNextItemWidth(-1);
-        if (ImGui::SliderFloat("##phi0", &phi0, 0.0f, static_cast<float>(kTwoPi), fmt))
-            act.section_phase = std::clamp(static_cast<double>(phi0), 0.0, kTwoPi);
-        tooltip("The section's phase: a point each time the unbalance passes φ = φ0 + 2πk (0: the stroboscopic\n"
-                "section). A change starts the map afresh and clears the clicker's orbits.");
-    }
+    if (phase_row) draw_phase_row(ctx, act);
     return act;
 }
 

@@ -46,6 +46,13 @@ public:
 
 private:
     void feed_orbits(const ViewContext& ctx);
+    // draw()'s layers: the map's points into buckets_ (noting the impact counts seen), the view fitted to the
+    // map or the orbits, the points and orbits drawn, the clicker's note, tooltip and click.
+    void sort_points(const History<MapPoint>& pts, bool periodic, bool (&impacts_seen)[4]);
+    void fit_view(const ViewContext& ctx, const AutoRange& phase_x, const AutoRange& phase_v, double area_w, double area_h,
+                  double edge, double label_band);
+    void draw_points(Plot& plot, const History<MapPoint>& pts, float dot, float ring, float ui_scale);
+    void draw_clicker(Plot& plot, const ViewContext& ctx, ViewAction& act);
     bool clicker_ = false;
     std::vector<ClickedOrbit> orbits_;
     ClickDelay click_;

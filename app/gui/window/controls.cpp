@@ -47,14 +47,14 @@ void App::draw_controls_run() {
     ImGui::TextUnformatted("Model");
     ImGui::SameLine();
     ImGui::TextColored(ImGui::GetStyle().Colors[ImGuiCol_SliderGrab], "%s", model_name().c_str());
-    if (!layout_.controls_narrow) {   // a narrow column (large UI scale) keeps the words for the tooltip
+    if (!layout_.frame.controls_narrow) {   // a narrow column (large UI scale) keeps the words for the tooltip
         ImGui::SameLine();
         ImGui::TextDisabled("(live: keeps x, v, φ)");
     }
     ImGui::SetNextItemWidth(full * 0.40f);
-    if (ImGui::BeginCombo("##stiffness", stiff[static_cast<std::size_t>(stiffness_)].id)) {
+    if (ImGui::BeginCombo("##stiffness", stiff[static_cast<std::size_t>(run_.stiffness)].id)) {
         for (std::size_t i = 0; i < stiff.size(); ++i) {
-            if (ImGui::Selectable(stiff[i].id, static_cast<int>(i) == stiffness_)) set_model(static_cast<int>(i), impact_);
+            if (ImGui::Selectable(stiff[i].id, static_cast<int>(i) == run_.stiffness)) set_model(static_cast<int>(i), run_.impact);
             tooltip(stiff[i].summary);
         }
         ImGui::EndCombo();
@@ -62,14 +62,14 @@ void App::draw_controls_run() {
     tooltip("Stiffness version (Table 1): springs, magnets, bearing resistance, unbalance.  K cycles.");
     ImGui::SameLine();
     ImGui::SetNextItemWidth(-1);
-    if (ImGui::BeginCombo("##impact", imps[static_cast<std::size_t>(impact_)].id)) {
+    if (ImGui::BeginCombo("##impact", imps[static_cast<std::size_t>(run_.impact)].id)) {
         for (std::size_t i = 0; i < imps.size(); ++i) {
             char label[96];
             const char* kind = imps[i].kind == ImpactKind::Rigid       ? "rigid, event-driven"
                                : imps[i].kind == ImpactKind::Compliant ? "compliant Hunt-Crossley"
                                                                        : "no bumper";
             std::snprintf(label, sizeof label, "%-4s %s", imps[i].id, kind);
-            if (ImGui::Selectable(label, static_cast<int>(i) == impact_)) set_model(stiffness_, static_cast<int>(i));
+            if (ImGui::Selectable(label, static_cast<int>(i) == run_.impact)) set_model(run_.stiffness, static_cast<int>(i));
             tooltip(imps[i].summary);
         }
         ImGui::EndCombo();
@@ -77,26 +77,26 @@ void App::draw_controls_run() {
     tooltip("Impact model (Tables 2, 3): C, C1 compliant; G instantaneous; H finite duration; none: no bumper.  M cycles.");
 
     section("Forcing and bumper");
-    float w = static_cast<float>(omega_);
+    float w = static_cast<float>(run_.omega);
     ImGui::SetNextItemWidth(-1);
     if (ImGui::SliderFloat("##omega", &w, 0.0f, 30.0f, "ω = %.2f rad/s")) set_omega(w);
     tooltip("Speed of the unbalance (Left/Right: -/+0.1, with Shift: 1). Drag it from 9 to 13 to watch the "
             "period-doubling cascade.");
-    if (ImGui::Button("-1")) set_omega(omega_ - 1);
+    if (ImGui::Button("-1")) set_omega(run_.omega - 1);
     same_line_or_wrap(button_width("-.1"));
-    if (ImGui::Button("-.1")) set_omega(omega_ - 0.1);
+    if (ImGui::Button("-.1")) set_omega(run_.omega - 0.1);
     same_line_or_wrap(button_width("+.1"));
-    if (ImGui::Button("+.1")) set_omega(omega_ + 0.1);
+    if (ImGui::Button("+.1")) set_omega(run_.omega + 0.1);
     same_line_or_wrap(button_width("+1"));
-    if (ImGui::Button("+1")) set_omega(omega_ + 1);
-    if (omega_ > 0) {
+    if (ImGui::Button("+1")) set_omega(run_.omega + 1);
+    if (run_.omega > 0) {
         char period[32];
-        std::snprintf(period, sizeof period, layout_.controls_narrow ? "%.2f s" : "T = %.3f s", kTwoPi / omega_);
+        std::snprintf(period, sizeof period, layout_.frame.controls_narrow ? "%.2f s" : "T = %.3f s", kTwoPi / run_.omega);
         same_line_or_wrap(ImGui::CalcTextSize(period).x);
         ImGui::TextDisabled("%s", period);
     }
     draw_ramp_controls();
-    float xi_mm = static_cast<float>(xI_ * 1e3);
+    float xi_mm = static_cast<float>(run_.xI * 1e3);
     ImGui::SetNextItemWidth(-1);
     if (ImGui::SliderFloat("##xI", &xi_mm, -20.0f, 20.0f, "bumper x_I = %.1f mm")) set_xi(xi_mm * 1e-3);
     tooltip("Position of the one-sided bumper (Up/Down: +/-0.5 mm). x = 0 is the hilltop between the wells. "
@@ -104,15 +104,15 @@ void App::draw_controls_run() {
 
     section("Run");
     const float bw = (full - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
-    if (ImGui::Button(paused_ ? "Play" : "Pause", ImVec2(bw, 0))) set_paused(!paused_);
+    if (ImGui::Button(run_.paused ? "Play" : "Pause", ImVec2(bw, 0))) set_paused(!run_.paused);
     tooltip("Space");
     ImGui::SameLine();
-    if (ImGui::Button(layout_.controls_narrow ? "Step" : "Step period", ImVec2(bw, 0))) step_period();
+    if (ImGui::Button(layout_.frame.controls_narrow ? "Step" : "Step period", ImVec2(bw, 0))) step_period();
     tooltip("N: run to the next Poincare section, then pause");
     ImGui::SameLine();
     if (ImGui::Button("Reset", ImVec2(bw, 0))) reset();
     tooltip("R: t = 0, φ = 0, the cart at rest at x0 (the left well)");
-    float sp = static_cast<float>(speed_);
+    float sp = static_cast<float>(run_.speed);
     ImGui::SetNextItemWidth(-1);
     if (ImGui::SliderFloat("##speed", &sp, 0.01f, 100.0f, "speed %.2fx real time", ImGuiSliderFlags_Logarithmic))
         set_speed(sp);
@@ -143,28 +143,28 @@ void App::draw_controls_view() {
     section("Display");
     const float half = (full - ImGui::GetStyle().ItemSpacing.x) / 2.0f;
     ImGui::SetNextItemWidth(half);
-    ImGui::SliderFloat("##trail", &trail_periods_, 1.0f, 60.0f, "trail %.0f periods");
+    ImGui::SliderFloat("##trail", &view_.trail_periods, 1.0f, 60.0f, "trail %.0f periods");
     tooltip("Length of the fading trail in the phase portrait, in forcing periods.");
     ImGui::SameLine();
     ImGui::SetNextItemWidth(half);
-    ImGui::SliderFloat("##window", &strip_window_, 0.5f, 60.0f, "x(t) %.1f s", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("##window", &view_.strip_window, 0.5f, 60.0f, "x(t) %.1f s", ImGuiSliderFlags_Logarithmic);
     tooltip("Time span of the scrolling x(t) strip.");
-    if (ImGui::Checkbox("dark", &dark_)) {
-        apply_theme(dark_, ui_scale_);
-        bif_dirty_ = true;
+    if (ImGui::Checkbox("dark", &view_.dark)) {
+        apply_theme(view_.dark, view_.ui_scale);
+        bif_.dirty = true;
     }
     tooltip("T: dark or light theme (light reads better on a projector).");
     ImGui::SameLine();
     // The scale applies when the slider is released (rebuilding the font under the mouse would jump).
     static bool editing = false;
     static float scale_edit = 1.0f;
-    if (!editing) scale_edit = ui_scale_;
+    if (!editing) scale_edit = view_.ui_scale;
     ImGui::SetNextItemWidth(-1);
     ImGui::SliderFloat("##scale", &scale_edit, 0.75f, 3.0f, "UI scale %.2f");
     editing = ImGui::IsItemActive();
     if (ImGui::IsItemDeactivatedAfterEdit()) {
-        ui_scale_ = std::round(scale_edit * 4.0f) / 4.0f;
-        fonts_dirty_ = true;
+        view_.ui_scale = std::round(scale_edit * 4.0f) / 4.0f;
+        view_.fonts_dirty = true;
     }
     tooltip("Ctrl + / Ctrl -: size of text and controls, for projectors.");
     // The rig's displacement magnification (the drawing only) and presentation mode (tiles.cpp).
@@ -174,10 +174,10 @@ void App::draw_controls_view() {
     tooltip("Magnifies the cart's displacement from x = 0 in the rig's drawing only (cart and bumper alike,\n"
             "so a contact still looks like one); the rig's title says so. Presentation mode has its own (×3).");
     ImGui::SameLine();
-    if (ImGui::Button(layout_.controls_narrow ? "Present" : "Presentation", ImVec2(-1, 0))) set_presentation(true);
+    if (ImGui::Button(layout_.frame.controls_narrow ? "Present" : "Presentation", ImVec2(-1, 0))) set_presentation(true);
     tooltip("P: the rig and one plot, large, with a slim bar of controls (P or Esc to come back).");
     const float tw = (full - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
-    const bool narrow = layout_.controls_narrow;
+    const bool narrow = layout_.frame.controls_narrow;
     if (ImGui::Button(narrow ? "Clear" : "Clear map", ImVec2(tw, 0))) clear_poincare();
     tooltip("C: clear the Poincare map");
     ImGui::SameLine();
@@ -199,27 +199,27 @@ void App::draw_controls_state() {
         };
         char b1[48];
         ImGui::TableNextRow();
-        std::snprintf(b1, sizeof b1, "%.3f s", last_.t);
+        std::snprintf(b1, sizeof b1, "%.3f s", feed_.last.t);
         cell("t", b1);
-        std::snprintf(b1, sizeof b1, "%+.3f mm", last_.x * 1e3);
+        std::snprintf(b1, sizeof b1, "%+.3f mm", feed_.last.x * 1e3);
         cell("x", b1);
         ImGui::TableNextRow();
-        std::snprintf(b1, sizeof b1, "%.3f rad", std::fmod(last_.phi, kTwoPi));
+        std::snprintf(b1, sizeof b1, "%.3f rad", std::fmod(feed_.last.phi, kTwoPi));
         cell("φ", b1);
-        std::snprintf(b1, sizeof b1, "%+.4f m/s", last_.v);
+        std::snprintf(b1, sizeof b1, "%+.4f m/s", feed_.last.v);
         cell("v", b1);
         ImGui::TableNextRow();
-        std::snprintf(b1, sizeof b1, "%+.2f mJ", last_.energy * 1e3);
+        std::snprintf(b1, sizeof b1, "%+.2f mJ", feed_.last.energy * 1e3);
         cell("E", b1);
-        std::snprintf(b1, sizeof b1, "%llu", static_cast<unsigned long long>(impacts_seen_));
+        std::snprintf(b1, sizeof b1, "%llu", static_cast<unsigned long long>(feed_.impacts_seen));
         cell("impacts", b1);
         ImGui::EndTable();
     }
     ImGui::TextDisabled("regime");
     ImGui::SameLine();
-    ImGui::TextUnformatted(contact_label(params_, last_.regime, last_.force));
+    ImGui::TextUnformatted(contact_label(run_.params, feed_.last.regime, feed_.last.force));
     draw_grazing();
-    lyapunov_live_.update(params_, omega_, last_.x, last_.v, now_s());
+    lyapunov_live_.update(run_.params, run_.omega, feed_.last.x, feed_.last.v, now_s());
     ImGui::TextDisabled("λ_max");
     ImGui::SameLine();
     ImGui::TextUnformatted(lyapunov_live_.text().c_str());
@@ -228,9 +228,9 @@ void App::draw_controls_state() {
 
     section("Forces on the cart [N]");
     // The terms of Eq. (1) at this instant (core's force_terms), signed as they push the cart.
-    const ForceTerms f = force_terms(params_, last_.t, last_.x, last_.v, last_.phi, last_.omega, 0.0);
-    const double magnets = -(f.spring_magnet - params_.k * last_.x), springs = -params_.k * last_.x;
-    const double bumper = std::max(last_.force, f.impact) > 0 ? -std::max(last_.force, f.impact) : 0.0;
+    const ForceTerms f = force_terms(run_.params, feed_.last.t, feed_.last.x, feed_.last.v, feed_.last.phi, feed_.last.omega, 0.0);
+    const double magnets = -(f.spring_magnet - run_.params.k * feed_.last.x), springs = -run_.params.k * feed_.last.x;
+    const double bumper = std::max(feed_.last.force, f.impact) > 0 ? -std::max(feed_.last.force, f.impact) : 0.0;
     struct Bar { const char* name; double value; };
     const Bar bars[] = {{"unbalance", f.unbalance}, {"springs", springs}, {"magnets", magnets},
                         {"resistance", -f.resistance}, {"bumper", bumper}};
@@ -261,39 +261,39 @@ void App::draw_controls_state() {
             "unbalance (in) against kinetic, potential (above the well's floor) and what the resistance and\n"
             "the bumper dissipated (out). Each term is integrated on its own, so the two bars agree only if\n"
             "the simulation conserves energy as it should.");
-    if (energy_floor_rev_ != params_rev_) {
-        energy_floor_ = potential_floor(params_);
-        energy_floor_rev_ = params_rev_;
+    if (run_.energy_floor_rev != run_.params_rev) {
+        run_.energy_floor = potential_floor(run_.params);
+        run_.energy_floor_rev = run_.params_rev;
     }
     const EnergyBalance eb = sim_->status().energy;
-    draw_energy_bars(energy_bars(eb, params_.m, energy_floor_), eb.t0, eb.t);
+    draw_energy_bars(energy_bars(eb, run_.params.m, run_.energy_floor), eb.t0, eb.t);
 }
 
 void App::draw_ramp_controls() {
     const float fs = ImGui::GetFontSize();
-    if (ramp_.active()) {
+    if (ramp_.live.active()) {
         char label[64];
-        std::snprintf(label, sizeof label, "Stop ramp (→ %.1f)", ramp_.target());
-        if (ImGui::Button(label)) set_omega(omega_);   // holds omega where the ramp got to
+        std::snprintf(label, sizeof label, "Stop ramp (→ %.1f)", ramp_.live.target());
+        if (ImGui::Button(label)) set_omega(run_.omega);   // holds omega where the ramp got to
         ImGui::SameLine();
-        const double done = std::abs(omega_ - ramp_.omega_start()) /
-                            std::max(1e-9, std::abs(ramp_.target() - ramp_.omega_start()));
+        const double done = std::abs(run_.omega - ramp_.live.omega_start()) /
+                            std::max(1e-9, std::abs(ramp_.live.target() - ramp_.live.omega_start()));
         ImGui::ProgressBar(static_cast<float>(std::clamp(done, 0.0, 1.0)), ImVec2(-1, 0));
         return;
     }
-    if (ImGui::Button("Ramp ω")) start_ramp(ramp_target_, ramp_rate_);
+    if (ImGui::Button("Ramp ω")) start_ramp(ramp_.target, ramp_.rate);
     tooltip("Moves ω slowly to the target while the rig runs (the paper's EF protocol, live): the section\n"
                  "points it passes are drawn over the bifurcation diagram, which grows as you watch.\n"
                  "Any other change of ω, a preset or Reset stops it.");
     same_line_or_wrap(fs * 4.2f);
     ImGui::SetNextItemWidth(fs * 4.2f);
-    ImGui::DragFloat("##ramp_to", &ramp_target_, 0.05f, 0.0f, static_cast<float>(kMaxOmega), "to %.1f");
-    ramp_target_ = std::clamp(ramp_target_, 0.0f, static_cast<float>(kMaxOmega));
+    ImGui::DragFloat("##ramp_to", &ramp_.target, 0.05f, 0.0f, static_cast<float>(kMaxOmega), "to %.1f");
+    ramp_.target = std::clamp(ramp_.target, 0.0f, static_cast<float>(kMaxOmega));
     same_line_or_wrap(ImGui::CalcTextSize("0.050 rad/s²").x + 2.0f * ImGui::GetStyle().FramePadding.x);
     ImGui::SetNextItemWidth(-1);
-    ImGui::DragFloat("##ramp_rate", &ramp_rate_, 0.001f, static_cast<float>(kMinRampRate),
+    ImGui::DragFloat("##ramp_rate", &ramp_.rate, 0.001f, static_cast<float>(kMinRampRate),
                      static_cast<float>(kMaxRampRate), "%.3f rad/s²", ImGuiSliderFlags_Logarithmic);
-    ramp_rate_ = std::clamp(ramp_rate_, static_cast<float>(kMinRampRate), static_cast<float>(kMaxRampRate));
+    ramp_.rate = std::clamp(ramp_.rate, static_cast<float>(kMinRampRate), static_cast<float>(kMaxRampRate));
 }
 
 void App::draw_companion_controls() {
@@ -303,8 +303,8 @@ void App::draw_companion_controls() {
     ImGui::PopStyleColor();
     ImGui::Separator();
     const char* modes[] = {"off", "twin 1 µm apart", "ghost under model"};
-    int mode = static_cast<int>(companion_mode_);
-    const bool ghost = companion_mode_ == CompanionMode::Ghost;
+    int mode = static_cast<int>(companion_.mode);
+    const bool ghost = companion_.mode == CompanionMode::Ghost;
     ImGui::SetNextItemWidth(ghost ? ImGui::GetContentRegionAvail().x * 0.62f : -1.0f);
     if (ImGui::Combo("##companion", &mode, modes, 3)) set_companion(static_cast<CompanionMode>(mode));
     tooltip("A second cart beside the first, on the same forcing and bumper, drawn translucent in the rig, the "
@@ -316,10 +316,10 @@ void App::draw_companion_controls() {
         ImGui::SameLine();
         ImGui::SetNextItemWidth(-1.0f);
         const auto& imps = impact_models();
-        if (ImGui::BeginCombo("##ghost", imps[static_cast<std::size_t>(ghost_impact_)].id)) {
+        if (ImGui::BeginCombo("##ghost", imps[static_cast<std::size_t>(companion_.ghost_impact)].id)) {
             for (std::size_t i = 0; i < imps.size(); ++i) {
-                if (ImGui::Selectable(imps[i].id, static_cast<int>(i) == ghost_impact_)) {
-                    ghost_impact_ = static_cast<int>(i);
+                if (ImGui::Selectable(imps[i].id, static_cast<int>(i) == companion_.ghost_impact)) {
+                    companion_.ghost_impact = static_cast<int>(i);
                     set_companion(CompanionMode::Ghost);
                 }
                 tooltip(imps[i].summary);
@@ -328,12 +328,12 @@ void App::draw_companion_controls() {
         }
         tooltip("The ghost's impact law; its stiffness is the cart's.");
     }
-    if (companion_mode_ != CompanionMode::Off && companion_.have()) {
-        const double d = companion_.separation_now(), d0 = companion_.separation_start();
+    if (companion_.mode != CompanionMode::Off && companion_.track.have()) {
+        const double d = companion_.track.separation_now(), d0 = companion_.track.separation_start();
         ImGui::TextDisabled("|Δx|");
         tooltip("The distance between the two carts now, and how many decades it grew since they started.");
         ImGui::SameLine();
-        if (companion_mode_ == CompanionMode::Twin && d0 > 0 && d > 0)
+        if (companion_.mode == CompanionMode::Twin && d0 > 0 && d > 0)
             ImGui::Text("%.2e m  (%+.1f decades)", d, std::log10(d / d0));
         else ImGui::Text("%.2e m", d);
     }
@@ -342,12 +342,12 @@ void App::draw_companion_controls() {
 void App::draw_grazing() {
     ImGui::TextDisabled("bumper gap");
     ImGui::SameLine();
-    if (!have_grazing_) {
-        ImGui::TextUnformatted(params_.has_bumper() ? "(after a whole forcing period)" : "no bumper");
+    if (!feed_.have_grazing) {
+        ImGui::TextUnformatted(run_.params.has_bumper() ? "(after a whole forcing period)" : "no bumper");
     } else {
         // xI - max x over the last forcing period: > 0 clear, 0 touching, < 0 pressed into a compliant bumper.
-        const double gap = xI_shown_ - grazing_.x;
-        if (!params_.has_bumper()) ImGui::TextUnformatted("no bumper");
+        const double gap = feed_.xI_shown - feed_.grazing.x;
+        if (!run_.params.has_bumper()) ImGui::TextUnformatted("no bumper");
         else if (std::abs(gap) < 1e-4) ImGui::Text("x_I − max x = %+.2f µm", gap * 1e6);   // near grazing
         else ImGui::Text("x_I − max x = %+.3f mm", gap * 1e3);
     }
@@ -356,14 +356,14 @@ void App::draw_grazing() {
               "velocity to 0 (from an impacting one).");
     ImGui::TextDisabled("impact");
     ImGui::SameLine();
-    if (!have_grazing_ || !params_.has_bumper()) {
+    if (!feed_.have_grazing || !run_.params.has_bumper()) {
         ImGui::TextUnformatted("-");
-    } else if (grazing_.energy < 0.5) {
+    } else if (feed_.grazing.energy < 0.5) {
         ImGui::TextUnformatted("none in the last period");
-    } else if (params_.rigid()) {
-        ImGui::Text("v− = %.4f m/s  (%d in the period)", grazing_.v, static_cast<int>(grazing_.energy));
+    } else if (run_.params.rigid()) {
+        ImGui::Text("v− = %.4f m/s  (%d in the period)", feed_.grazing.v, static_cast<int>(feed_.grazing.energy));
     } else {
-        ImGui::Text("entry %.4f m/s, depth %.1f µm", grazing_.v, grazing_.force * 1e6);
+        ImGui::Text("entry %.4f m/s, depth %.1f µm", feed_.grazing.v, feed_.grazing.force * 1e6);
     }
     tooltip("Rigid bumper (G, H): the velocity v− of the last impact in the period. Compliant (C, C1): the "
               "entry velocity of the last contact and the deepest penetration x − x_I.");

@@ -37,29 +37,29 @@ void App::fill_bench_data(int points) {
     // 100x real time (1 ms samples) as in the live app.
     auto sink = std::make_unique<HistorySink>();
     HistorySink* hs = sink.get();
-    sink->traj = &traj_;
+    sink->traj = &feed_.traj;
     EngineConfig cfg;
     cfg.model = model_name();
     cfg.omega = 18.0;
     cfg.speed = 100.0;
     bench_.engine = std::make_unique<SimEngine>(cfg, sink.get());
     bench_.sink = std::move(sink);
-    traj_.clear();
+    feed_.traj.clear();
     bench_.engine->advance_to(points * bench_.engine->sample_dt() * 1.0001);
-    last_ = traj_.back();
+    feed_.last = feed_.traj.back();
     // The frames' new samples are computed now: the app runs the simulation on its own thread, and the
     // benchmark times the UI thread's frames only. feed_bench_frame() hands them over a frame's worth at a time.
     bench_.feed.clear();
     bench_.fed = 0;
     hs->ahead = &bench_.feed;
-    bench_.engine->advance_to(last_.t + kBenchFrames * 100.0 / 60.0 + 1.0);
+    bench_.engine->advance_to(feed_.last.t + BenchPlot::kFrames * 100.0 / 60.0 + 1.0);
     hs->ahead = nullptr;
-    have_last_ = true;
-    omega_ = 18.0;
+    feed_.have_last = true;
+    run_.omega = 18.0;
     // Synthetic section points and diagram (shapes like the real ones; the draw cost is what is measured).
     // The map's points carry 0, 1 or 2 impacts in turn, so the bench draws every colour.
-    sections_.clear();
-    pc_map_.reset();
+    feed_.sections.clear();
+    feed_.pc_map.reset();
     double a = 0.1, b = 0.2;
     for (int i = 0; i < points; ++i) {   // a Henon map, scaled into the left well
         const double na = 1.0 - 1.4 * a * a + b;
@@ -70,8 +70,8 @@ void App::fill_bench_data(int points) {
         m.x = -0.010 + 0.005 * a;
         m.v = 0.12 * b / 0.4;
         m.t = i;
-        sections_.push(m);
-        pc_map_.push({m.t, m.x, m.v, i % 3, 0.02, 0.2});
+        feed_.sections.push(m);
+        feed_.pc_map.push({m.t, m.x, m.v, i % 3, 0.02, 0.2});
     }
     Diagram d;
     d.model = model_name();
@@ -82,20 +82,20 @@ void App::fill_bench_data(int points) {
         for (int k = 0; k < 60 + i % 70; ++k) x = r * x * (1 - x);
         d.points.push_back({w, -0.018 + 0.014 * x, 0.0});
     }
-    bif_panel_.show_bench(std::move(d), {0, 25}, {-0.019, -0.003});
+    bif_.panel.show_bench(std::move(d), {0, 25}, {-0.019, -0.003});
     bench_.window = static_cast<std::size_t>(points);
 }
 
 void App::feed_bench_frame() {
     // One 60 Hz frame at 100x real time: 1/60 s x 100 = 1.67 s of simulation, 1,667 samples of 1 ms.
-    const double t = last_.t + 100.0 / 60.0;
-    while (bench_.fed < bench_.feed.size() && bench_.feed[bench_.fed].t <= t) traj_.push(bench_.feed[bench_.fed++]);
-    last_ = traj_.back();
+    const double t = feed_.last.t + 100.0 / 60.0;
+    while (bench_.fed < bench_.feed.size() && bench_.feed[bench_.fed].t <= t) feed_.traj.push(bench_.feed[bench_.fed++]);
+    feed_.last = feed_.traj.back();
 }
 
 int App::run_bench() {
     fill_bench_data(opt_.bench_points);
-    constexpr int kWarm = 20, kFrames = kBenchFrames - kWarm;
+    constexpr int kWarm = 20, kFrames = BenchPlot::kFrames - kWarm;
     double s = 0;   // wall time of the timed frames, each shown (swapped) by the next one
     std::size_t verts = 0;
     for (int i = 0; i < kWarm + kFrames + 1 && !glfwWindowShouldClose(win_); ++i) {
@@ -107,7 +107,7 @@ int App::run_bench() {
         }
         if (i == kWarm + kFrames) {   // the last timed frame is shown by this swap
             glfwSwapBuffers(win_);
-            frame_pending_ = false;
+            frames_.pending = false;
             s = now_s() - s;
             break;
         }
@@ -138,20 +138,20 @@ void App::script_mouse() {
     // --double-click: press, release, press, release on four frames at one point, timed as at 60 fps (a
     // loaded machine's slow frames must not split the gesture into two single clicks).
     for (std::size_t k = 0; k < opt_.double_clicks.size(); ++k) {
-        const long f = frame_count_ - 10 - 8 * static_cast<long>(k);
+        const long f = frames_.count - 10 - 8 * static_cast<long>(k);
         if (f < 0 || f > 4) continue;
         ImGuiIO& io = ImGui::GetIO();
         if (f == 0) {
-            const FileBrowser::Row* r = session_browser_.row(opt_.double_clicks[k]);
+            const FileBrowser::Row* r = session_.browser.row(opt_.double_clicks[k]);
             if (!r) {
                 std::fprintf(stderr, "impactlab-gui: error: --double-click: no row '%s' in the session browser\n",
                              opt_.double_clicks[k].c_str());
-                exit_code_ = 1;
+                script_.exit_code = 1;
                 continue;
             }
-            click_at_ = ImVec2(0.5f * (r->x0 + r->x1), 0.5f * (r->y0 + r->y1));
+            script_.click_at = ImVec2(0.5f * (r->x0 + r->x1), 0.5f * (r->y0 + r->y1));
         }
-        io.MousePos = click_at_;
+        io.MousePos = script_.click_at;
         io.MouseDown[0] = f == 0 || f == 2;
         io.DeltaTime = 1.0f / 60.0f;
     }
@@ -161,54 +161,54 @@ bool App::script_step() {
     // --orbit: the clicks, one at each of the first n of n + 1 equal parts of the run.
     const long parts = static_cast<long>(opt_.orbits.size()) + 1;
     for (long k = 1; k < parts; ++k)
-        if (counted_frames_ == k * opt_.frames / parts)
+        if (frames_.counted == k * opt_.frames / parts)
             start_orbit(opt_.orbits[static_cast<std::size_t>(k - 1)].first, opt_.orbits[static_cast<std::size_t>(k - 1)].second);
     // With --data the fit is for the start model, and --preset or --state-json look at one model: no
     // switch unless one is asked for.
     const bool keep_model = !opt_.data.empty() || opt_.preset > 0 || !opt_.state_json.empty() || !opt_.session.empty() ||
                             !opt_.save_session.empty();
-    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_preset > 0) {
-        switched_ = true;   // --then-preset: what pressing key N does
+    if (!script_.switched && frames_.counted >= opt_.frames / 2 && opt_.then_preset > 0) {
+        script_.switched = true;   // --then-preset: what pressing key N does
         apply_preset(presets_for(model_name())[static_cast<std::size_t>(opt_.then_preset - 1)]);
     }
-    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_xi) {
-        switched_ = true;   // --then-xI: what dragging the x_I slider there does
+    if (!script_.switched && frames_.counted >= opt_.frames / 2 && opt_.then_xi) {
+        script_.switched = true;   // --then-xI: what dragging the x_I slider there does
         set_xi(opt_.then_xI);
     }
-    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_phase) {
-        switched_ = true;   // --then-phi0: what moving the Poincare view's phase slider there does
+    if (!script_.switched && frames_.counted >= opt_.frames / 2 && opt_.then_phase) {
+        script_.switched = true;   // --then-phi0: what moving the Poincare view's phase slider there does
         set_section_phase(opt_.then_phi0);
     }
-    if (!switched_ && counted_frames_ >= opt_.frames / 2 && opt_.then_w) {
-        switched_ = true;   // --then-omega: what the arrow keys do, live (no reset)
+    if (!script_.switched && frames_.counted >= opt_.frames / 2 && opt_.then_w) {
+        script_.switched = true;   // --then-omega: what the arrow keys do, live (no reset)
         set_omega(opt_.then_omega);
     }
-    if (!switched_ && counted_frames_ >= opt_.frames / 2 && (!keep_model || !opt_.switch_model.empty())) {
-        switched_ = true;
+    if (!script_.switched && frames_.counted >= opt_.frames / 2 && (!keep_model || !opt_.switch_model.empty())) {
+        script_.switched = true;
         // Switch the model once, live: to --switch-model, or H <-> G with the same stiffness.
         std::string target = opt_.switch_model;
         if (target.empty()) {
-            const std::string imp = impact_models()[static_cast<std::size_t>(impact_)].id;
-            target = std::string(stiffness_sets()[static_cast<std::size_t>(stiffness_)].id) + (imp == "H" ? "G" : "H");
+            const std::string imp = impact_models()[static_cast<std::size_t>(run_.impact)].id;
+            target = std::string(stiffness_sets()[static_cast<std::size_t>(run_.stiffness)].id) + (imp == "H" ? "G" : "H");
         }
         set_version(target);
     }
-    if (counted_frames_ >= opt_.frames) {
-        if (!opt_.clip_out.empty() && !clip_started_) {   // --clip-out: the last seconds, a frame each
-            clip_started_ = true;
+    if (frames_.counted >= opt_.frames) {
+        if (!opt_.clip_out.empty() && !clip_.started) {   // --clip-out: the last seconds, a frame each
+            clip_.started = true;
             if (std::string err; !start_clip(opt_.clip_out, opt_.clip_seconds, err)) {
                 std::fprintf(stderr, "impactlab-gui: error: --clip-out: %s\n", err.c_str());
-                exit_code_ = 1;
+                script_.exit_code = 1;
             }
             return true;
         }
-        if (clip_frame_ >= 0) return true;
-        if (opt_.replay_back > 0 && !replay_back_done_) {   // --replay-back: the last frame shows the past
-            replay_back_done_ = true;
-            if (enter_replay()) replay_.seek(replay_.cursor() - opt_.replay_back);
+        if (clip_.frame >= 0) return true;
+        if (opt_.replay_back > 0 && !script_.replay_back_done) {   // --replay-back: the last frame shows the past
+            script_.replay_back_done = true;
+            if (enter_replay()) replay_.player.seek(replay_.player.cursor() - opt_.replay_back);
             if (opt_.replay_continue) {   // then Enter, and 60 more frames of the continued run
-                replay_request_ = ReplayRequest::Continue;
-                counted_frames_ -= 60;
+                replay_.request = ReplayRequest::Continue;
+                frames_.counted -= 60;
             }
             return true;
         }
@@ -243,7 +243,7 @@ int App::soak() {
     const double t0 = now_s();
     double next_switch = t0 + 3.0, next_report = t0 + 10.0, rss_ref = -1;
     std::size_t k = 0;
-    long frames_at_report = frame_count_;
+    long frames_at_report = frames_.count;
     double worst_growth = 0;
     std::printf("soak: %.0f s at %gx, switching through %zu versions every 3 s\n", opt_.soak, kMaxSpeed, versions.size());
     while (!glfwWindowShouldClose(win_)) {
@@ -259,11 +259,11 @@ int App::soak() {
             if (rss_ref < 0 && now - t0 >= 0.25 * opt_.soak) rss_ref = rss;   // after the caches and pools filled
             if (rss_ref >= 0) worst_growth = std::max(worst_growth, rss - rss_ref);
             std::printf("soak: t=%6.0f s rss=%7.1f MB dropped=%llu samples=%llu sim_time=%.0f s fps=%.1f model=%s\n", now - t0, rss,
-                        static_cast<unsigned long long>(st.dropped), static_cast<unsigned long long>(samples_seen_),
-                        have_last_ ? last_.t : st.sim_time, static_cast<double>(frame_count_ - frames_at_report) / 10.0,
+                        static_cast<unsigned long long>(st.dropped), static_cast<unsigned long long>(feed_.samples_seen),
+                        feed_.have_last ? feed_.last.t : st.sim_time, static_cast<double>(frames_.count - frames_at_report) / 10.0,
                         model_name().c_str());
             std::fflush(stdout);
-            frames_at_report = frame_count_;
+            frames_at_report = frames_.count;
             next_report += 10.0;
             if (now - t0 >= opt_.soak) break;
         }

@@ -30,29 +30,29 @@ void App::draw_menu() {
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("Screenshot (PNG)", "F12")) screenshot(screenshot_name());
         if (ImGui::MenuItem("Export trajectory + sections (CSV)", "Ctrl+E")) export_csv();
-        if (ImGui::MenuItem("Export clip (PNG frames, video)...")) clip_window_ = true;
+        if (ImGui::MenuItem("Export clip (PNG frames, video)...")) clip_.window = true;
         ImGui::Separator();
         if (ImGui::MenuItem("Save session...", "Ctrl+S")) open_session_window(true);
         if (ImGui::MenuItem("Load session...", "Ctrl+O")) open_session_window(false);
         ImGui::Separator();
-        if (ImGui::MenuItem("Measured data (load, fit, effects)...", nullptr, show_data_)) show_data_ = !show_data_;
+        if (ImGui::MenuItem("Measured data (load, fit, effects)...", nullptr, view_.show_data)) view_.show_data = !view_.show_data;
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) glfwSetWindowShouldClose(win_, 1);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Simulation")) {
-        if (ImGui::MenuItem(paused_ ? "Play" : "Pause", "Space")) set_paused(!paused_);
+        if (ImGui::MenuItem(run_.paused ? "Play" : "Pause", "Space")) set_paused(!run_.paused);
         if (ImGui::MenuItem("Step one forcing period", "N")) step_period();
         if (ImGui::MenuItem("Reset (t = 0, from x0 at rest)", "R")) reset();
         ImGui::Separator();
-        if (ImGui::MenuItem("Faster x2", "]")) set_speed(speed_ * 2);
-        if (ImGui::MenuItem("Slower /2", "[")) set_speed(speed_ / 2);
+        if (ImGui::MenuItem("Faster x2", "]")) set_speed(run_.speed * 2);
+        if (ImGui::MenuItem("Slower /2", "[")) set_speed(run_.speed / 2);
         if (ImGui::MenuItem("Real time (1x)")) set_speed(1.0);
         ImGui::Separator();
         if (ImGui::MenuItem("Clear Poincare map", "C")) clear_poincare();
         ImGui::Separator();
-        if (ImGui::MenuItem("Replay the last minutes", "Shift+R", replay_.active())) {
-            if (replay_.active()) replay_request_ = ReplayRequest::Leave;
+        if (ImGui::MenuItem("Replay the last minutes", "Shift+R", replay_.player.active())) {
+            if (replay_.player.active()) replay_.request = ReplayRequest::Leave;
             else enter_replay();
         }
         ImGui::EndMenu();
@@ -60,20 +60,20 @@ void App::draw_menu() {
     if (ImGui::BeginMenu("View")) {
         draw_view_menu_panels();   // tiles.cpp: presentation, panels, maximise, magnification
         ImGui::Separator();
-        if (ImGui::MenuItem("Parameters (m, c, k, ..., the impact law's)...", "F4", show_params_)) show_params_ = !show_params_;
-        if (ImGui::MenuItem("Details in the status bar (epoch, samples, dropped)", nullptr, details_)) details_ = !details_;
-        if (ImGui::MenuItem("Dark theme", "T", dark_)) {
-            dark_ = !dark_;
-            apply_theme(dark_, ui_scale_);
-            bif_dirty_ = true;
+        if (ImGui::MenuItem("Parameters (m, c, k, ..., the impact law's)...", "F4", view_.show_params)) view_.show_params = !view_.show_params;
+        if (ImGui::MenuItem("Details in the status bar (epoch, samples, dropped)", nullptr, view_.details)) view_.details = !view_.details;
+        if (ImGui::MenuItem("Dark theme", "T", view_.dark)) {
+            view_.dark = !view_.dark;
+            apply_theme(view_.dark, view_.ui_scale);
+            bif_.dirty = true;
         }
         if (ImGui::BeginMenu("UI scale")) {
             for (float s : {0.75f, 1.0f, 1.25f, 1.5f, 2.0f, 2.5f, 3.0f}) {
                 char label[16];
                 std::snprintf(label, sizeof label, "%.0f%%", s * 100);
-                if (ImGui::MenuItem(label, nullptr, std::abs(ui_scale_ - s) < 0.01f)) {
-                    ui_scale_ = s;
-                    fonts_dirty_ = true;
+                if (ImGui::MenuItem(label, nullptr, std::abs(view_.ui_scale - s) < 0.01f)) {
+                    view_.ui_scale = s;
+                    view_.fonts_dirty = true;
                 }
             }
             ImGui::EndMenu();
@@ -82,36 +82,36 @@ void App::draw_menu() {
     }
     apply_analysis(analysis_.menu(analysis_context()));
     if (ImGui::BeginMenu("Help")) {
-        if (ImGui::MenuItem("What to try (five demonstrations)...", nullptr, show_guide_)) show_guide_ = !show_guide_;
-        if (ImGui::MenuItem("Keyboard shortcuts", "F1")) show_help_ = true;
+        if (ImGui::MenuItem("What to try (five demonstrations)...", nullptr, demos_.show)) demos_.show = !demos_.show;
+        if (ImGui::MenuItem("Keyboard shortcuts", "F1")) view_.show_help = true;
         ImGui::EndMenu();
     }
     // Right side: model, omega, fps.
     char right[96];
-    std::snprintf(right, sizeof right, "%s   ω %.2f rad/s   %.0f fps", model_name().c_str(), omega_, fps_);
+    std::snprintf(right, sizeof right, "%s   ω %.2f rad/s   %.0f fps", model_name().c_str(), run_.omega, frames_.fps);
     const float w = ImGui::CalcTextSize(right).x;
-    ImGui::SameLine(ImGui::GetWindowWidth() - w - 14.0f * ui_scale_);
+    ImGui::SameLine(ImGui::GetWindowWidth() - w - 14.0f * view_.ui_scale);
     ImGui::TextDisabled("%s", right);
     ImGui::EndMainMenuBar();
 }
 
 void App::draw_status() {
-    if (replay_.active()) {   // the bar becomes the replay's timeline (app_replay.cpp)
+    if (replay_.player.active()) {   // the bar becomes the replay's timeline (app_replay.cpp)
         draw_replay_bar();
         return;
     }
     const SimStatus st = sim_->status();
     const Palette& pal = palette();
-    ImGui::Text("t = %.2f s", last_.t);
+    ImGui::Text("t = %.2f s", feed_.last.t);
     ImGui::SameLine(0, 18);
     ImGui::TextDisabled("|");
     ImGui::SameLine(0, 18);
-    if (warming_) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "warming up at 100x to t = %.0f s", opt_.warmup);
+    if (script_.warming) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "warming up at 100x to t = %.0f s", opt_.warmup);
     else if (st.paused) ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "paused");
     else if (st.lagging)
         ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "speed %.2fx asked, %.2fx achieved (model too slow)",
-                           speed_, st.achieved_speed);
-    else ImGui::Text("speed %.2fx (achieved %.2fx)", speed_, st.achieved_speed);
+                           run_.speed, st.achieved_speed);
+    else ImGui::Text("speed %.2fx (achieved %.2fx)", run_.speed, st.achieved_speed);
     if (commands_.waiting() > 0 || commands_.lost() > 0) {   // the simulation thread is not taking commands
         ImGui::SameLine(0, 18);
         ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(pal.warn), "commands: %zu waiting, %llu lost", commands_.waiting(),
@@ -122,16 +122,16 @@ void App::draw_status() {
     // The fields after the speed only where they fit before the buttons on the right (a large UI scale or a
     // narrow window drops the least useful first: the regime stays, then the samples, then the epoch).
     const float right_w = ImGui::CalcTextSize(help).x + ImGui::CalcTextSize(replay).x + 2 * ImGui::GetStyle().FramePadding.x +
-                          48.0f * ui_scale_;
+                          48.0f * view_.ui_scale;
     char epoch[32], samples[64];
-    std::snprintf(epoch, sizeof epoch, "epoch %u", epoch_);
-    std::snprintf(samples, sizeof samples, "samples %.2fM, dropped %llu", static_cast<double>(samples_seen_) / 1e6,
+    std::snprintf(epoch, sizeof epoch, "epoch %u", feed_.epoch);
+    std::snprintf(samples, sizeof samples, "samples %.2fM, dropped %llu", static_cast<double>(feed_.samples_seen) / 1e6,
                   static_cast<unsigned long long>(st.dropped));
-    const char* regime = contact_label(params_, last_.regime, last_.force);
+    const char* regime = contact_label(run_.params, feed_.last.regime, feed_.last.force);
     const float sep = ImGui::CalcTextSize("|").x + 36.0f;
     float room = ImGui::GetWindowWidth() - right_w - (ImGui::GetItemRectMax().x - ImGui::GetWindowPos().x);
     // The epoch and the ring's counts are the simulation's bookkeeping: shown with View > Details only.
-    const char* fields[3] = {details_ ? epoch : "", details_ ? samples : "", regime};
+    const char* fields[3] = {view_.details ? epoch : "", view_.details ? samples : "", regime};
     for (const char* field : fields)
         if (*field) room -= sep + ImGui::CalcTextSize(field).x;
     bool drop[3] = {};
@@ -149,10 +149,10 @@ void App::draw_status() {
         ImGui::TextUnformatted(field);
     }
     ImGui::SameLine(ImGui::GetWindowWidth() - ImGui::CalcTextSize(help).x - ImGui::CalcTextSize(replay).x -
-                    ImGui::GetStyle().FramePadding.x * 2 - 30.0f * ui_scale_);
+                    ImGui::GetStyle().FramePadding.x * 2 - 30.0f * view_.ui_scale);
     if (ImGui::SmallButton(replay)) enter_replay();
     tooltip("Shift+R: scrub back through the last minutes (the simulation pauses)");
-    ImGui::SameLine(ImGui::GetWindowWidth() - ImGui::CalcTextSize(help).x - 12.0f * ui_scale_);
+    ImGui::SameLine(ImGui::GetWindowWidth() - ImGui::CalcTextSize(help).x - 12.0f * view_.ui_scale);
     ImGui::TextDisabled("%s", help);
 }
 
@@ -160,7 +160,7 @@ void App::draw_help() {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y * 0.5f), ImGuiCond_Appearing,
                             ImVec2(0.5f, 0.5f));
-    if (ImGui::Begin("Keyboard shortcuts", &show_help_,
+    if (ImGui::Begin("Keyboard shortcuts", &view_.show_help,
                      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
         static const char* keys[][2] = {
             {"Space", "play / pause"},
@@ -211,16 +211,16 @@ void App::draw_help() {
 }
 
 void App::draw_toast() {
-    if (toast_.empty() || now_s() > toast_until_ || opt_.frames > 0) return;
+    if (!toast_.visible(now_s()) || opt_.frames > 0) return;
     const ImGuiViewport* vp = ImGui::GetMainViewport();
-    const float pad = 14.0f * ui_scale_;
+    const float pad = 14.0f * view_.ui_scale;
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - pad, vp->Pos.y + vp->Size.y - pad - ImGui::GetFrameHeight() * 1.5f),
                             ImGuiCond_Always, ImVec2(1, 1));
     ImGui::SetNextWindowBgAlpha(0.92f);
     if (ImGui::Begin("##toast", nullptr,
                      ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
                          ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav))
-        ImGui::TextUnformatted(toast_.c_str());
+        ImGui::TextUnformatted(toast_.text.c_str());
     ImGui::End();
 }
 

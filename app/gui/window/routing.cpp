@@ -17,49 +17,49 @@
 namespace impactlab::gui {
 
 std::size_t App::trail_first() const {
-    const std::size_t n = traj_.size();
+    const std::size_t n = feed_.traj.size();
     if (bench_.window) return n > bench_.window ? n - bench_.window : 0;
     if (n == 0) return 0;
-    const double t_from = traj_.back().t - trail_periods_ * kTwoPi / std::max(omega_, 0.5);
-    return traj_.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
+    const double t_from = feed_.traj.back().t - view_.trail_periods * kTwoPi / std::max(run_.omega, 0.5);
+    return feed_.traj.lower_bound(t_from, [](const SimMsg& m) { return m.t; });
 }
 
 ViewContext App::view_context() const {
     ViewContext c;
-    c.traj = &traj_;
-    c.sections = &sections_;
+    c.traj = &feed_.traj;
+    c.sections = &feed_.sections;
     c.map = &shown_map();
-    c.last = last_;
-    c.have_last = have_last_;
-    c.epoch = epoch_;
-    c.phi_prev = phi_prev_;
-    c.params = &params_;
-    c.params_rev = params_rev_;
-    c.omega = omega_;
-    c.speed = speed_;
-    c.xI = xI_;
-    c.xI_shown = xI_shown_;
-    c.section_phase = section_phase_;
-    c.paused = paused_;
+    c.last = feed_.last;
+    c.have_last = feed_.have_last;
+    c.epoch = feed_.epoch;
+    c.phi_prev = feed_.phi_prev;
+    c.params = &run_.params;
+    c.params_rev = run_.params_rev;
+    c.omega = run_.omega;
+    c.speed = run_.speed;
+    c.xI = run_.xI;
+    c.xI_shown = feed_.xI_shown;
+    c.section_phase = view_.section_phase;
+    c.paused = run_.paused;
     c.sim_paused = sim_->status().paused;
-    c.replay = replay_.active();
-    c.omega_moving = ramp_.active();
-    c.ui_scale = ui_scale_;
-    c.frame_dt = frame_dt_;
+    c.replay = replay_.player.active();
+    c.omega_moving = ramp_.live.active();
+    c.ui_scale = view_.ui_scale;
+    c.frame_dt = frames_.dt;
     c.now = now_s();
     c.trail_first = trail_first();
-    c.trail_periods = trail_periods_;
-    c.strip_window = strip_window_;
+    c.trail_periods = view_.trail_periods;
+    c.strip_window = view_.strip_window;
     c.bench_window = bench_.window;
-    c.companion = &companion_;
-    c.companion_mode = companion_mode_;
-    c.companion_name = companion_mode_ == CompanionMode::Twin
+    c.companion = &companion_.track;
+    c.companion_mode = companion_.mode;
+    c.companion_name = companion_.mode == CompanionMode::Twin
                            ? std::string("twin")
-                           : "ghost " + std::string(impact_models()[static_cast<std::size_t>(ghost_impact_)].id);
+                           : "ghost " + std::string(impact_models()[static_cast<std::size_t>(companion_.ghost_impact)].id);
     c.magnify = magnification();
-    c.frame_max_force = frame_max_force_;
-    c.flash = flash_;
-    c.impact_label = &impact_label_;
+    c.frame_max_force = feed_.frame_max_force;
+    c.flash = feed_.flash;
+    c.impact_label = &feed_.impact_label;
     return c;
 }
 
@@ -71,8 +71,8 @@ void App::apply_view(const ViewAction& a) {
 }
 
 void App::set_section_phase(double phi0) {
-    if (phi0 == section_phase_) return;
-    section_phase_ = phi0;
+    if (phi0 == view_.section_phase) return;
+    view_.section_phase = phi0;
     // The orbits the clicker took belong to the old section: not to be mixed with the new one's points
     // (the map and the sections clear at the engine's new epoch).
     poincare_.clear_orbits();
@@ -80,7 +80,7 @@ void App::set_section_phase(double phi0) {
 }
 
 void App::start_orbit(double x, double v) {
-    poincare_.start_orbit(x, v, epoch_);
+    poincare_.start_orbit(x, v, feed_.epoch);
     restart_at_section(x, v);
 }
 
@@ -88,32 +88,32 @@ void App::restart_at_section(double x, double v) {
     // The orbit starts on the section: at the next phi = phi0 + 2 pi k (the forcing's phase moves on to
     // it), from (x, v) checked as a click in the phase portrait is (rail, bumper). The phase is written as
     // the core's Simulator::section_phi writes it, 2 pi n - psi, so the engine takes it for that section.
-    const PickedState s = pick_state(x, v, xI_, params_.has_bumper());
+    const PickedState s = pick_state(x, v, run_.xI, run_.params.has_bumper());
     if (!s.note.empty()) toast(s.note);
-    const double psi = section_phase_ > 0.0 ? kTwoPi - section_phase_ : 0.0;
-    const double phi = kTwoPi * std::ceil((last_.phi + psi) / kTwoPi - 1e-9) - psi;
-    restart_sim(s.x, s.v, last_.t, phi, omega_, false);
+    const double psi = view_.section_phase > 0.0 ? kTwoPi - view_.section_phase : 0.0;
+    const double phi = kTwoPi * std::ceil((feed_.last.phi + psi) / kTwoPi - 1e-9) - psi;
+    restart_sim(s.x, s.v, feed_.last.t, phi, run_.omega, false);
 }
 
 DataPanelContext App::data_context() const {
     DataPanelContext c;
     c.model = model_name();
-    c.xI = xI_;
-    c.ui_scale = ui_scale_;
+    c.xI = run_.xI;
+    c.ui_scale = view_.ui_scale;
     return c;
 }
 
 void App::set_state(double x, double v) {
-    const PickedState s = pick_state(x, v, xI_, params_.has_bumper());
+    const PickedState s = pick_state(x, v, run_.xI, run_.params.has_bumper());
     if (!s.note.empty()) toast(s.note);
     send(SimCommand::set_state(s.x, s.v));
 }
 
 void App::set_companion(CompanionMode mode) {
-    companion_mode_ = mode;
-    companion_.clear();
-    const std::string ghost = std::string(stiffness_sets()[static_cast<std::size_t>(stiffness_)].id) +
-                              impact_models()[static_cast<std::size_t>(ghost_impact_)].id;
+    companion_.mode = mode;
+    companion_.track.clear();
+    const std::string ghost = std::string(stiffness_sets()[static_cast<std::size_t>(run_.stiffness)].id) +
+                              impact_models()[static_cast<std::size_t>(companion_.ghost_impact)].id;
     send(SimCommand::companion(mode, ghost));
 }
 
@@ -122,32 +122,32 @@ void App::start_ramp(double target, double rate) {
         toast(err);
         return;
     }
-    if (std::abs(target - omega_) < 1e-6) {
+    if (std::abs(target - run_.omega) < 1e-6) {
         toast("ramp: ω is already " + std::to_string(target).substr(0, 5) + " rad/s");
         return;
     }
-    ramp_.begin(omega_, target, rate);
+    ramp_.live.begin(run_.omega, target, rate);
     send(SimCommand::ramp(target, rate));
-    if (paused_) set_paused(false);
+    if (run_.paused) set_paused(false);
     char buf[128];
-    std::snprintf(buf, sizeof buf, "ramping ω %.2f → %.2f rad/s at %.3g rad/s per s (%.0f s of simulation)", omega_,
-                  target, rate, std::abs(target - omega_) / rate);
+    std::snprintf(buf, sizeof buf, "ramping ω %.2f → %.2f rad/s at %.3g rad/s per s (%.0f s of simulation)", run_.omega,
+                  target, rate, std::abs(target - run_.omega) / rate);
     toast(buf);
 }
 
 BifurcationContext App::bifurcation_context() {
     BifurcationContext c;
-    c.params = &params_;
+    c.params = &run_.params;
     c.model = model_name();
-    c.omega = omega_;
-    c.xI = xI_;
+    c.omega = run_.omega;
+    c.xI = run_.xI;
     // Settled section points only (replaying: those of the cursor's instant); the diagram's sections are at
     // phi = 2 pi n, so the map's at another phase would not lie on it.
-    const bool strobe = section_phase_ == 0.0 || section_phase_ == kTwoPi;
+    const bool strobe = view_.section_phase == 0.0 || view_.section_phase == kTwoPi;
     c.live = strobe ? &shown_map().points() : nullptr;
-    c.protocol = &bif_protocol_;
-    c.steps = &bif_steps_;
-    c.ramp = &ramp_;
+    c.protocol = &bif_.protocol;
+    c.steps = &bif_.steps;
+    c.ramp = &ramp_.live;
     c.overlay = [this](Plot& plot) { analysis_.overlay_diagram(plot); };
     c.overlay_legend = [this](bool compact) { analysis_.overlay_legend(compact); };
     if (const auto& ov = analysis_.overlay()) c.branches = &*ov;
@@ -155,56 +155,56 @@ BifurcationContext App::bifurcation_context() {
 }
 
 void App::start_bifurcation() {
-    if (const std::string err = bif_panel_.start(bifurcation_context()); !err.empty()) toast(err);
+    if (const std::string err = bif_.panel.start(bifurcation_context()); !err.empty()) toast(err);
 }
 
 void App::poll_bifurcation() {
-    if (bif_dirty_) {   // the theme or the fonts changed
-        bif_panel_.mark_dirty();
-        bif_dirty_ = false;
+    if (bif_.dirty) {   // the theme or the fonts changed
+        bif_.panel.mark_dirty();
+        bif_.dirty = false;
     }
-    if (const std::string msg = bif_panel_.poll(bifurcation_context()); !msg.empty()) toast(msg);
+    if (const std::string msg = bif_.panel.poll(bifurcation_context()); !msg.empty()) toast(msg);
 }
 
 void App::draw_bifurcation() {
-    const BifurcationAction act = bif_panel_.draw(bifurcation_context());
+    const BifurcationAction act = bif_.panel.draw(bifurcation_context());
     if (act.omega) set_omega(*act.omega);
     if (!act.toast.empty()) toast(act.toast);
 }
 
 AnalysisContext App::analysis_context() const {
     AnalysisContext c;
-    c.params = &params_;
+    c.params = &run_.params;
     c.model = model_name();
-    c.omega = omega_;
-    c.xI = xI_;
-    c.diagram_omega = bif_panel_.omega_axis();
-    c.ui_scale = ui_scale_;
-    c.plane_open = panel_visible_[static_cast<std::size_t>(PanelId::Plane)];
-    c.basins_open = panel_visible_[static_cast<std::size_t>(PanelId::Basins)];
+    c.omega = run_.omega;
+    c.xI = run_.xI;
+    c.diagram_omega = bif_.panel.omega_axis();
+    c.ui_scale = view_.ui_scale;
+    c.plane_open = layout_.panel_visible[static_cast<std::size_t>(PanelId::Plane)];
+    c.basins_open = layout_.panel_visible[static_cast<std::size_t>(PanelId::Basins)];
     // The live map (not a replayed one): continuation starts from what runs now.
-    if (pc_map_.status() == PoincareMap::Status::Periodic && !pc_map_.points().empty()) {
-        const MapPoint& m = pc_map_.points().back();
-        c.orbit = AnalysisContext::Orbit{m.x, m.v, pc_map_.period()};
+    if (feed_.pc_map.status() == PoincareMap::Status::Periodic && !feed_.pc_map.points().empty()) {
+        const MapPoint& m = feed_.pc_map.points().back();
+        c.orbit = AnalysisContext::Orbit{m.x, m.v, feed_.pc_map.period()};
     }
-    c.chaotic = pc_map_.status() == PoincareMap::Status::Chaotic;
-    c.sim_time = have_last_ ? last_.t : 0.0;
+    c.chaotic = feed_.pc_map.status() == PoincareMap::Status::Chaotic;
+    c.sim_time = feed_.have_last ? feed_.last.t : 0.0;
     return c;
 }
 
 void App::apply_analysis(const AnalysisAction& a) {
     for (auto [p, toggle, open] : {std::tuple{PanelId::Plane, a.toggle_plane, a.open_plane},
                                    std::tuple{PanelId::Basins, a.toggle_basins, a.open_basins}}) {
-        const bool now = panel_visible_[static_cast<std::size_t>(p)];
+        const bool now = layout_.panel_visible[static_cast<std::size_t>(p)];
         if (toggle || (open && !now)) set_panel_visible(p, !now);
     }
     if (a.xI) set_xi(*a.xI);
     if (a.omega) set_omega(*a.omega);
     if (a.reset) {
         // The basins start every cell at t = 0, phi = 0: the Reset command does the same from (x0, v0).
-        x0_ = a.reset->first;
+        run_.x0 = a.reset->first;
         send(SimCommand::reset(a.reset->first, a.reset->second));
-        if (paused_) set_paused(false);
+        if (run_.paused) set_paused(false);
     }
     if (!a.toast.empty()) toast(a.toast);
 }
