@@ -53,34 +53,18 @@ constexpr const char* kFitHelp =
     "                          integrated from v): the model's free runs are filtered alike before any comparison\n"
     "  --no-plots              skip the PNGs\n";
 
-
-}  // namespace
-
-int cmd_fit(const std::vector<std::string>& argv) {
-    for (const auto& a : argv)
-        if (a == "--help" || a == "-h") {
-            std::printf("%s", kFitHelp);
-            return 0;
-        }
-    const Args a("fit", argv,
-                 {"--model", "--xI", "--m0e", "--rtol", "--report", "--baseline", "--fit-params", "--gain", "--t-col", "--x-col",
-                  "--phi-col", "--u-col", "--rate", "--x-scale", "--u-scale", "--phi-scale", "--t-scale", "--rows", "--test-rows",
-                  "--window", "--z", "--min-gain", "--max-effects", "--only", "--exclude", "--knots", "--omega-bin", "--x-highpass"},
-                 {"--no-generic", "--no-refine", "--no-plots"}, /*takes_files=*/true);
-    if (a.positional().empty()) throw UsageError("fit: give a data file, or several runs of one rig (see impactlab fit --help)");
-    const std::vector<std::string> paths = a.positional();
-    const std::string path = paths.size() == 1 ? paths[0] : paths[0] + " + " + std::to_string(paths.size() - 1) + " more";
-    if (paths.size() > 1 && a.has("--test-rows")) throw UsageError("fit: --test-rows needs a single data file");
-    const std::string dir = a.required("--report");
-    for (const auto& p : paths) note_input(p);
-    note_input(a.str("--model", "A1H"));
-    // Before anything is read: the report's files can be written and none of them is an input.
+// Before anything is read: the report's files can be written and none of them is an input.
+void check_report_outputs(const std::vector<std::string>& paths, const std::string& dir) {
     check_report_dir(dir);
     for (const char* name : {"report.json", "report.md", "model_after.json"})
         check_not_input((std::filesystem::path(dir) / name).string(), "--report");
     for (const auto& p : paths)
         if (std::filesystem::path(p).extension() == ".png")
             check_not_input((std::filesystem::path(dir) / std::filesystem::path(p).filename()).string(), "--report");
+}
+
+// The data flags: columns, rate and unit factors.
+identify::LoadOptions load_options(const Args& a) {
     identify::LoadOptions lo;
     lo.columns.t = a.str("--t-col", "");
     lo.columns.x = a.str("--x-col", "");
@@ -91,23 +75,36 @@ int cmd_fit(const std::vector<std::string>& argv) {
     lo.u_scale = a.num("--u-scale", 1.0, -1e12, 1e12);
     lo.phi_scale = a.num("--phi-scale", 1.0, -1e9, 1e9);
     lo.t_scale = a.num("--t-scale", 1.0, 1e-12, 1e9);
+    return lo;
+}
+
+// The runs fitted together, joined, and the rows held out of the first (--test-rows).
+struct Records {
     identify::MeasuredData data, test;
     bool has_test = false;
+};
+
+Records load_records(const Args& a, const std::vector<std::string>& paths, identify::LoadOptions lo) {
+    Records rec;
     try {
         if (a.has("--rows")) identify::parse_row_range(a.str("--rows", ""), lo.row_begin, lo.row_end);
         std::vector<identify::MeasuredData> runs;
         for (const auto& p : paths) runs.push_back(identify::load_measured(p, lo));
-        data = identify::join_records(runs);
+        rec.data = identify::join_records(runs);
         if (a.has("--test-rows")) {
             identify::LoadOptions lt = lo;
             identify::parse_row_range(a.str("--test-rows", ""), lt.row_begin, lt.row_end);
-            test = identify::load_measured(paths[0], lt);
-            has_test = true;
+            rec.test = identify::load_measured(paths[0], lt);
+            rec.has_test = true;
         }
     } catch (const identify::DataError& e) {
         throw UsageError(e.what());
     }
+    return rec;
+}
 
+// The model flags: the model resolved for the data's forcing, with its overrides.
+identify::Model fit_model(const Args& a, const identify::MeasuredData& data) {
     const std::string model_name = a.str("--model", "A1H");
     identify::Model model;
     try {
@@ -119,7 +116,11 @@ int cmd_fit(const std::vector<std::string>& argv) {
     if (a.has("--m0e")) model.p.m0e = a.num("--m0e", model.p.m0e, 0.0, 10.0);
     if (a.has("--gain")) model.p.input_gain = a.num("--gain", 1.0, -1e12, 1e12);
     if (identify::forcing_of(data) == identify::Forcing::Input) model.forcing = identify::Forcing::Input;   // a model file may say otherwise
+    return model;
+}
 
+// The analysis flags, checked against the effect library.
+identify::FitOptions fit_options(const Args& a, const identify::Model& model) {
     identify::FitOptions o;
     const std::string baseline = a.str("--baseline", model.bumper() ? "fixed" : "fit");
     if (baseline != "fixed" && baseline != "fit") throw UsageError("fit: --baseline must be 'fixed' or 'fit'");
@@ -143,22 +144,26 @@ int cmd_fit(const std::vector<std::string>& argv) {
         if (!identify::find_catalogue_effect(id)) throw UsageError("fit: --only: unknown effect '" + id + "'");
     for (const auto& id : o.exclude)
         if (!identify::find_catalogue_effect(id)) throw UsageError("fit: --exclude: unknown effect '" + id + "'");
+    return o;
+}
 
-    identify::FitReport r;
-    {
-        identify::FitProgress progress;
-        ProgressBar bar("fit " + model.p.name, progress.fraction, [&progress] {
-            const int s = progress.stage.load();
-            return s >= 0 ? std::string(identify::fit_stage_name(static_cast<identify::FitStage>(s))) : std::string();
-        });
-        try {
-            r = identify::run_fit(data, model, o, has_test ? &test : nullptr, &progress);
-        } catch (const identify::DataError& e) {
-            throw UsageError(e.what());
-        }
+// The fit with a progress bar naming its stage; the bar is gone before the report is written.
+identify::FitReport fit_with_progress(const Records& rec, const identify::Model& model, const identify::FitOptions& o) {
+    identify::FitProgress progress;
+    ProgressBar bar("fit " + model.p.name, progress.fraction, [&progress] {
+        const int s = progress.stage.load();
+        return s >= 0 ? std::string(identify::fit_stage_name(static_cast<identify::FitStage>(s))) : std::string();
+    });
+    try {
+        return identify::run_fit(rec.data, model, o, rec.has_test ? &rec.test : nullptr, &progress);
+    } catch (const identify::DataError& e) {
+        throw UsageError(e.what());
     }
-    identify::write_report(r, dir, o.plots);
+}
 
+// What was found: the effects, the validation, the record's horizon, the gate and verdict, the base
+// parameters and the wells seen in the data.
+void print_findings(const identify::FitReport& r, const std::string& path) {
     if (r.metres())
         std::printf("%s: %zu samples, model %s (%s), sensor noise %.3g um\n", printable(path).c_str(), r.samples, printable(r.before.p.name).c_str(),
                     identify::baseline_name(r.baseline), r.sigma_x * 1e6);
@@ -182,8 +187,6 @@ int cmd_fit(const std::vector<std::string>& argv) {
     else if (r.data_horizon_measured)
         std::printf("the record's own horizon: nearby returns double their separation in %.3g forcing periods (lambda ~ %.3g 1/s)\n",
                     r.data_horizon_periods, r.data_lambda);
-    const auto& b = r.error_before;
-    const auto& e = r.error_after;
     for (const auto& ro : r.run_offsets)
         std::printf("run %zu's x shifted by %+.4g +/- %.2g %s (its well's place; the chain had centred it on zero)\n", ro.run + 1, ro.offset,
                     ro.sigma, r.x_unit());
@@ -202,6 +205,10 @@ int cmd_fit(const std::vector<std::string>& argv) {
                     w.k2, w.sk2);
     if (!r.wells_from_data.empty()) std::printf("wells from the data: %s\n", r.wells_from_data.c_str());
     if (!r.well_frequency.empty()) std::printf("%s\n", r.well_frequency.c_str());
+}
+
+// The two wells of the model written, with their asymmetry.
+void print_wells(const identify::FitReport& r) {
     const auto& wa = r.wells_after;
     if (wa.wells.size() == 2 && std::isfinite(wa.hill_x)) {
         const double s = r.metres() ? 1e3 : 1.0;
@@ -218,9 +225,14 @@ int cmd_fit(const std::vector<std::string>& argv) {
         for (const auto& rw : wa.run_wells) std::printf(" %s", rw.c_str());
         std::printf(")\n");
     }
+}
+
+// The error table: the model given, the fitted baseline (when the gate kept one) and the model written.
+void print_errors(const identify::FitReport& r) {
+    const auto& b = r.error_before;
+    const auto& e = r.error_after;
     const std::string xu = std::string("[") + r.x_unit() + "]";
     const std::string fu = r.metres() ? "[N]" : "[force units]";
-    // Columns: the model given, the fitted baseline (when the gate kept one) and the model written.
     const bool bc = r.baseline_column;
     const auto& eb = r.error_baseline;
     if (bc) std::printf("%-38s %14s %14s %14s\n", "", "given", "baseline", "written");
@@ -264,6 +276,37 @@ int cmd_fit(const std::vector<std::string>& argv) {
         row("free-run simulation RMS (test)", b.test_simulation_rms_m, eb.test_simulation_rms_m, e.test_simulation_rms_m);
     if (b.test_shooting_rms_m >= 0) row("shooting RMS (test) " + xu, b.test_shooting_rms_m, eb.test_shooting_rms_m, e.test_shooting_rms_m);
     for (const auto& w : r.gate_within) std::printf("rose within its scatter: %s\n", w.c_str());
+}
+
+}  // namespace
+
+int cmd_fit(const std::vector<std::string>& argv) {
+    for (const auto& a : argv)
+        if (a == "--help" || a == "-h") {
+            std::printf("%s", kFitHelp);
+            return 0;
+        }
+    const Args a("fit", argv,
+                 {"--model", "--xI", "--m0e", "--rtol", "--report", "--baseline", "--fit-params", "--gain", "--t-col", "--x-col",
+                  "--phi-col", "--u-col", "--rate", "--x-scale", "--u-scale", "--phi-scale", "--t-scale", "--rows", "--test-rows",
+                  "--window", "--z", "--min-gain", "--max-effects", "--only", "--exclude", "--knots", "--omega-bin", "--x-highpass"},
+                 {"--no-generic", "--no-refine", "--no-plots"}, /*takes_files=*/true);
+    if (a.positional().empty()) throw UsageError("fit: give a data file, or several runs of one rig (see impactlab fit --help)");
+    const std::vector<std::string> paths = a.positional();
+    const std::string path = paths.size() == 1 ? paths[0] : paths[0] + " + " + std::to_string(paths.size() - 1) + " more";
+    if (paths.size() > 1 && a.has("--test-rows")) throw UsageError("fit: --test-rows needs a single data file");
+    const std::string dir = a.required("--report");
+    for (const auto& p : paths) note_input(p);
+    note_input(a.str("--model", "A1H"));
+    check_report_outputs(paths, dir);
+    const Records rec = load_records(a, paths, load_options(a));
+    const identify::Model model = fit_model(a, rec.data);
+    const identify::FitOptions o = fit_options(a, model);
+    const identify::FitReport r = fit_with_progress(rec, model, o);
+    identify::write_report(r, dir, o.plots);
+    print_findings(r, path);
+    print_wells(r);
+    print_errors(r);
     std::printf("report: %s/report.json, report.md (%.2f s)\n", printable(dir).c_str(), r.runtime_s);
     return 0;
 }

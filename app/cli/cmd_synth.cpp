@@ -66,24 +66,14 @@ double number(const std::string& what, const std::string& s) {
     return v;
 }
 
-}  // namespace
-
-namespace {
 std::string shortest(double v) {
     std::ostringstream s;
     s << v;
     return s.str();
 }
-}  // namespace
 
-int cmd_synth(const std::vector<std::string>& argv_in) {
-    for (const auto& a : argv_in)
-        if (a == "--help" || a == "-h") {
-            std::printf("%s", kSynthHelp);
-            return 0;
-        }
-    // --effect may repeat: take those out before the strict parser sees them.
-    std::vector<std::string> argv, effects;
+// --effect may repeat: take those out before the strict parser sees them.
+void split_effects(const std::vector<std::string>& argv_in, std::vector<std::string>& argv, std::vector<std::string>& effects) {
     for (std::size_t i = 0; i < argv_in.size(); ++i) {
         const std::string& s = argv_in[i];
         if (s == "--effect") {
@@ -95,16 +85,11 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
             argv.push_back(s);
         }
     }
-    const Args a("synth", argv,
-                 {"--model", "--xI", "--m0e", "--out", "--duration", "--rate", "--noise", "--quantum", "--phi-counts", "--omega",
-                  "--plateau", "--ramp", "--ef", "--omega-knots", "--x0", "--v0", "--seed", "--rtol", "--input", "--u-col", "--x-col",
-                  "--t-col", "--input-rate", "--u-scale", "--gain"});
-    if (!a.positional().empty()) throw UsageError("synth: unexpected argument '" + a.positional()[0] + "'");
-    const std::string out_path = a.required("--out");
-    note_input(a.str("--model", "A1H"));
-    if (a.has("--gain") && !a.has("--input")) throw UsageError("synth: --gain needs --input");
-    const std::optional<identify::MeasuredData> rec = input_from(a, "synth");
-    const bool input = rec.has_value();
+}
+
+// The model flags: the model resolved (an unbalance-forced rig, or any model driven by --input) with its
+// overrides.
+identify::Model synth_model(const Args& a, bool input) {
     identify::Model model;
     try {
         model = identify::resolve_fit_model(a.str("--model", "A1H"), input ? identify::Forcing::Input : identify::Forcing::Unbalance);
@@ -116,6 +101,11 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
     if (a.has("--gain")) model.p.input_gain = a.num("--gain", 1.0, -1e12, 1e12);
     if (a.has("--xI")) model.p.xI = a.num("--xI", 0.0, -0.1, 0.1);
     if (a.has("--m0e")) model.p.m0e = a.num("--m0e", model.p.m0e, 0.0, 10.0);
+    return model;
+}
+
+// Each --effect ID=VALUE or ID.PARAM=VALUE (comma-separated lists too) applied to the model.
+void apply_effects(identify::Model& model, const std::vector<std::string>& effects) {
     for (const auto& spec_list : effects) {
         std::stringstream ss(spec_list);
         std::string spec;
@@ -136,33 +126,10 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
             }
         }
     }
-    try {
-        validate(model.p, "synth model");
-    } catch (const ParamError& e) {
-        throw UsageError(std::string("synth: ") + e.what());
-    }
-    OutputFile out(out_path, "--out", std::ios::out | std::ios::binary);
+}
 
-    identify::SynthOptions o;
-    if (input) {
-        o.input = rec->u;
-        o.input_t0 = 0.0;   // the record is re-timed from 0
-        o.input_dt = (rec->t.back() - rec->t.front()) / static_cast<double>(rec->size() - 1);
-        o.phi_counts = 0;
-        o.knot_t = {0.0};
-        o.knot_omega = {0.0};
-    }
-    const double in_len = input ? o.input_dt * static_cast<double>(rec->size() - 1) : 60.0;
-    o.duration = a.num("--duration", in_len, 1e-3, 1e6);
-    o.rate = a.num("--rate", input ? 1.0 / o.input_dt : 1000.0, 1.0, 1e7);
-    o.noise = a.num("--noise", 3e-6, 0.0, 1.0);
-    o.quantum = a.num("--quantum", 1e-6, 0.0, 1.0);
-    o.phi_counts = a.integer("--phi-counts", 4096, 0, 1 << 30);
-    o.x0 = a.num("--x0", -0.01, -0.1, 0.1);
-    if (a.has("--x0")) check_start(model.p, o.x0, "synth", "--x0");
-    o.v0 = a.num("--v0", 0.0, -10.0, 10.0);
-    o.seed = static_cast<unsigned>(a.integer("--seed", 1, 0, 1 << 30));
-    o.rtol = a.num("--rtol", 1e-10, 1e-13, 1e-3);
+// The omega profile flags: steps (the default), an EF ramp or knots; none with an input record.
+void set_profile(const Args& a, bool input, identify::SynthOptions& o) {
     const int profiles = (a.has("--omega") ? 1 : 0) + (a.has("--ef") ? 1 : 0) + (a.has("--omega-knots") ? 1 : 0);
     if (profiles > 1) throw UsageError("synth: give one of --omega, --ef, --omega-knots");
     if (input && profiles == 0) {
@@ -194,6 +161,10 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
         const double plateau = a.num("--plateau", std::max(0.1, (o.duration - ramp * (nstep - 1)) / nstep), 1e-3, 1e6);
         identify::steps_profile(w, plateau, ramp, o.knot_t, o.knot_omega);
     }
+}
+
+// The profile and the record's size within what simulate and memory allow.
+void check_run(const Args& a, const identify::SynthOptions& o) {
     for (std::size_t i = 0; i < o.knot_omega.size(); ++i)
         if (!(o.knot_omega[i] >= 0 && o.knot_omega[i] <= 1000.0))
             throw UsageError("synth: omega " + shortest(o.knot_omega[i]) + " rad/s is outside [0, 1000] (as for simulate)");
@@ -203,6 +174,66 @@ int cmd_synth(const std::vector<std::string>& argv_in) {
                          shortest(o.duration * o.rate) + " samples, more than 5e7; shorten the run or lower the rate");
     for (std::size_t i = 1; i < o.knot_t.size(); ++i)
         if (o.knot_t[i] < o.knot_t[i - 1]) throw UsageError("synth: the omega knots' times must not decrease");
+}
+
+// The run's flags: the input record's drive, the span and rate, the sensor, the start, the seed, the
+// integrator and the omega profile.
+identify::SynthOptions synth_options(const Args& a, const identify::Model& model, const std::optional<identify::MeasuredData>& rec) {
+    const bool input = rec.has_value();
+    identify::SynthOptions o;
+    if (input) {
+        o.input = rec->u;
+        o.input_t0 = 0.0;   // the record is re-timed from 0
+        o.input_dt = (rec->t.back() - rec->t.front()) / static_cast<double>(rec->size() - 1);
+        o.phi_counts = 0;
+        o.knot_t = {0.0};
+        o.knot_omega = {0.0};
+    }
+    const double in_len = input ? o.input_dt * static_cast<double>(rec->size() - 1) : 60.0;
+    o.duration = a.num("--duration", in_len, 1e-3, 1e6);
+    o.rate = a.num("--rate", input ? 1.0 / o.input_dt : 1000.0, 1.0, 1e7);
+    o.noise = a.num("--noise", 3e-6, 0.0, 1.0);
+    o.quantum = a.num("--quantum", 1e-6, 0.0, 1.0);
+    o.phi_counts = a.integer("--phi-counts", 4096, 0, 1 << 30);
+    o.x0 = a.num("--x0", -0.01, -0.1, 0.1);
+    if (a.has("--x0")) check_start(model.p, o.x0, "synth", "--x0");
+    o.v0 = a.num("--v0", 0.0, -10.0, 10.0);
+    o.seed = static_cast<unsigned>(a.integer("--seed", 1, 0, 1 << 30));
+    o.rtol = a.num("--rtol", 1e-10, 1e-13, 1e-3);
+    set_profile(a, input, o);
+    check_run(a, o);
+    return o;
+}
+
+}  // namespace
+
+int cmd_synth(const std::vector<std::string>& argv_in) {
+    for (const auto& a : argv_in)
+        if (a == "--help" || a == "-h") {
+            std::printf("%s", kSynthHelp);
+            return 0;
+        }
+    std::vector<std::string> argv, effects;
+    split_effects(argv_in, argv, effects);
+    const Args a("synth", argv,
+                 {"--model", "--xI", "--m0e", "--out", "--duration", "--rate", "--noise", "--quantum", "--phi-counts", "--omega",
+                  "--plateau", "--ramp", "--ef", "--omega-knots", "--x0", "--v0", "--seed", "--rtol", "--input", "--u-col", "--x-col",
+                  "--t-col", "--input-rate", "--u-scale", "--gain"});
+    if (!a.positional().empty()) throw UsageError("synth: unexpected argument '" + a.positional()[0] + "'");
+    const std::string out_path = a.required("--out");
+    note_input(a.str("--model", "A1H"));
+    if (a.has("--gain") && !a.has("--input")) throw UsageError("synth: --gain needs --input");
+    const std::optional<identify::MeasuredData> rec = input_from(a, "synth");
+    const bool input = rec.has_value();
+    identify::Model model = synth_model(a, input);
+    apply_effects(model, effects);
+    try {
+        validate(model.p, "synth model");
+    } catch (const ParamError& e) {
+        throw UsageError(std::string("synth: ") + e.what());
+    }
+    OutputFile out(out_path, "--out", std::ios::out | std::ios::binary);
+    const identify::SynthOptions o = synth_options(a, model, rec);
 
     check_run_span(model.p, 0.0, o.duration, "synth");
     const identify::MeasuredData d = identify::synthesize(model, o);

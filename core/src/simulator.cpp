@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "impactlab/forces.hpp"
@@ -243,6 +244,31 @@ void Simulator::advance(const Params& p, const Drive& d, State& s, double t_end,
     in_advance_ = false;
 }
 
+namespace {
+// Rigid bumper: an impact at s.t, restitution and dwell from the law at the arrival speed. A dwell holds
+// the mass at the bumper (sticking until s.t_release); without one it leaves at once: the speed returned,
+// for release().
+inline std::optional<double> rigid_impact(const Params& p, State& s, Observer* obs) {
+    const double v_minus = std::max(s.v, 0.0);
+    const double kappa = p.impact->restitution(p.ip.data(), v_minus);
+    const double t_imp = p.impact->duration(p.ip.data(), v_minus);
+    const double v_plus = -kappa * v_minus;
+    ++s.impacts;
+    s.x = p.xI;
+    if (obs) obs->on_impact({s.t, v_minus, v_plus, t_imp});
+    if (t_imp > 0) {
+        s.regime = Regime::Sticking;
+        s.t_release = s.t + t_imp;
+        s.v_release = v_plus;
+        s.v_impact = v_minus;
+        s.v = 0.0;
+        if (obs) obs->on_regime(s.t, Regime::Free, Regime::Sticking);
+        return std::nullopt;
+    }
+    return v_plus;
+}
+}  // namespace
+
 bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_stop,
                           Observer* obs) {
     const RigSystem sys{p, d, p.compliant()};
@@ -348,24 +374,7 @@ bool Simulator::free_step(const Params& p, const Drive& d, State& s, double t_st
         s.side = inside_before ? -1 : 1;   // now on the other side of the plane
         return false;
     }
-    // Rigid bumper: an impact.
-    const double v_minus = std::max(s.v, 0.0);
-    const double kappa = p.impact->restitution(p.ip.data(), v_minus);
-    const double t_imp = p.impact->duration(p.ip.data(), v_minus);
-    const double v_plus = -kappa * v_minus;
-    ++s.impacts;
-    s.x = xI;
-    if (obs) obs->on_impact({s.t, v_minus, v_plus, t_imp});
-    if (t_imp > 0) {
-        s.regime = Regime::Sticking;
-        s.t_release = s.t + t_imp;
-        s.v_release = v_plus;
-        s.v_impact = v_minus;
-        s.v = 0.0;
-        if (obs) obs->on_regime(s.t, Regime::Free, Regime::Sticking);
-    } else {
-        release(p, d, s, v_plus, obs);
-    }
+    if (const std::optional<double> v_plus = rigid_impact(p, s, obs)) release(p, d, s, *v_plus, obs);
     return false;
 }
 

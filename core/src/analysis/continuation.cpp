@@ -95,40 +95,7 @@ void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, con
     if (rigid_law) work_.impact = rigid_law;
     const Sol& best = std::abs(f_lo) < std::abs(f_hi) ? lo : hi;
     double precision = std::abs(q_of(hi.u) - q_of(lo.u)), shift = 0;
-    if (kind != BifKind::Grazing) {
-        // A fold, a doubling or a Neimark-Sacker is a multiplier crossing +1, -1 or the unit circle: it
-        // must be of that sort on both sides of the bracket, near the value it crosses, and change at a
-        // finite rate along the arclength. A sign change of the test function without that is a jump (a
-        // grazing's: the impacting orbit's multiplier runs from +1 to -22 within 1e-5 rad/s of it), not a
-        // bifurcation of that kind.
-        const double c = kind == BifKind::Fold ? 1.0 : -1.0;
-        const double target = kind == BifKind::NeimarkSacker ? 1.0 : c;
-        const double m_lo = crossing_multiplier(kind, lo.r.M), m_hi = crossing_multiplier(kind, hi.r.M);
-        if (!std::isfinite(m_lo) || !std::isfinite(m_hi)) return;
-        if (std::abs(m_lo - target) > kNearCrossing || std::abs(m_hi - target) > kNearCrossing) return;
-        const double ds_bracket = std::max((hi.u - lo.u).norm(), 1e-300);
-        if (std::abs(m_hi - m_lo) / ds_bracket > kSteepCrossing) return;
-        // Inside a compliant bumper's grazing layer the crossing is the grazing's, however smooth it looks
-        // there (A3C's period 2 at 12.8999, 1e-4 past its grazing: mu = -1.005 with 0.22 um of penetration).
-        if (work_.has_bumper() && !work_.rigid() && best.r.max_x > work_.xI && best.r.max_x - work_.xI < kGrazingLayer) return;
-        // The bracket is only as good as the monodromy: at rtol 1e-10 the multiplier of A1C near its first
-        // doubling jitters by 5e-5 from one omega to the next (the step sequence changes), so a bracket of
-        // 1e-7 may sit 6e-5 from the crossing. The orbit is found again at rtol / 100, where the multiplier is
-        // smooth, the crossing moved there by a secant, and its error bounded by how far the multiplier
-        // still moves from rtol / 10. A fold needs no move: its parameter is stationary in the multiplier.
-        if (kind != BifKind::Fold) {
-            const double q0 = q_of(best.u), dq = 1e-3 * q_scale_ * (q_of(hi.u) > q_of(lo.u) ? 1 : -1);
-            const double m0 = crossing_at(kind, q0, y_of(best.u), k, 0.01);
-            const double m1 = crossing_at(kind, q0 + dq, y_of(best.u), k, 0.01);
-            const double m_mid = crossing_at(kind, q0, y_of(best.u), k, 0.1);
-            if (std::isfinite(m0) && std::isfinite(m1) && std::isfinite(m_mid) && m1 != m0) {
-                const double slope = (m1 - m0) / dq;   // d mu / d q at rtol / 100
-                shift = -(m0 - target) / slope;
-                if (std::abs(shift) > 1e-3 * q_scale_) shift = 0;   // not a smooth crossing there: the bracket stands
-                else precision = std::max(std::abs(m0 - m_mid) / std::abs(slope), std::abs(shift) * 0.1);
-            }
-        }
-    }
+    if (kind != BifKind::Grazing && !true_crossing(kind, lo, hi, best, k, precision, shift)) return;
     BifPoint bp{kind, q_of(best.u) + shift, y_of(best.u), k, branch, precision, {}, NAN, NAN};
     // The same point met again (from the other side of a bubble, on another branch through the same orbit at
     // another of its k phases, or by a failed corrector after its sign change): reported once.
@@ -146,6 +113,47 @@ void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, con
     last_located_ = static_cast<int>(result_.points.size());
     result_.points.push_back(bp);
     if (kind != BifKind::PeriodDoubling || 2 * k > spec_.max_period) return;
+    switch_to_doubled(best, k, branch);
+}
+
+bool Continuer::true_crossing(BifKind kind, const Sol& lo, const Sol& hi, const Sol& best, int k, double& precision,
+                              double& shift) {
+    // A fold, a doubling or a Neimark-Sacker is a multiplier crossing +1, -1 or the unit circle: it
+    // must be of that sort on both sides of the bracket, near the value it crosses, and change at a
+    // finite rate along the arclength. A sign change of the test function without that is a jump (a
+    // grazing's: the impacting orbit's multiplier runs from +1 to -22 within 1e-5 rad/s of it), not a
+    // bifurcation of that kind.
+    const double c = kind == BifKind::Fold ? 1.0 : -1.0;
+    const double target = kind == BifKind::NeimarkSacker ? 1.0 : c;
+    const double m_lo = crossing_multiplier(kind, lo.r.M), m_hi = crossing_multiplier(kind, hi.r.M);
+    if (!std::isfinite(m_lo) || !std::isfinite(m_hi)) return false;
+    if (std::abs(m_lo - target) > kNearCrossing || std::abs(m_hi - target) > kNearCrossing) return false;
+    const double ds_bracket = std::max((hi.u - lo.u).norm(), 1e-300);
+    if (std::abs(m_hi - m_lo) / ds_bracket > kSteepCrossing) return false;
+    // Inside a compliant bumper's grazing layer the crossing is the grazing's, however smooth it looks
+    // there (A3C's period 2 at 12.8999, 1e-4 past its grazing: mu = -1.005 with 0.22 um of penetration).
+    if (work_.has_bumper() && !work_.rigid() && best.r.max_x > work_.xI && best.r.max_x - work_.xI < kGrazingLayer) return false;
+    // The bracket is only as good as the monodromy: at rtol 1e-10 the multiplier of A1C near its first
+    // doubling jitters by 5e-5 from one omega to the next (the step sequence changes), so a bracket of
+    // 1e-7 may sit 6e-5 from the crossing. The orbit is found again at rtol / 100, where the multiplier is
+    // smooth, the crossing moved there by a secant, and its error bounded by how far the multiplier
+    // still moves from rtol / 10. A fold needs no move: its parameter is stationary in the multiplier.
+    if (kind != BifKind::Fold) {
+        const double q0 = q_of(best.u), dq = 1e-3 * q_scale_ * (q_of(hi.u) > q_of(lo.u) ? 1 : -1);
+        const double m0 = crossing_at(kind, q0, y_of(best.u), k, 0.01);
+        const double m1 = crossing_at(kind, q0 + dq, y_of(best.u), k, 0.01);
+        const double m_mid = crossing_at(kind, q0, y_of(best.u), k, 0.1);
+        if (std::isfinite(m0) && std::isfinite(m1) && std::isfinite(m_mid) && m1 != m0) {
+            const double slope = (m1 - m0) / dq;   // d mu / d q at rtol / 100
+            shift = -(m0 - target) / slope;
+            if (std::abs(shift) > 1e-3 * q_scale_) shift = 0;   // not a smooth crossing there: the bracket stands
+            else precision = std::max(std::abs(m0 - m_mid) / std::abs(slope), std::abs(shift) * 0.1);
+        }
+    }
+    return true;
+}
+
+void Continuer::switch_to_doubled(const Sol& best, int k, int branch) {
     // Switch onto the period-2k branch: it leaves the period-k orbit along the eigenvector of mu = -1.
     Eigen::EigenSolver<Mat2> es(best.r.M);
     int i = std::abs(es.eigenvalues()[0] + 1.0) < std::abs(es.eigenvalues()[1] + 1.0) ? 0 : 1;

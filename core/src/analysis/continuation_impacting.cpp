@@ -58,11 +58,64 @@ bool Continuer::correct_impacting(const Vec3& z_pred, const Vec3& n, int k, Vec3
     return false;
 }
 
+bool Continuer::slow_impacts_start(const Job& job, Vec3& z, Vec3& t, Vec2& section, std::string& failure) {
+    const int k = job.period;
+    Eigen::Matrix<double, 2, 3> J;
+    double theta = 0, vm = 0;
+    if (!first_impact(work_, apply(q_of(job.u)), y_of(job.u), k, spec_.sim, theta, vm) ||
+        !correct_impacting(Vec3(theta, vm / kVScale, job.u[2]), Vec3(0, 0, 1), k, z, J, section)) {
+        failure = "the impacting orbit did not converge from impact to impact";
+        return false;
+    }
+    t = Vec3(J.row(0).transpose()).cross(Vec3(J.row(1).transpose()));
+    if (!(t.norm() > 0) || !t.allFinite()) {
+        failure = "singular impact-to-impact equations";
+        return false;
+    }
+    t.normalize();
+    if (t[2] * job.t[2] < 0) t = -t;   // the way the stroboscopic branch was going in the parameter
+    return true;
+}
+
+std::string Continuer::impacting_limit(const Vec3& z, const Vec3& t, double ds, int k) {
+    Vec2 Gl;
+    Eigen::Matrix<double, 2, 3> Jl;
+    Vec2 sl;
+    const double rl = shot(z + 2 * ds * t, k, Gl, Jl, sl) ? Gl.cwiseAbs().maxCoeff() : NAN;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, ": the corrector fails at steps down to %.1g (residual %.2g there)", spec_.ds_min, rl);
+    return "numerical limit (impact to impact) near " + std::string(sweep_param_name(spec_.param)) + " = " +
+           std::to_string(q_of(z)) + buf;
+}
+
+std::string Continuer::impacts_end(const Vec3& z, const Vec3& t, double ds, const Vec3& zn, const Vec2& sec, int k,
+                                   int branch) {
+    // v- passes zero between z and zn: a grazing, located by a secant on v- along the step (the equations
+    // are smooth there).
+    double sa = 0, sb = ds, va = z[1], vb = zn[1];
+    Vec3 zm = zn;
+    Vec2 secm = sec;
+    for (int it = 0; it < 60 && std::abs(vb - va) > 0; ++it) {
+        const double sm = sb - vb * (sb - sa) / (vb - va);
+        Eigen::Matrix<double, 2, 3> Jm;
+        if (!correct_impacting(z + sm * t, t, k, zm, Jm, secm)) break;
+        sa = sb; va = vb; sb = sm; vb = zm[1];
+        if (std::abs(vb) * kVScale < 1e-12) break;
+    }
+    BifPoint bp{BifKind::Grazing, q_of(zm), secm, k, branch, std::abs(sb - sa) * q_scale_, {}, NAN, NAN};
+    bp.precision = std::max(bp.precision, 1e-9 * q_scale_);
+    bool known = false;
+    for (const BifPoint& q : result_.points)
+        if (q.kind == BifKind::Grazing && std::abs(q.param - bp.param) < 1e-5 * q_scale_) known = true;
+    if (!known) result_.points.push_back(bp);
+    reached_.push_back(bp.param);
+    return "grazing at " + std::string(sweep_param_name(spec_.param)) + " = " + std::to_string(bp.param) + " (the impacts end)";
+}
+
 Followed Continuer::follow_impacting(const Job& job, Branch& br) {
     const int k = job.period;
     const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
     Vec3 z, t;
-    Eigen::Matrix<double, 2, 3> J;
     Vec2 section;
     if (job.mode == JobMode::Grazing) {
         if (!grazing_start(q_of(job.u), y_of(job.u), k, z, t, section)) {
@@ -74,21 +127,8 @@ Followed Continuer::follow_impacting(const Job& job, Branch& br) {
         // Its impacting branch already followed to here from another grazing: not again.
         for (double qr : reached_)
             if (std::abs(qr - q_of(job.u)) < 1e-5 * q_scale_) return Followed::AlreadyReached;
-    } else {
-        // From an impacting orbit of the stroboscopic branch whose impacts are slow.
-        double theta = 0, vm = 0;
-        if (!first_impact(work_, apply(q_of(job.u)), y_of(job.u), k, spec_.sim, theta, vm) ||
-            !correct_impacting(Vec3(theta, vm / kVScale, job.u[2]), Vec3(0, 0, 1), k, z, J, section)) {
-            br.end = "the impacting orbit did not converge from impact to impact";
-            return Followed::Branch;
-        }
-        t = Vec3(J.row(0).transpose()).cross(Vec3(J.row(1).transpose()));
-        if (!(t.norm() > 0) || !t.allFinite()) {
-            br.end = "singular impact-to-impact equations";
-            return Followed::Branch;
-        }
-        t.normalize();
-        if (t[2] * job.t[2] < 0) t = -t;   // the way the stroboscopic branch was going in the parameter
+    } else if (!slow_impacts_start(job, z, t, section, br.end)) {
+        return Followed::Branch;
     }
     double ds = 0.01;
     std::string end;
@@ -103,41 +143,13 @@ Followed Continuer::follow_impacting(const Job& job, Branch& br) {
         if (!correct_impacting(z + ds * t, t, k, zn, Jn, sec)) {
             ds *= 0.5;
             if (ds < spec_.ds_min) {
-                Vec2 Gl;
-                Eigen::Matrix<double, 2, 3> Jl;
-                Vec2 sl;
-                const double rl = shot(z + 2 * ds * t, k, Gl, Jl, sl) ? Gl.cwiseAbs().maxCoeff() : NAN;
-                char buf[160];
-                std::snprintf(buf, sizeof buf, ": the corrector fails at steps down to %.1g (residual %.2g there)",
-                              spec_.ds_min, rl);
-                end = "numerical limit (impact to impact) near " + std::string(sweep_param_name(spec_.param)) + " = " +
-                      std::to_string(q_of(z)) + buf;
+                end = impacting_limit(z, t, ds, k);
                 break;
             }
             continue;
         }
         if (zn[1] <= 0 && z[1] > 0) {
-            // The impacts end: v- passes zero between z and zn, a grazing, located by a secant on v- along
-            // the step (the equations are smooth there).
-            double sa = 0, sb = ds, va = z[1], vb = zn[1];
-            Vec3 zm = zn;
-            Vec2 secm = sec;
-            for (int it = 0; it < 60 && std::abs(vb - va) > 0; ++it) {
-                const double sm = sb - vb * (sb - sa) / (vb - va);
-                Eigen::Matrix<double, 2, 3> Jm;
-                if (!correct_impacting(z + sm * t, t, k, zm, Jm, secm)) break;
-                sa = sb; va = vb; sb = sm; vb = zm[1];
-                if (std::abs(vb) * kVScale < 1e-12) break;
-            }
-            BifPoint bp{BifKind::Grazing, q_of(zm), secm, k, br.id, std::abs(sb - sa) * q_scale_, {}, NAN, NAN};
-            bp.precision = std::max(bp.precision, 1e-9 * q_scale_);
-            bool known = false;
-            for (const BifPoint& q : result_.points)
-                if (q.kind == BifKind::Grazing && std::abs(q.param - bp.param) < 1e-5 * q_scale_) known = true;
-            if (!known) result_.points.push_back(bp);
-            reached_.push_back(bp.param);
-            end = "grazing at " + std::string(sweep_param_name(spec_.param)) + " = " + std::to_string(bp.param) +
-                  " (the impacts end)";
+            end = impacts_end(z, t, ds, zn, sec, k, br.id);
             break;
         }
         const double q = q_of(zn);

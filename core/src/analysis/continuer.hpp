@@ -276,6 +276,12 @@ private:
     // and compliant ones too stiff for it, as C1's).
     void locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch,
                 bool off_bumper = false);
+    // Whether the bracket lo..hi of a fold, doubling or Neimark-Sacker holds a crossing of the multiplier it
+    // names (not a jump, not a grazing's); for a doubling or Neimark-Sacker the point's shift and precision
+    // from the orbit found again at a tighter tolerance.
+    bool true_crossing(BifKind kind, const Sol& lo, const Sol& hi, const Sol& best, int k, double& precision, double& shift);
+    // A period doubling located at best: the period-2k branch queued as a job.
+    void switch_to_doubled(const Sol& best, int k, int branch);
     void follow(const Job& job, Branch& br);
     // Why a branch ends where the corrector fails at every step down to ds_min from cur: the numerical
     // limit, or the grazing it ran into, located on the bumperless orbit (a rigid grazing's impacting branch
@@ -299,6 +305,14 @@ private:
     // From a rigid grazing onto the impacting branch, written from impact to impact (impact_shot) while the
     // impacts are slow, then on with the stroboscopic map (follow, onward).
     Followed follow_impacting(const Job& job, Branch& br);
+    // The start from an impacting orbit of the stroboscopic branch whose impacts are slow (job.u): z, t and
+    // section, or false with the reason in failure.
+    bool slow_impacts_start(const Job& job, Vec3& z, Vec3& t, Vec2& section, std::string& failure);
+    // Why the impacting branch ends where the corrector fails at every step down to ds_min from z.
+    std::string impacting_limit(const Vec3& z, const Vec3& t, double ds, int k);
+    // The impacts end on the step from z to zn (v- through zero): the grazing located, kept once and noted as
+    // reached; returns the branch's end.
+    std::string impacts_end(const Vec3& z, const Vec3& t, double ds, const Vec3& zn, const Vec2& sec, int k, int branch);
     // The exponents of a crossed grazing (BifPoint::mu_exponent, speed_exponent) from the impacting orbits
     // near it; z, t: the grazing orbit from impact to impact and the impacting branch's tangent there.
     void measure_scaling(BifPoint& gp, const Vec3& z, const Vec3& t, int k);

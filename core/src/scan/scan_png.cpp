@@ -25,6 +25,9 @@ struct MapLayer {
     std::vector<plot::Color> colors;
 };
 
+// Half a grid step along an axis: a cell reaches that far either side of its point.
+double half_step(const ScanAxis& a) { return a.n > 1 ? 0.5 * (a.hi - a.lo) / (a.n - 1) : 0.5; }
+
 MapLayer map_panel(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, const std::string& title,
                    const std::vector<ClassDef>& classes, const std::function<int(const ScanPoint&)>& classify) {
     MapLayer layer;
@@ -54,8 +57,7 @@ MapLayer map_panel(const ScanSpec& spec, const std::vector<std::vector<ScanPoint
             layer.cell_class.push_back(classify(rows[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)]));
     panel.series = std::move(series);
     // The plane, then a free margin for the legend.
-    const double hx = spec.x.n > 1 ? 0.5 * (spec.x.hi - spec.x.lo) / (spec.x.n - 1) : 0.5;
-    const double hy = spec.y.n > 1 ? 0.5 * (spec.y.hi - spec.y.lo) / (spec.y.n - 1) : 0.5;
+    const double hx = half_step(spec.x), hy = half_step(spec.y);
     panel.xmin = spec.x.lo - hx;
     panel.xmax = spec.x.hi + hx + 0.32 * (spec.x.hi - spec.x.lo + 2 * hx);
     panel.ymin = spec.y.lo - hy;
@@ -64,90 +66,74 @@ MapLayer map_panel(const ScanSpec& spec, const std::vector<std::vector<ScanPoint
     return layer;
 }
 
-}  // namespace
+MapLayer period_layer(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows) {
+    const std::vector<ClassDef> cls{{"period 1", {31, 119, 180}},  {"period 2", {44, 160, 44}},
+                                    {"period 3", {255, 127, 14}},  {"period 4", {148, 103, 189}},
+                                    {"period 5-16", {140, 86, 75}}, {"chaos (> 16)", {214, 39, 40}},
+                                    {"not settled", {150, 150, 150}}};
+    return map_panel(spec, rows, "period of the section points", cls, [](const ScanPoint& p) {
+        if (p.period == kNotSettled) return 6;
+        if (p.period == 0) return 5;
+        if (p.period <= 4) return static_cast<int>(p.period) - 1;
+        return 4;
+    });
+}
 
-void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, const std::string& model,
-                   const std::string& path, const std::vector<ScanCurve>& curves) {
-    plot::Figure fig;
-    fig.width = 1400;
-    fig.panel_height = 520;
-    fig.title = model + ": " + spec.x.name() + " x " + spec.y.name() + " plane, " + std::to_string(spec.x.n) + " x " +
-                std::to_string(spec.y.n) + " points, " + (spec.start == ScanStart::Continue ? "continued along " : "each from rest, ") +
-                (spec.start == ScanStart::Continue ? spec.x.name() : "");
+MapLayer lyapunov_layer(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows) {
+    const std::vector<ClassDef> cls{{"λ < -1 1/s", {8, 48, 107}},     {"-1 ≤ λ < -0.1", {66, 146, 198}},
+                                    {"-0.1 ≤ λ < 0.02", {198, 219, 239}}, {"0.02 ≤ λ < 0.5 (chaos)", {252, 146, 114}},
+                                    {"λ ≥ 0.5 (chaos)", {203, 24, 29}}};
+    return map_panel(spec, rows, "largest Lyapunov exponent", cls, [](const ScanPoint& p) {
+        if (!std::isfinite(p.lyapunov)) return -1;
+        return p.lyapunov < -1 ? 0 : p.lyapunov < -0.1 ? 1 : p.lyapunov < 0.02 ? 2
+               : p.lyapunov < 0.5 ? 3 : 4;
+    });
+}
+
+MapLayer impacts_layer(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows) {
+    const std::vector<ClassDef> cls{{"no impact", {220, 220, 220}}, {"< 1 per period", {254, 217, 118}},
+                                    {"1 per period", {253, 141, 60}}, {"1-3 per period", {227, 26, 28}},
+                                    {"> 3 per period", {128, 0, 38}}};
+    return map_panel(spec, rows, "impacts per forcing period", cls, [](const ScanPoint& p) {
+        if (p.impacts == 0) return 0;
+        if (p.impacts < 0.99) return 1;
+        if (p.impacts <= 1.01) return 2;
+        return p.impacts <= 3 ? 3 : 4;
+    });
+}
+
+MapLayer xrange_layer(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows) {
+    const std::vector<ClassDef> cls{{"left well only", {31, 119, 180}}, {"right well only", {44, 160, 44}},
+                                    {"both wells", {255, 127, 14}}, {"reaches the bumper", {214, 39, 40}}};
+    // Distances from the bumper need its position per point: xI is an axis or the model's.
+    MapLayer l = map_panel(spec, rows, "x range over the recorded periods", cls, [](const ScanPoint& p) {
+        if (p.xmin < 0 && p.xmax > 0) return 2;
+        return p.xmax <= 0 ? 0 : 1;
+    });
+    // Points whose x range reaches within 0.1 mm of the bumper (xI an axis): marked over the well classes.
+    for (int j = 0; j < spec.y.n; ++j)
+        for (int i = 0; i < spec.x.n; ++i) {
+            const ScanPoint& p = rows[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)];
+            const double xI = spec.x.param == ScanParam::XI ? spec.x.at(i) : spec.y.param == ScanParam::XI ? spec.y.at(j) : NAN;
+            if (std::isfinite(xI) && p.xmax >= xI - 1e-4) l.cell_class[static_cast<std::size_t>(j * spec.x.n + i)] = 3;
+        }
+    return l;
+}
+
+// One map per measure asked for, in a fixed order.
+std::vector<MapLayer> scan_layers(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows) {
     std::vector<MapLayer> layers;
     const ScanMeasures& m = spec.measures;
-    if (m.period) {
-        const std::vector<ClassDef> cls{{"period 1", {31, 119, 180}},  {"period 2", {44, 160, 44}},
-                                        {"period 3", {255, 127, 14}},  {"period 4", {148, 103, 189}},
-                                        {"period 5-16", {140, 86, 75}}, {"chaos (> 16)", {214, 39, 40}},
-                                        {"not settled", {150, 150, 150}}};
-        layers.push_back(map_panel(spec, rows, "period of the section points", cls,
-                                       [](const ScanPoint& p) {
-                                           if (p.period == kNotSettled) return 6;
-                                           if (p.period == 0) return 5;
-                                           if (p.period <= 4) return static_cast<int>(p.period) - 1;
-                                           return 4;
-                                       }));
-    }
-    if (m.lyapunov) {
-        const std::vector<ClassDef> cls{{"λ < -1 1/s", {8, 48, 107}},     {"-1 ≤ λ < -0.1", {66, 146, 198}},
-                                        {"-0.1 ≤ λ < 0.02", {198, 219, 239}}, {"0.02 ≤ λ < 0.5 (chaos)", {252, 146, 114}},
-                                        {"λ ≥ 0.5 (chaos)", {203, 24, 29}}};
-        layers.push_back(map_panel(spec, rows, "largest Lyapunov exponent", cls,
-                                       [](const ScanPoint& p) {
-                                           if (!std::isfinite(p.lyapunov)) return -1;
-                                           return p.lyapunov < -1 ? 0 : p.lyapunov < -0.1 ? 1 : p.lyapunov < 0.02 ? 2
-                                                  : p.lyapunov < 0.5 ? 3 : 4;
-                                       }));
-    }
-    if (m.impacts) {
-        const std::vector<ClassDef> cls{{"no impact", {220, 220, 220}}, {"< 1 per period", {254, 217, 118}},
-                                        {"1 per period", {253, 141, 60}}, {"1-3 per period", {227, 26, 28}},
-                                        {"> 3 per period", {128, 0, 38}}};
-        layers.push_back(map_panel(spec, rows, "impacts per forcing period", cls,
-                                       [](const ScanPoint& p) {
-                                           if (p.impacts == 0) return 0;
-                                           if (p.impacts < 0.99) return 1;
-                                           if (p.impacts <= 1.01) return 2;
-                                           return p.impacts <= 3 ? 3 : 4;
-                                       }));
-    }
-    if (m.xrange) {
-        const std::vector<ClassDef> cls{{"left well only", {31, 119, 180}}, {"right well only", {44, 160, 44}},
-                                        {"both wells", {255, 127, 14}}, {"reaches the bumper", {214, 39, 40}}};
-        // Distances from the bumper need its position per point: xI is an axis or the model's.
-        layers.push_back(map_panel(spec, rows, "x range over the recorded periods", cls,
-                                       [](const ScanPoint& p) {
-                                           if (p.xmin < 0 && p.xmax > 0) return 2;
-                                           return p.xmax <= 0 ? 0 : 1;
-                                       }));
-        // Points whose x range reaches within 0.1 mm of the bumper (xI an axis): marked over the well classes.
-        MapLayer& l = layers.back();
-        for (int j = 0; j < spec.y.n; ++j)
-            for (int i = 0; i < spec.x.n; ++i) {
-                const ScanPoint& p = rows[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)];
-                const double xI = spec.x.param == ScanParam::XI ? spec.x.at(i) : spec.y.param == ScanParam::XI ? spec.y.at(j) : NAN;
-                if (std::isfinite(xI) && p.xmax >= xI - 1e-4) l.cell_class[static_cast<std::size_t>(j * spec.x.n + i)] = 3;
-            }
-    }
-    for (auto& l : layers) {
-        for (const ScanCurve& c : curves) {   // a legend entry; the curve itself is drawn over the cells below
-            plot::Series sr;
-            sr.kind = plot::Series::Kind::Line;
-            sr.color = {0, 0, 0};
-            sr.size = 2.0f;
-            sr.label = c.label;
-            sr.x.push_back(std::nan(""));
-            sr.y.push_back(std::nan(""));
-            l.panel.series.push_back(std::move(sr));
-        }
-        fig.panels.push_back(l.panel);
-    }
-    plot::Image img = plot::render(fig);
-    const std::vector<plot::Mapping> maps = plot::layout(fig);
-    // Each cell is the rectangle half a grid step either side of its point, clipped to the plot area.
-    const double hx = spec.x.n > 1 ? 0.5 * (spec.x.hi - spec.x.lo) / (spec.x.n - 1) : 0.5;
-    const double hy = spec.y.n > 1 ? 0.5 * (spec.y.hi - spec.y.lo) / (spec.y.n - 1) : 0.5;
+    if (m.period) layers.push_back(period_layer(spec, rows));
+    if (m.lyapunov) layers.push_back(lyapunov_layer(spec, rows));
+    if (m.impacts) layers.push_back(impacts_layer(spec, rows));
+    if (m.xrange) layers.push_back(xrange_layer(spec, rows));
+    return layers;
+}
+
+// Each cell is the rectangle half a grid step either side of its point, clipped to the plot area.
+void paint_cells(plot::Image& img, const std::vector<plot::Mapping>& maps, const ScanSpec& spec, const std::vector<MapLayer>& layers) {
+    const double hx = half_step(spec.x), hy = half_step(spec.y);
     for (std::size_t k = 0; k < layers.size(); ++k) {
         const plot::Mapping& map = maps[k];
         for (int j = 0; j < spec.y.n; ++j)
@@ -170,8 +156,13 @@ void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint
                     }
             }
     }
-    // The curves over the cells: 3 x 3 black dots every half pixel along each segment, clipped to the plane.
-    for (std::size_t k = 0; k < layers.size(); ++k) {
+}
+
+// The curves over the cells: 3 x 3 black dots every half pixel along each segment, clipped to the plane.
+void draw_curves(plot::Image& img, const std::vector<plot::Mapping>& maps, const ScanSpec& spec, std::size_t nlayers,
+                 const std::vector<ScanCurve>& curves) {
+    const double hx = half_step(spec.x);
+    for (std::size_t k = 0; k < nlayers; ++k) {
         const plot::Mapping& map = maps[k];
         const double x_end = spec.x.hi + hx;   // not into the legend's margin
         for (const ScanCurve& c : curves) {
@@ -199,6 +190,36 @@ void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint
             }
         }
     }
+}
+
+}  // namespace
+
+void save_scan_png(const ScanSpec& spec, const std::vector<std::vector<ScanPoint>>& rows, const std::string& model,
+                   const std::string& path, const std::vector<ScanCurve>& curves) {
+    plot::Figure fig;
+    fig.width = 1400;
+    fig.panel_height = 520;
+    fig.title = model + ": " + spec.x.name() + " x " + spec.y.name() + " plane, " + std::to_string(spec.x.n) + " x " +
+                std::to_string(spec.y.n) + " points, " + (spec.start == ScanStart::Continue ? "continued along " : "each from rest, ") +
+                (spec.start == ScanStart::Continue ? spec.x.name() : "");
+    std::vector<MapLayer> layers = scan_layers(spec, rows);
+    for (auto& l : layers) {
+        for (const ScanCurve& c : curves) {   // a legend entry; the curve itself is drawn over the cells below
+            plot::Series sr;
+            sr.kind = plot::Series::Kind::Line;
+            sr.color = {0, 0, 0};
+            sr.size = 2.0f;
+            sr.label = c.label;
+            sr.x.push_back(std::nan(""));
+            sr.y.push_back(std::nan(""));
+            l.panel.series.push_back(std::move(sr));
+        }
+        fig.panels.push_back(l.panel);
+    }
+    plot::Image img = plot::render(fig);
+    const std::vector<plot::Mapping> maps = plot::layout(fig);
+    paint_cells(img, maps, spec, layers);
+    draw_curves(img, maps, spec, layers.size(), curves);
     plot::save_png(img, path);
 }
 
