@@ -10,6 +10,8 @@
 #   3. Files as a user has them: ?save-session=lesson.json must arrive as a download holding the session;
 #      a second page then opens that download and a measured record (made by CLI's synth) through its
 #      "Open a file" input: the state must show the session's model and omega and the record loaded.
+#   4. ?bench-plot: the desktop's --bench-plot in the page (100,000 points on each plot, 200 timed frames), its
+#      report printed for docs/visualiser.md's table; it must finish with its report.
 # Exit 77 (CTest's skip code) without the page (bash scripts/web.sh) or chromium (apt-get install chromium).
 # usage: web_test.sh PAGE PNG_CHECK OUT_DIR CLI
 page="$1"; check="$2"; dir="$3"; cli="$4"
@@ -74,4 +76,11 @@ if d.get("samples") != 2001: errors.append("%s samples, not 2001" % d.get("sampl
 if d.get("error") is not None: errors.append("the load failed: %s" % d.get("error"))
 if errors: sys.exit("web_test: " + "; ".join(errors))
 PY
-echo "web_test: passed (A1H at ${rate}x real time at best; a session downloaded and opened again, a record opened)"
+
+# 4. The plot benchmark in the page.
+mkdir -p "$dir/bench_plot"
+python3 "$here/page_run.py" "$browser" "file://$page?bench-plot&size=1280x800" "$dir/bench_plot" --size 1280x800 \
+    || { echo "web_test: ?bench-plot failed"; exit 1; }
+grep -q '^plot benchmark (' "$dir/bench_plot/log.txt" || { cat "$dir/bench_plot/log.txt"; echo "web_test: ?bench-plot printed no report"; exit 1; }
+grep '^plot benchmark (' "$dir/bench_plot/log.txt" | sed 's/^/web_test: /'
+echo "web_test: passed (A1H at ${rate}x real time at best; a session downloaded and opened again, a record opened; the plot benchmark)"

@@ -730,6 +730,7 @@ int App::run() {
 }
 
 bool App::loop_once() {
+    if (bench_.on) return bench_frame();   // a page's --bench-plot (the desktop's runs in run_bench)
     frame();
     if (opt_.frames <= 0) return true;
     // Headless run: with a diagram requested, the frames are counted once it is done.

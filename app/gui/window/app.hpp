@@ -114,6 +114,8 @@ private:
     double now_s() const;
     // harness.cpp: the scripted runs (tests, benchmarks); the live app never calls these.
     int run_bench();           // --bench-plot: the timed frames and their report
+    bool bench_frame();        // one of them (a page's animation frame); false once the report is printed
+    void report_bench();
     int soak();                // --soak: model switches at 100x with an RSS report
     bool script_step();        // a counted --frames frame: the script's changes; false when the run is over
     void script_mouse();       // --double-click: the scripted mouse of this frame (before ImGui::NewFrame)

@@ -14,7 +14,8 @@
 namespace impactlab::gui {
 
 struct BenchPlot {
-    static constexpr int kFrames = 220;   // 20 warm-up frames and 200 timed
+    static constexpr int kFrames = 220;   // kWarm warm-up frames, then 200 timed
+    static constexpr int kWarm = 20;
     bool on = false;
     std::size_t window = 0;
     std::unique_ptr<SimEngine> engine;
@@ -23,6 +24,9 @@ struct BenchPlot {
     std::size_t fed = 0;
     double events_s = 0, build_s = 0, wait_s = 0, submit_s = 0;
     double panel_s[1 + kPanelCount] = {};  // the controls, then each view (the view table's order)
+    int frame = 0;                         // frames run so far (bench_frame)
+    double timed_s = 0;                    // wall time of the timed frames, each shown by the next one
+    std::size_t verts = 0;                 // the most vertices a timed frame sent
 };
 
 }  // namespace impactlab::gui

@@ -94,34 +94,46 @@ void App::feed_bench_frame() {
 }
 
 int App::run_bench() {
-    fill_bench_data(opt_.bench_points);
-    constexpr int kWarm = 20, kFrames = BenchPlot::kFrames - kWarm;
-    double s = 0;   // wall time of the timed frames, each shown (swapped) by the next one
-    std::size_t verts = 0;
-    for (int i = 0; i < kWarm + kFrames + 1 && !glfwWindowShouldClose(win_); ++i) {
-        if (i == kWarm) {
-            Plot::reset_stats();
-            bench_.events_s = bench_.build_s = bench_.wait_s = bench_.submit_s = 0;
-            for (double& p : bench_.panel_s) p = 0;
-            s = now_s();
-        }
-        if (i == kWarm + kFrames) {   // the last timed frame is shown by this swap
-            glfwSwapBuffers(win_);
-            frames_.pending = false;
-            s = now_s() - s;
-            break;
-        }
-        feed_bench_frame();
-        if (i + 1 == kWarm && !opt_.screenshot.empty()) screenshot(opt_.screenshot);   // an untimed frame
-        frame();
-        if (i >= kWarm) verts = std::max(verts, static_cast<std::size_t>(ImGui::GetDrawData()->TotalVtxCount) +
-                                                     plot_gpu::queued_points());
+    while (bench_frame())
+        if (glfwWindowShouldClose(win_)) return 0;
+    return 0;
+}
+
+// The frames one at a time, so a browser page runs them as its animation frames (the desktop's run_bench
+// loops over them).
+bool App::bench_frame() {
+    constexpr int kWarm = BenchPlot::kWarm, kFrames = BenchPlot::kFrames - kWarm;
+    const int i = bench_.frame++;
+    if (i == 0) fill_bench_data(opt_.bench_points);
+    if (i == kWarm) {
+        Plot::reset_stats();
+        bench_.events_s = bench_.build_s = bench_.wait_s = bench_.submit_s = 0;
+        for (double& p : bench_.panel_s) p = 0;
+        bench_.timed_s = now_s();
     }
+    if (i == kWarm + kFrames) {   // the last timed frame is shown by this swap
+        glfwSwapBuffers(win_);
+        frames_.pending = false;
+        bench_.timed_s = now_s() - bench_.timed_s;
+        report_bench();
+        return false;
+    }
+    feed_bench_frame();
+    if (i + 1 == kWarm && !opt_.screenshot.empty()) screenshot(opt_.screenshot);   // an untimed frame
+    frame();
+    if (i >= kWarm)
+        bench_.verts = std::max(bench_.verts, static_cast<std::size_t>(ImGui::GetDrawData()->TotalVtxCount) + plot_gpu::queued_points());
+    return true;
+}
+
+void App::report_bench() {
+    constexpr int kFrames = BenchPlot::kFrames - BenchPlot::kWarm;
+    const double s = bench_.timed_s;
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(win_, &fw, &fh);
     std::printf("plot benchmark (%s backend): %dx%d, %d points on each plot (phase portrait, x(t), Poincare map, "
                 "bifurcation), 1,667 new samples a frame (100x real time): %.1f fps (%.2f ms/frame, %zu vertices/frame, renderer: %s)\n",
-                opt_.plot_backend.c_str(), fw, fh, opt_.bench_points, kFrames / s, 1e3 * s / kFrames, verts,
+                opt_.plot_backend.c_str(), fw, fh, opt_.bench_points, kFrames / s, 1e3 * s / kFrames, bench_.verts,
                 reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
     std::printf("plot benchmark: per frame %.2f ms polling events, %.2f ms building the UI (ImGui, the plots' "
                 "images, rig geometry), %.2f ms waiting for the previous frame's rendering (the rest of it overlaps "
@@ -131,7 +143,6 @@ int App::run_bench() {
     std::printf(" controls %.2f", 1e3 * bench_.panel_s[0] / kFrames);
     for (const ViewInfo& v : kViews) std::printf(" %s %.2f", v.key, 1e3 * bench_.panel_s[1 + static_cast<int>(v.id)] / kFrames);
     std::printf("; %zu points reached the renderer per frame after decimation\n", Plot::emitted_vertices() / kFrames);
-    return 0;
 }
 
 void App::script_mouse() {
