@@ -31,6 +31,15 @@ Range to_range(std::pair<double, double> e, double min_span) {
     return r;
 }
 
+// The axes of an x(t) plot: t in s, x in mm.
+Axes x_of_t_axes() {
+    Axes ax;
+    ax.x_label = "t [s]";
+    ax.y_label = "x [mm]";
+    ax.y_scale = 1e3;
+    return ax;
+}
+
 ImU32 after_color() { return palette().energy; }
 ImU32 before_color() { return palette().section_new; }
 ImU32 measured_color() { return palette().trace; }
@@ -400,10 +409,7 @@ void DataPanel::draw_trace(ImVec2 size) {
         return;
     }
     Plot plot;
-    Axes ax;
-    ax.x_label = "t [s]";
-    ax.y_label = "x [mm]";
-    ax.y_scale = 1e3;
+    const Axes ax = x_of_t_axes();
     if (!plot.begin("##trace", size, trace_t_, trace_x_, ax)) return;
     if (data_) plot.hline(report_->before.p.xI, pal.bumper, 1.0f, true);
     const std::size_t n = tr.t.size();
@@ -423,10 +429,7 @@ void DataPanel::draw_trace(ImVec2 size) {
 void DataPanel::draw_record(ImVec2 size) {
     if (size.y < 4.0f * ImGui::GetFontSize()) return;
     Plot plot;
-    Axes ax;
-    ax.x_label = "t [s]";
-    ax.y_label = "x [mm]";
-    ax.y_scale = 1e3;
+    const Axes ax = x_of_t_axes();
     if (!plot.begin("##record", size, record_t_, record_x_, ax)) return;
     const identify::MeasuredData& d = *data_;
     plot.series(d.size(), [&](std::size_t i) { return XY{d.t[i], d.x[i]}; }, measured_color(), 1.3f);
