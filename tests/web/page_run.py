@@ -4,11 +4,12 @@ no network port, no extra packages), in real time: waits until the page marks it
 (<body data-exit="N">), then saves what it was asked for.
 
 usage: page_run.py BROWSER URL OUT_DIR [--timeout S] [--screenshot FILE] [--size WxH] [--downloads DIR]
-                   [--open FILE ...]
+                   [--open FILE ...] [--drop FILE ...]
 Writes OUT_DIR/state.json (the text of #state-json), OUT_DIR/log.txt (the text of #log) and prints the
 page's exit code, the status line and the wall time; exit 0 if the page finished with code 0.
 --downloads DIR: the page's downloads are saved into DIR. --open FILE: once the page runs, FILE is picked in
-its "Open a file" input (#open-file), as a user would, one file at a time in the order given.
+its "Open a file" input (#open-file), as a user would, one file at a time in the order given. --drop FILE: the
+same, dragged from the desktop and dropped on the middle of the page (DevTools' Input.dispatchDragEvent).
 """
 import argparse, base64, json, os, subprocess, sys, tempfile, time
 
@@ -21,6 +22,7 @@ ap.add_argument("--screenshot")
 ap.add_argument("--size", default="1280x800")
 ap.add_argument("--downloads")
 ap.add_argument("--open", action="append", default=[])
+ap.add_argument("--drop", action="append", default=[])
 a = ap.parse_args()
 w, h = (int(v) for v in a.size.split("x"))
 
@@ -95,6 +97,11 @@ try:
             doc = send("DOM.getDocument", {}, session)["root"]["nodeId"]
             node = send("DOM.querySelector", {"nodeId": doc, "selector": "#open-file"}, session)["nodeId"]
             send("DOM.setFileInputFiles", {"nodeId": node, "files": [os.path.abspath(to_open.pop(0))]}, session)
+            time.sleep(0.5)
+        if a.drop and evaluate(session, "(document.getElementById('status') || {}).textContent") == "":
+            data = {"items": [], "files": [os.path.abspath(a.drop.pop(0))], "dragOperationsMask": 1}
+            for t in ("dragEnter", "dragOver", "drop"):
+                send("Input.dispatchDragEvent", {"type": t, "x": w // 2, "y": h // 2, "data": data}, session)
             time.sleep(0.5)
     if to_open:
         print("page_run: %d files not opened: the page ended first" % len(to_open))

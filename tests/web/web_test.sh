@@ -8,8 +8,8 @@
 #      (goal 1000x real time). A rate is a benchmark, not a test on a shared machine: the test asks only that
 #      the best pass of A1H's GUI engine keep far ahead of real time (100x), which a broken build would not.
 #   3. Files as a user has them: ?save-session=lesson.json must arrive as a download holding the session;
-#      a second page then opens that download and a measured record (made by CLI's synth) through its
-#      "Open a file" input: the state must show the session's model and omega and the record loaded.
+#      a second page then opens that download through its "Open a file" input and a measured record (made by
+#      the CLI's synth) dropped on it: the state must show the session's model and omega and the record loaded.
 #   4. ?bench-plot: the desktop's --bench-plot in the page (100,000 points on each plot, 200 timed frames), its
 #      report printed for docs/visualiser.md's table; it must finish with its report.
 # Exit 77 (CTest's skip code) without the page (bash scripts/web.sh) or chromium (apt-get install chromium).
@@ -60,7 +60,7 @@ grep '^web: download' "$dir/files/save/log.txt" | sed 's/^/web_test: /'
 "$cli" synth --model A1H --omega 12 --duration 4 --rate 500 --out "$dir/files/record.csv" >/dev/null \
     || { echo "web_test: impactlab synth failed"; exit 1; }
 python3 "$here/page_run.py" "$browser" "file://$page?frames=400" "$dir/files/open" \
-    --open "$dir/files/down/lesson.json" --open "$dir/files/record.csv" || { echo "web_test: the page opening files failed"; exit 1; }
+    --open "$dir/files/down/lesson.json" --drop "$dir/files/record.csv" || { echo "web_test: the page opening files failed"; exit 1; }
 python3 - "$dir/files/down/lesson.json" "$dir/files/open/state.json" <<'PY' || exit 1
 import json, sys
 saved = json.load(open(sys.argv[1]))
