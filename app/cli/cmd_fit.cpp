@@ -281,11 +281,7 @@ void print_errors(const identify::FitReport& r) {
 }  // namespace
 
 int cmd_fit(const std::vector<std::string>& argv) {
-    for (const auto& a : argv)
-        if (a == "--help" || a == "-h") {
-            std::printf("%s", kFitHelp);
-            return 0;
-        }
+    if (show_help_if_asked(argv, kFitHelp)) return 0;
     const Args a("fit", argv,
                  {"--model", "--xI", "--m0e", "--rtol", "--report", "--baseline", "--fit-params", "--gain", "--t-col", "--x-col",
                   "--phi-col", "--u-col", "--rate", "--x-scale", "--u-scale", "--phi-scale", "--t-scale", "--rows", "--test-rows",

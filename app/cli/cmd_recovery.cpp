@@ -28,11 +28,7 @@ constexpr const char* kRecoveryHelp =
 }  // namespace
 
 int cmd_recovery(const std::vector<std::string>& argv) {
-    for (const auto& a : argv)
-        if (a == "--help" || a == "-h") {
-            std::printf("%s", kRecoveryHelp);
-            return 0;
-        }
+    if (show_help_if_asked(argv, kRecoveryHelp)) return 0;
     const Args a("recovery", argv, {"--versions", "--duration", "--seed", "--seeds", "--out"}, {"--null"});
     if (!a.positional().empty()) throw UsageError("recovery: unexpected argument '" + a.positional()[0] + "'");
     const std::vector<std::string> versions = split_list(a.str("--versions", "A1C,A1C1,A3C,A1G,A1H"));

@@ -208,11 +208,7 @@ identify::SynthOptions synth_options(const Args& a, const identify::Model& model
 }  // namespace
 
 int cmd_synth(const std::vector<std::string>& argv_in) {
-    for (const auto& a : argv_in)
-        if (a == "--help" || a == "-h") {
-            std::printf("%s", kSynthHelp);
-            return 0;
-        }
+    if (show_help_if_asked(argv_in, kSynthHelp)) return 0;
     std::vector<std::string> argv, effects;
     split_effects(argv_in, argv, effects);
     const Args a("synth", argv,
