@@ -93,10 +93,12 @@ void print_result(const analysis::ContinuationResult& r, const char* pname) {
         std::printf(" (Feigenbaum's delta %.4f)\n", analysis::kFeigenbaumDelta);
     }
     for (const auto& q : r.points)
-        if (!q.scenario.empty())
+        if (!q.scenario.empty() && std::isfinite(q.mu_exponent))
             std::printf("grazing at %s = %.9g crossed onto the impacting branch: %s; |mu| ~ d^%.3f, v- ~ d^%.3f "
                         "(d: distance from the grazing; the square-root map gives -1, 1)\n",
                         pname, q.param, q.scenario.c_str(), q.mu_exponent, q.speed_exponent);
+        else if (!q.scenario.empty())
+            std::printf("grazing at %s = %.9g crossed into the contact: %s\n", pname, q.param, q.scenario.c_str());
 }
 
 // The branches over the parameter (stable solid, unstable dotted, points marked).

@@ -222,3 +222,40 @@ TEST_CASE("continuation: A1C's cascade from the period-1 doubling at 22.147 foll
         CHECK(side[0] * side[1] < 0);
     }
 }
+
+TEST_CASE("continuation: A1C's period 2 goes on through its grazing at 12.7993 into the compliant contact") {
+    // C's bumper smooths the rigid grazing over a layer of about a micron, inside which the branch turns back
+    // within 0.1 um of the touch: crossed in the contact's depth, the branch goes on to orbits microns deep.
+    const Params p = make_version("A1C");
+    ContinuationSpec spec;
+    spec.lo = 12.0;
+    spec.hi = 14.0;
+    spec.start = 12.7;
+    spec.period = 2;
+    spec.max_period = 2;
+    const ContinuationResult r = continue_orbits(p, spec);
+    REQUIRE(r.branches.size() == 1);
+    const Branch& b = r.branches[0];
+    CAPTURE(b.end);
+    CHECK(b.end == "omega range / omega range");
+    const BifPoint* g = first_of(r, BifKind::Grazing, 2);
+    REQUIRE(g != nullptr);
+    CHECK(g->param == doctest::Approx(12.7992694).epsilon(1e-6));
+    CHECK(g->scenario.rfind("nonsmooth fold, smoothed by the compliant contact", 0) == 0);
+    // Points inside the layer (under a micron deep) and past it; each a fixed point of the period-2 map.
+    std::vector<const BranchPoint*> deep;
+    int in_layer = 0;
+    for (const BranchPoint& pt : b.points) {
+        const double depth = pt.max_x - p.xI;
+        in_layer += depth > 0 && depth < 1e-6;
+        if (depth > 2e-6) deep.push_back(&pt);
+    }
+    CHECK(in_layer >= 3);
+    REQUIRE(deep.size() >= 5);
+    for (const BranchPoint* pt : {deep.front(), deep[deep.size() / 2], deep.back()}) {
+        CAPTURE(pt->param);
+        const MapResult m = poincare_map(p, pt->param, pt->y, 2, false, analysis_tolerances());
+        CHECK(scaled_norm(m.y - pt->y) < 1e-7);
+        CHECK(m.impacts >= 1);
+    }
+}

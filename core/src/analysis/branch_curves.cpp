@@ -36,11 +36,20 @@ Cascade find_cascade(const ContinuationResult& r) {
         c.doublings.push_back(&d0);
         for (const BifPoint* cur = &d0;;) {
             // The branch switched onto at cur: a child of cur's branch, of twice its period, starting there.
+            // Or, where that switch was not followed because a branch already through the doubling (a loop
+            // reaching it from its other end) covers it, that branch.
             const Branch* child = nullptr;
+            const double near = 1e-3 * std::max(1.0, std::abs(cur->param));
             for (const Branch& b : r.branches)
                 if (b.parent == cur->branch && b.period == 2 * cur->period && !b.points.empty() &&
-                    std::abs(b.points.front().param - cur->param) < 1e-3 * std::max(1.0, std::abs(cur->param)))
+                    std::abs(b.points.front().param - cur->param) < near)
                     child = &b;
+            for (const Branch& b : r.branches)
+                if (!child && b.period == 2 * cur->period)
+                    for (const BranchPoint& pt : b.points)
+                        if (std::abs(pt.param - cur->param) < 0.25 * std::max(1.0, std::abs(cur->param)) * 0.04)
+                            for (const Vec2& sp : pt.sections)
+                                if (scaled_norm(sp - cur->y) < 0.05) child = &b;
             if (!child) break;
             // Its own doubling nearest the switch.
             const BifPoint* next = nullptr;
@@ -49,6 +58,9 @@ Cascade find_cascade(const ContinuationResult& r) {
                     (!next || std::abs(q.param - cur->param) < std::abs(next->param - cur->param)))
                     next = &q;
             if (!next) break;
+            // A cascade runs one way in the parameter: a doubling back the other way starts another chain.
+            if (c.doublings.size() >= 2 && (next->param - cur->param) * (cur->param - c.doublings[c.doublings.size() - 2]->param) < 0)
+                break;
             c.doublings.push_back(next);
             cur = next;
         }

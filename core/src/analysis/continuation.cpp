@@ -47,18 +47,26 @@ void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, con
         // Walk along the step (and a little past it) on the bumperless orbit until its largest x passes xI.
         Sol la, lb;
         bool bracketed = false;
-        if (correct(a.u, t, k, la)) {
-            double s_prev = 0;
-            for (double sg = ds / 16; sg <= 2 * ds && !bracketed; sg *= 2) {
-                if (!correct(a.u + sg * t, t, k, lb)) break;
-                if (((la.r.max_x - work_.xI) > 0) != ((lb.r.max_x - work_.xI) > 0)) {
-                    bracketed = true;
-                    s_lo = s_prev;
-                    s_hi = sg;
-                } else {
-                    la = lb;
-                    s_prev = sg;
+        Sol start;
+        if (correct(a.u, t, k, start)) {
+            // From a sixteenth of the step, doubling; failing that, from a step of the order of the distance
+            // left (an orbit nanometres short of xI may turn back within the longer first step).
+            const double g0 = std::abs(test(kind, start));
+            for (double first : {ds / 16, std::clamp(4 * g0, 16 * spec_.ds_min, ds / 16)}) {
+                double s_prev = 0;
+                la = start;
+                for (double sg = first; sg <= 2 * ds && !bracketed; sg *= 2) {
+                    if (!correct(a.u + sg * t, t, k, lb)) break;
+                    if (((la.r.max_x - work_.xI) > 0) != ((lb.r.max_x - work_.xI) > 0)) {
+                        bracketed = true;
+                        s_lo = s_prev;
+                        s_hi = sg;
+                    } else {
+                        la = lb;
+                        s_prev = sg;
+                    }
                 }
+                if (bracketed || first <= 16 * spec_.ds_min) break;
             }
         }
         if (bracketed) {
@@ -93,6 +101,10 @@ void Continuer::locate(BifKind kind, const Sol& a, const Vec3& t, double ds, con
         }
     }
     if (rigid_law) work_.impact = rigid_law;
+    record(kind, lo, hi, f_lo, f_hi, k, branch);
+}
+
+void Continuer::record(BifKind kind, const Sol& lo, const Sol& hi, double f_lo, double f_hi, int k, int branch) {
     const Sol& best = std::abs(f_lo) < std::abs(f_hi) ? lo : hi;
     double precision = std::abs(q_of(hi.u) - q_of(lo.u)), shift = 0;
     if (kind != BifKind::Grazing && !true_crossing(kind, lo, hi, best, k, precision, shift)) return;
@@ -180,7 +192,10 @@ std::string Continuer::corrector_limit(const Sol& cur, const Vec3& t, double ds,
     std::snprintf(rbuf, sizeof rbuf, ": the corrector fails at steps down to %.1g (residual %.2g there)",
                   spec_.ds_min, res_last);
     end += rbuf;
-    if (work_.has_bumper() && std::abs(g) < 0.01) {
+    if (deep_contact(cur)) {
+        std::snprintf(rbuf, sizeof rbuf, ", the orbit %.3g mm deep in the compliant contact", g * kXScale * 1e3);
+        end += rbuf;
+    } else if (work_.has_bumper() && std::abs(g) < 0.01) {
         std::snprintf(rbuf, sizeof rbuf, ", the orbit's largest x %.3g mm %s the bumper (a grazing ahead or begun)",
                       std::abs(g) * kXScale * 1e3, g < 0 ? "short of" : "into");
         end += rbuf;
@@ -344,7 +359,7 @@ void Continuer::follow(const Job& job, Branch& br) {
         Tolerances saved;
         ~Restore() { sim = saved; }
     } restore{spec_.sim, sim0};
-    int sharpened = 0;
+    int sharpened = 0, layers = 0;
     const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
     bool closed = false;
     for (int dir = 0; dir < (job.both_ways && !closed ? 2 : 1); ++dir) {
@@ -382,6 +397,15 @@ void Continuer::follow(const Job& job, Branch& br) {
                 if (sharpen(cur, t, k, ds, sharpened)) continue;
                 ds *= 0.5;
                 if (ds < spec_.ds_min) {
+                    // Within a compliant contact's grazing layer: on in the contact's depth, then onward.
+                    if (layers < kMaxLayers && std::abs(test(BifKind::Grazing, cur)) < 1e-3 && !work_.rigid()) {
+                        ++layers;
+                        if (cross_contact_layer(cur, t, k, br.id, pts, arc)) {
+                            // Resume at the layer's last step: the branch's scale there.
+                            ds = std::clamp(arc.size() > 1 ? arc.back() - arc[arc.size() - 2] : spec_.ds, 16 * spec_.ds_min, spec_.ds);
+                            continue;
+                        }
+                    }
                     // A cart held by dry friction (a real multiplier within 1 % of +1: the creeping mode)
                     // has a nearly singular M - I, and the corrector fails where the damped Newton of
                     // find_orbit still converges: restart a little further on at fixed q, the same branch.

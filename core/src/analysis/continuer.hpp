@@ -31,6 +31,10 @@ constexpr double kGrazingLayer = 1e-6;
 // A step whose multipliers move more than this is retried shorter: it may have jumped onto another
 // segment of the branch (across a fold onto the impacting orbit) and a crossing would go unseen.
 constexpr double kMaxMultiplierStep = 0.3;
+// A compliant contact deeper than this is past its grazing layer [m] (C's layer: about 1 um).
+constexpr double kContactDepth = 1e-5;
+// Grazing layers of a compliant contact crossed in depth per branch (a bound against going to and fro).
+constexpr int kMaxLayers = 8;
 // Rigid impacts slower than this are followed from impact to impact, faster ones on the stroboscopic map,
 // whose corrector handles them (A1G's window from 16 rad/s, whose slowest impacts are near 0.1 m/s) [m/s].
 constexpr double kHandover = 0.05;
@@ -98,6 +102,30 @@ private:
         return Vec2(r.y[0] / kXScale - u[0], r.y[1] / kVScale - u[1]);
     }
 
+    // An orbit pressing a compliant bumper deeper than its grazing layer.
+    bool deep_contact(const Sol& s) const {
+        return work_.has_bumper() && !work_.rigid() && s.r.max_x - work_.xI > kContactDepth;
+    }
+
+    // Scaled d G / d u at u (r: the map there, with its monodromy); d P / d q by a forward difference (one
+    // more map; the tangent in the parameter would need the section time's dependence on omega and the
+    // law's on xI). The larger x of that map in *max_x_q, if asked.
+    Eigen::Matrix<double, 2, 3> jacobian(const Vec3& u, const MapResult& r, int k, double* max_x_q = nullptr) {
+        Eigen::Matrix<double, 2, 3> J;
+        J(0, 0) = r.M(0, 0) - 1.0;
+        J(0, 1) = r.M(0, 1) * kVScale / kXScale;
+        J(1, 0) = r.M(1, 0) * kXScale / kVScale;
+        J(1, 1) = r.M(1, 1) - 1.0;
+        const double dq = 1e-6;
+        Vec3 uq = u;
+        uq[2] += dq;
+        const MapResult rq = map(uq, k, false);
+        J(0, 2) = (rq.y[0] - r.y[0]) / kXScale / dq;
+        J(1, 2) = (rq.y[1] - r.y[1]) / kVScale / dq;
+        if (max_x_q) *max_x_q = rq.max_x;
+        return J;
+    }
+
     // Newton on G(u) = 0 and n . (u - u_pred) = 0.
     bool correct(const Vec3& u_pred, const Vec3& n, int k, Sol& out) {
         Vec3 u = u_pred;
@@ -108,19 +136,7 @@ private:
             MapResult r = map(u, k, true);
             const Vec2 G = residual(r, u);
             if (!G.allFinite()) return false;
-            Eigen::Matrix<double, 2, 3> J;
-            J(0, 0) = r.M(0, 0) - 1.0;
-            J(0, 1) = r.M(0, 1) * kVScale / kXScale;
-            J(1, 0) = r.M(1, 0) * kXScale / kVScale;
-            J(1, 1) = r.M(1, 1) - 1.0;
-            // d P / d q by a forward difference (one more map; the tangent in the parameter would need the
-            // section time's dependence on omega and the law's on xI).
-            const double dq = 1e-6;
-            Vec3 uq = u;
-            uq[2] += dq;
-            const MapResult rq = map(uq, k, false);
-            J(0, 2) = (rq.y[0] - r.y[0]) / kXScale / dq;
-            J(1, 2) = (rq.y[1] - r.y[1]) / kVScale / dq;
+            const Eigen::Matrix<double, 2, 3> J = jacobian(u, r, k);
             const double h = n.dot(u - u_pred);
             if (G.cwiseAbs().maxCoeff() < res_tol_ && std::abs(h) < 1e-9) {
                 out.u = u;
@@ -276,6 +292,9 @@ private:
     // and compliant ones too stiff for it, as C1's).
     void locate(BifKind kind, const Sol& a, const Vec3& t, double ds, const Sol& b, int k, int branch,
                 bool off_bumper = false);
+    // A located point between lo and hi (test values f_lo, f_hi; the bracket's width as its precision) kept
+    // unless it is not the crossing its kind names or was met before; a doubling's branch is queued.
+    void record(BifKind kind, const Sol& lo, const Sol& hi, double f_lo, double f_hi, int k, int branch);
     // Whether the bracket lo..hi of a fold, doubling or Neimark-Sacker holds a crossing of the multiplier it
     // names (not a jump, not a grazing's); for a doubling or Neimark-Sacker the point's shift and precision
     // from the orbit found again at a tighter tolerance.
@@ -328,6 +347,20 @@ private:
     // difference). False if the flight stalls.
     bool shot(const Vec3& z, int k, Vec2& G, Eigen::Matrix<double, 2, 3>& J, Vec2& section);
     bool correct_impacting(const Vec3& z_pred, const Vec3& n, int k, Vec3& z, Eigen::Matrix<double, 2, 3>& J, Vec2& section);
+
+    // ---- A compliant contact's grazing layer (continuation_contact.cpp) ----
+    // Newton on G(u) = 0 and (largest x - xI) = depth: the branch written with the contact's depth as its
+    // parameter, which steps through the layer where the branch turns within nanometres of the touch.
+    bool correct_depth(const Vec3& u_pred, double depth, int k, Sol& out);
+    // From cur (where the arclength corrector failed within the layer) on in depth, the way the branch was
+    // going, until the contact is microns deep or the orbit clear of it: the points appended to pts and arc,
+    // the crossings on the way located, cur and t the last point and its tangent. False if the layer was not
+    // crossed (cur is then the last point reached).
+    bool cross_contact_layer(Sol& cur, Vec3& t, int k, int branch, std::vector<BranchPoint>& pts,
+                             std::vector<double>& arc);
+    // A fold, doubling or Neimark-Sacker between two depth points (depths scale sinh(sa), scale sinh(sb)),
+    // located by bisection.
+    void locate_depth(BifKind kind, const Sol& a, double sa, const Sol& b, double sb, double scale, int k, int branch);
 
     bool cancelled() const { return progress_ && progress_->cancel.load(std::memory_order_relaxed); }
 
