@@ -98,7 +98,7 @@ void print_result(const analysis::ContinuationResult& r, const char* pname) {
                         "(d: distance from the grazing; the square-root map gives -1, 1)\n",
                         pname, q.param, q.scenario.c_str(), q.mu_exponent, q.speed_exponent);
         else if (!q.scenario.empty())
-            std::printf("grazing at %s = %.9g crossed into the contact: %s\n", pname, q.param, q.scenario.c_str());
+            std::printf("grazing at %s = %.9g: %s\n", pname, q.param, q.scenario.c_str());
 }
 
 // The branches over the parameter (stable solid, unstable dotted, points marked).

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 #include <string>
+#include <utility>
 
 #include "impactlab/analysis.hpp"
 #include "impactlab/params.hpp"
@@ -257,5 +258,80 @@ TEST_CASE("continuation: A1C's period 2 goes on through its grazing at 12.7993 i
         const MapResult m = poincare_map(p, pt->param, pt->y, 2, false, analysis_tolerances());
         CHECK(scaled_norm(m.y - pt->y) < 1e-7);
         CHECK(m.impacts >= 1);
+    }
+}
+
+namespace {
+
+// The scaled distance a section point moves under the Simulator's period-k map, and its impacts on the way.
+std::pair<double, int> returns(const Params& p, const BranchPoint& pt, int k) {
+    const MapResult m = poincare_map(p, pt.param, pt.y, k, false, analysis_tolerances());
+    return {scaled_norm(m.y - pt.y), m.impacts};
+}
+
+}  // namespace
+
+TEST_CASE("continuation: A1H's period 2 goes on past its grazing at 12.7993, from the orbit that arrives at rest") {
+    // H's impact at v- -> 0 still holds the cart for T_imp(0) = 6.2 ms, so the map jumps at the grazing: the
+    // free branch ends there and the impacting branch starts apart, at the orbit that reaches xI at rest and
+    // dwells (12.6652 rad/s), followed from impact to impact and on the stroboscopic map.
+    const Params p = make_version("A1H");
+    ContinuationSpec spec;
+    spec.lo = 12.0;
+    spec.hi = 16.5;
+    spec.start = 12.7;
+    spec.period = 2;
+    spec.max_period = 2;
+    const ContinuationResult r = continue_orbits(p, spec);
+    REQUIRE(r.branches.size() == 2);
+    CAPTURE(r.branches[0].end);
+    CHECK(r.branches[0].end.find("grazing at omega = 12.7992694 (rigid impacts begin") != std::string::npos);
+    const BifPoint* g = first_of(r, BifKind::Grazing, 2);
+    REQUIRE(g != nullptr);
+    CHECK(g->param == doctest::Approx(12.7992694).epsilon(1e-6));
+    CHECK(g->scenario.rfind("dwell at rest", 0) == 0);
+    const Branch& imp = r.branches[1];
+    CAPTURE(imp.end);
+    CHECK(imp.parent == 0);
+    REQUIRE(imp.points.size() >= 20);
+    // (Its first point is a step on from the orbit at rest, which grazes xI and is no fixed point of the map.)
+    CHECK(std::abs(imp.points.front().param - 12.6652) < 0.02);
+    CHECK(g->scenario.find("starts at omega = 12.665215") != std::string::npos);
+    // Every orbit of the impacting branch is one of the rig's: a fixed point of its period-2 map, one impact.
+    for (std::size_t i = 0; i < imp.points.size(); i += 4) {
+        CAPTURE(imp.points[i].param);
+        const auto [moved, impacts] = returns(p, imp.points[i], 2);
+        CHECK(moved < 1e-6);
+        CHECK(impacts == 1);
+    }
+}
+
+TEST_CASE("continuation: a doubling of A1G's impacting period 2 (19.2312) is switched onto") {
+    const Params p = make_version("A1G");
+    ContinuationSpec spec;
+    spec.lo = 5.0;
+    spec.hi = 25.0;
+    const ContinuationResult r = continue_orbits(p, spec);
+    const BifPoint* pd = nullptr;
+    for (const BifPoint& q : r.points)
+        if (q.kind == BifKind::PeriodDoubling && q.period == 2 && std::abs(q.param - 19.2312383) < 1e-5) pd = &q;
+    REQUIRE(pd != nullptr);
+    // On an impacting branch, and its period-4 branch starts there with impacting orbits of the rig.
+    const Branch& parent = r.branches[static_cast<std::size_t>(pd->branch)];
+    int impacting = 0;
+    for (const BranchPoint& pt : parent.points) impacting += pt.impacts > 0;
+    CHECK(impacting > 10);
+    const Branch* child = nullptr;
+    for (const Branch& b : r.branches)
+        if (b.parent == pd->branch && b.period == 4 && !b.points.empty() && std::abs(b.points.front().param - pd->param) < 1e-3)
+            child = &b;
+    REQUIRE(child != nullptr);
+    CAPTURE(child->end);
+    REQUIRE(child->points.size() >= 10);
+    for (std::size_t i = 1; i < child->points.size(); i += 8) {
+        CAPTURE(child->points[i].param);
+        const auto [moved, impacts] = returns(p, child->points[i], 4);
+        CHECK(moved < 1e-6);
+        CHECK(impacts >= 1);
     }
 }

@@ -229,20 +229,42 @@ std::string Continuer::corrector_limit(const Sol& cur, const Vec3& t, double ds,
         locate(BifKind::Grazing, cur, t, 0.05, cur, k, branch, true);
         if (last_located_ >= 0) {
             end = work_.rigid() ? "grazing (rigid impacts begin)" : "grazing (the corrector cannot step into the contacts)";
-            // A free orbit touching a rigid bumper: its impacting continuation starts there,
-            // when the law makes the map continuous at the grazing. H's zero-speed impact still
-            // holds the cart for T_imp(0) = 6.2 ms, so its map jumps there: no branch through.
-            const bool continuous_law = work_.rigid() && work_.impact->duration(work_.ip.data(), 0.0) == 0.0;
-            if (work_.rigid() && !continuous_law)
+            // A free orbit touching a rigid bumper: its impacting continuation starts there. H's
+            // zero-speed impact still holds the cart for T_imp(0) = 6.2 ms, so its map jumps there:
+            // the impacting branch starts at the orbit that arrives at rest and dwells.
+            if (work_.rigid() && dwell_at_rest() > 0)
                 end = "grazing (rigid impacts begin; a zero-speed impact still sticks for T_imp(0) > 0, "
                       "so the map jumps there)";
-            if (continuous_law && cur.r.impacts == 0) {
+            if (work_.rigid() && cur.r.impacts == 0) {
                 const BifPoint& g0 = result_.points[static_cast<std::size_t>(last_located_)];
                 jobs_.push_back({k, branch, u_of(g0.y, g0.param), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, JobMode::Grazing});
             }
         }
     }
     return end;
+}
+
+std::string Continuer::dwell_jump_end(const Sol& cur, const Vec3& t, const Sol& next, int k, int branch) {
+    const double qa = q_of(cur.u), qb = q_of(next.u);
+    // The grazing located on the step (on the bumperless orbit, so it may lie just outside it: the impacting
+    // orbit the corrector landed on can be on the free orbit's side, a nonsmooth fold).
+    const BifPoint* g = nullptr;
+    const double reach = std::abs(qb - qa) + 1e-4 * q_scale_;
+    for (const BifPoint& q : result_.points)
+        if (q.kind == BifKind::Grazing && q.period == k && std::abs(q.param - qa) < reach &&
+            (!g || std::abs(q.param - qa) < std::abs(g->param - qa)))
+            g = &q;
+    char buf[200];
+    if (cur.r.impacts == 0 && g) {
+        // The impacting branch begins apart, at the orbit that arrives at rest: a job of its own.
+        jobs_.push_back({k, branch, u_of(g->y, g->param), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, JobMode::Grazing});
+        std::snprintf(buf, sizeof buf, "grazing at %s = %.9g (rigid impacts begin; a zero-speed impact still sticks for "
+                      "T_imp(0) > 0, so the map jumps there)", sweep_param_name(spec_.param), g->param);
+    } else {
+        std::snprintf(buf, sizeof buf, "the impacts end across a jump of the map near %s = %.9g (a zero-speed impact still "
+                      "sticks for T_imp(0) > 0)", sweep_param_name(spec_.param), 0.5 * (qa + qb));
+    }
+    return buf;
 }
 
 void Continuer::locate_crossings(const Sol& cur, const Vec3& t, double ds, const Sol& next, int k, int branch) {
@@ -254,8 +276,8 @@ void Continuer::locate_crossings(const Sol& cur, const Vec3& t, double ds, const
         locate(kind, cur, t, ds, next, k, branch);
         // A rigid grazing the corrector itself stepped across (a continuous law): its scenario and
         // exponents, from the grazing orbit.
-        if (kind == BifKind::Grazing && last_located_ >= 0 && work_.rigid() &&
-            work_.impact->duration(work_.ip.data(), 0.0) == 0.0 && (cur.r.impacts == 0) != (next.r.impacts == 0)) {
+        if (kind == BifKind::Grazing && last_located_ >= 0 && work_.rigid() && dwell_at_rest() == 0.0 &&
+            (cur.r.impacts == 0) != (next.r.impacts == 0)) {
             BifPoint& gp = result_.points[static_cast<std::size_t>(last_located_)];
             Vec3 zg, tg;
             Vec2 sec;
@@ -438,8 +460,28 @@ void Continuer::follow(const Job& job, Branch& br) {
                 end = hand_over(job, next, t, br.id, pts);
                 break;
             }
+            // With several impacts a period, one slowing towards zero cannot be handed over (the impact-to-impact
+            // equations hold one impact): the corrector would crawl at the 1/v- derivative for the point limit.
+            if (work_.rigid() && !first && next.r.impacts >= 2 && next.r.min_impact_speed < kSlowImpact &&
+                next.r.min_impact_speed < cur.r.min_impact_speed) {
+                pts.push_back(point_of(next, k));
+                char buf[240];
+                std::snprintf(buf, sizeof buf, "a grazing ahead near %s = %.9g: one of %d impacts a period slows to "
+                              "%.2g m/s (the impact-to-impact equations follow one)", sweep_param_name(spec_.param),
+                              q_of(next.u), next.r.impacts, next.r.min_impact_speed);
+                end = buf;
+                break;
+            }
             const Vec3 t_next = tangent_of(next, t);
-            if (!first) locate_crossings(cur, t, ds, next, k, br.id);
+            if (!first) {
+                locate_crossings(cur, t, ds, next, k, br.id);
+                // H's map jumps at a grazing (a touch at rest still dwells T_imp(0)): a step between a free
+                // orbit and an impacting one joins two branches, not one; it ends here.
+                if (dwell_at_rest() > 0 && (cur.r.impacts == 0) != (next.r.impacts == 0)) {
+                    end = dwell_jump_end(cur, t, next, k, br.id);
+                    break;
+                }
+            }
             first = false;
             const double q = q_of(next.u);
             if (q < lo || q > hi) {
@@ -473,6 +515,26 @@ void Continuer::follow(const Job& job, Branch& br) {
     if (!skipped.empty()) br.end += " (restarted across " + skipped + ": near-neutral orbit, corrector failed)";
 }
 
+bool Continuer::covered(const Job& job) const {
+    // The branch passes through the doubling's orbit: some step of it (between consecutive points, section
+    // by section) comes within 0.01 (scaled) of it. A step is up to ds_max long, so a point alone may not.
+    const Vec3 c = job.u;
+    for (const auto& b : result_.branches) {
+        if (b.period != job.period) continue;
+        for (std::size_t j = 0; j + 1 < b.points.size(); ++j) {
+            const BranchPoint &p0 = b.points[j], &p1 = b.points[j + 1];
+            if (std::abs(p0.param / q_scale_ - c[2]) > 0.5 && std::abs(p1.param / q_scale_ - c[2]) > 0.5) continue;
+            for (std::size_t i = 0; i < p0.sections.size() && i < p1.sections.size(); ++i) {
+                const Vec3 a = u_of(p0.sections[i], p0.param), e = u_of(p1.sections[i], p1.param);
+                const double len2 = (e - a).squaredNorm();
+                const double f = len2 > 0 ? std::clamp((c - a).dot(e - a) / len2, 0.0, 1.0) : 0.0;
+                if ((a + f * (e - a) - c).norm() < 0.01) return true;
+            }
+        }
+    }
+    return false;
+}
+
 ContinuationResult Continuer::run() {
     const auto t0 = std::chrono::steady_clock::now();
     const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
@@ -504,14 +566,7 @@ ContinuationResult Continuer::run() {
         // A period doubling that an earlier period-2k branch already reached (the far end of a bubble).
         // Any of a period-k orbit's k section points may be where the switch lands (the same orbit, another
         // phase): each is compared.
-        bool known = false;
-        for (const auto& b : result_.branches)
-            if (job.mode == JobMode::Start && b.period == job.period)
-                for (const auto& pt : b.points)
-                    if (std::abs(pt.param / q_scale_ - job.u[2]) < 0.3)
-                        for (const Vec2& sp : pt.sections)
-                            if (scaled_norm(sp - y_of(job.u)) < 0.3) known = true;
-        if (known) continue;
+        if (job.mode == JobMode::Start && covered(job)) continue;
         Branch br;
         br.id = static_cast<int>(result_.branches.size());
         br.period = job.period;

@@ -107,8 +107,12 @@ std::string Continuer::impacts_end(const Vec3& z, const Vec3& t, double ds, cons
     bool known = false;
     for (const BifPoint& q : result_.points)
         if (q.kind == BifKind::Grazing && std::abs(q.param - bp.param) < 1e-5 * q_scale_) known = true;
-    if (!known) result_.points.push_back(bp);
+    // (With a dwell at rest the orbit arriving at rest grazes nothing: its end is named, not marked.)
+    if (!known && dwell_at_rest() == 0) result_.points.push_back(bp);
     reached_.push_back(bp.param);
+    if (dwell_at_rest() > 0)
+        return "at rest at " + std::string(sweep_param_name(spec_.param)) + " = " + std::to_string(bp.param) +
+               " (the impacts end arriving at rest, where T_imp(0) > 0 still holds the cart: no free orbit joins there)";
     return "grazing at " + std::string(sweep_param_name(spec_.param)) + " = " + std::to_string(bp.param) + " (the impacts end)";
 }
 
@@ -117,7 +121,16 @@ Followed Continuer::follow_impacting(const Job& job, Branch& br) {
     const double lo = std::min(spec_.lo, spec_.hi), hi = std::max(spec_.lo, spec_.hi);
     Vec3 z, t;
     Vec2 section;
-    if (job.mode == JobMode::Grazing) {
+    if (job.mode == JobMode::Grazing && dwell_at_rest() > 0) {
+        if (!dwell_start(q_of(job.u), y_of(job.u), k, z, t, section)) {
+            br.end = "the impacting orbit that arrives at rest did not converge from impact to impact";
+            return Followed::Branch;
+        }
+        for (BifPoint& b : result_.points)
+            if (b.kind == BifKind::Grazing && b.param == q_of(job.u) && b.scenario.empty()) describe_dwell(b, z, section, k);
+        for (double qr : reached_)
+            if (std::abs(qr - q_of(z)) < 1e-5 * q_scale_) return Followed::AlreadyReached;
+    } else if (job.mode == JobMode::Grazing) {
         if (!grazing_start(q_of(job.u), y_of(job.u), k, z, t, section)) {
             br.end = "the grazing orbit did not converge from impact to impact";
             return Followed::Branch;
@@ -159,9 +172,31 @@ Followed Continuer::follow_impacting(const Job& job, Branch& br) {
         Sol sp;
         sp.u = u_of(sec, q);
         sp.r = map(sp.u, k, true);
-        if (sp.r.impacts != 1 || scaled_norm(sp.r.y - sec) > 1e-5) {
+        if (sp.r.impacts == 1 && scaled_norm(sp.r.y - sec) > std::max(1e-5, 10 * res_tol_ * std::abs(floquet(sp.r.M).mu[0]))) {
+            // One impact, yet the rig's map does not quite return the section point (a section phase at the
+            // release, say): the orbit polished by Newton on the rig's map, if it is there.
+            OrbitOptions oo;
+            oo.period = k;
+            oo.sim = spec_.sim;
+            oo.max_iterations = 8;
+            const Orbit o = find_orbit(work_, apply(q), sec, oo);
+            if (o.converged && o.impacts == 1 && scaled_norm(o.y - sec) < 1e-3) {
+                sp.u = u_of(o.y, q);
+                sp.r = map(sp.u, k, true);
+            }
+        }
+        // (The shot's residual tolerance comes back amplified by the orbit's instability.)
+        const double returns_within = std::max(1e-5, 10 * res_tol_ * std::abs(floquet(sp.r.M).mu[0]));
+        if (sp.r.impacts != 1 || scaled_norm(sp.r.y - y_of(sp.u)) > returns_within) {
+            char why[160];
+            if (sp.r.impacts != 1)
+                std::snprintf(why, sizeof why, "%d impacts on the rig's map: %s", sp.r.impacts,
+                              sp.r.impacts > 1 ? "its flight crosses xI" : "its impact is lost");
+            else
+                std::snprintf(why, sizeof why, "the rig's map does not return it: %.2g (scaled) away",
+                              scaled_norm(sp.r.y - y_of(sp.u)));
             end = "the impacting orbit is no longer admissible near " + std::string(sweep_param_name(spec_.param)) +
-                  " = " + std::to_string(q) + " (its flight crosses xI)";
+                  " = " + std::to_string(q) + " (" + why + ")";
             break;
         }
         Vec3 tn = Vec3(Jn.row(0).transpose()).cross(Vec3(Jn.row(1).transpose()));
@@ -231,6 +266,8 @@ void Continuer::locate_impacting(BifKind kind, const Vec3& z, const Vec3& t, dou
         if (q.kind == kind && q.period == k && std::abs(q.param - bp.param) < std::max(1e-5 * q_scale_, 3 * (q.precision + bp.precision)))
             return;
     result_.points.push_back(bp);
+    // A doubling of an impacting orbit: its period-2k branch switched onto, as on the stroboscopic map.
+    if (kind == BifKind::PeriodDoubling && 2 * k <= spec_.max_period) switch_to_doubled(best, k, branch);
 }
 
 bool Continuer::grazing_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section) {
@@ -243,6 +280,36 @@ bool Continuer::grazing_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3&
     t.normalize();
     if (t[1] < 0) t = -t;   // onto the impacting side: v- grows
     return true;
+}
+
+bool Continuer::dwell_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section) {
+    // From the grazing orbit's touch (v- = 0 at its peak), the parameter free and v- held at 0.
+    Eigen::Matrix<double, 2, 3> J;
+    const double theta_g = peak_phase(work_, apply(q_g), y_g, k, spec_.sim);
+    if (!correct_impacting(Vec3(theta_g, 0.0, q_g / q_scale_), Vec3(0, 1, 0), k, z, J, section)) return false;
+    t = Vec3(J.row(0).transpose()).cross(Vec3(J.row(1).transpose()));
+    if (!(t.norm() > 0) || !t.allFinite()) return false;
+    t.normalize();
+    if (t[1] < 0) t = -t;   // onto the impacting side: v- grows
+    return true;
+}
+
+void Continuer::describe_dwell(BifPoint& gp, const Vec3& z, const Vec2& section, int k) {
+    // The jump: the grazing orbit's section point against the nearest of the dwelling orbit's k section points.
+    const double q0 = q_of(z);
+    const MapResult r = map(u_of(section, q0), k, false);
+    Vec2 nearest = section;
+    for (const Vec2& sp : r.sections)
+        if (scaled_norm(sp - gp.y) < scaled_norm(nearest - gp.y)) nearest = sp;
+    apply(gp.param);
+    char buf[360];
+    std::snprintf(buf, sizeof buf,
+                  "dwell at rest: an impact at v- -> 0 still holds the cart for T_imp(0) = %.3g ms, so the map jumps "
+                  "here; the impacting branch starts at %s = %.9g (%+.3g from the grazing), arriving at rest, its "
+                  "section point %+.3g mm, %+.3g mm/s from the grazing orbit's",
+                  dwell_at_rest() * 1e3, sweep_param_name(spec_.param), q0, q0 - gp.param,
+                  (nearest[0] - gp.y[0]) * 1e3, (nearest[1] - gp.y[1]) * 1e3);
+    gp.scenario = buf;
 }
 
 void Continuer::describe_grazing(BifPoint& gp, double free_dir, const Vec3& z, const Vec3& t, int k) {

@@ -38,6 +38,8 @@ constexpr int kMaxLayers = 8;
 // Rigid impacts slower than this are followed from impact to impact, faster ones on the stroboscopic map,
 // whose corrector handles them (A1G's window from 16 rad/s, whose slowest impacts are near 0.1 m/s) [m/s].
 constexpr double kHandover = 0.05;
+// An impact this slow on an orbit with several impacts a period ends the branch: a grazing ahead [m/s].
+constexpr double kSlowImpact = 1e-2;
 
 // A converged point of a branch and what the test functions need.
 struct Sol {
@@ -101,6 +103,10 @@ private:
     Vec2 residual(const MapResult& r, const Vec3& u) const {
         return Vec2(r.y[0] / kXScale - u[0], r.y[1] / kVScale - u[1]);
     }
+
+    // How long an impact at zero speed holds the cart [s]: 0 for G (the map is continuous at a grazing),
+    // T_imp(0) for H.
+    double dwell_at_rest() const { return work_.rigid() ? work_.impact->duration(work_.ip.data(), 0.0) : 0.0; }
 
     // An orbit pressing a compliant bumper deeper than its grazing layer.
     bool deep_contact(const Sol& s) const {
@@ -299,6 +305,9 @@ private:
     // names (not a jump, not a grazing's); for a doubling or Neimark-Sacker the point's shift and precision
     // from the orbit found again at a tighter tolerance.
     bool true_crossing(BifKind kind, const Sol& lo, const Sol& hi, const Sol& best, int k, double& precision, double& shift);
+    // A doubling's job whose period-2k orbit an earlier branch already passes through (the far end of a
+    // bubble, or a loop through both doublings): any of the k section points may be where it lands.
+    bool covered(const Job& job) const;
     // A period doubling located at best: the period-2k branch queued as a job.
     void switch_to_doubled(const Sol& best, int k, int branch);
     void follow(const Job& job, Branch& br);
@@ -306,6 +315,9 @@ private:
     // limit, or the grazing it ran into, located on the bumperless orbit (a rigid grazing's impacting branch
     // is queued as a job).
     std::string corrector_limit(const Sol& cur, const Vec3& t, double ds, int k, int branch);
+    // The end of a branch whose step from cur to next crossed H's jump at a grazing (the impacting side's branch
+    // queued from the located grazing when the branch was free).
+    std::string dwell_jump_end(const Sol& cur, const Vec3& t, const Sol& next, int k, int branch);
     // The test functions' sign changes over the step from cur to next, each located; a rigid grazing that the
     // corrector itself stepped across gets its scenario and exponents.
     void locate_crossings(const Sol& cur, const Vec3& t, double ds, const Sol& next, int k, int branch);
@@ -337,6 +349,11 @@ private:
     void measure_scaling(BifPoint& gp, const Vec3& z, const Vec3& t, int k);
     // The grazing orbit at (q_g, y_g) from impact to impact (z) and the impacting branch's tangent there (t).
     bool grazing_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section);
+    // With a dwell at rest (H), the impacting branch's first orbit: the one that arrives at xI at rest, dwells
+    // T_imp(0) and closes, found with the parameter free (z, t: it and the branch's tangent, v- growing).
+    bool dwell_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section);
+    // The scenario of such a grazing: the dwell, and the jump from the grazing orbit to that first orbit.
+    void describe_dwell(BifPoint& gp, const Vec3& z, const Vec2& section, int k);
     // Its scenario (persistence or nonsmooth fold) and exponents.
     void describe_grazing(BifPoint& gp, double free_dir, const Vec3& z, const Vec3& t, int k);
     // A fold, doubling or Neimark-Sacker between two impact-to-impact points (z + s t, s in [0, ds]), located
