@@ -213,17 +213,22 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
                    "                   within [-0.1, 0.1]), m0e [kg m] (in (0, 10]), omega [rad/s] (as --omega-min:--omega-max)\n"
                    "  --omega W        the forcing frequency [rad/s] of an xI or m0e sweep (required with them)\n"
                    "  --out FILE       CSV output with columns omega,x,v (required; xI,x,v or m0e,x,v for those sweeps)\n"
+                   "  --settle N       judge each CF level by the map's own test: a level whose section values do not\n"
+                   "                   yet recur in order (periods up to 32) runs on, a record at a time, up to N more\n"
+                   "                   records; it then reads its period, or -1: not settled, no period up to 32 (chaos,\n"
+                   "                   or a transient longer than that: drawn grey), in a 4th CSV column, period\n"
+                   "                   (default 10; 0: the paper's 20 + 70 periods alone, 3 columns)\n"
                    "  --png FILE       also plot the diagram\n", kModelHelp))
         return 0;
     const Args a("bifurcation", argv,
                  with_model_flags({"--sweep", "--out", "--png", "--omega-min", "--omega-max", "--steps", "--transient",
-                                   "--record", "--ramp-time", "--over", "--range", "--omega"}));
+                                   "--record", "--ramp-time", "--over", "--range", "--omega", "--settle"}));
     const Params p = model_from(a);
     const std::string sweep = a.str("--sweep", "up");
     if (sweep != "up" && sweep != "down" && sweep != "ramp")
         throw UsageError("bifurcation: option '--sweep': '" + sweep + "' is not one of up, down, ramp");
     if (sweep == "ramp")
-        for (const char* f : {"--over", "--range", "--omega"})
+        for (const char* f : {"--over", "--range", "--omega", "--settle"})
             if (a.has(f)) throw UsageError(std::string("bifurcation: ") + f + " is for the CF sweeps (up, down), not the ramp");
     const std::string out_path = a.required("--out");
     auto out = open_out(out_path);
@@ -244,13 +249,20 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
             CfSpec spec;
             spec.transient = a.integer("--transient", spec.transient, 0, 1000000);
             spec.record = a.integer("--record", spec.record, 1, 1000000);
+            const int settle = a.integer("--settle", 10, 0, 1000);
             check_rows("bifurcation", static_cast<double>(ps.steps) * spec.record, "--steps x --record");
-            d = run_cf_param_sweep(p, ps, spec.transient, spec.record, &progress, tolerances_from(a));
+            d = run_cf_param_sweep(p, ps, spec.transient, spec.record, &progress, tolerances_from(a), nullptr, settle);
         }
     }
     write_diagram_csv(d, out);   // renamed into place when the command succeeds, the PNG included
     std::fprintf(stderr, "%s %s: %zu points, %.0f s simulated, %llu steps -> %s\n", printable(p.name).c_str(), d.protocol.c_str(),
                  d.points.size(), d.simulated_seconds, static_cast<unsigned long long>(d.steps), printable(out_path).c_str());
+    if (!d.levels.empty()) {
+        int periodic = 0, unsettled = 0;
+        for (const DiagramLevel& lv : d.levels) (lv.period > 0 ? periodic : unsettled) += 1;
+        std::fprintf(stderr, "levels: %d periodic, %d not settled (no period up to %d within --settle %d more records: "
+                     "chaos or a longer transient)\n", periodic, unsettled, kDiagramMaxPeriod, a.integer("--settle", 10, 0, 1000));
+    }
     if (sweep != "ramp" && d.over == SweepParam::Omega) {   // Fig. 3's transitions are of omega, from the hilltop
         const Transitions tr = find_transitions(d);
         // A transition the sweep did not meet is NaN: say "none" rather than print "nan".

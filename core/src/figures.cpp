@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdio>
 #include <thread>
+#include <vector>
 
 namespace impactlab {
 
@@ -65,11 +66,27 @@ plot::Panel diagram_panel(const Diagram& d, const std::string& title) {
     s.size = 1.0f;
     s.x.reserve(d.points.size());
     s.y.reserve(d.points.size());
-    for (const auto& p : d.points) {
-        s.x.push_back(p.omega * axis.scale);
-        s.y.push_back(p.x * 1e3);
+    // A level with no period up to 32 within its budget is drawn apart, in grey, and named in the legend: chaos
+    // or a transient longer than the budget, which a finite run cannot tell apart.
+    std::vector<char> unsettled(d.points.size(), 0);
+    for (const DiagramLevel& lv : d.levels)
+        if (lv.period == kLevelNotSettled)
+            for (std::size_t i = lv.first; i < lv.first + lv.count && i < unsettled.size(); ++i) unsettled[i] = 1;
+    plot::Series grey;
+    grey.kind = plot::Series::Kind::Points;
+    grey.color = {150, 150, 150, 200};
+    grey.size = 1.5f;
+    for (std::size_t i = 0; i < d.points.size(); ++i) {
+        plot::Series& to = unsettled[i] ? grey : s;
+        to.x.push_back(d.points[i].omega * axis.scale);
+        to.y.push_back(d.points[i].x * 1e3);
+    }
+    if (!grey.x.empty()) {
+        s.label = "settled: periodic";
+        grey.label = "not settled: no period <= 32 (chaos or a long transient)";
     }
     panel.series.push_back(std::move(s));
+    if (!grey.x.empty()) panel.series.push_back(std::move(grey));
     return panel;
 }
 

@@ -161,8 +161,8 @@ std::string check_sweep(const Params& p, const ParamSweep& s) {
 }
 
 Diagram run_cf_param_sweep(const Params& p, const ParamSweep& s, int transient, int record, Progress* progress,
-                           const Tolerances& tol, LevelObserver* extra) {
-    Diagram diag = run_cf_levels(p, sweep_levels(p, s), transient, record, progress, tol, extra, s.over);
+                           const Tolerances& tol, LevelObserver* extra, int settle_budget) {
+    Diagram diag = run_cf_levels(p, sweep_levels(p, s), transient, record, progress, tol, extra, s.over, settle_budget);
     diag.protocol = s.direction == SweepDirection::Up ? "cf-up" : "cf-down";
     if (s.over != SweepParam::Omega) diag.omega = s.omega;
     return diag;
@@ -173,8 +173,62 @@ Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress, co
     return run_cf_param_sweep(p, s, spec.transient, spec.record, progress, tol, extra);
 }
 
+namespace {
+
+constexpr double kSettleTol = 1e-5;   // [m] as the CF sweep counts its section values
+
+// How far xs is from recurring with any period up to max_period: the least, over k, of the largest
+// |x_i - x_(i-k)| [m].
+double recurrence_gap(const std::vector<double>& xs, int max_period) {
+    double best = INFINITY;
+    for (std::size_t k = 1; k <= static_cast<std::size_t>(max_period) && k < xs.size(); ++k) {
+        double worst = 0;
+        for (std::size_t i = k; i < xs.size(); ++i) worst = std::max(worst, std::abs(xs[i] - xs[i - k]));
+        best = std::min(best, worst);
+    }
+    return best;
+}
+
+bool record_settled(const std::vector<double>& xs, int k) {
+    const auto n = xs.size();
+    const auto d = static_cast<std::size_t>(k);
+    if (n < 2 * d + 2) return true;   // too short a record to tell (a scan's --record 1)
+    for (std::size_t i = d; i < n; ++i)
+        if (std::abs(xs[i] - xs[i - d]) > kSettleTol) return false;
+    // The step to the next section, over the first and the last cycle: an alternation dying out shrinks.
+    const auto step = [&](std::size_t from) {
+        double g = 0;
+        for (std::size_t i = from; i < from + d; ++i) g = std::max(g, std::abs(xs[i + 1] - xs[i]));
+        return g;
+    };
+    return k == 1 || step(0) - step(n - 1 - d) <= kSettleTol;
+}
+
+}  // namespace
+
+int settle_level(const Params& p, double omega, State s, std::vector<SectionPoint>& record, int max_period, int budget,
+                 const Tolerances& tol, bool chaos_verdict) {
+    const int len = static_cast<int>(record.size());
+    if (len == 0) return kLevelNotSettled;
+    std::vector<double> xs;
+    double gap_before = INFINITY;
+    for (int more = 0;; ++more) {
+        xs.clear();
+        for (const SectionPoint& sp : record) xs.push_back(sp.x);
+        const int distinct = count_period(xs, kSettleTol, max_period);
+        if (distinct <= max_period && record_settled(xs, distinct)) return distinct;
+        // More than max_period values: chaos, unless the next record comes twice as close to recurring (a slow
+        // transient: A1C at 11 rad/s after a CF step of 0.25 rad/s, lambda < 0, period 2 in the end).
+        const double gap = recurrence_gap(xs, max_period);
+        if (chaos_verdict && distinct > max_period && more > 0 && !(gap < 0.5 * gap_before)) return 0;
+        if (more == budget) return kLevelNotSettled;
+        gap_before = gap;
+        record = poincare_section(p, omega, len, 0, s, tol);
+    }
+}
+
 Diagram run_cf_levels(const Params& p0, const std::vector<CfLevel>& levels, int transient, int record, Progress* progress,
-                      const Tolerances& tol, LevelObserver* extra, SweepParam over) {
+                      const Tolerances& tol, LevelObserver* extra, SweepParam over, int settle_budget) {
     Diagram diag;
     diag.model = p0.name;
     diag.protocol = "cf";
@@ -217,6 +271,12 @@ Diagram run_cf_levels(const Params& p0, const std::vector<CfLevel>& levels, int 
             break;
         }
         const double at = level_value(lv, over);
+        if (settle_budget > 0) {
+            DiagramLevel dl{at, 0, diag.points.size(), 0};
+            dl.period = settle_level(p, lv.omega, s, col.points, kDiagramMaxPeriod, settle_budget, tol, false);
+            dl.count = col.points.size();
+            diag.levels.push_back(dl);
+        }
         for (const auto& sp : col.points) diag.points.push_back({at, sp.x, sp.v});
         if (extra) extra->end_level(j, p, s);
         done += 1.0;
@@ -327,8 +387,16 @@ Transitions find_transitions(const Diagram& d, double cluster_tol) {
 
 void write_diagram_csv(const Diagram& d, std::ostream& out) {
     const auto old = out.precision(10);
-    out << sweep_param_name(d.over) << ",x,v\n";
-    for (const auto& pt : d.points) out << pt.omega << ',' << pt.x << ',' << pt.v << '\n';
+    if (d.levels.empty()) {
+        out << sweep_param_name(d.over) << ",x,v\n";
+        for (const auto& pt : d.points) out << pt.omega << ',' << pt.x << ',' << pt.v << '\n';
+    } else {
+        // The level's verdict on every row: its period, 0 for chaos, -1 for not settled.
+        out << sweep_param_name(d.over) << ",x,v,period\n";
+        for (const DiagramLevel& lv : d.levels)
+            for (std::size_t i = lv.first; i < lv.first + lv.count; ++i)
+                out << d.points[i].omega << ',' << d.points[i].x << ',' << d.points[i].v << ',' << lv.period << '\n';
+    }
     out.precision(old);
 }
 

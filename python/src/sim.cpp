@@ -121,7 +121,7 @@ py::object poincare(const py::handle& model, double omega, int periods, int tran
 
 py::object bifurcation(const py::handle& model, const std::string& sweep, const std::string& over,
                        std::optional<std::pair<double, double>> range, std::optional<double> omega, int steps, int transient,
-                       int record, double omega_max, double ramp_time, double rtol, const py::object& progress) {
+                       int record, double omega_max, double ramp_time, double rtol, int settle, const py::object& progress) {
     const Params p = model_arg(model);
     if (sweep != "up" && sweep != "down" && sweep != "ramp")
         throw py::value_error("bifurcation: sweep: '" + sweep + "' is not one of up, down, ramp");
@@ -131,6 +131,7 @@ py::object bifurcation(const py::handle& model, const std::string& sweep, const 
     if (sweep == "ramp") {
         if (over != "omega" || range || omega)
             throw py::value_error("bifurcation: over, range and omega are for the CF sweeps (up, down), not the ramp");
+        if (settle != 10) throw py::value_error("bifurcation: settle is for the CF sweeps (up, down), not the ramp");
         EfSpec spec;
         check_range("bifurcation", "omega_max", omega_max, 0.01, 1000.0);
         check_range("bifurcation", "ramp_time", ramp_time, 1.0, 1e6);
@@ -160,19 +161,23 @@ py::object bifurcation(const py::handle& model, const std::string& sweep, const 
             s.hi = range->second;
         }
         if (const std::string why = check_sweep(p, s); !why.empty()) throw py::value_error("bifurcation: " + why);
+        check_range_int("bifurcation", "settle", settle, 0, 1000);
         check_rows("bifurcation", static_cast<double>(steps) * record, "steps x record");
-        d = run_long([&] { return run_cf_param_sweep(p, s, transient, record, &pr, tol); }, pr.fraction, pr.cancel, progress);
+        d = run_long([&] { return run_cf_param_sweep(p, s, transient, record, &pr, tol, nullptr, settle); }, pr.fraction,
+                     pr.cancel, progress);
     }
-    std::vector<double> q, x, v;
+    std::vector<double> q, x, v, period;
     for (const auto& pt : d.points) {
         q.push_back(pt.omega);
         x.push_back(pt.x);
         v.push_back(pt.v);
     }
+    for (const DiagramLevel& lv : d.levels) period.insert(period.end(), lv.count, static_cast<double>(lv.period));
     py::dict cols;
     cols[sweep_param_name(d.over)] = array(q);
     cols["x"] = array(x);
     cols["v"] = array(v);
+    if (!d.levels.empty()) cols["period"] = array(period);
     py::dict extras;
     extras["model"] = d.model;
     extras["protocol"] = d.protocol;
@@ -214,12 +219,15 @@ progress: called with the fraction done (0..1) about every 50 ms. Ctrl-C stops i
 periods are dropped, then `periods` points recorded. Columns n, x [m], v [m/s]; attribute t (the instants) [s].)");
     m.def("bifurcation", &bifurcation, "model"_a, "sweep"_a = "up", py::kw_only(), "over"_a = "omega", "range"_a = py::none(),
           "omega"_a = py::none(), "steps"_a = 300, "transient"_a = 20, "record"_a = 70, "omega_max"_a = 25.1,
-          "ramp_time"_a = 2800.0, "rtol"_a = 1e-8, "progress"_a = py::none(),
+          "ramp_time"_a = 2800.0, "rtol"_a = 1e-8, "settle"_a = 10, "progress"_a = py::none(),
           R"(A bifurcation diagram: `impactlab bifurcation`. sweep "up" or "down" is the CF sweep (each level from the
 previous level's final state, `transient` periods dropped and `record` section points kept per level) over
 `over` = "omega" (range (min, max) [rad/s], default (25/steps, 25)), "xI" [m] or "m0e" [kg m] (then range and the
 fixed omega are required); "ramp" is the EF ramp to omega_max [rad/s] over ramp_time [s]. Columns: the swept
-parameter's name (omega, xI or m0e), x [m], v [m/s]; attributes protocol, transitions (CF over omega), steps.)");
+parameter's name (omega, xI or m0e), x [m], v [m/s], and for a CF sweep with settle > 0 (default 10) period: each
+level judged by the map's own test, run on up to `settle` more records, its period or -1 (not settled: no period
+up to 32, chaos or a longer transient); settle = 0 is the paper's protocol alone. Attributes protocol,
+transitions (CF over omega), steps.)");
 }
 
 }  // namespace impactlab::py_binding

@@ -106,17 +106,25 @@ impactlab_cli_test(help_poincare_phi0 --rc 0 --match "--phi0 RAD" --match "phi =
                    -- poincare --help)
 add_test(NAME cli.poincare_phase COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/poincare_phase.sh $<TARGET_FILE:impactlab>)
 set_tests_properties(cli.poincare_phase PROPERTIES LABELS cli TIMEOUT 120)
-impactlab_cli_test(bifurcation_csv --rc 0 --csv B.csv "omega,x,v" 9 9
+impactlab_cli_test(bifurcation_csv --rc 0 --csv B.csv "omega,x,v,period" 9 9
                    -- bifurcation --sweep up --steps 3 --omega-min 5 --omega-max 6 --transient 2 --record 3
                       --out B.csv)
+# --settle 0: the paper's 20 + 70 periods alone, three columns; a level still in its transient (A1H at 18 rad/s,
+# xI = 2.63 mm, which settles on a period 18 after about 3000 periods) reads -1, not settled, never chaos.
+impactlab_cli_test(bifurcation_settle_off --rc 0 --csv B.csv "omega,x,v" 9 9 --no-match "levels:"
+                   -- bifurcation --sweep up --steps 3 --omega-min 5 --omega-max 6 --transient 2 --record 3
+                      --settle 0 --out B.csv)
+impactlab_cli_test(bifurcation_not_settled --rc 0 --match "levels: [0-9]+ periodic, [1-9][0-9]* not settled"
+                   --csv X.csv "xI,x,v,period" 1400 1400
+                   -- bifurcation --model A1H --over xI --range 0:0.00263 --omega 18 --steps 20 --out X.csv)
 impactlab_cli_test(bifurcation_ramp_csv --rc 0 --csv R.csv "omega,x,v" 9 9
                    -- bifurcation --model A1G --sweep ramp --omega-max 2 --ramp-time 60 --out R.csv)
 # The CF sweep over xI or m0e at a fixed omega: the CSV's first column is the parameter, every error names
 # its flag and the range that applies, and nothing is written.
-impactlab_cli_test(bifurcation_over_xI --rc 0 --csv X.csv "xI,x,v" 6 6 --match "plot -> X\\.png"
+impactlab_cli_test(bifurcation_over_xI --rc 0 --csv X.csv "xI,x,v,period" 6 6 --match "plot -> X\\.png"
                    -- bifurcation --model A1H --over xI --range -0.005:0.005 --omega 18 --steps 3 --transient 2
                       --record 2 --out X.csv --png X.png)
-impactlab_cli_test(bifurcation_over_m0e_down --rc 0 --csv M.csv "m0e,x,v" 6 6
+impactlab_cli_test(bifurcation_over_m0e_down --rc 0 --csv M.csv "m0e,x,v,period" 6 6
                    -- bifurcation --model A1G --sweep down --over m0e --range 0.01:0.03 --omega 12 --steps 2
                       --transient 2 --record 3 --out M.csv)
 impactlab_cli_test(bifurcation_over_bogus --rc 2 --match "'--over'" --match "not one of omega, xI, m0e" --absent d.csv
@@ -140,7 +148,7 @@ impactlab_cli_test(bifurcation_over_ramp --rc 2 --match "--over is for the CF sw
 impactlab_cli_test(bifurcation_omega_without_over --rc 2 --match "--omega is the fixed frequency of an xI or m0e sweep"
                    --absent d.csv -- bifurcation --omega 18 --steps 2 --out d.csv)
 # --range over omega is --omega-min:--omega-max: the same file.
-impactlab_cli_test(bifurcation_over_omega_range --rc 0 --csv W.csv "omega,x,v" 9 9
+impactlab_cli_test(bifurcation_over_omega_range --rc 0 --csv W.csv "omega,x,v,period" 9 9
                    -- bifurcation --over omega --range 5:6 --steps 3 --transient 2 --record 3 --out W.csv)
 
 # Every simulating command's --help should document the model flags it accepts (--model, --xI, --m0e,

@@ -315,3 +315,54 @@ TEST_CASE("check_sweep: each parameter's range, the bumper, the fixed omega") {
     CHECK(parse_sweep_param("xI") == SweepParam::XI);
     CHECK(!parse_sweep_param("xi"));
 }
+
+TEST_CASE("run_cf_levels with a settle budget: a level still in its transient is marked not settled, never chaos") {
+    // A1H at 18 rad/s, the bumper moved from 0 to 2.63 mm in 20 levels: the last level's 70 section points are
+    // a chaotic transient (the orbit settles on a period 18 after about 3000 periods). Judged by the map's own
+    // test with 10 more records it reads kLevelNotSettled, with its points those of the last record run.
+    const Params p = make_version("A1H");
+    ParamSweep s;
+    s.over = SweepParam::XI;
+    s.lo = 0.0;
+    s.hi = 0.00263;
+    s.steps = 20;
+    s.omega = 18.0;
+    const Diagram d = run_cf_param_sweep(p, s, 20, 70, nullptr, {}, nullptr, 10);
+    REQUIRE(d.levels.size() == 20);
+    CHECK(d.levels.back().at == doctest::Approx(0.00263));
+    CHECK(d.levels.back().period == kLevelNotSettled);
+    CHECK(d.levels.back().count == 70);
+    for (const DiagramLevel& lv : d.levels) CHECK(lv.period != 0);   // no chaos verdict in a diagram
+    std::size_t n = 0;
+    for (const DiagramLevel& lv : d.levels) {
+        CHECK(lv.first == n);
+        n += lv.count;
+    }
+    CHECK(n == d.points.size());
+    std::ostringstream csv;
+    write_diagram_csv(d, csv);
+    CHECK(csv.str().rfind("xI,x,v,period\n", 0) == 0);
+    CHECK(csv.str().find(",-1\n") != std::string::npos);
+    // Without a budget: the protocol alone, no verdicts, three columns.
+    const Diagram raw = run_cf_param_sweep(p, s, 20, 70);
+    CHECK(raw.levels.empty());
+    CHECK(raw.points.size() == 20 * 70);
+}
+
+TEST_CASE("settle_level: A1C at 11 rad/s after a CF step settles on period 2; a chaotic level reads 0 or not settled") {
+    const Params p = make_version("A1C");
+    ParamSweep s;
+    s.lo = 10.5;
+    s.hi = 11.0;
+    s.steps = 3;
+    const Diagram d = run_cf_param_sweep(p, s, 20, 70, nullptr, {}, nullptr, 10);
+    REQUIRE(d.levels.size() == 3);
+    CHECK(d.levels.back().period == 2);
+    // The scan's verdicts (chaos allowed) and the diagram's (not) on one chaotic level, A1C at 16 rad/s.
+    State st;
+    Simulator::make_consistent(p, Drive(16.0, 0.0, 0.0), st);
+    std::vector<SectionPoint> rec = poincare_section(p, 16.0, 70, 200, st);
+    std::vector<SectionPoint> rec2 = rec;
+    CHECK(settle_level(p, 16.0, st, rec, 16, 10, {}, true) == 0);
+    CHECK(settle_level(p, 16.0, st, rec2, 32, 2, {}, false) == kLevelNotSettled);
+}

@@ -98,7 +98,7 @@ def test_bifurcation_over_omega_and_xi(tmp_path, cli):
     cli("bifurcation", "--model", "A1H", "--over", "xI", "--range", "-0.012:0.006", "--omega", 18, "--steps", 12,
         "--transient", 5, "--record", 10, "--out", out)
     r = impactlab.bifurcation("A1H", over="xI", range=(-0.012, 0.006), omega=18, steps=12, transient=5, record=10)
-    assert list(r) == ["xI", "x", "v"]
+    assert list(r) == ["xI", "x", "v", "period"]
     assert_columns_match(r, out)
 
 

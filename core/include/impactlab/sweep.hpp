@@ -40,12 +40,22 @@ SweepParamAxis sweep_param_axis(SweepParam s);
 // [rad/s] for the paper's diagram and the EF ramp (omega(t)), xI [m] or m0e [kg m] when Diagram::over says so.
 struct DiagramPoint { double omega, x, v; };
 
+// A level of a CF diagram judged by the map's own test (settle_level): its period k or kLevelNotSettled;
+// its points are points[first, first + count).
+inline constexpr int kLevelNotSettled = -1;
+struct DiagramLevel {
+    double at = 0;               // the swept parameter's value
+    int period = 0;
+    std::size_t first = 0, count = 0;
+};
+
 struct Diagram {
     std::string model;
     std::string protocol;                // "cf-up", "cf-down", "ef"
     SweepParam over = SweepParam::Omega; // what the points' first coordinate is
     double omega = 0;                    // [rad/s] the fixed forcing frequency of an xI or m0e sweep
     std::vector<DiagramPoint> points;
+    std::vector<DiagramLevel> levels;    // with a settle budget (run_cf_levels): every level, judged
     bool cancelled = false;
     double simulated_seconds = 0;
     std::uint64_t steps = 0, impacts = 0;
@@ -99,12 +109,28 @@ public:
 // instant), its m0e and its bumper position (moved quasi-statically, Simulator::move_bumper) and runs
 // transient + record periods from the previous level's final state; the diagram holds the recorded section
 // points, with each level's value of `over` (omega unless said). run_cf_sweep is this with xI and m0e fixed.
+// With settle_budget > 0 each level is judged by settle_level (periods up to kDiagramMaxPeriod, no chaos
+// verdict: a long chaotic transient looks like chaos, A1H at 18 rad/s and xI = 2.63 mm settles on a period 18
+// after about 3000 periods) from its end state (a copy: the next level starts where this one ended, as the
+// protocol says); its points are the record that settled (or the last one run) and Diagram::levels says what
+// each level is: a period, or kLevelNotSettled (chaos, or a transient longer than the budget).
+inline constexpr int kDiagramMaxPeriod = 32;
 Diagram run_cf_levels(const Params& p, const std::vector<CfLevel>& levels, int transient, int record,
                       Progress* progress = nullptr, const Tolerances& tol = {}, LevelObserver* extra = nullptr,
-                      SweepParam over = SweepParam::Omega);
+                      SweepParam over = SweepParam::Omega, int settle_budget = 0);
 // The CF diagram of a ParamSweep: run_cf_levels over sweep_levels, its points carrying s.over's value.
 Diagram run_cf_param_sweep(const Params& p, const ParamSweep& s, int transient, int record, Progress* progress = nullptr,
-                           const Tolerances& tol = {}, LevelObserver* extra = nullptr);
+                           const Tolerances& tol = {}, LevelObserver* extra = nullptr, int settle_budget = 0);
+
+// Whether a level's record has settled, by the map's own test: its x values on the section recur in order
+// with a period k <= max_period, every point k sections later within 1e-5 m, and the step from one section to
+// the next no longer shrinking (an alternation dying out near a multiplier of -1 is no period 2). Otherwise the
+// level runs on from s (at a section instant, phase 0), a record of the same length at a time, up to `budget`
+// more: k once one settles; with chaos_verdict, 0 (chaos) when there are more than max_period values and the
+// next record comes no closer to recurring than half the last (a chaotic transient reads so too); otherwise
+// kLevelNotSettled when the budget runs out. `record` is left as the last record looked at. Simulating thread.
+int settle_level(const Params& p, double omega, State s, std::vector<SectionPoint>& record, int max_period, int budget,
+                 const Tolerances& tol, bool chaos_verdict = true);
 // Starts at rest at x = 0 (made consistent with the bumper), as MODEL.md prescribes. `extra` as run_cf_levels's.
 Diagram run_cf_sweep(const Params& p, const CfSpec& spec, Progress* progress = nullptr, const Tolerances& tol = {},
                      LevelObserver* extra = nullptr);

@@ -49,7 +49,7 @@ public:
         level_ = lv;
         sections_ = 0;
         impacts_ = 0;
-        xs_.clear();
+        rec_.clear();
         xmin_ = std::numeric_limits<double>::infinity();
         xmax_ = -xmin_;
         inside_ = false;
@@ -57,7 +57,7 @@ public:
     }
     void on_section(const SectionPoint& sp) override {
         ++sections_;
-        if (sections_ > spec_.transient) xs_.push_back(sp.x);   // sections transient+1 .. transient+record
+        if (sections_ > spec_.transient) rec_.push_back(sp);   // sections transient+1 .. transient+record
     }
     void on_impact(const ImpactEvent&) override {
         if (recording()) ++impacts_;
@@ -91,55 +91,15 @@ public:
     void set_compliant(bool c) { compliant_ = c; }
 
 private:
-    // The period of the record window, only once it has settled: a count of 1..16 clusters must recur in
-    // order, every point k sections later, with the k-differences not still shrinking (an alternation dying
-    // out near a multiplier of -1 is no period 2). Otherwise the cell runs on, from its end state (a copy: the
-    // row continues from where the level ended), record periods at a time up to kSettleBudget windows more,
-    // then reads kNotSettled. More than 16 values is chaos (or a long period) at once, as before.
+    // The period of the record window, only once it has settled by the map's own test (settle_level: 1..16
+    // values recurring in order, not still shrinking), running on from its end state (a copy: the row continues
+    // from where the level ended) up to kSettleBudget windows more, then kNotSettled. More than 16 values is
+    // chaos (or a long period).
     double settled_period(const Params& p, const State& s) const {
-        std::vector<double> xs = xs_;
-        State copy = s;
-        double gap_before = INFINITY;
-        for (int more = 0;; ++more) {
-            const int distinct = count_period(xs, kClusterTol);
-            if (distinct <= 16 && record_settled(xs, distinct)) return distinct;
-            // More than 16 values: chaos, unless the next record comes twice as close to recurring (a slow
-            // transient: A1C at 11 rad/s after a CF step of 0.25 rad/s, lambda < 0, period 2 in the end).
-            const double gap = recurrence_gap(xs);
-            if (distinct > 16 && more > 0 && !(gap < 0.5 * gap_before)) return 0.0;
-            if (more == kSettleBudget) return kNotSettled;
-            gap_before = gap;
-            const std::vector<SectionPoint> next = poincare_section(p, level_.omega, spec_.record, 0, copy, tol_);
-            xs.clear();
-            for (const SectionPoint& sp : next) xs.push_back(sp.x);
-        }
+        std::vector<SectionPoint> rec = rec_;
+        const int k = settle_level(p, level_.omega, s, rec, 16, kSettleBudget, tol_);
+        return k == kLevelNotSettled ? kNotSettled : static_cast<double>(k);
     }
-    // How far the record is from recurring with any period up to 16: the least, over k, of the largest
-    // |x_i - x_(i-k)| [m].
-    static double recurrence_gap(const std::vector<double>& xs) {
-        double best = INFINITY;
-        for (std::size_t k = 1; k <= 16 && k < xs.size(); ++k) {
-            double worst = 0;
-            for (std::size_t i = k; i < xs.size(); ++i) worst = std::max(worst, std::abs(xs[i] - xs[i - k]));
-            best = std::min(best, worst);
-        }
-        return best;
-    }
-    static bool record_settled(const std::vector<double>& xs, int k) {
-        const auto n = xs.size();
-        const auto d = static_cast<std::size_t>(k);
-        if (n < 2 * d + 2) return true;   // too short a record to tell (a scan's --record 1)
-        for (std::size_t i = d; i < n; ++i)
-            if (std::abs(xs[i] - xs[i - d]) > kClusterTol) return false;
-        // The step to the next section, over the first and the last cycle: an alternation dying out shrinks.
-        const auto step = [&](std::size_t from) {
-            double g = 0;
-            for (std::size_t i = from; i < from + d; ++i) g = std::max(g, std::abs(xs[i + 1] - xs[i]));
-            return g;
-        };
-        return k == 1 || step(0) - step(n - 1 - d) <= kClusterTol;
-    }
-    static constexpr double kClusterTol = 1e-5;   // [m] as the CF sweep counts its section values
     static constexpr int kSettleBudget = 10;      // record windows run on before a cell reads "not settled"
 
     // The record window's dynamics: from the transient's last section to the end (record whole periods).
@@ -151,7 +111,7 @@ private:
     CfLevel level_{};
     int sections_ = 0;
     long impacts_ = 0;
-    std::vector<double> xs_;
+    std::vector<SectionPoint> rec_;
     double xmin_ = 0, xmax_ = 0;
     bool inside_ = false, inside_known_ = false, compliant_ = false;
 };
