@@ -93,10 +93,20 @@ void print_result(const analysis::ContinuationResult& r, const char* pname) {
         std::printf(" (Feigenbaum's delta %.4f)\n", analysis::kFeigenbaumDelta);
     }
     for (const auto& q : r.points)
-        if (!q.scenario.empty() && std::isfinite(q.mu_exponent))
+        if (!q.scenario.empty() && std::isfinite(q.mu_exponent)) {
             std::printf("grazing at %s = %.9g crossed onto the impacting branch: %s; |mu| ~ d^%.3f, v- ~ d^%.3f "
                         "(d: distance from the grazing; the square-root map gives -1, 1)\n",
                         pname, q.param, q.scenario.c_str(), q.mu_exponent, q.speed_exponent);
+            // A nonsmooth fold is where the free and the impacting branch meet at the touch; the impacting
+            // branch's own turn, a smooth fold (a multiplier through +1), is another point: named apart.
+            if (q.scenario == "nonsmooth fold")
+                for (const auto& f : r.points)
+                    if (f.kind == analysis::BifKind::Fold && f.period == q.period && f.branch != q.branch &&
+                        std::abs(f.param - q.param) < 0.5)
+                        std::printf("  (the free and the impacting branch meet at the grazing, both on one side; the "
+                                    "impacting branch then turns at %s = %.9g, a smooth fold: a multiplier through +1)\n",
+                                    pname, f.param);
+        }
         else if (!q.scenario.empty())
             std::printf("grazing at %s = %.9g: %s\n", pname, q.param, q.scenario.c_str());
 }

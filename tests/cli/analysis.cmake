@@ -50,3 +50,13 @@ impactlab_cli_test(basins_bad_range --rc 2 --match "'--x-range'" -- basins --ome
 impactlab_cli_test(basins_range_no_colon --rc 2 --match "'--v-range'" -- basins --omega 13 --grid 4 --v-range 0.3 --out b.csv)
 impactlab_cli_test(basins_png_unwritable --rc 2 --match "--png: cannot write" --no-match "basins A1G"
                    -- basins --omega 13 --grid 4 --out b.csv --png /nonexistent_dir/b.png)
+# A1G at xI = -4 mm: the grazing is a nonsmooth fold (free and impacting branch meet there); the impacting
+# branch's own turn at 9.548943 is a smooth fold, named apart.
+impactlab_cli_test(continue_nonsmooth_and_smooth_fold --rc 0 --match "grazing at omega = 9\\.6004962.*: nonsmooth fold"
+                   --match "the impacting branch then turns at omega = 9\\.54894.*, a smooth fold"
+                   -- continue --model A1G --xI -0.004 --omega-min 8 --omega-max 14 --omega-start 9 --max-period 1 --out c)
+# H's map jumps at a grazing: the free branch ends there and the impacting branch starts apart, at the orbit
+# that arrives at rest (A1H's period 2 at 12.665).
+impactlab_cli_test(continue_h_dwell --rc 0 --match "grazing at omega = 12\\.7992694: dwell at rest"
+                   --match "starts at omega = 12\\.66521"
+                   -- continue --model A1H --omega-min 12 --omega-max 16.5 --omega-start 12.7 --period 2 --max-period 2 --out c)
