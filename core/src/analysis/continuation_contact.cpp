@@ -40,12 +40,16 @@ bool Continuer::correct_depth(const Vec3& u_pred, double depth, int k, Sol& out)
     Vec3 u = u_pred;
     for (int it = 0; it <= kMaxCorrector; ++it) {
         if (spec_.param == ContParam::Omega && !(q_of(u) > 0)) return false;
-        MapResult r = map(u, k, true);
+        // The point with its monodromy, the parameter's neighbour and the depth's two neighbours, side by side.
+        Vec3 ux = u, uv = u;
+        ux[0] += kDepthFd;
+        uv[1] += kDepthFd;
+        std::vector<MapResult> rs = maps({{u, true}, {shifted_q(u), false}, {ux, false}, {uv, false}}, k);
+        MapResult r = std::move(rs[0]);
         const Vec2 G = residual(r, u);
         const double g3 = (r.max_x - work_.xI - depth) / kXScale;
         if (!G.allFinite() || !std::isfinite(g3)) return false;
-        double max_x_q = 0;
-        const Eigen::Matrix<double, 2, 3> J = jacobian(u, r, k, &max_x_q);
+        const Eigen::Matrix<double, 2, 3> J = jacobian(r, rs[1]);
         // The depth to a part in 100 of itself (C1's layer is a fraction of a nanometre deep), or the map's tolerance.
         const double depth_tol = std::min(res_tol_, std::max(0.01 * std::abs(depth), kMinDepthScale) / kXScale);
         if (G.cwiseAbs().maxCoeff() < res_tol_ && std::abs(g3) < depth_tol) {
@@ -59,12 +63,9 @@ bool Continuer::correct_depth(const Vec3& u_pred, double depth, int k, Sol& out)
         // The depth's row: the largest x by forward differences in x and v, and the parameter's map above.
         Mat3 A;
         A.topRows<2>() = J;
-        for (int j = 0; j < 2; ++j) {
-            Vec3 uj = u;
-            uj[j] += kDepthFd;
-            A(2, j) = (map(uj, k, false).max_x - r.max_x) / kXScale / kDepthFd;
-        }
-        A(2, 2) = (max_x_q - r.max_x) / kXScale / 1e-6;
+        A(2, 0) = (rs[2].max_x - r.max_x) / kXScale / kDepthFd;
+        A(2, 1) = (rs[3].max_x - r.max_x) / kXScale / kDepthFd;
+        A(2, 2) = (rs[1].max_x - r.max_x) / kXScale / kDq;
         const Vec3 du = A.fullPivLu().solve(-Vec3(G[0], G[1], g3));
         if (!du.allFinite() || du.norm() > 0.1) return false;   // left the neighbourhood of the branch
         u += du;

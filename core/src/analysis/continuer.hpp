@@ -11,8 +11,10 @@
 #include <cstdlib>
 #include <deque>
 #include <string>
+#include <vector>
 
 #include "impactlab/analysis.hpp"
+#include "parallel.hpp"
 
 namespace impactlab::analysis::detail {
 
@@ -100,6 +102,26 @@ private:
         return poincare_map(work_, omega, y_of(u), k, tangent, spec_.sim);
     }
 
+    // The maps at several points side by side (a corrector's point with its monodromy and its finite-difference
+    // neighbours): each on its own copy of the parameters, so each result is the one map() would give, in any
+    // order and on any number of threads.
+    struct MapAt { Vec3 u; bool tangent; };
+    std::vector<MapResult> maps(const std::vector<MapAt>& at, int k) {
+        std::vector<MapResult> out(at.size());
+        const Params base = work_;
+        ::impactlab::detail::for_each_index(at.size(), [&](std::size_t i) {
+            Params w = base;
+            double omega = spec_.omega;
+            const double q = q_of(at[i].u);
+            if (spec_.param == ContParam::Omega) omega = q;
+            else if (spec_.param == ContParam::XI) w.xI = q;
+            else w.m0e = q;
+            out[i] = poincare_map(w, omega, y_of(at[i].u), k, at[i].tangent, spec_.sim);
+        });
+        evaluations_ += at.size();
+        return out;
+    }
+
     Vec2 residual(const MapResult& r, const Vec3& u) const {
         return Vec2(r.y[0] / kXScale - u[0], r.y[1] / kVScale - u[1]);
     }
@@ -113,22 +135,19 @@ private:
         return work_.has_bumper() && !work_.rigid() && s.r.max_x - work_.xI > kContactDepth;
     }
 
-    // Scaled d G / d u at u (r: the map there, with its monodromy); d P / d q by a forward difference (one
-    // more map; the tangent in the parameter would need the section time's dependence on omega and the
-    // law's on xI). The larger x of that map in *max_x_q, if asked.
-    Eigen::Matrix<double, 2, 3> jacobian(const Vec3& u, const MapResult& r, int k, double* max_x_q = nullptr) {
+    // Scaled d G / d u (r: the map at u, with its monodromy); d P / d q by a forward difference, rq being the map
+    // at u + kDq in the parameter (the tangent in the parameter would need the section time's dependence on
+    // omega and the law's on xI).
+    static constexpr double kDq = 1e-6;
+    static Vec3 shifted_q(const Vec3& u) { return Vec3(u[0], u[1], u[2] + kDq); }
+    static Eigen::Matrix<double, 2, 3> jacobian(const MapResult& r, const MapResult& rq) {
         Eigen::Matrix<double, 2, 3> J;
         J(0, 0) = r.M(0, 0) - 1.0;
         J(0, 1) = r.M(0, 1) * kVScale / kXScale;
         J(1, 0) = r.M(1, 0) * kXScale / kVScale;
         J(1, 1) = r.M(1, 1) - 1.0;
-        const double dq = 1e-6;
-        Vec3 uq = u;
-        uq[2] += dq;
-        const MapResult rq = map(uq, k, false);
-        J(0, 2) = (rq.y[0] - r.y[0]) / kXScale / dq;
-        J(1, 2) = (rq.y[1] - r.y[1]) / kVScale / dq;
-        if (max_x_q) *max_x_q = rq.max_x;
+        J(0, 2) = (rq.y[0] - r.y[0]) / kXScale / kDq;
+        J(1, 2) = (rq.y[1] - r.y[1]) / kVScale / kDq;
         return J;
     }
 
@@ -139,10 +158,11 @@ private:
             // A step past omega = 0 (a range that starts near it) has no forcing period: a failed step, which
             // the step control shortens until the point lands in (0, lo) and the branch ends at the range.
             if (spec_.param == ContParam::Omega && !(q_of(u) > 0)) return false;
-            MapResult r = map(u, k, true);
+            std::vector<MapResult> rs = maps({{u, true}, {shifted_q(u), false}}, k);
+            MapResult r = std::move(rs[0]);
             const Vec2 G = residual(r, u);
             if (!G.allFinite()) return false;
-            const Eigen::Matrix<double, 2, 3> J = jacobian(u, r, k);
+            const Eigen::Matrix<double, 2, 3> J = jacobian(r, rs[1]);
             const double h = n.dot(u - u_pred);
             if (G.cwiseAbs().maxCoeff() < res_tol_ && std::abs(h) < 1e-9) {
                 out.u = u;

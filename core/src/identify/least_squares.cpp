@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "identify/internal.hpp"
-#include "identify/parallel.hpp"
+#include "parallel.hpp"
 
 namespace impactlab::identify::detail {
 
@@ -91,7 +91,7 @@ private:
         for (std::size_t k = 0; k < p; ++k) h[k] = step_of_(knobs_[k], x_[k]);
         std::vector<Eigen::VectorXd> Rt(p);
         std::vector<char> ok(p, 0);
-        for_each_index(p, [&](std::size_t k) {
+        ::impactlab::detail::for_each_index(p, [&](std::size_t k) {
             std::vector<double> at = x_;
             at[k] += h[k];
             ok[k] = eval_at_(at, Rt[k]) && Rt[k].size() == num_residuals();

@@ -6,7 +6,7 @@
 #include <map>
 
 #include "identify/internal.hpp"
-#include "identify/parallel.hpp"
+#include "parallel.hpp"
 #include "impactlab/forces.hpp"
 #include "impactlab/simulator.hpp"
 
@@ -179,7 +179,7 @@ std::vector<std::pair<std::size_t, std::size_t>> windows(const Prep& pr, double 
 std::vector<double> window_sse(const Prep& pr, const Model& m, const std::vector<std::pair<std::size_t, std::size_t>>& wins,
                                bool refine, double rtol) {
     std::vector<double> out(wins.size(), INFINITY);
-    for_each_index(wins.size(), [&](std::size_t w) {
+    ::impactlab::detail::for_each_index(wins.size(), [&](std::size_t w) {
         const auto [a, b] = wins[w];
         const std::vector<double> sim = simulate_window(pr, m, a, b, refine, rtol);
         double e = sim.empty() ? INFINITY : 0.0;

@@ -1,4 +1,5 @@
-// The fit's independent evaluations (held-out windows, each simulated alone) spread over the machine's cores.
+// Independent evaluations (the fit's held-out windows, the continuation's maps at a few points) spread over the
+// machine's cores.
 // Each index is computed by exactly one thread into its own slot, so results never depend on the thread count.
 #pragma once
 
@@ -10,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-namespace impactlab::identify::detail {
+namespace impactlab::detail {
 
 // Calls fn(i) for i in [0, n) on up to hardware_concurrency threads (the caller's among them). The first
 // exception thrown (a cancel, say) stops the handing out of indices and is rethrown on the caller's thread.
@@ -48,4 +49,4 @@ void for_each_index(std::size_t n, Fn&& fn) {
     if (error) std::rethrow_exception(error);
 }
 
-}  // namespace impactlab::identify::detail
+}  // namespace impactlab::detail
