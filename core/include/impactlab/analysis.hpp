@@ -225,6 +225,7 @@ enum class CurveStop { Range, Lost, Cancelled, AxisEnd };
 struct CurveEnd {
     CurveStop stop = CurveStop::Cancelled;
     double q = 0;                     // where the point was lost [the second parameter's unit]
+    std::string why;                  // a lost point: what the last point found was near ("" if nothing known)
 };
 struct BifCurve {
     BifKind kind = BifKind::PeriodDoubling;

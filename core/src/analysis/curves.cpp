@@ -3,6 +3,7 @@
 // multiplier, or the bumperless orbit's largest x minus xI).
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -138,8 +139,24 @@ using Locate = std::function<Located(const Params& work, double omega, const Vec
 // The curves' one following loop: natural-parameter steps in the second parameter from its model value to
 // each end of [lo, hi], the point located again at each from the last two points extrapolated. A step the
 // predictor cannot bridge is halved, down to step / 64. The cancel is looked at before every step.
+// What the last point of a fold or doubling curve was near where the next is lost: a rigid bumper's grazing (an
+// impact of its orbit slower than 1 cm/s, where it meets the nonsmooth fold and changes type), else "".
+std::string lost_near(const Params& work, const CurvePoint& last, int period, const Tolerances& sim) {
+    if (!work.rigid()) return "";
+    try {
+        const MapResult r = poincare_map(work, last.omega, last.y, period, false, sim);
+        if (r.impacts == 0 || !(r.min_impact_speed < 0.01)) return "";
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "its last orbit's slowest impact is %.2g m/s: it runs into the grazing, where the "
+                      "smooth and the nonsmooth fold meet and the curve changes type", r.min_impact_speed);
+        return buf;
+    } catch (const std::exception&) {
+        return "";
+    }
+}
+
 BifCurve follow_curve(const Params& p, BifKind kind, ContParam second, double omega0, const Vec2& y0, int period,
-                      double lo, double hi, double step, Progress* progress, const Locate& locate) {
+                      double lo, double hi, double step, Progress* progress, const Locate& locate, const Tolerances& sim) {
     BifCurve c;
     c.kind = kind;
     c.second = second;
@@ -162,13 +179,13 @@ BifCurve follow_curve(const Params& p, BifKind kind, ContParam second, double om
         while (true) {
             if (progress && progress->cancel.load(std::memory_order_relaxed)) {
                 c.cancelled = true;
-                *ends[side] = {CurveStop::Cancelled, 0.0};
+                *ends[side] = {CurveStop::Cancelled, 0.0, {}};
                 ended[side] = true;
                 break;
             }
             const double q = first ? q0 : prev.q + dir * h;
             if (q > hi + 1e-12 * std::abs(hi) || q < lo - 1e-12 * std::abs(lo)) {
-                *ends[side] = {CurveStop::Range, 0.0};
+                *ends[side] = {CurveStop::Range, 0.0, {}};
                 ended[side] = true;
                 break;
             }
@@ -188,7 +205,8 @@ BifCurve follow_curve(const Params& p, BifKind kind, ContParam second, double om
                     h *= 0.5;
                     continue;
                 }
-                *ends[side] = {CurveStop::Lost, q};
+                q_ref = prev.q;
+                *ends[side] = {CurveStop::Lost, q, kind == BifKind::Grazing ? "" : lost_near(work, prev, period, sim)};
                 ended[side] = true;
                 break;
             }
@@ -206,7 +224,7 @@ BifCurve follow_curve(const Params& p, BifKind kind, ContParam second, double om
         }
     }
     for (int side = 0; side < 2; ++side)   // the side a cancel kept from starting
-        if (!ended[side]) *ends[side] = {CurveStop::Cancelled, 0.0};
+        if (!ended[side]) *ends[side] = {CurveStop::Cancelled, 0.0, {}};
     c.points.assign(sides[1].rbegin(), sides[1].rend());
     c.points.insert(c.points.end(), sides[0].begin(), sides[0].end());
     c.end = curve_ends_name(c);
@@ -226,7 +244,8 @@ std::string curve_end_name(const BifCurve& c, const CurveEnd& e) {
     case CurveStop::Range: return std::string(sweep_param_name(c.second)) + " range";
     case CurveStop::Lost: {
         const char* what = c.kind == BifKind::Fold ? "fold" : c.kind == BifKind::Grazing ? "grazing" : "doubling";
-        return std::string(what) + " lost near " + sweep_param_name(c.second) + " = " + std::to_string(e.q);
+        return std::string(what) + " lost near " + sweep_param_name(c.second) + " = " + std::to_string(e.q) +
+               (e.why.empty() ? "" : " (" + e.why + ")");
     }
     case CurveStop::Cancelled: return "cancelled";
     case CurveStop::AxisEnd: return "at the axis' end";
@@ -243,7 +262,7 @@ BifCurve continue_fold_curve(const Params& p, ContParam second, double omega0, c
                         [&](const Params& work, double w, const Vec2& y) {
                             const Located at = fold_newton(work, w, y, period, sim);
                             return at.ok && scaled_norm(at.y - y) <= 0.5 ? at : Located{};
-                        });
+                        }, sim);
 }
 
 BifCurve continue_grazing_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period, double lo,
@@ -256,7 +275,7 @@ BifCurve continue_grazing_curve(const Params& p, ContParam second, double omega0
                             return secant(w, y, 0.0, 30, 1.0, 1e-8, [&](double wt, const Vec2& yt) {
                                 return gap_probe(work, wt, yt, period, sim);
                             });
-                        });
+                        }, sim);
 }
 
 BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
@@ -268,7 +287,7 @@ BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega
                             return secant(w, y, -1.0, 20, 0.5, 1e-7, [&](double wt, const Vec2& yt) {
                                 return probe(work, wt, yt, period, sim);
                             });
-                        });
+                        }, sim);
 }
 
 BifCurve continue_curve(BifKind kind, const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
