@@ -52,13 +52,7 @@ bool Continuer::correct_depth(const Vec3& u_pred, double depth, int k, Sol& out)
         const Eigen::Matrix<double, 2, 3> J = jacobian(r, rs[1]);
         // The depth to a part in 100 of itself (C1's layer is a fraction of a nanometre deep), or the map's tolerance.
         const double depth_tol = std::min(res_tol_, std::max(0.01 * std::abs(depth), kMinDepthScale) / kXScale);
-        if (G.cwiseAbs().maxCoeff() < res_tol_ && std::abs(g3) < depth_tol) {
-            out.u = u;
-            out.r = std::move(r);
-            out.J = J;
-            out.iterations = it;
-            return true;
-        }
+        if (G.cwiseAbs().maxCoeff() < res_tol_ && std::abs(g3) < depth_tol) return take(out, u, r, J, it);
         if (it == kMaxCorrector) break;
         // The depth's row: the largest x by forward differences in x and v, and the parameter's map above.
         Mat3 A;

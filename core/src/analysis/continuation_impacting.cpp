@@ -122,7 +122,7 @@ Followed Continuer::follow_impacting(const Job& job, Branch& br) {
     Vec3 z, t;
     Vec2 section;
     if (job.mode == JobMode::Grazing && dwell_at_rest() > 0) {
-        if (!dwell_start(q_of(job.u), y_of(job.u), k, z, t, section)) {
+        if (!grazing_start(q_of(job.u), y_of(job.u), k, z, t, section, true)) {
             br.end = "the impacting orbit that arrives at rest did not converge from impact to impact";
             return Followed::Branch;
         }
@@ -270,23 +270,13 @@ void Continuer::locate_impacting(BifKind kind, const Vec3& z, const Vec3& t, dou
     if (kind == BifKind::PeriodDoubling && 2 * k <= spec_.max_period) switch_to_doubled(best, k, branch);
 }
 
-bool Continuer::grazing_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section) {
-    // The grazing orbit written from impact to impact touches xI at the peak of the bumperless orbit, v- = 0.
+bool Continuer::grazing_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section, bool dwell) {
+    // The grazing orbit written from impact to impact touches xI at the peak of the bumperless orbit, v- = 0:
+    // found at the grazing's parameter; with a dwell at rest, v- = 0 is held and the parameter is free.
     Eigen::Matrix<double, 2, 3> J;
     const double theta_g = peak_phase(work_, apply(q_g), y_g, k, spec_.sim);
-    if (!correct_impacting(Vec3(theta_g, 0.0, q_g / q_scale_), Vec3(0, 0, 1), k, z, J, section)) return false;
-    t = Vec3(J.row(0).transpose()).cross(Vec3(J.row(1).transpose()));
-    if (!(t.norm() > 0) || !t.allFinite()) return false;
-    t.normalize();
-    if (t[1] < 0) t = -t;   // onto the impacting side: v- grows
-    return true;
-}
-
-bool Continuer::dwell_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section) {
-    // From the grazing orbit's touch (v- = 0 at its peak), the parameter free and v- held at 0.
-    Eigen::Matrix<double, 2, 3> J;
-    const double theta_g = peak_phase(work_, apply(q_g), y_g, k, spec_.sim);
-    if (!correct_impacting(Vec3(theta_g, 0.0, q_g / q_scale_), Vec3(0, 1, 0), k, z, J, section)) return false;
+    const Vec3 held = dwell ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
+    if (!correct_impacting(Vec3(theta_g, 0.0, q_g / q_scale_), held, k, z, J, section)) return false;
     t = Vec3(J.row(0).transpose()).cross(Vec3(J.row(1).transpose()));
     if (!(t.norm() > 0) || !t.allFinite()) return false;
     t.normalize();

@@ -151,6 +151,15 @@ private:
         return J;
     }
 
+    // A converged corrector's point handed out.
+    static bool take(Sol& out, const Vec3& u, MapResult& r, const Eigen::Matrix<double, 2, 3>& J, int it) {
+        out.u = u;
+        out.r = std::move(r);
+        out.J = J;
+        out.iterations = it;
+        return true;
+    }
+
     // Newton on G(u) = 0 and n . (u - u_pred) = 0.
     bool correct(const Vec3& u_pred, const Vec3& n, int k, Sol& out) {
         Vec3 u = u_pred;
@@ -164,13 +173,7 @@ private:
             if (!G.allFinite()) return false;
             const Eigen::Matrix<double, 2, 3> J = jacobian(r, rs[1]);
             const double h = n.dot(u - u_pred);
-            if (G.cwiseAbs().maxCoeff() < res_tol_ && std::abs(h) < 1e-9) {
-                out.u = u;
-                out.r = std::move(r);
-                out.J = J;
-                out.iterations = it;
-                return true;
-            }
+            if (G.cwiseAbs().maxCoeff() < res_tol_ && std::abs(h) < 1e-9) return take(out, u, r, J, it);
             if (it == kMaxCorrector) break;
             Mat3 A;
             A.topRows<2>() = J;
@@ -181,13 +184,8 @@ private:
             // At the map's noise floor (a long period: its residual's noise passes res_tol) the residual no
             // longer falls, yet a Newton step below the tolerance puts the branch's point within it of u (as
             // find_orbit accepts it). Without this, whether a step converges follows the last bits of libm.
-            if (it >= 2 && du.norm() < res_tol_ && G.cwiseAbs().maxCoeff() < 100 * res_tol_ && std::abs(h) < 1e-9) {
-                out.u = u;
-                out.r = std::move(r);
-                out.J = J;
-                out.iterations = it;
-                return true;
-            }
+            if (it >= 2 && du.norm() < res_tol_ && G.cwiseAbs().maxCoeff() < 100 * res_tol_ && std::abs(h) < 1e-9)
+                return take(out, u, r, J, it);
             u += du;
         }
         return false;
@@ -368,10 +366,9 @@ private:
     // near it; z, t: the grazing orbit from impact to impact and the impacting branch's tangent there.
     void measure_scaling(BifPoint& gp, const Vec3& z, const Vec3& t, int k);
     // The grazing orbit at (q_g, y_g) from impact to impact (z) and the impacting branch's tangent there (t).
-    bool grazing_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section);
-    // With a dwell at rest (H), the impacting branch's first orbit: the one that arrives at xI at rest, dwells
-    // T_imp(0) and closes, found with the parameter free (z, t: it and the branch's tangent, v- growing).
-    bool dwell_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section);
+    // With a dwell at rest (H, dwell = true) the impacting branch's first orbit instead: the one that arrives at
+    // xI at rest, dwells T_imp(0) and closes, found with the parameter free.
+    bool grazing_start(double q_g, const Vec2& y_g, int k, Vec3& z, Vec3& t, Vec2& section, bool dwell = false);
     // The scenario of such a grazing: the dwell, and the jump from the grazing orbit to that first orbit.
     void describe_dwell(BifPoint& gp, const Vec3& z, const Vec2& section, int k);
     // Its scenario (persistence or nonsmooth fold) and exponents.
