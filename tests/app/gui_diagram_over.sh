@@ -2,7 +2,8 @@
 # The bifurcation diagram over xI (--bif-over xI, the view's "over" combo): A1H at omega = 18 rad/s, the bumper
 # moved from -5 to +5 mm in 8 levels. --state-json's `diagram` must say over = "xI" at omega 18 with the range
 # asked for, and each level's xI and least and greatest x must be those of `impactlab bifurcation --over xI`
-# for the same sweep (the same core function: equal to the CSV's 10 digits). The y range also holds a continued
+# for the same sweep (the same core function: equal to the CSV's 10 digits; --settle 0, since the view draws
+# the protocol's records without the CLI's settle verdicts). The y range also holds a continued
 # branch drawn outside the points' fit (A1G over 1-3 rad/s: the cart stays at the hilltop, the branch from
 # the left well lies 1.5 cm below). Bad --bif-over or --bif-range values exit 2 naming the flag.
 # Exit 77 (CTest's skip code) without xvfb-run or python3.
@@ -15,7 +16,7 @@ mkdir -p "$dir"
 
 gui_json xi --model A1H --omega 18 --bifurcation cf-up --bif-over xI --bif-range -0.005:0.005 --bif-steps 10 --frames 10 \
     --screenshot "$dir/xi.png"
-"$cli" bifurcation --model A1H --sweep up --over xI --range -0.005:0.005 --omega 18 --steps 10 --out "$dir/cli.csv" \
+"$cli" bifurcation --model A1H --sweep up --over xI --range -0.005:0.005 --omega 18 --steps 10 --settle 0 --out "$dir/cli.csv" \
     >"$dir/cli.log" 2>&1 || { cat "$dir/cli.log"; echo "$TEST: impactlab bifurcation --over xI failed"; exit 1; }
 gui_json branch --model A1G --omega 2 --bifurcation cf-up --bif-range 1:3 --bif-steps 10 --continuation --frames 10
 for bad in "--bif-over xi" "--bif-over xI --bif-range -0.2:0.01" "--bif-over m0e --bif-range 0:0.03" \
