@@ -235,6 +235,7 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
     if (a.has("--png")) check_writable(a.str("--png", ""), "--png");
     Progress progress;
     Diagram d;
+    const int settle = a.integer("--settle", 10, 0, 1000);
     {
         ProgressBar bar("bifurcation " + p.name + " " + sweep, progress);
         if (sweep == "ramp") {
@@ -249,7 +250,6 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
             CfSpec spec;
             spec.transient = a.integer("--transient", spec.transient, 0, 1000000);
             spec.record = a.integer("--record", spec.record, 1, 1000000);
-            const int settle = a.integer("--settle", 10, 0, 1000);
             check_rows("bifurcation", static_cast<double>(ps.steps) * spec.record, "--steps x --record");
             d = run_cf_param_sweep(p, ps, spec.transient, spec.record, &progress, tolerances_from(a), nullptr, settle);
         }
@@ -261,7 +261,7 @@ int cmd_bifurcation(const std::vector<std::string>& argv) {
         int periodic = 0, unsettled = 0;
         for (const DiagramLevel& lv : d.levels) (lv.period > 0 ? periodic : unsettled) += 1;
         std::fprintf(stderr, "levels: %d periodic, %d not settled (no period up to %d within --settle %d more records: "
-                     "chaos or a longer transient)\n", periodic, unsettled, kDiagramMaxPeriod, a.integer("--settle", 10, 0, 1000));
+                     "chaos or a longer transient)\n", periodic, unsettled, kDiagramMaxPeriod, settle);
     }
     if (sweep != "ramp" && d.over == SweepParam::Omega) {   // Fig. 3's transitions are of omega, from the hilltop
         const Transitions tr = find_transitions(d);

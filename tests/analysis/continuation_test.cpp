@@ -21,6 +21,17 @@ const BifPoint* first_of(const ContinuationResult& r, BifKind kind, int period) 
     return nullptr;
 }
 
+// The period-2 orbit at 12.7 rad/s (born at the doubling at 10.861), continued over 12..hi, no switch.
+ContinuationSpec period_two_from_12_7(double hi) {
+    ContinuationSpec spec;
+    spec.lo = 12.0;
+    spec.hi = hi;
+    spec.start = 12.7;
+    spec.period = 2;
+    spec.max_period = 2;
+    return spec;
+}
+
 ContinuationResult period_two_cascade(const char* name) {
     ContinuationSpec spec;
     spec.lo = 9.0;
@@ -228,13 +239,7 @@ TEST_CASE("continuation: A1C's period 2 goes on through its grazing at 12.7993 i
     // C's bumper smooths the rigid grazing over a layer of about a micron, inside which the branch turns back
     // within 0.1 um of the touch: crossed in the contact's depth, the branch goes on to orbits microns deep.
     const Params p = make_version("A1C");
-    ContinuationSpec spec;
-    spec.lo = 12.0;
-    spec.hi = 14.0;
-    spec.start = 12.7;
-    spec.period = 2;
-    spec.max_period = 2;
-    const ContinuationResult r = continue_orbits(p, spec);
+    const ContinuationResult r = continue_orbits(p, period_two_from_12_7(14.0));
     REQUIRE(r.branches.size() == 1);
     const Branch& b = r.branches[0];
     CAPTURE(b.end);
@@ -276,13 +281,7 @@ TEST_CASE("continuation: A1H's period 2 goes on past its grazing at 12.7993, fro
     // free branch ends there and the impacting branch starts apart, at the orbit that reaches xI at rest and
     // dwells (12.6652 rad/s), followed from impact to impact and on the stroboscopic map.
     const Params p = make_version("A1H");
-    ContinuationSpec spec;
-    spec.lo = 12.0;
-    spec.hi = 16.5;
-    spec.start = 12.7;
-    spec.period = 2;
-    spec.max_period = 2;
-    const ContinuationResult r = continue_orbits(p, spec);
+    const ContinuationResult r = continue_orbits(p, period_two_from_12_7(16.5));
     REQUIRE(r.branches.size() == 2);
     CAPTURE(r.branches[0].end);
     CHECK(r.branches[0].end.find("grazing at omega = 12.7992694 (rigid impacts begin") != std::string::npos);

@@ -235,10 +235,7 @@ std::string Continuer::corrector_limit(const Sol& cur, const Vec3& t, double ds,
             if (work_.rigid() && dwell_at_rest() > 0)
                 end = "grazing (rigid impacts begin; a zero-speed impact still sticks for T_imp(0) > 0, "
                       "so the map jumps there)";
-            if (work_.rigid() && cur.r.impacts == 0) {
-                const BifPoint& g0 = result_.points[static_cast<std::size_t>(last_located_)];
-                jobs_.push_back({k, branch, u_of(g0.y, g0.param), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, JobMode::Grazing});
-            }
+            if (work_.rigid() && cur.r.impacts == 0) queue_grazing(result_.points[static_cast<std::size_t>(last_located_)], t, k, branch);
         }
     }
     return end;
@@ -257,7 +254,7 @@ std::string Continuer::dwell_jump_end(const Sol& cur, const Vec3& t, const Sol& 
     char buf[200];
     if (cur.r.impacts == 0 && g) {
         // The impacting branch begins apart, at the orbit that arrives at rest: a job of its own.
-        jobs_.push_back({k, branch, u_of(g->y, g->param), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, JobMode::Grazing});
+        queue_grazing(*g, t, k, branch);
         std::snprintf(buf, sizeof buf, "grazing at %s = %.9g (rigid impacts begin; a zero-speed impact still sticks for "
                       "T_imp(0) > 0, so the map jumps there)", sweep_param_name(spec_.param), g->param);
     } else {
@@ -288,12 +285,8 @@ void Continuer::locate_crossings(const Sol& cur, const Vec3& t, double ds, const
 }
 
 bool Continuer::passes_by(const BranchPoint& pj, const Vec3& a, const Vec3& b) const {
-    const double len2 = (b - a).squaredNorm();
-    for (const Vec2& sp : pj.sections) {
-        const Vec3 c = u_of(sp, pj.param);
-        const double f = len2 > 0 ? std::clamp((c - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
-        if ((a + f * (b - a) - c).norm() < 1e-3) return true;
-    }
+    for (const Vec2& sp : pj.sections)
+        if (segment_distance(u_of(sp, pj.param), a, b) < 1e-3) return true;
     return false;
 }
 
@@ -524,12 +517,8 @@ bool Continuer::covered(const Job& job) const {
         for (std::size_t j = 0; j + 1 < b.points.size(); ++j) {
             const BranchPoint &p0 = b.points[j], &p1 = b.points[j + 1];
             if (std::abs(p0.param / q_scale_ - c[2]) > 0.5 && std::abs(p1.param / q_scale_ - c[2]) > 0.5) continue;
-            for (std::size_t i = 0; i < p0.sections.size() && i < p1.sections.size(); ++i) {
-                const Vec3 a = u_of(p0.sections[i], p0.param), e = u_of(p1.sections[i], p1.param);
-                const double len2 = (e - a).squaredNorm();
-                const double f = len2 > 0 ? std::clamp((c - a).dot(e - a) / len2, 0.0, 1.0) : 0.0;
-                if ((a + f * (e - a) - c).norm() < 0.01) return true;
-            }
+            for (std::size_t i = 0; i < p0.sections.size() && i < p1.sections.size(); ++i)
+                if (segment_distance(c, u_of(p0.sections[i], p0.param), u_of(p1.sections[i], p1.param)) < 0.01) return true;
         }
     }
     return false;

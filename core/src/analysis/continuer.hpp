@@ -88,12 +88,20 @@ private:
     Vec2 y_of(const Vec3& u) const { return Vec2(u[0] * kXScale, u[1] * kVScale); }
     Vec3 u_of(const Vec2& y, double q) const { return Vec3(y[0] / kXScale, y[1] / kVScale, q / q_scale_); }
 
-    // Puts the parameter value q into work_; returns the omega to run at.
-    double apply(double q) {
+    // Puts the parameter value q into w; returns the omega to run at.
+    double apply_to(Params& w, double q) const {
         if (spec_.param == ContParam::Omega) return q;
-        if (spec_.param == ContParam::XI) work_.xI = q;
-        else work_.m0e = q;
+        if (spec_.param == ContParam::XI) w.xI = q;
+        else w.m0e = q;
         return spec_.omega;
+    }
+    double apply(double q) { return apply_to(work_, q); }
+
+    // The distance (scaled) from c to the segment a..b.
+    static double segment_distance(const Vec3& c, const Vec3& a, const Vec3& b) {
+        const double len2 = (b - a).squaredNorm();
+        const double f = len2 > 0 ? std::clamp((c - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
+        return (a + f * (b - a) - c).norm();
     }
 
     MapResult map(const Vec3& u, int k, bool tangent) {
@@ -111,11 +119,7 @@ private:
         const Params base = work_;
         ::impactlab::detail::for_each_index(at.size(), [&](std::size_t i) {
             Params w = base;
-            double omega = spec_.omega;
-            const double q = q_of(at[i].u);
-            if (spec_.param == ContParam::Omega) omega = q;
-            else if (spec_.param == ContParam::XI) w.xI = q;
-            else w.m0e = q;
+            const double omega = apply_to(w, q_of(at[i].u));
             out[i] = poincare_map(w, omega, y_of(at[i].u), k, at[i].tangent, spec_.sim);
         });
         evaluations_ += at.size();
@@ -333,6 +337,10 @@ private:
     // limit, or the grazing it ran into, located on the bumperless orbit (a rigid grazing's impacting branch
     // is queued as a job).
     std::string corrector_limit(const Sol& cur, const Vec3& t, double ds, int k, int branch);
+    // The impacting branch from a located rigid grazing g queued as a job, the way t was going in the parameter.
+    void queue_grazing(const BifPoint& g, const Vec3& t, int k, int branch) {
+        jobs_.push_back({k, branch, u_of(g.y, g.param), Vec3(0, 0, t[2] >= 0 ? 1.0 : -1.0), false, JobMode::Grazing});
+    }
     // The end of a branch whose step from cur to next crossed H's jump at a grazing (the impacting side's branch
     // queued from the located grazing when the branch was free).
     std::string dwell_jump_end(const Sol& cur, const Vec3& t, const Sol& next, int k, int branch);
