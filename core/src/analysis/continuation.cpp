@@ -413,7 +413,7 @@ void Continuer::follow(const Job& job, Branch& br) {
                 ds *= 0.5;
                 if (ds < spec_.ds_min) {
                     // Within a compliant contact's grazing layer: on in the contact's depth, then onward.
-                    if (layers < kMaxLayers && std::abs(test(BifKind::Grazing, cur)) < 1e-3 && !work_.rigid()) {
+                    if (layers < kMaxLayers && std::abs(test(BifKind::Grazing, cur)) < kContactDepth / kXScale && !work_.rigid()) {
                         ++layers;
                         if (cross_contact_layer(cur, t, k, br.id, pts, arc)) {
                             // Resume at the layer's last step: the branch's scale there.
