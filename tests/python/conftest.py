@@ -26,8 +26,8 @@ def cli():
 @pytest.fixture(scope="session")
 def shared():
     path = pathlib.Path(os.environ.get("IMPACTLAB_SHARED", pathlib.Path(__file__).resolve().parents[3] / "shared"))
-    if not path.is_dir():   # as the C++ suites, which read the same records
-        pytest.fail(f"the shared data directory {path} is not here (IMPACTLAB_SHARED names it)")
+    if not path.is_dir():   # as the C++ suites: a clone without ../shared skips these tests, saying so
+        pytest.skip(f"the shared data directory {path} is not here (IMPACTLAB_SHARED names it); skipped, not passed")
     return path
 
 
