@@ -37,20 +37,17 @@ std::size_t Drive::segment(double t) const {
     return it == t_.begin() ? 0 : static_cast<std::size_t>(it - t_.begin()) - 1;
 }
 
-double Drive::omega(double t) const {
-    const std::size_t i = segment(t);
+double Drive::omega_in(std::size_t i, double t) const {
     if (i + 1 >= t_.size() || t <= t_[i]) return w_[i];
     return w_[i] + (w_[i + 1] - w_[i]) * (t - t_[i]) / (t_[i + 1] - t_[i]);
 }
 
-double Drive::alpha(double t) const {
-    const std::size_t i = segment(t);
+double Drive::alpha_in(std::size_t i, double t) const {
     if (i + 1 >= t_.size() || t < t_[i]) return 0.0;
     return (w_[i + 1] - w_[i]) / (t_[i + 1] - t_[i]);
 }
 
-double Drive::phi(double t) const {
-    const std::size_t i = segment(t);
+double Drive::phi_in(std::size_t i, double t) const {
     const double tau = t - t_[i];
     if (i + 1 >= t_.size() || tau < 0) return phi_[i] + w_[i] * tau;
     const double a = (w_[i + 1] - w_[i]) / (t_[i + 1] - t_[i]);

@@ -25,9 +25,15 @@ public:
     // The paper's EF protocol: omega = 25.1 t / 2800 for 0 <= t <= 2800 s (scaled by omega_max, t_ramp).
     static Drive ef_ramp(double omega_max = 25.1, double t_ramp = 2800.0);
 
-    double omega(double t) const;
-    double alpha(double t) const;     // phi'' [rad/s^2]
-    double phi(double t) const;
+    double omega(double t) const { return omega_in(segment(t), t); }
+    double alpha(double t) const { return alpha_in(segment(t), t); }   // phi'' [rad/s^2]
+    double phi(double t) const { return phi_in(segment(t), t); }
+    // All three at once, from one search of the knots (the equation of motion needs them at every stage).
+    struct At { double phi, omega, alpha; };
+    At at(double t) const {
+        const std::size_t i = segment(t);
+        return {phi_in(i, t), omega_in(i, t), alpha_in(i, t)};
+    }
     // The time at which phi reaches `phase` (phi is nondecreasing); +inf if it never does.
     double time_of_phase(double phase) const;
     // Time of the next knot strictly after t (the forcing's slope jumps there), +inf if none.
@@ -43,6 +49,9 @@ public:
 
 private:
     std::size_t segment(double t) const;
+    double omega_in(std::size_t i, double t) const;   // within segment i = segment(t)
+    double alpha_in(std::size_t i, double t) const;
+    double phi_in(std::size_t i, double t) const;
     std::vector<double> t_, w_, phi_;   // knots and phi at each knot
     // Shared, so that copying a Drive (one per worker, one per window) never copies a long record.
     struct Input { double t0, dt; std::vector<double> u; };

@@ -44,7 +44,8 @@ inline RigForces rig_forces(const Params& p, double t, double x, double v, doubl
     return f;
 }
 inline RigForces rig_forces(const Params& p, const Drive& d, double t, double x, double v, bool contact) {
-    return rig_forces(p, t, x, v, d.phi(t), d.omega(t), d.alpha(t), p.input_gain != 0.0 ? d.input(t) : 0.0, contact);
+    const Drive::At a = d.at(t);
+    return rig_forces(p, t, x, v, a.phi, a.omega, a.alpha, p.input_gain != 0.0 ? d.input(t) : 0.0, contact);
 }
 
 // y' = (v, F / m).
@@ -60,7 +61,8 @@ enum class ContactSlope { Secant, Exact };
 // a tangent needs only J, and skips the drive's derivatives.
 inline void rig_jacobian(const Params& p, const Drive& d, double t, const Vec2& y, bool contact, ContactSlope slope, Mat2& J,
                          Vec2* dfdt = nullptr) {
-    const double w = d.omega(t), phi = d.phi(t), al = d.alpha(t);
+    const Drive::At a = d.at(t);
+    const double w = a.omega, phi = a.phi, al = a.alpha;
     double dFdx = -spring_magnet(p, y[0]).dF, dFdv = -resistance(p, y[1]).dF;
     double dFdt = dfdt ? unbalance_force_rate(p, phi, w, al) + p.input_gain * d.input_rate(t) : 0.0;
     if (contact) {
