@@ -271,14 +271,18 @@ Diagram run_cf_levels(const Params& p0, const std::vector<CfLevel>& levels, int 
             break;
         }
         const double at = level_value(lv, over);
+        DiagramLevel dl{at, 0, diag.points.size(), 0};
         if (settle_budget > 0) {
-            DiagramLevel dl{at, 0, diag.points.size(), 0};
             dl.period = settle_level(p, lv.omega, s, col.points, kDiagramMaxPeriod, settle_budget, tol, false);
             dl.count = col.points.size();
             diag.levels.push_back(dl);
         }
+        dl.count = col.points.size();
         for (const auto& sp : col.points) diag.points.push_back({at, sp.x, sp.v});
-        if (extra) extra->end_level(j, p, s);
+        if (extra) {
+            extra->kept(j, dl, diag.points.data() + dl.first);
+            extra->end_level(j, p, s);
+        }
         done += 1.0;
     }
     diag.simulated_seconds = s.t;

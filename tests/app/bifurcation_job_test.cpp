@@ -43,6 +43,7 @@ BifRequest small_cf(BifProtocol proto) {
 // What the UI sees polling a job as fast as it can: the size after every take that brought something.
 struct Polled {
     std::vector<DiagramPoint> points;
+    std::vector<DiagramLevel> judged;   // the levels' verdicts as they came
     std::vector<std::size_t> sizes;
     std::vector<int> levels;
 };
@@ -51,7 +52,7 @@ Polled poll_until_done(BifurcationJob& job) {
     for (;;) {
         const bool was_running = job.running();
         const std::size_t before = p.points.size();
-        const int lv = job.take_new(p.points);
+        const int lv = job.take_new(p.points, &p.judged);
         if (p.points.size() != before) {
             p.sizes.push_back(p.points.size());
             p.levels.push_back(lv);
@@ -83,10 +84,38 @@ TEST_CASE("the CF diagram arrives level by level and ends as run_cf_sweep of the
         for (std::size_t i = 0; i < p.sizes.size(); ++i)
             CHECK(p.sizes[i] == static_cast<std::size_t>(p.levels[i] * req.record));
         CHECK(p.levels.back() == req.steps);
-        // The pieces put together are the result, and the result is the core's run of the same request.
+        // The pieces put together are the result, and the result is the core's run of the same request, its
+        // levels judged with the same settle budget (the CLI's default, 10).
         CHECK(same(p.points, result->points));
-        const Diagram direct = run_cf_sweep(req.params, cf_spec(req));
+        CHECK(req.settle == 10);
+        const Diagram direct = run_cf_param_sweep(req.params, param_sweep(req), req.transient, req.record, nullptr, {},
+                                                  nullptr, req.settle);
         CHECK(same(direct.points, result->points));
+        // Every level's verdict arrived with its points, and they are the core's.
+        REQUIRE(p.judged.size() == direct.levels.size());
+        REQUIRE(result->levels.size() == direct.levels.size());
+        int unsettled = 0, settled = 0;
+        for (std::size_t j = 0; j < direct.levels.size(); ++j) {
+            CHECK(p.judged[j].period == direct.levels[j].period);
+            CHECK(p.judged[j].first == direct.levels[j].first);
+            CHECK(p.judged[j].count == direct.levels[j].count);
+            CHECK(result->levels[j].period == direct.levels[j].period);
+            unsettled += direct.levels[j].period == kLevelNotSettled;
+            settled += direct.levels[j].period > 0;
+        }
+        MESSAGE(std::string(bif_protocol_name(proto)), ": ", settled, " levels settled, ", unsettled, " not");
+        CHECK(settled > 0);
+        // Without a budget the levels are not judged, and the diagram is the protocol's plain run.
+        BifRequest plain = req;
+        plain.settle = 0;
+        BifurcationJob job0;
+        job0.start(plain);
+        const Polled p0 = poll_until_done(job0);
+        const auto r0 = job0.take_result();
+        REQUIRE(r0.has_value());
+        CHECK(p0.judged.empty());
+        CHECK(r0->levels.empty());
+        CHECK(same(run_cf_sweep(req.params, cf_spec(req)).points, r0->points));
         // The levels: omega_lo + (hi - lo) j / steps, j = 1..steps, in the sweep's direction.
         const double first = proto == BifProtocol::CfUp ? 8.0 + 6.0 / 30 : 14.0;
         const double last = proto == BifProtocol::CfUp ? 14.0 : 8.0 + 6.0 / 30;
@@ -186,6 +215,7 @@ TEST_CASE("a box on the diagram asks for its omega range with the same model, pr
     CHECK(r->steps == 200);
     CHECK(r->transient == base.transient);
     CHECK(r->record == base.record);
+    CHECK(r->settle == base.settle);
     CHECK(r->protocol == BifProtocol::CfDown);
     CHECK(r->params.name == base.params.name);
     CHECK(r->params.xI == 0.002);
@@ -297,7 +327,10 @@ TEST_CASE("a diagram over xI at fixed omega arrives level by level, each point a
     const ParamSweep s = param_sweep(req);
     CHECK(s.omega == 18.0);
     CHECK(s.direction == SweepDirection::Down);
-    CHECK(same(run_cf_param_sweep(req.params, s, req.transient, req.record).points, result->points));
+    const Diagram direct = run_cf_param_sweep(req.params, s, req.transient, req.record, nullptr, {}, nullptr, req.settle);
+    CHECK(same(direct.points, result->points));
+    CHECK(p.judged.size() == 9u);
+    CHECK(result->levels.size() == 9u);
     // Down from hi to lo, both included (the CLI's --range), record points per level.
     REQUIRE(result->points.size() == 9u * static_cast<std::size_t>(req.record));
     CHECK(result->points.front().omega == 0.004);

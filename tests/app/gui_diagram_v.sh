@@ -13,7 +13,7 @@ mkdir -p "$dir"
 
 gui_json v --model A1H --bifurcation cf-up --bif-range 8:12 --bif-steps 40 --bif-y v --frames 10 --screenshot "$dir/v.png"
 gui_json x --model A1H --bifurcation cf-up --bif-range 8:12 --bif-steps 40 --frames 10
-"$cli" bifurcation --model A1H --sweep up --omega-min 8 --omega-max 12 --steps 40 --settle 0 --out "$dir/cli.csv" >"$dir/cli.log" 2>&1 ||
+"$cli" bifurcation --model A1H --sweep up --omega-min 8 --omega-max 12 --steps 40 --out "$dir/cli.csv" >"$dir/cli.log" 2>&1 ||
     { cat "$dir/cli.log"; echo "$TEST: impactlab bifurcation failed"; exit 1; }
 "$gui" --bif-y q --frames 2 >"$dir/bad.log" 2>&1
 rc=$?

@@ -134,7 +134,8 @@ void BifurcationJob::start(const BifRequest& req) {
     job_.cancel();
     job_.wait();   // the old worker is gone before its feed is: nothing publishes into a dropped feed
     feed_ = std::make_shared<Feed<DiagramPoint>>();
-    job_.start([req, feed = feed_](Progress& prog) {
+    level_feed_ = std::make_shared<Feed<DiagramLevel>>();
+    job_.start([req, feed = feed_, level_feed = level_feed_](Progress& prog) {
         if (req.protocol == BifProtocol::Ef) {
             const EfSpec spec = ef_spec(req);
             RampPublisher pub(*feed, Drive::ef_ramp(spec.omega_max, spec.t_ramp));
@@ -142,8 +143,8 @@ void BifurcationJob::start(const BifRequest& req) {
             pub.flush();
             return d;
         }
-        LevelPublisher pub(*feed, req.transient, req.over);
-        return run_cf_param_sweep(req.params, param_sweep(req), req.transient, req.record, &prog, {}, &pub);
+        LevelPublisher pub(*feed, *level_feed);
+        return run_cf_param_sweep(req.params, param_sweep(req), req.transient, req.record, &prog, {}, &pub, req.settle);
     });
 }
 

@@ -38,6 +38,9 @@ struct BifRequest {
     SweepParam over = SweepParam::Omega;
     double lo = 0, hi = 0;
     double omega = 0;
+    // CF: each level judged by the map's own test, with up to `settle` more records where it has not settled
+    // (run_cf_levels, as the CLI's --settle); levels still unsettled are drawn grey. 0: not judged.
+    int settle = 10;
 };
 // The CF sweep a request runs (its omega levels as cf_spec's; those of xI or m0e from lo to hi).
 ParamSweep param_sweep(const BifRequest& r);
@@ -88,29 +91,25 @@ private:
     int levels_ = 0;
 };
 
-// A LevelObserver that publishes each finished CF level's recorded section points (exactly those the
-// sweep keeps: n > transient, with the level's value of the swept parameter) to a Feed. Simulating thread.
+// A LevelObserver that publishes each finished CF level as the diagram keeps it: its section points (the
+// record that settled, with the level's value of the swept parameter) to one Feed, then its verdict to the
+// other. Simulating thread.
 class LevelPublisher : public LevelObserver {
 public:
-    LevelPublisher(Feed<DiagramPoint>& feed, int transient, SweepParam over = SweepParam::Omega)
-        : feed_(feed), transient_(transient), over_(over) {}
-    void begin_level(std::size_t, const CfLevel& lv) override {
-        at_ = level_value(lv, over_);
-        chunk_.clear();
-    }
-    void on_section(const SectionPoint& sp) override {
-        if (sp.n > transient_) chunk_.push_back({at_, sp.x, sp.v});
-    }
-    void end_level(std::size_t j, const Params&, const State&) override {
-        feed_.publish(chunk_, static_cast<int>(j + 1));
+    LevelPublisher(Feed<DiagramPoint>& points, Feed<DiagramLevel>& levels) : points_(points), levels_(levels) {}
+    void kept(std::size_t j, const DiagramLevel& level, const DiagramPoint* pts) override {
+        chunk_.assign(pts, pts + level.count);
+        points_.publish(chunk_, static_cast<int>(j + 1));
+        if (level.period == 0) return;   // not judged (no settle budget): the diagram keeps no level either
+        level_.assign(1, level);
+        levels_.publish(level_, static_cast<int>(j + 1));
     }
 
 private:
-    Feed<DiagramPoint>& feed_;
-    int transient_;
-    SweepParam over_;
-    double at_ = 0;   // the level's value of the swept parameter
+    Feed<DiagramPoint>& points_;
+    Feed<DiagramLevel>& levels_;
     std::vector<DiagramPoint> chunk_;
+    std::vector<DiagramLevel> level_;
 };
 
 // The diagram on a worker, filling progressively. UI thread, except where said.
@@ -122,15 +121,19 @@ public:
     bool running() const { return job_.running(); }   // any thread
     double progress() const { return job_.progress(); }
     // Appends the points published since the last call (whole levels; EF: chunks) to `out`; returns the
-    // levels done (CF) or 0 (EF).
-    int take_new(std::vector<DiagramPoint>& out) { return feed_ ? feed_->take(out) : 0; }
+    // levels done (CF) or 0 (EF). A level's verdict (CF) comes after its points: into `levels` if given.
+    int take_new(std::vector<DiagramPoint>& out, std::vector<DiagramLevel>* levels = nullptr) {
+        if (levels && level_feed_) level_feed_->take(*levels);
+        return feed_ ? feed_->take(out) : 0;
+    }
     // The finished diagram, once: it holds exactly the points published, in order.
     std::optional<Diagram> take_result() { return job_.take_result(); }
     std::string take_error() { return job_.take_error(); }
     void wait() { job_.wait(); }   // tests
 
 private:
-    std::shared_ptr<Feed<DiagramPoint>> feed_;   // shared with the worker: a new job gets a new one
+    std::shared_ptr<Feed<DiagramPoint>> feed_;   // shared with the worker: a new job gets new ones
+    std::shared_ptr<Feed<DiagramLevel>> level_feed_;
     Job<Diagram> job_;
 };
 

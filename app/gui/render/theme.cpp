@@ -187,4 +187,12 @@ void density_color(bool dark, float t, unsigned char out[4]) {
     out[3] = static_cast<unsigned char>(std::clamp(a, 0.0f, 1.0f) * 255.0f);
 }
 
+void not_settled_color(bool dark, float t, unsigned char out[4]) {
+    t = std::clamp(t, 0.0f, 1.0f);
+    // Dark theme: from a dim grey to a light one; light theme: grey ink, more opaque where points pile up.
+    const float v = dark ? 0.30f + 0.32f * t : 0.60f - 0.25f * t, a = dark ? 1.0f : 0.45f + 0.55f * t;
+    out[0] = out[1] = out[2] = static_cast<unsigned char>(v * 255.0f);
+    out[3] = static_cast<unsigned char>(a * 255.0f);
+}
+
 }  // namespace impactlab::gui

@@ -22,5 +22,7 @@ const Palette& palette();
 // Colour maps for force and density: t in [0, 1].
 ImU32 heat_color(float t, float alpha = 1.0f);
 void density_color(bool dark, float t, unsigned char rgba[4]);
+// The same scale in grey, for the points of a diagram level that has not settled (a transient or chaos).
+void not_settled_color(bool dark, float t, unsigned char rgba[4]);
 
 }  // namespace impactlab::gui

@@ -76,6 +76,7 @@ void BifurcationPanel::configure(const Options& opt) {
     }
     lyap_on_ = lyap_want_ = opt.bif_lyapunov;
     if (opt.lyap_steps > 0) lyap_steps_ = opt.lyap_steps;
+    settle_ = opt.bif_settle;
 }
 
 BifRequest BifurcationPanel::request(const BifurcationContext& c, double lo, double hi) const {
@@ -83,6 +84,7 @@ BifRequest BifurcationPanel::request(const BifurcationContext& c, double lo, dou
     req.params = *c.params;
     req.protocol = static_cast<BifProtocol>(std::clamp(c.protocol ? *c.protocol : 0, 0, 2));
     req.steps = c.steps ? *c.steps : 300;
+    req.settle = settle_;
     req.over = over_;
     if (over_ == SweepParam::Omega) {
         req.omega_lo = lo;
@@ -192,8 +194,9 @@ void BifurcationPanel::snap_fit() {
 std::string BifurcationPanel::poll(const BifurcationContext& c) {
     std::string toast;
     // The diagram: what arrived since the last frame, then (once) the whole result.
-    const std::size_t before = shown_.points.size();
-    const int levels = job_.take_new(shown_.points);
+    const std::size_t before = shown_.points.size(), judged = shown_.levels.size();
+    const int levels = job_.take_new(shown_.points, &shown_.levels);
+    if (shown_.levels.size() != judged) dirty_ = true;
     if (shown_.points.size() != before) {
         levels_done_ = levels;
         grow_fit(before);
@@ -204,7 +207,8 @@ std::string BifurcationPanel::poll(const BifurcationContext& c) {
         // The chunks hold every point the result does, in the same order (the last may have come after the
         // take above: its level count is read again); the result adds the totals.
         std::vector<DiagramPoint> last;
-        if (const int lv = job_.take_new(last); lv > 0) levels_done_ = lv;
+        std::vector<DiagramLevel> last_levels;
+        if (const int lv = job_.take_new(last, &last_levels); lv > 0) levels_done_ = lv;
         const std::string model = shown_.model;
         shown_ = std::move(*d);
         shown_.model = model;
@@ -265,12 +269,20 @@ BifurcationState BifurcationPanel::state(const BifurcationContext& c) const {
         if (s.over == SweepParam::Omega) std::tie(s.omega_lo, s.omega_hi) = std::pair{s.lo, s.hi};
         else s.omega = shown_req_.omega;
     }
-    for (const DiagramPoint& p : shown_.points) {   // consecutive points of one value form a CF level
+    std::size_t judged = 0;   // the next verdict: levels come in the points' order
+    for (std::size_t i = 0; i < shown_.points.size(); ++i) {   // consecutive points of one value form a CF level
+        const DiagramPoint& p = shown_.points[i];
         if (shown_req_.protocol == BifProtocol::Ef) break;
-        if (s.level_x.empty() || s.level_x.back().at != p.omega) s.level_x.push_back({p.omega, p.x, p.x});
+        if (s.level_x.empty() || s.level_x.back().at != p.omega) {
+            while (judged < shown_.levels.size() && shown_.levels[judged].first < i) ++judged;
+            const bool has = judged < shown_.levels.size() && shown_.levels[judged].first == i;
+            s.level_x.push_back({p.omega, p.x, p.x, has ? shown_.levels[judged].period : 0});
+        }
         s.level_x.back().x_min = std::min(s.level_x.back().x_min, p.x);
         s.level_x.back().x_max = std::max(s.level_x.back().x_max, p.x);
     }
+    s.settle = have_ && shown_req_.protocol != BifProtocol::Ef ? shown_req_.settle : 0;
+    for (const DiagramLevel& l : shown_.levels) s.not_settled += l.period == kLevelNotSettled;
     s.steps = have_ && shown_req_.protocol != BifProtocol::Ef ? shown_req_.steps : 0;
     s.levels_done = have_ && shown_req_.protocol != BifProtocol::Ef ? levels_done_ : 0;
     s.points = shown_.points.size();
@@ -329,7 +341,19 @@ void BifurcationPanel::update_texture(int w, int h) {
     const double col_px = w * (range_hi - range_lo) / bands / view_x_.span();
     const int splat = cf ? std::clamp(static_cast<int>(col_px), 1, 12) : 1;
     const int first = centred ? -(splat / 2) : 0;
-    for (const auto& p : shown_.points) {
+    // Points of a level that has not settled (its verdict kLevelNotSettled) are counted apart and drawn grey:
+    // a transient or chaos, which a finite run cannot tell apart, never in the colours of a settled orbit.
+    std::vector<float> grey(count.size(), 0.0f);
+    std::vector<std::uint8_t> unsettled(shown_.points.size(), 0);
+    not_settled_ = 0;
+    for (const DiagramLevel& l : shown_.levels) {
+        if (l.period != kLevelNotSettled) continue;
+        ++not_settled_;
+        for (std::size_t i = l.first; i < l.first + l.count && i < unsettled.size(); ++i) unsettled[i] = 1;
+    }
+    for (std::size_t pi = 0; pi < shown_.points.size(); ++pi) {
+        const DiagramPoint& p = shown_.points[pi];
+        std::vector<float>& into = unsettled[pi] ? grey : count;
         const double fx = (p.omega - view_x_.lo) / view_x_.span(), fy = (view_y_.hi - y_of(p)) / view_y_.span();
         if (!(fx > -0.1 && fx < 1.1)) continue;
         const int ix = static_cast<int>(std::floor(fx * w)), iy = static_cast<int>(std::floor(fy * h));
@@ -339,17 +363,17 @@ void BifurcationPanel::update_texture(int w, int h) {
         for (int k = first; k < first + splat; ++k) {
             const int x = cf ? ix - k : ix;
             if (x < 0 || x >= w) continue;
-            count[static_cast<std::size_t>(iy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] += 1.0f;
+            into[static_cast<std::size_t>(iy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] += 1.0f;
         }
     }
     float mx = 0;
-    for (float n : count) mx = std::max(mx, n);
+    for (std::size_t i = 0; i < count.size(); ++i) mx = std::max(mx, count[i] + grey[i]);
     max_count_ = mx;
     const float norm = 1.0f / std::log1p(std::max(mx, 1.0f));
     image_.assign(count.size() * 4, 0);
     for (std::size_t i = 0; i < count.size(); ++i) {
-        if (count[i] <= 0) continue;
-        density_color(palette().dark, std::log1p(count[i]) * norm, &image_[i * 4]);
+        if (count[i] > 0) density_color(palette().dark, std::log1p(count[i]) * norm, &image_[i * 4]);
+        else if (grey[i] > 0) not_settled_color(palette().dark, std::log1p(grey[i]) * norm, &image_[i * 4]);
     }
     tex_ = upload_rgba_texture(static_cast<GLuint>(tex_), w, h, image_.data());
 }

@@ -61,9 +61,12 @@ struct BifurcationState {
     double omega_lo = 0, omega_hi = 0;    // its omega range [rad/s] (a diagram over omega)
     double lo = 0, hi = 0;                // its range of `over` [rad/s, m or kg m]
     double omega = 0;                     // [rad/s] the fixed omega of a diagram over xI or m0e
-    // Each level's value of `over`, with the least and greatest x of its section points [m], in sweep order.
-    struct Level { double at, x_min, x_max; };
+    // Each level's value of `over`, with the least and greatest x of its section points [m] and its verdict
+    // (the period, kLevelNotSettled, or 0 where not judged), in sweep order.
+    struct Level { double at, x_min, x_max; int period; };
     std::vector<Level> level_x;
+    int settle = 0;                       // the settle budget the diagram was computed with (records)
+    int not_settled = 0;                  // its levels judged kLevelNotSettled (drawn grey)
     int steps = 0, levels_done = 0;       // CF levels asked for and finished (EF: 0, 0)
     std::size_t points = 0;
     bool running = false, cancelled = false, stale = false;
@@ -169,6 +172,8 @@ private:
     bool dark_ = true;               // the theme the image was drawn for
     Range view_x_, view_y_;
     float max_count_ = 0;            // points in the densest pixel (the legend's top)
+    int not_settled_ = 0;            // levels of the diagram shown judged not settled (drawn grey)
+    int settle_ = 10;                // --bif-settle: the next diagram's settle budget
 
     LivePoints live_;                // at the last frame
 

@@ -81,6 +81,25 @@ void BifurcationPanel::draw_legend() const {
     }
     ImGui::SameLine(0, fs * 0.25f);
     ImGui::Text("%s points/pixel", top);
+    if (not_settled_ == 0) return;
+    // The grey levels: what they are, in the header beside the scale (never over the diagram).
+    char grey[48];
+    std::snprintf(grey, sizeof grey, "not settled: %d", not_settled_);
+    ImGui::SameLine(0, fs * 0.8f);
+    if (ImGui::GetContentRegionAvail().x < bar_h + fs * 0.3f + ImGui::CalcTextSize(grey).x) ImGui::NewLine();
+    const ImVec2 q = ImGui::GetCursorScreenPos();
+    unsigned char rgba[4];
+    not_settled_color(pal.dark, 0.6f, rgba);
+    const float gy = q.y + 0.5f * (ImGui::GetTextLineHeight() - bar_h);
+    dl->AddRectFilled(ImVec2(q.x, gy), ImVec2(q.x + bar_h, gy + bar_h), IM_COL32(rgba[0], rgba[1], rgba[2], rgba[3]));
+    ImGui::Dummy(ImVec2(bar_h, ImGui::GetTextLineHeight()));
+    ImGui::SameLine(0, fs * 0.3f);
+    ImGui::TextUnformatted(grey);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Grey: %d levels whose section points did not recur with a period up to %d within %d more "
+                          "records (the map's own test, as impactlab bifurcation --settle): chaos, or a transient "
+                          "longer than that. A finite run cannot tell the two apart.",
+                          not_settled_, kDiagramMaxPeriod, shown_req_.settle);
 }
 
 void BifurcationPanel::draw_strip(const BifurcationContext& c, Range view_x, BifurcationAction& act) {

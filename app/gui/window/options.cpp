@@ -84,6 +84,9 @@ const char* usage_text() {
            "                     in its SI units: xI in [-0.1, 0.1] m, m0e in (0, 10] kg m\n"
            "  --bif-lyapunov     the lambda_max(omega) strip under the diagram, computed with it (slow)\n"
            "  --lyap-steps N     omegas of that strip, 5..300 (default 60)\n"
+           "  --bif-settle N     CF: a level whose section points do not yet recur (period <= 32) runs up to N\n"
+           "                     more records, as impactlab bifurcation --settle; still unsettled, it is drawn\n"
+           "                     grey, 'not settled' (default 10; 0: no verdicts, every level drawn alike)\n"
            "  --bif-nowait       with --frames: count the frames while the diagram computes (a screenshot\n"
            "                     of it half-filled)\n"
            "  --data FILE        load a measured run (CSV, plain or gzip) into the Measured data window\n"
@@ -394,6 +397,7 @@ bool diagram_flag(const std::string& a, FlagReader& r, Options& o, Pending& pend
         if (o.bif_y != "x" && o.bif_y != "v") throw OptionsError("--bif-y: '" + o.bif_y + "' is not x or v");
     } else if (a == "--bif-lyapunov") o.bif_lyapunov = true;
     else if (a == "--lyap-steps") o.lyap_steps = integer(a, r.value(), 5, 300);
+    else if (a == "--bif-settle") o.bif_settle = integer(a, r.value(), 0, 100);
     else if (a == "--bif-nowait") o.bif_nowait = true;
     else return false;
     return true;

@@ -53,6 +53,7 @@ struct Options {
                                       // are then in its SI units: m, kg m)
     bool bif_lyapunov = false;   // --bif-lyapunov: the lambda_max strip under the diagram
     int lyap_steps = 0;          // --lyap-steps N: its omegas (0: the panel's default)
+    int bif_settle = 10;         // --bif-settle N: more records a CF level may run to settle (0: not judged)
     bool bif_nowait = false;     // --bif-nowait: --frames does not wait for the diagram
 
     double soak = 0;             // > 0: run this many wall seconds at 100x, switching the model every 3 s; RSS report

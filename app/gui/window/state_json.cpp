@@ -179,8 +179,10 @@ json diagram_json(const BifurcationState& b, const BifurcationPanel& panel, cons
         d["hi"] = number(b.hi);
         d["omega"] = b.over == SweepParam::Omega ? json(nullptr) : json(number(b.omega));
         json lv = json::array();
-        for (const auto& l : b.level_x) lv.push_back({number(l.at), number(l.x_min), number(l.x_max)});
-        d["level_x"] = std::move(lv);   // each level's value, least and greatest x [m]
+        for (const auto& l : b.level_x) lv.push_back({number(l.at), number(l.x_min), number(l.x_max), l.period});
+        d["level_x"] = std::move(lv);   // each level's value, least and greatest x [m], period (-1 not settled, 0 not judged)
+        d["settle"] = b.settle;               // more records a level may run to settle (0: not judged)
+        d["not_settled"] = b.not_settled;     // levels drawn grey
     }
     d["view_omega"] = {number(b.view_omega.lo), number(b.view_omega.hi)};
     d["y"] = b.y_is_v ? "v" : "x";

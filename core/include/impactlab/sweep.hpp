@@ -40,8 +40,8 @@ SweepParamAxis sweep_param_axis(SweepParam s);
 // [rad/s] for the paper's diagram and the EF ramp (omega(t)), xI [m] or m0e [kg m] when Diagram::over says so.
 struct DiagramPoint { double omega, x, v; };
 
-// A level of a CF diagram judged by the map's own test (settle_level): its period k or kLevelNotSettled;
-// its points are points[first, first + count).
+// A level of a CF diagram judged by the map's own test (settle_level): its period k or kLevelNotSettled
+// (0: not judged, a sweep without a settle budget); its points are points[first, first + count).
 inline constexpr int kLevelNotSettled = -1;
 struct DiagramLevel {
     double at = 0;               // the swept parameter's value
@@ -103,6 +103,9 @@ std::string check_sweep(const Params& p, const ParamSweep& s);
 class LevelObserver : public Observer {
 public:
     virtual void begin_level(std::size_t /*j*/, const CfLevel&) {}
+    // The level as the diagram keeps it: its verdict (period 0 without a settle budget) and its points, the
+    // record that settled, which may come after the sections this observer saw.
+    virtual void kept(std::size_t /*j*/, const DiagramLevel& /*level*/, const DiagramPoint* /*points*/) {}
     virtual void end_level(std::size_t /*j*/, const Params& /*p*/, const State& /*s*/) {}
 };
 // The CF loop itself: from rest at x = 0, each level sets its omega (phi continuous, restarted at a section
