@@ -145,24 +145,44 @@ bool Continuer::true_crossing(BifKind kind, const Sol& lo, const Sol& hi, const 
     // Inside a compliant bumper's grazing layer the crossing is the grazing's, however smooth it looks
     // there (A3C's period 2 at 12.8999, 1e-4 past its grazing: mu = -1.005 with 0.22 um of penetration).
     if (work_.has_bumper() && !work_.rigid() && best.r.max_x > work_.xI && best.r.max_x - work_.xI < kGrazingLayer) return false;
+    refine_crossing(kind, lo, hi, best, k, precision, shift);
+    return true;
+}
+
+void Continuer::refine_crossing(BifKind kind, const Sol& lo, const Sol& hi, const Sol& best, int k, double& precision,
+                                double& shift) {
     // The bracket is only as good as the monodromy: at rtol 1e-10 the multiplier of A1C near its first
     // doubling jitters by 5e-5 from one omega to the next (the step sequence changes), so a bracket of
     // 1e-7 may sit 6e-5 from the crossing. The orbit is found again at rtol / 100, where the multiplier is
     // smooth, the crossing moved there by a secant, and its error bounded by how far the multiplier
     // still moves from rtol / 10. A fold needs no move: its parameter is stationary in the multiplier.
-    if (kind != BifKind::Fold) {
-        const double q0 = q_of(best.u), dq = 1e-3 * q_scale_ * (q_of(hi.u) > q_of(lo.u) ? 1 : -1);
-        const double m0 = crossing_at(kind, q0, y_of(best.u), k, 0.01);
-        const double m1 = crossing_at(kind, q0 + dq, y_of(best.u), k, 0.01);
-        const double m_mid = crossing_at(kind, q0, y_of(best.u), k, 0.1);
-        if (std::isfinite(m0) && std::isfinite(m1) && std::isfinite(m_mid) && m1 != m0) {
-            const double slope = (m1 - m0) / dq;   // d mu / d q at rtol / 100
-            shift = -(m0 - target) / slope;
-            if (std::abs(shift) > 1e-3 * q_scale_) shift = 0;   // not a smooth crossing there: the bracket stands
-            else precision = std::max(std::abs(m0 - m_mid) / std::abs(slope), std::abs(shift) * 0.1);
-        }
+    // The secant's first step is ten brackets long (at least 1e-7, at most 1e-3, scaled): near a slow impact
+    // the multiplier runs from -6 to -0.9 within 1e-5 rad/s (A1H's period 8 at 18.6821), and a secant over
+    // 1e-3 would land far off. Up to four secant steps, while each brings the multiplier closer.
+    if (kind == BifKind::Fold || kind == BifKind::Grazing) return;
+    const double target = kind == BifKind::NeimarkSacker ? 1.0 : -1.0;
+    const double width = std::abs(q_of(hi.u) - q_of(lo.u));
+    const double dq = std::clamp(10 * width, 1e-7 * q_scale_, 1e-3 * q_scale_) * (q_of(hi.u) > q_of(lo.u) ? 1 : -1);
+    const Vec2 y = y_of(best.u);
+    const double q0 = q_of(best.u);
+    const double m0 = crossing_at(kind, q0, y, k, 0.01);
+    const double m_mid = crossing_at(kind, q0, y, k, 0.1);
+    double qa = q0, ma = m0, qb = q0 + dq, mb = crossing_at(kind, qb, y, k, 0.01);
+    if (!std::isfinite(m0) || !std::isfinite(m_mid) || !std::isfinite(mb) || mb == ma) return;
+    for (int it = 0; it < 4 && std::abs(mb - target) > 1e-9; ++it) {
+        const double qc = qb - (mb - target) * (qb - qa) / (mb - ma);
+        const double mc = crossing_at(kind, qc, y, k, 0.01);
+        if (!std::isfinite(mc) || std::abs(mc - target) >= std::abs(mb - target) || mc == mb) break;
+        qa = qb;
+        ma = mb;
+        qb = qc;
+        mb = mc;
     }
-    return true;
+    const double slope = (mb - ma) / (qb - qa);   // d mu / d q at rtol / 100, near the crossing
+    const double q_cross = qb - (mb - target) / slope;
+    if (!std::isfinite(q_cross) || std::abs(q_cross - q0) > 1e-3 * q_scale_) return;   // no smooth crossing: the bracket stands
+    shift = q_cross - q0;
+    precision = std::max(std::abs(m0 - m_mid) / std::abs(slope), std::abs(shift) * 0.1);
 }
 
 void Continuer::switch_to_doubled(const Sol& best, int k, int branch) {

@@ -327,6 +327,9 @@ private:
     // names (not a jump, not a grazing's); for a doubling or Neimark-Sacker the point's shift and precision
     // from the orbit found again at a tighter tolerance.
     bool true_crossing(BifKind kind, const Sol& lo, const Sol& hi, const Sol& best, int k, double& precision, double& shift);
+    // The crossing moved to where the multiplier at rtol / 100 crosses (a doubling or Neimark-Sacker), with
+    // the precision that allows; a fold or a grazing stays where the bracket put it.
+    void refine_crossing(BifKind kind, const Sol& lo, const Sol& hi, const Sol& best, int k, double& precision, double& shift);
     // A doubling's job whose period-2k orbit an earlier branch already passes through (the far end of a
     // bubble, or a loop through both doublings): any of the k section points may be where it lands.
     bool covered(const Job& job) const;
