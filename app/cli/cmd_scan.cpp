@@ -42,9 +42,10 @@ const char* kScanHelp =
     "                      (xmin,xmax [m]); default period\n"
     "  --out FILE          CSV: the axes, then one column per measure, x fastest (required)\n"
     "  --png FILE          one map per measure with its legend\n"
-    "  --doubling-from W,X,V  a period-1 doubling at omega W with section point (X, V) [m, m/s], as `continue`\n"
-    "                      prints it: continued in the y axis (xI or m0e) and drawn over the maps (x: omega);\n"
-    "                      `auto`: the first one over the x axis's omega range, found by continuation\n"
+    "  --doubling-from W,X,V[,K]  a doubling of the period-K orbit (default 1) at omega W with section point\n"
+    "                      (X, V) [m, m/s], as `continue` prints it (an impacting orbit's too): continued in the\n"
+    "                      y axis (xI or m0e) and drawn over the maps (x: omega); `auto`: the first period-1\n"
+    "                      doubling over the x axis's omega range, found by continuation\n"
     "  --grazing-from W,X,V[,K]  a grazing of the period-K orbit (default 1) at omega W with section point (X, V),\n"
     "                      as `continue` prints it: continued in the y axis (the omega where the orbit without\n"
     "                      the bumper reaches xI) and drawn over the maps, dashed; `auto`: the first period-1\n"
@@ -96,7 +97,7 @@ struct ScanCommand {
     std::string out_path, png, log_path, curves_path;
     bool resume = false;
     int threads = 1;
-    CurveAsk doubling, grazing, fold;   // --doubling-from (period 1), --grazing-from, --fold-from
+    CurveAsk doubling, grazing, fold;   // --doubling-from, --grazing-from, --fold-from
 };
 
 // The plane: its axes, measures, forcing, start and periods per point, every corner a valid model.
@@ -147,29 +148,11 @@ void read_plane(const Args& a, ScanCommand& c) {
 // --curves-out.
 void read_curves(const Args& a, ScanCommand& c) {
     const ScanSpec& spec = c.spec;
-    if (a.has("--doubling-from")) {
-        if (!a.has("--png") && !a.has("--curves-out"))
-            throw UsageError("scan: --doubling-from draws on the PNG or writes --curves-out: give --png or --curves-out");
-        if (spec.x.param != ScanParam::Omega || spec.y.param == ScanParam::Omega)
-            throw UsageError("scan: --doubling-from needs --x omega:... and --y xI:... or m0e:...");
-        const std::string v = a.str("--doubling-from", "");
-        double w[3];
-        if (v == "auto") {   // the first period-1 doubling over the x axis's omega range, found by continuation
-            c.doubling.is_auto = true;
-        } else {
-            char tail = 0;
-            if (std::sscanf(v.c_str(), "%lf,%lf,%lf%c", &w[0], &w[1], &w[2], &tail) != 3)
-                throw UsageError("scan: option '--doubling-from': expected OMEGA,X,V (a period-1 doubling, as continue prints it), got '" +
-                                 v + "'");
-            check_curve_start("--doubling-from", w);
-            c.doubling.from = {w[0], w[1], w[2], 1};
-        }
-    }
-    for (const char* flag : {"--grazing-from", "--fold-from"}) {
+    for (const char* flag : {"--doubling-from", "--grazing-from", "--fold-from"}) {
         if (!a.has(flag)) continue;
         const std::string f = flag;
-        const std::string what = f == "--fold-from" ? "fold" : "grazing";
-        CurveAsk& ask = what == "fold" ? c.fold : c.grazing;
+        const std::string what = f == "--fold-from" ? "fold" : f == "--doubling-from" ? "doubling" : "grazing";
+        CurveAsk& ask = what == "fold" ? c.fold : what == "doubling" ? c.doubling : c.grazing;
         if (!a.has("--png") && !a.has("--curves-out"))
             throw UsageError("scan: " + f + " draws on the PNG or writes --curves-out: give --png or --curves-out");
         if (spec.x.param != ScanParam::Omega || spec.y.param == ScanParam::Omega)

@@ -239,3 +239,30 @@ TEST_CASE("curves: the automatic start of a doubling curve is one of the curve's
     CHECK(on_curve);
     CHECK(std::abs(d.omega0 - 10.861335) < 3e-6);
 }
+
+TEST_CASE("curves: a doubling curve of A1G's impacting period 2 crosses xI = 0 where Newton's orbits at rtol 1e-12 do") {
+    // At the default rtol 1e-10 an impacting orbit's multiplier jitters by 3e-3: the curve's secant, run there,
+    // put its point 1.4e-4 rad/s off. It runs at rtol / 100, where the multiplier is smooth.
+    const Params p = make_version("A1G");
+    const BifCurve c = continue_doubling_curve(p, ContParam::XI, 19.2312326, Vec2(-0.00537039, -0.0873334), 2, -4e-4, 4e-4, 2e-4);
+    const CurvePoint* at0 = nullptr;
+    for (const CurvePoint& q : c.points)
+        if (q.q == 0.0) at0 = &q;
+    REQUIRE(at0 != nullptr);
+    CHECK(c.points.size() >= 5);
+    auto mu_plus_1 = [&](double omega) {   // the multiplier nearest -1, plus 1, of the orbit at rtol 1e-12
+        OrbitOptions oo;
+        oo.period = 2;
+        oo.sim.rtol = 1e-12;
+        const Orbit o = find_orbit(p, omega, at0->y, oo);
+        REQUIRE(o.converged);
+        REQUIRE(o.impacts >= 1);
+        const auto& mu = o.floquet.mu;
+        return (std::abs(mu[0] + 1.0) < std::abs(mu[1] + 1.0) ? mu[0] : mu[1]).real() + 1.0;
+    };
+    const double below = mu_plus_1(at0->omega - 1e-6), above = mu_plus_1(at0->omega + 1e-6);
+    CAPTURE(at0->omega);
+    CAPTURE(below);
+    CAPTURE(above);
+    CHECK((below > 0) != (above > 0));
+}

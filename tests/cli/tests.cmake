@@ -246,6 +246,14 @@ impactlab_cli_test(scan_doubling_bad --rc 2 --match "expected OMEGA,X,V" --absen
 impactlab_cli_test(scan_doubling_curve --rc 0 --match "doubling curve: 3 points, ends: xI range / xI range" --csv p.csv "omega,xI,period" 6 6
                    -- scan --model A1C --x omega:10.5:11:3 --y xI:-0.001:0:2 --transient 2 --record 4 --threads 1
                       --doubling-from 10.8613339,-0.0142521,-0.0499209 --png p.png --out p.csv)
+# A doubling of an impacting period-2 orbit (A1G's at 19.2312326, as continue prints it), followed in xI.
+impactlab_cli_test(scan_doubling_impacting --rc 0 --match "doubling curve: 8 points, ends: xI range / xI range"
+                   --csv p.csv "omega,xI,period" 9 9
+                   -- scan --model A1G --x omega:18.9:19.5:3 --y xI:-0.0004:0.0004:3 --transient 2 --record 4 --threads 1
+                      --doubling-from 19.2312326,-0.00537039,-0.0873334,2 --png p.png --out p.csv)
+impactlab_cli_test(scan_doubling_bad_period --rc 2 --match "expected OMEGA,X,V\\[,K\\] with K in 1..64 \\(a doubling" --absent p.csv
+                   -- scan --model A1G --x omega:18.9:19.5:3 --y xI:-0.0004:0.0004:3
+                      --doubling-from 19.2312326,-0.00537039,-0.0873334,2.5 --png p.png --out p.csv)
 impactlab_cli_test(scan_grazing_bad --rc 2 --match "expected OMEGA,X,V\\[,K\\]" --absent p.csv
                    -- scan --model A1G --xI -0.004 --x omega:9.5:9.7:3 --y xI:-0.0045:-0.004:2 --grazing-from 9.6,-0.0156,-0.0074,0.5
                       --png p.png --out p.csv)

@@ -281,13 +281,18 @@ BifCurve continue_grazing_curve(const Params& p, ContParam second, double omega0
 BifCurve continue_doubling_curve(const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
                                  double lo, double hi, double step, const Tolerances& sim, Progress* progress) {
     check_curve("doubling", second, lo, hi, step);
+    // The multiplier is smooth only far below the orbit's tolerance: at rtol 1e-10 it jitters by 5e-5 (A1C's
+    // first doubling) to 3e-3 (an impacting orbit), which put the curve's points 2e-6 and 1.4e-4 rad/s off
+    // the crossing of Newton's orbits at 1e-12. The secant runs at rtol / 100, as the continuation's refinement.
+    Tolerances fine = sim;
+    fine.rtol = std::max(sim.rtol * 0.01, 1e-13);
     return follow_curve(p, BifKind::PeriodDoubling, second, omega0, y0, period, lo, hi, step, progress,
                         [&](const Params& work, double w, const Vec2& y) {
                             // The multiplier nearest -1 at -1.
                             return secant(w, y, -1.0, 20, 0.5, 1e-7, [&](double wt, const Vec2& yt) {
-                                return probe(work, wt, yt, period, sim);
+                                return probe(work, wt, yt, period, fine);
                             });
-                        }, sim);
+                        }, fine);
 }
 
 BifCurve continue_curve(BifKind kind, const Params& p, ContParam second, double omega0, const Vec2& y0, int period,
