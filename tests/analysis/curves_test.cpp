@@ -9,6 +9,7 @@
 
 #include "impactlab/analysis.hpp"
 #include "impactlab/params.hpp"
+#include "newton_reference.hpp"
 #include "impactlab/plane_doubling.hpp"
 #include "impactlab/scan.hpp"
 
@@ -250,17 +251,7 @@ TEST_CASE("curves: a doubling curve of A1G's impacting period 2 crosses xI = 0 w
         if (q.q == 0.0) at0 = &q;
     REQUIRE(at0 != nullptr);
     CHECK(c.points.size() >= 5);
-    auto mu_plus_1 = [&](double omega) {   // the multiplier nearest -1, plus 1, of the orbit at rtol 1e-12
-        OrbitOptions oo;
-        oo.period = 2;
-        oo.sim.rtol = 1e-12;
-        const Orbit o = find_orbit(p, omega, at0->y, oo);
-        REQUIRE(o.converged);
-        REQUIRE(o.impacts >= 1);
-        const auto& mu = o.floquet.mu;
-        return (std::abs(mu[0] + 1.0) < std::abs(mu[1] + 1.0) ? mu[0] : mu[1]).real() + 1.0;
-    };
-    const double below = mu_plus_1(at0->omega - 1e-6), above = mu_plus_1(at0->omega + 1e-6);
+    const double below = test::doubling_side(p, at0->omega - 1e-6, at0->y, 2), above = test::doubling_side(p, at0->omega + 1e-6, at0->y, 2);
     CAPTURE(at0->omega);
     CAPTURE(below);
     CAPTURE(above);

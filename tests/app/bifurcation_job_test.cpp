@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -63,6 +64,20 @@ Polled poll_until_done(BifurcationJob& job) {
     return p;
 }
 
+// A request run to its end, polled as the UI polls it.
+struct Finished {
+    Polled polled;
+    std::optional<Diagram> result;
+};
+Finished run_to_end(const BifRequest& req) {
+    BifurcationJob job;
+    job.start(req);
+    Finished f;
+    f.polled = poll_until_done(job);
+    f.result = job.take_result();
+    return f;
+}
+
 }  // namespace
 
 TEST_CASE("the CF diagram arrives level by level and ends as run_cf_sweep of the same request, bit for bit") {
@@ -108,14 +123,11 @@ TEST_CASE("the CF diagram arrives level by level and ends as run_cf_sweep of the
         // Without a budget the levels are not judged, and the diagram is the protocol's plain run.
         BifRequest plain = req;
         plain.settle = 0;
-        BifurcationJob job0;
-        job0.start(plain);
-        const Polled p0 = poll_until_done(job0);
-        const auto r0 = job0.take_result();
-        REQUIRE(r0.has_value());
-        CHECK(p0.judged.empty());
-        CHECK(r0->levels.empty());
-        CHECK(same(run_cf_sweep(req.params, cf_spec(req)).points, r0->points));
+        const Finished f0 = run_to_end(plain);
+        REQUIRE(f0.result.has_value());
+        CHECK(f0.polled.judged.empty());
+        CHECK(f0.result->levels.empty());
+        CHECK(same(run_cf_sweep(req.params, cf_spec(req)).points, f0.result->points));
         // The levels: omega_lo + (hi - lo) j / steps, j = 1..steps, in the sweep's direction.
         const double first = proto == BifProtocol::CfUp ? 8.0 + 6.0 / 30 : 14.0;
         const double last = proto == BifProtocol::CfUp ? 14.0 : 8.0 + 6.0 / 30;
@@ -316,10 +328,9 @@ BifRequest small_xI(BifProtocol proto, double xI_max) {
 TEST_CASE("a diagram over xI at fixed omega arrives level by level, each point at its level's xI, as the core's sweep") {
     BifRequest req = small_xI(BifProtocol::CfDown, 0.004);
     req.steps = 9;
-    BifurcationJob job;
-    job.start(req);
-    const Polled p = poll_until_done(job);
-    const auto result = job.take_result();
+    const Finished f = run_to_end(req);
+    const Polled& p = f.polled;
+    const auto& result = f.result;
     REQUIRE(result.has_value());
     CHECK(result->over == SweepParam::XI);
     CHECK(p.levels.back() == 9);
