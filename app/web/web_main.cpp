@@ -3,7 +3,7 @@
 // ?presentation, is a flag alone). The browser owns the frame loop: App::loop_once() runs once per
 // animation frame, and the simulation's slice runs inside it (SimThread::pump: no threads in a file://
 // page). With frames=N, after N frames the page writes what --state-json writes into <pre id="state-json">
-// and stops.
+// and stops. Such a scripted run steps on timers, so that a browser under virtual time runs it too.
 // Files: what the program writes into its working folder (/home/web_user: a saved session, a screenshot, a
 // CSV export) is handed to the browser as a download; a file picked with the page's "Open a file" or dropped
 // on the canvas is written into the page's memory and opened (a session, or a measured record).
@@ -222,5 +222,9 @@ int main() {
     // 0 frames per second: the browser's animation frames; no simulated infinite loop (main returns and
     // the runtime stays alive with the App in g_app).
     emscripten_set_main_loop(tick, 0, 0);
+    // A scripted run (?frames=N) steps on 16 ms timers: a browser under virtual time (headless Chromium's
+    // --virtual-time-budget, with --dump-dom or --screenshot) fires timers but animation frames only once
+    // or twice, and #state-json stayed empty there. An open page, and ?bench-plot, keep the animation frames.
+    if (opt.frames > 0) emscripten_set_main_loop_timing(EM_TIMING_SETTIMEOUT, 16);
     return 0;
 }

@@ -12,6 +12,9 @@
 #      the CLI's synth) dropped on it: the state must show the session's model and omega and the record loaded.
 #   4. ?bench-plot: the desktop's --bench-plot in the page (100,000 points on each plot, 200 timed frames), its
 #      report printed for docs/visualiser.md's table; it must finish with its report.
+#   5. Under virtual time (Chromium's own --virtual-time-budget with --dump-dom, then --screenshot, no DevTools):
+#      ?frames=30 must still run its 30 frames, fill #state-json and draw the whole desk (the rig and the
+#      controls busy, not the first frame's bare tiles).
 # Exit 77 (CTest's skip code) without the page (bash scripts/web.sh) or chromium (apt-get install chromium).
 # usage: web_test.sh PAGE PNG_CHECK OUT_DIR CLI
 page="$1"; check="$2"; dir="$3"; cli="$4"
@@ -83,4 +86,31 @@ python3 "$here/page_run.py" "$browser" "file://$page?bench-plot&size=1280x800" "
     || { echo "web_test: ?bench-plot failed"; exit 1; }
 grep -q '^plot benchmark (' "$dir/bench_plot/log.txt" || { cat "$dir/bench_plot/log.txt"; echo "web_test: ?bench-plot printed no report"; exit 1; }
 grep '^plot benchmark (' "$dir/bench_plot/log.txt" | sed 's/^/web_test: /'
-echo "web_test: passed (A1H at ${rate}x real time at best; a session downloaded and opened again, a record opened; the plot benchmark)"
+# 5. Virtual time: the browser's own dump of the page and its own screenshot.
+mkdir -p "$dir/virtual"
+vt() {
+    profile=$(mktemp -d)
+    sandbox=""
+    [ "$(id -u)" = 0 ] && sandbox=--no-sandbox   # Chromium refuses its sandbox as root
+    timeout 300 "$browser" --headless=new $sandbox --use-angle=swiftshader --enable-unsafe-swiftshader \
+        --user-data-dir="$profile" --window-size=1280,800 --virtual-time-budget=60000 "$@" 2>>"$dir/virtual/chromium.log"
+    rc=$?
+    rm -rf "$profile"
+    return $rc
+}
+vt --dump-dom "file://$page?model=A1H&frames=30" >"$dir/virtual/dom.html" || { echo "web_test: --dump-dom under virtual time failed"; exit 1; }
+python3 - "$dir/virtual/dom.html" <<'PY' || exit 1
+import html, json, re, sys
+d = open(sys.argv[1]).read()
+m = re.search(r'<pre id="state-json">(.*?)</pre>', d, re.S)
+if not m or not m.group(1).strip(): sys.exit("web_test: #state-json is empty under virtual time")
+j = json.loads(html.unescape(m.group(1)))
+if j["model"] != "A1H" or j["frames"] != 30: sys.exit("web_test: under virtual time: model %s, %s frames" % (j["model"], j["frames"]))
+if 'data-exit="0"' not in d: sys.exit("web_test: under virtual time the page did not end with exit 0")
+print("web_test: under virtual time: #state-json filled after %d frames, sim_time %.2f s" % (j["frames"], j["sim_time"]))
+PY
+vt --screenshot="$dir/virtual/page.png" "file://$page?model=A1H&frames=30" >/dev/null || { echo "web_test: --screenshot under virtual time failed"; exit 1; }
+"$check" "$dir/virtual/page.png" 1280 800 --busy 300 50 560 200 --busy 0 50 290 420 \
+    || { echo "web_test: the screenshot under virtual time is not the whole desk"; exit 1; }
+
+echo "web_test: passed (A1H at ${rate}x real time at best; a session downloaded and opened again, a record opened; the plot benchmark; virtual time)"
