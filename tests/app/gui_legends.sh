@@ -3,7 +3,8 @@
 #  1. A1G's continued branches over the diagram, omega at 12.8 (its grazing 12.7993 and fold 12.8306 right
 #     under the running omega's label): the legend is a row outside the diagram's data area, so it holds no
 #     bifurcation point drawn and does not overlap the label, and the label covers no point (it moves to the
-#     plot's foot); the same in a short tile (plane, basins), where the legend is the word "key".
+#     plot's foot); the same in a short tile (plane, basins), where the legend is the word "key". The info
+#     line (model, levels, points) lies below the data area too.
 #  2. The diagram stays drawn, 100 px high at least, with the plane and the basins open at 1280x800, and at
 #     --ui-scale 2 (README's layouts), where its settings fold into one button.
 # Exit 77 (CTest's skip code) when xvfb-run or python3 is missing.
@@ -46,6 +47,12 @@ for n in ("cont", "tiles"):
         fail.append(f"{n}: the omega label {ol} covers bifurcation points {under}")
     if overlap(lg, c["plot_rect"]):
         fail.append(f"{n}: the legend {lg} lies over the diagram's data area {c['plot_rect']}")
+    # The info line (model, levels, points) sits below the data area, in the x label's row.
+    ir = c["info_rect"]
+    if ir is None:
+        fail.append(f"{n}: the diagram's info line is not drawn")
+    elif overlap(ir, c["plot_rect"]):
+        fail.append(f"{n}: the info line {ir} lies over the diagram's data area {c['plot_rect']}")
     if len(c["markers_px"]) < 4:
         fail.append(f"{n}: {len(c['markers_px'])} bifurcation points drawn, the continuation's are missing")
     print(f"{n}: legend {lg}, omega label {c['omega_label_rect']}, {len(c['markers_px'])} points drawn")

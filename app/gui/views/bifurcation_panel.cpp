@@ -756,7 +756,9 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
     const float strip_h = strip ? std::max(ImGui::GetFontSize() * 6.0f, 0.3f * avail.y) : 0.0f;
     avail.y -= strip_h;
     plot_rect_ = {};
+    info_rect_ = {};
     if (!plot.begin("##bif", avail, fit_x_, fit_y_with_branches(c), ax)) return act;
+    const ImVec2 outer_min = ImGui::GetItemRectMin(), outer_max = ImGui::GetItemRectMax();   // the plot with its axes
     const ImVec2 a = plot.area_min(), b = plot.area_max();
     plot_rect_ = {a.x, a.y, b.x, b.y};
     const Range vx = plot.x_range(), vy = plot.y_range();
@@ -770,7 +772,7 @@ BifurcationAction BifurcationPanel::draw(const BifurcationContext& c) {
         update_texture(static_cast<int>(b.x - a.x), static_cast<int>(b.y - a.y));
         // A diagram of another model (or bumper position) stays, dimmed, until B computes the new one.
         if (tex_) plot.image(image_.data(), tex_w_, tex_h_, static_cast<GLuint>(tex_), is_stale ? 90.0f / 255.0f : 1.0f);
-        if (b.y - a.y > 6.0f * ImGui::GetFontSize()) draw_info(plot, b.x - a.x);   // a low plot keeps its data clear
+        draw_info(plot, ax.x_label, outer_min, outer_max);
         if (shown_.points.empty() && job_.running())
             plate_text(plot.draw(), ImVec2(0.5f * (a.x + b.x), 0.5f * (a.y + b.y)), "computing the first level...",
                   pal.axis_text, ImVec2(0.5f, 0.5f));
@@ -816,8 +818,16 @@ Range BifurcationPanel::fit_y_with_branches(const BifurcationContext& c) const {
     return {std::min(fit_y_.lo, lo - pad), std::max(fit_y_.hi, hi + pad)};
 }
 
-void BifurcationPanel::draw_info(Plot& plot, float width) const {
+void BifurcationPanel::draw_info(Plot& plot, const char* x_label, ImVec2 outer_min, ImVec2 outer_max) {
+    // Below the data, in the x label's row, left of the centred label (or right of it): never over a point.
+    // Where neither side has room for even "A1H 10/300", it is left out (the header's progress says it).
     const ImVec2 a = plot.area_min(), b = plot.area_max();
+    const float fs = ImGui::GetFontSize();
+    const float label_w = ImGui::CalcTextSize(x_label).x, mid = 0.5f * (a.x + b.x);
+    const float left_room = mid - 0.5f * label_w - fs - (outer_min.x + fs * 0.3f);
+    const float right_room = outer_max.x - fs * 0.3f - (mid + 0.5f * label_w + fs);
+    const float width = std::max(left_room, right_room);
+    info_rect_ = {};
     char info[160];
     const char* cut = shown_.cancelled ? " (cancelled)" : "";
     const OverAxis ax = over_axis(shown_req_.over);
@@ -832,9 +842,17 @@ void BifurcationPanel::draw_info(Plot& plot, float width) const {
         std::snprintf(info, sizeof info, "%s  %s  %s %.3g-%.3g %s at ω = %.3g rad/s: %d/%d levels%s  %zu points",
                       shown_.model.c_str(), shown_.protocol.c_str(), ax.symbol, ax.scale * lo, ax.scale * hi,
                       over_unit(shown_req_.over), shown_req_.omega, levels_done_, shown_req_.steps, cut, shown_.points.size());
-    if (ImGui::CalcTextSize(info).x + 20 > width)   // a narrow tile: the levels and the model only
+    if (ImGui::CalcTextSize(info).x > width)   // a narrow tile: the levels and the model only
         std::snprintf(info, sizeof info, "%s  %d/%d%s", shown_.model.c_str(), levels_done_, shown_req_.steps, cut);
-    plate_text(plot.draw(), ImVec2(a.x + 6, b.y - ImGui::GetTextLineHeight() - 6), info, palette().axis_text);
+    const ImVec2 ts = ImGui::CalcTextSize(info);
+    if (ts.x > width) return;
+    const bool left = ts.x <= left_room;
+    const ImVec2 at(left ? outer_min.x + fs * 0.3f : outer_max.x - fs * 0.3f - ts.x, b.y + fs * 1.25f);
+    ImDrawList* dl = plot.draw();
+    dl->PushClipRect(outer_min, outer_max, false);   // outside the data area's clip
+    dl->AddText(at, palette().axis_text, info);
+    dl->PopClipRect();
+    info_rect_ = {at.x, at.y, at.x + ts.x, at.y + ts.y};
 }
 
 void BifurcationPanel::apply_box(const BifurcationContext& c, double w0, double w1, Range view_y) {

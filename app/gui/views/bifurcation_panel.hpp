@@ -105,6 +105,7 @@ public:
     const std::array<float, 4>& omega_label() const { return omega_label_; }
     // The diagram's data area as last drawn (screen pixels x0, y0, x1, y1; zeros when not drawn).
     const std::array<float, 4>& plot_rect() const { return plot_rect_; }
+    const std::array<float, 4>& info_rect() const { return info_rect_; }
     // The diagram's omega axis (the auto-fit, not the zoom): what the continuation follows. A diagram over
     // xI or m0e gives the omega range last typed for one over omega.
     Range omega_axis() const { return shown_req_.over == SweepParam::Omega ? fit_x_ : kept_[0]; }
@@ -122,7 +123,7 @@ private:
     // The y fit, widened to hold the continued branches drawn over it (those within the omega axis).
     Range fit_y_with_branches(const BifurcationContext& c) const;
     // Says what the diagram shown is: the model, protocol, range and levels (narrow: levels and model).
-    void draw_info(Plot& plot, float width) const;
+    void draw_info(Plot& plot, const char* x_label, ImVec2 outer_min, ImVec2 outer_max);
     void begin(const BifurcationContext& c, const BifRequest& req);
     void start_strip(const BifurcationContext& c);
     void grow_fit(std::size_t from);
@@ -200,6 +201,7 @@ private:
     Range lyap_view_y_{-1, 1};
     std::array<float, 4> omega_label_{};   // the running omega's label (omega_label())
     std::array<float, 4> plot_rect_{};     // the data area (plot_rect())
+    std::array<float, 4> info_rect_{};     // the diagram's info line, below the data (info_rect(); zeros: not drawn)
     bool settings_open_ = false;           // a short tile's folded settings, unfolded
 };
 

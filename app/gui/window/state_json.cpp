@@ -196,6 +196,8 @@ json diagram_json(const BifurcationState& b, const BifurcationPanel& panel, cons
     d["omega_label_rect"] = {om[0], om[1], om[2], om[3]};   // [px] the running omega's label
     const auto& pr = panel.plot_rect();
     d["plot_rect"] = {pr[0], pr[1], pr[2], pr[3]};   // [px] the data area drawn (zeros: not drawn)
+    const auto& ir = panel.info_rect();
+    d["info_rect"] = ir[2] > ir[0] ? json{ir[0], ir[1], ir[2], ir[3]} : json(nullptr);   // the model, levels, points line
     const auto& lg = analysis.legend_rect();
     d["legend_rect"] = lg[2] > lg[0] ? json{lg[0], lg[1], lg[2], lg[3]} : json(nullptr);   // the branches' legend
     json mk = json::array();
