@@ -272,12 +272,10 @@ Diagram run_cf_levels(const Params& p0, const std::vector<CfLevel>& levels, int 
         }
         const double at = level_value(lv, over);
         DiagramLevel dl{at, 0, diag.points.size(), 0};
-        if (settle_budget > 0) {
+        if (settle_budget > 0)
             dl.period = settle_level(p, lv.omega, s, col.points, kDiagramMaxPeriod, settle_budget, tol, false);
-            dl.count = col.points.size();
-            diag.levels.push_back(dl);
-        }
         dl.count = col.points.size();
+        if (settle_budget > 0) diag.levels.push_back(dl);
         for (const auto& sp : col.points) diag.points.push_back({at, sp.x, sp.v});
         if (extra) {
             extra->kept(j, dl, diag.points.data() + dl.first);

@@ -244,7 +244,7 @@ bool Plot::begin(const char* id, ImVec2 size, Range x, Range y, const Axes& axes
     // Labels: x centred below the ticks, y rotated along the left edge.
     if (axes.x_label && *axes.x_label) {
         const ImVec2 ts = ImGui::CalcTextSize(axes.x_label);
-        dl_->AddText(ImVec2(0.5f * (min_.x + max_.x) - 0.5f * ts.x, max_.y + fs * 1.25f), pal.title_text, axes.x_label);
+        dl_->AddText(ImVec2(0.5f * (min_.x + max_.x) - 0.5f * ts.x, label_row_y()), pal.title_text, axes.x_label);
     }
     // The y label stays inside the plot's own height (centred where it can be): rotated text longer than
     // that would run over whatever sits above the plot. Too long even so: the short label, or none.

@@ -102,6 +102,8 @@ public:
     ImDrawList* draw() const { return dl_; }
     ImVec2 area_min() const { return min_; }
     ImVec2 area_max() const { return max_; }
+    // The top of the x label's row, below the tick labels (a note beside the label goes there too).
+    float label_row_y() const { return max_.y + ImGui::GetFontSize() * 1.25f; }
     bool hovered() const { return hovered_; }
     bool clicked() const { return clicked_; }   // left click released on the data area
     bool dragging() const { return dragging_; }

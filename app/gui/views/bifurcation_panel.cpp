@@ -282,7 +282,7 @@ BifurcationState BifurcationPanel::state(const BifurcationContext& c) const {
         s.level_x.back().x_max = std::max(s.level_x.back().x_max, p.x);
     }
     s.settle = have_ && shown_req_.protocol != BifProtocol::Ef ? shown_req_.settle : 0;
-    for (const DiagramLevel& l : shown_.levels) s.not_settled += l.period == kLevelNotSettled;
+    s.not_settled = not_settled();
     s.steps = have_ && shown_req_.protocol != BifProtocol::Ef ? shown_req_.steps : 0;
     s.levels_done = have_ && shown_req_.protocol != BifProtocol::Ef ? levels_done_ : 0;
     s.points = shown_.points.size();
@@ -325,6 +325,12 @@ void BifurcationPanel::release_gl() {
     }
 }
 
+int BifurcationPanel::not_settled() const {
+    int n = 0;
+    for (const DiagramLevel& l : shown_.levels) n += l.period == kLevelNotSettled;
+    return n;
+}
+
 void BifurcationPanel::update_texture(int w, int h) {
     if (!have_ || w <= 0 || h <= 0) return;
     if (!dirty_ && w == tex_w_ && h == tex_h_) return;
@@ -345,10 +351,8 @@ void BifurcationPanel::update_texture(int w, int h) {
     // a transient or chaos, which a finite run cannot tell apart, never in the colours of a settled orbit.
     std::vector<float> grey(count.size(), 0.0f);
     std::vector<std::uint8_t> unsettled(shown_.points.size(), 0);
-    not_settled_ = 0;
     for (const DiagramLevel& l : shown_.levels) {
         if (l.period != kLevelNotSettled) continue;
-        ++not_settled_;
         for (std::size_t i = l.first; i < l.first + l.count && i < unsettled.size(); ++i) unsettled[i] = 1;
     }
     for (std::size_t pi = 0; pi < shown_.points.size(); ++pi) {
@@ -847,7 +851,7 @@ void BifurcationPanel::draw_info(Plot& plot, const char* x_label, ImVec2 outer_m
     const ImVec2 ts = ImGui::CalcTextSize(info);
     if (ts.x > width) return;
     const bool left = ts.x <= left_room;
-    const ImVec2 at(left ? outer_min.x + fs * 0.3f : outer_max.x - fs * 0.3f - ts.x, b.y + fs * 1.25f);
+    const ImVec2 at(left ? outer_min.x + fs * 0.3f : outer_max.x - fs * 0.3f - ts.x, plot.label_row_y());
     ImDrawList* dl = plot.draw();
     dl->PushClipRect(outer_min, outer_max, false);   // outside the data area's clip
     dl->AddText(at, palette().axis_text, info);

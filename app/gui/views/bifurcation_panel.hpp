@@ -146,6 +146,7 @@ private:
     void draw_compute(const BifurcationContext& c, std::string& toast);
     void draw_strip_toggle(const BifurcationContext& c);
     void draw_legend() const;   // the density colours, in the header
+    int not_settled() const;    // levels of the diagram shown judged not settled (drawn grey)
     // A box dragged (or scripted) from omega w0 to w1: its range computed, and the view set to it.
     void apply_box(const BifurcationContext& c, double w0, double w1, Range view_y);
     void draw_strip(const BifurcationContext& c, Range view_x, BifurcationAction& act);
@@ -173,7 +174,6 @@ private:
     bool dark_ = true;               // the theme the image was drawn for
     Range view_x_, view_y_;
     float max_count_ = 0;            // points in the densest pixel (the legend's top)
-    int not_settled_ = 0;            // levels of the diagram shown judged not settled (drawn grey)
     int settle_ = 10;                // --bif-settle: the next diagram's settle budget
 
     LivePoints live_;                // at the last frame

@@ -81,10 +81,11 @@ void BifurcationPanel::draw_legend() const {
     }
     ImGui::SameLine(0, fs * 0.25f);
     ImGui::Text("%s points/pixel", top);
-    if (not_settled_ == 0) return;
+    const int unsettled = not_settled();
+    if (unsettled == 0) return;
     // The grey levels: what they are, in the header beside the scale (never over the diagram).
     char grey[48];
-    std::snprintf(grey, sizeof grey, "not settled: %d", not_settled_);
+    std::snprintf(grey, sizeof grey, "not settled: %d", unsettled);
     ImGui::SameLine(0, fs * 0.8f);
     if (ImGui::GetContentRegionAvail().x < bar_h + fs * 0.3f + ImGui::CalcTextSize(grey).x) ImGui::NewLine();
     const ImVec2 q = ImGui::GetCursorScreenPos();
@@ -99,7 +100,7 @@ void BifurcationPanel::draw_legend() const {
         ImGui::SetTooltip("Grey: %d levels whose section points did not recur with a period up to %d within %d more "
                           "records (the map's own test, as impactlab bifurcation --settle): chaos, or a transient "
                           "longer than that. A finite run cannot tell the two apart.",
-                          not_settled_, kDiagramMaxPeriod, shown_req_.settle);
+                          unsettled, kDiagramMaxPeriod, shown_req_.settle);
 }
 
 void BifurcationPanel::draw_strip(const BifurcationContext& c, Range view_x, BifurcationAction& act) {
