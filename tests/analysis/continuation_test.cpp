@@ -9,6 +9,7 @@
 
 #include "impactlab/analysis.hpp"
 #include "impactlab/params.hpp"
+#include "analysis/continuer.hpp"
 #include "newton_reference.hpp"
 
 using namespace impactlab;
@@ -46,7 +47,7 @@ ContinuationResult period_two_cascade(const char* name) {
 // +- 3e-6 rad/s, the period-2 orbit's fold at 12.8306, the unstable period 2 coming back from it grazing at
 // 12.7992694, and no doubling in between (the impacting orbit's multiplier jumps through -1 at the grazing,
 // which is the grazing's, not a doubling).
-void check_full_range(const char* name, double lo, double start) {
+ContinuationResult check_full_range(const char* name, double lo, double start) {
     CAPTURE(name);
     CAPTURE(lo);
     ContinuationSpec spec;
@@ -111,13 +112,38 @@ void check_full_range(const char* name, double lo, double start) {
             REQUIRE(pt.sections.size() == static_cast<std::size_t>(b.period));
             CHECK(pt.sections[0] == pt.y);
         }
+    if (lo != 5.0) return r;
+    // Every doubling reported lies where Newton on the period map at rtol 1e-12 has the multiplier cross -1,
+    // within the stated precision (the ones deep in A1C's contact too).
+    const Params p = make_version(name);
+    for (const auto& b : r.points) {
+        if (b.kind != BifKind::PeriodDoubling) continue;
+        CAPTURE(b.param);
+        CAPTURE(b.period);
+        const double d = b.precision + 1e-6;
+        CHECK((test::doubling_side(p, b.param - d, b.y, b.period) > 0) != (test::doubling_side(p, b.param + d, b.y, b.period) > 0));
+    }
+    return r;
 }
 
 }  // namespace
 
 TEST_CASE("continuation: A1C over 5..25 and 8..25 finds the doubling, the fold and the grazing, no false doubling") {
-    check_full_range("A1C", 5.0, 5.0);
+    const ContinuationResult r = check_full_range("A1C", 5.0, 5.0);
+    // The period-4 doubling 25 um deep in the contact, beside the fold at 18.50493: its bracket narrows to
+    // 1e-8, over which the multiplier's jitter at rtol 1e-10 (2e-4) had read as a jump and dropped it.
+    bool deep = false;
+    for (const auto& b : r.points) deep = deep || (b.kind == BifKind::PeriodDoubling && b.period == 4 && std::abs(b.param - 18.50478) < 1e-5);
+    CHECK(deep);
     check_full_range("A1C", 8.0, 9.0);
+}
+
+TEST_CASE("continuation: a crossing multiplier's jump is large and steep; the jitter over a narrow bracket is neither") {
+    using analysis::detail::multiplier_jumps;
+    CHECK(multiplier_jumps(1.0, -22.0, 1e-5));         // a grazing's: +1 to -22 within 1e-5
+    CHECK(multiplier_jumps(-0.6, -1.4, 1e-6));
+    CHECK_FALSE(multiplier_jumps(-0.999859, -1.000031, 9.4e-9));   // A1C's period 4 at 19.4957, refined
+    CHECK_FALSE(multiplier_jumps(-0.9, -1.1, 0.02));    // an ordinary crossing over a step
 }
 
 TEST_CASE("continuation: A1G over 5..25 and 8..25 finds the doubling, the fold and the grazing, no false doubling") {

@@ -140,8 +140,7 @@ bool Continuer::true_crossing(BifKind kind, const Sol& lo, const Sol& hi, const 
     const double m_lo = crossing_multiplier(kind, lo.r.M), m_hi = crossing_multiplier(kind, hi.r.M);
     if (!std::isfinite(m_lo) || !std::isfinite(m_hi)) return false;
     if (std::abs(m_lo - target) > kNearCrossing || std::abs(m_hi - target) > kNearCrossing) return false;
-    const double ds_bracket = std::max((hi.u - lo.u).norm(), 1e-300);
-    if (std::abs(m_hi - m_lo) / ds_bracket > kSteepCrossing) return false;
+    if (multiplier_jumps(m_lo, m_hi, (hi.u - lo.u).norm())) return false;
     // Inside a compliant bumper's grazing layer the crossing is the grazing's, however smooth it looks
     // there (A3C's period 2 at 12.8999, 1e-4 past its grazing: mu = -1.005 with 0.22 um of penetration).
     if (work_.has_bumper() && !work_.rigid() && best.r.max_x > work_.xI && best.r.max_x - work_.xI < kGrazingLayer) return false;
@@ -158,31 +157,48 @@ void Continuer::refine_crossing(BifKind kind, const Sol& lo, const Sol& hi, cons
     // still moves from rtol / 10. A fold needs no move: its parameter is stationary in the multiplier.
     // The secant's first step is ten brackets long (at least 1e-7, at most 1e-3, scaled): near a slow impact
     // the multiplier runs from -6 to -0.9 within 1e-5 rad/s (A1H's period 8 at 18.6821), and a secant over
-    // 1e-3 would land far off. Up to four secant steps, while each brings the multiplier closer.
+    // 1e-3 would land far off. But the step must move the multiplier well beyond its noise at rtol / 100
+    // (a shallow crossing, A1C's period 1 at 22.147: 0.15 per rad/s; one deep in the contact, its period 4 at
+    // 19.1511: noise 5e-6 at 74 per rad/s), or the secant follows the noise: it grows tenfold until it does.
+    // Up to four secant steps, while each brings the multiplier closer.
     if (kind == BifKind::Fold || kind == BifKind::Grazing) return;
     const double target = kind == BifKind::NeimarkSacker ? 1.0 : -1.0;
     const double width = std::abs(q_of(hi.u) - q_of(lo.u));
-    const double dq = std::clamp(10 * width, 1e-7 * q_scale_, 1e-3 * q_scale_) * (q_of(hi.u) > q_of(lo.u) ? 1 : -1);
+    double dq = std::clamp(10 * width, 1e-7 * q_scale_, 1e-3 * q_scale_) * (q_of(hi.u) > q_of(lo.u) ? 1 : -1);
     const Vec2 y = y_of(best.u);
     const double q0 = q_of(best.u);
     const double m0 = crossing_at(kind, q0, y, k, 0.01);
     const double m_mid = crossing_at(kind, q0, y, k, 0.1);
-    double qa = q0, ma = m0, qb = q0 + dq, mb = crossing_at(kind, qb, y, k, 0.01);
-    if (!std::isfinite(m0) || !std::isfinite(m_mid) || !std::isfinite(mb) || mb == ma) return;
-    for (int it = 0; it < 4 && std::abs(mb - target) > 1e-9; ++it) {
-        const double qc = qb - (mb - target) * (qb - qa) / (mb - ma);
-        const double mc = crossing_at(kind, qc, y, k, 0.01);
-        if (!std::isfinite(mc) || std::abs(mc - target) >= std::abs(mb - target) || mc == mb) break;
-        qa = qb;
-        ma = mb;
-        qb = qc;
-        mb = mc;
+    // The multiplier's noise at rtol / 100: a tenth of its move from rtol / 10, and never below the tangent
+    // tracker's own floor (its Magnus tolerance does not follow rtol).
+    const double noise = std::max(0.1 * std::abs(m0 - m_mid), kMultiplierFloor);
+    double qb = q0 + dq, mb = crossing_at(kind, qb, y, k, 0.01);
+    while (std::isfinite(mb) && std::abs(mb - m0) < 30 * noise && std::abs(dq) < 1e-3 * q_scale_) {
+        dq *= 10;
+        qb = q0 + dq;
+        mb = crossing_at(kind, qb, y, k, 0.01);
     }
-    const double slope = (mb - ma) / (qb - qa);   // d mu / d q at rtol / 100, near the crossing
-    const double q_cross = qb - (mb - target) / slope;
+    if (!std::isfinite(m0) || !std::isfinite(m_mid) || !std::isfinite(mb) || mb == m0) return;
+    // Secant steps from the point nearest the crossing; the slope is renewed only from two points whose
+    // multipliers differ well beyond the noise (near the crossing they need not).
+    double slope = (mb - m0) / (qb - q0);   // d mu / d q at rtol / 100
+    double q1 = q0, m1 = m0;
+    if (std::abs(mb - target) < std::abs(m0 - target)) {
+        q1 = qb;
+        m1 = mb;
+    }
+    for (int it = 0; it < 4 && std::abs(m1 - target) > 1e-9; ++it) {
+        const double qc = q1 - (m1 - target) / slope;
+        const double mc = crossing_at(kind, qc, y, k, 0.01);
+        if (!std::isfinite(mc) || std::abs(mc - target) >= std::abs(m1 - target)) break;
+        if (std::abs(mc - m1) > 30 * noise) slope = (mc - m1) / (qc - q1);
+        q1 = qc;
+        m1 = mc;
+    }
+    const double q_cross = q1 - (m1 - target) / slope;
     if (!std::isfinite(q_cross) || std::abs(q_cross - q0) > 1e-3 * q_scale_) return;   // no smooth crossing: the bracket stands
     shift = q_cross - q0;
-    precision = std::max(std::abs(m0 - m_mid) / std::abs(slope), std::abs(shift) * 0.1);
+    precision = std::max({std::abs(m0 - m_mid) / std::abs(slope), std::abs(shift) * 0.1, noise / std::abs(slope)});
 }
 
 void Continuer::switch_to_doubled(const Sol& best, int k, int branch) {

@@ -28,6 +28,18 @@ constexpr int kMaxCorrector = 10;
 constexpr double kNearCrossing = 0.5;
 // |d mu / ds| (scaled arclength) above this is a jump, not a crossing (a smooth one is O(1..100)).
 constexpr double kSteepCrossing = 1e4;
+// A multiplier at rtol 1e-10 jitters by up to about 3e-3 (an impacting orbit's): over a bracket refined to
+// 1e-8 that alone looks steep, so a jump must also be larger than this.
+constexpr double kMultiplierJitter = 0.01;
+// The scatter of a multiplier from the tangent tracker at any rtol (A1C's period 1 at 22.147, rtol 1e-12 and
+// 1e-13: about 5e-7 about a straight line).
+constexpr double kMultiplierFloor = 1e-6;
+// A sign change of a test function over a bracket ds_bracket long (scaled) whose crossing multiplier goes from
+// m_lo to m_hi is a jump (a grazing's), not a crossing, when it is both large and steep.
+inline bool multiplier_jumps(double m_lo, double m_hi, double ds_bracket) {
+    const double dm = std::abs(m_hi - m_lo);
+    return dm > kMultiplierJitter && dm / std::max(ds_bracket, 1e-300) > kSteepCrossing;
+}
 // Penetration of a compliant bumper below which an orbit is still grazing it [m] (C: a force under 0.3 N).
 constexpr double kGrazingLayer = 1e-6;
 // A step whose multipliers move more than this is retried shorter: it may have jumped onto another
