@@ -61,7 +61,9 @@ enum class ContactSlope { Secant, Exact };
 // a tangent needs only J, and skips the drive's derivatives.
 inline void rig_jacobian(const Params& p, const Drive& d, double t, const Vec2& y, bool contact, ContactSlope slope, Mat2& J,
                          Vec2* dfdt = nullptr) {
-    const Drive::At a = d.at(t);
+    // The drive's state enters only the time derivative and the effects: a tangent without effects skips it.
+    const bool need_drive = dfdt || !p.effects.empty();
+    const Drive::At a = need_drive ? d.at(t) : Drive::At{0.0, 0.0, 0.0};
     const double w = a.omega, phi = a.phi, al = a.alpha;
     double dFdx = -spring_magnet(p, y[0]).dF, dFdv = -resistance(p, y[1]).dF;
     double dFdt = dfdt ? unbalance_force_rate(p, phi, w, al) + p.input_gain * d.input_rate(t) : 0.0;
