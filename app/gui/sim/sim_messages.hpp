@@ -108,7 +108,7 @@ struct SimCommand {
     static SimCommand set_model(std::string_view name) {
         SimCommand c{CmdKind::SetModel, 0, 0, {}};
         const std::size_t n = name.size() < sizeof(c.model) - 1 ? name.size() : sizeof(c.model) - 1;
-        std::memcpy(c.model, name.data(), n);
+        if (n > 0) std::memcpy(c.model, name.data(), n);   // an empty view's data() may be null
         return c;
     }
 };
