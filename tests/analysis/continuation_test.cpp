@@ -23,6 +23,13 @@ const BifPoint* first_of(const ContinuationResult& r, BifKind kind, int period) 
     return nullptr;
 }
 
+// The point of that kind and period within tol of param, or null.
+const BifPoint* point_near(const ContinuationResult& r, BifKind kind, int period, double param, double tol) {
+    for (const auto& b : r.points)
+        if (b.kind == kind && b.period == period && std::abs(b.param - param) < tol) return &b;
+    return nullptr;
+}
+
 // The period-2 orbit at 12.7 rad/s (born at the doubling at 10.861), continued over 12..hi, no switch.
 ContinuationSpec period_two_from_12_7(double hi) {
     ContinuationSpec spec;
@@ -77,9 +84,7 @@ ContinuationResult check_full_range(const char* name, double lo, double start) {
     for (const auto& b : r.points) p1_doublings += b.kind == BifKind::PeriodDoubling && b.period == 1;
     CHECK(p1_doublings == 2);
     // (A1G's impacting period-2 orbit, reached through its grazings, doubles too, at 19.2312: not this one.)
-    const BifPoint* pd2 = nullptr;
-    for (const auto& b : r.points)
-        if (b.kind == BifKind::PeriodDoubling && b.period == 2 && std::abs(b.param - 19.7802) < 1e-3) pd2 = &b;
+    const BifPoint* pd2 = point_near(r, BifKind::PeriodDoubling, 2, 19.7802, 1e-3);
     REQUIRE(pd2 != nullptr);
     CHECK(pd2->param == doctest::Approx(19.7802).epsilon(1e-5));
     // Stability along the period-1 branch: stable below the doubling, unstable above (to the second).
@@ -132,9 +137,7 @@ TEST_CASE("continuation: A1C over 5..25 and 8..25 finds the doubling, the fold a
     const ContinuationResult r = check_full_range("A1C", 5.0, 5.0);
     // The period-4 doubling 25 um deep in the contact, beside the fold at 18.50493: its bracket narrows to
     // 1e-8, over which the multiplier's jitter at rtol 1e-10 (2e-4) had read as a jump and dropped it.
-    bool deep = false;
-    for (const auto& b : r.points) deep = deep || (b.kind == BifKind::PeriodDoubling && b.period == 4 && std::abs(b.param - 18.50478) < 1e-5);
-    CHECK(deep);
+    CHECK(point_near(r, BifKind::PeriodDoubling, 4, 18.50478, 1e-5) != nullptr);
     check_full_range("A1C", 8.0, 9.0);
 }
 
@@ -338,9 +341,7 @@ TEST_CASE("continuation: a doubling of A1G's impacting period 2 (19.2312) is swi
     spec.lo = 5.0;
     spec.hi = 25.0;
     const ContinuationResult r = continue_orbits(p, spec);
-    const BifPoint* pd = nullptr;
-    for (const BifPoint& q : r.points)
-        if (q.kind == BifKind::PeriodDoubling && q.period == 2 && std::abs(q.param - 19.2312326) < 1e-5) pd = &q;
+    const BifPoint* pd = point_near(r, BifKind::PeriodDoubling, 2, 19.2312326, 1e-5);
     REQUIRE(pd != nullptr);
     // Where Newton on the period map at rtol 1e-12 has its multiplier cross -1 (at 1e-10 an impacting orbit's
     // multiplier jitters by 3e-3; the point stood 5.7e-6 off while it claimed 9e-8): within 1e-6, as stated.

@@ -172,8 +172,9 @@ void Continuer::refine_crossing(BifKind kind, const Sol& lo, const Sol& hi, cons
     // The multiplier's noise at rtol / 100: a tenth of its move from rtol / 10, and never below the tangent
     // tracker's own floor (its Magnus tolerance does not follow rtol).
     const double noise = std::max(0.1 * std::abs(m0 - m_mid), kMultiplierFloor);
+    const double distinct = 30 * noise;   // two multipliers this far apart give a slope above the noise
     double qb = q0 + dq, mb = crossing_at(kind, qb, y, k, 0.01);
-    while (std::isfinite(mb) && std::abs(mb - m0) < 30 * noise && std::abs(dq) < 1e-3 * q_scale_) {
+    while (std::isfinite(mb) && std::abs(mb - m0) < distinct && std::abs(dq) < 1e-3 * q_scale_) {
         dq *= 10;
         qb = q0 + dq;
         mb = crossing_at(kind, qb, y, k, 0.01);
@@ -191,7 +192,7 @@ void Continuer::refine_crossing(BifKind kind, const Sol& lo, const Sol& hi, cons
         const double qc = q1 - (m1 - target) / slope;
         const double mc = crossing_at(kind, qc, y, k, 0.01);
         if (!std::isfinite(mc) || std::abs(mc - target) >= std::abs(m1 - target)) break;
-        if (std::abs(mc - m1) > 30 * noise) slope = (mc - m1) / (qc - q1);
+        if (std::abs(mc - m1) > distinct) slope = (mc - m1) / (qc - q1);
         q1 = qc;
         m1 = mc;
     }
