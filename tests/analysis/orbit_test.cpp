@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "analysis/tangent.hpp"
 #include "impactlab/analysis.hpp"
 #include "impactlab/params.hpp"
 
@@ -133,4 +134,32 @@ TEST_CASE("analysis: a long period (A3C's stable period 24 at 18.1608 rad/s) is 
     CHECK(o.floquet.mu[0].real() == doctest::Approx(-0.831).epsilon(2e-3));
     CHECK(o.impacts == 0);
     CHECK(o.y[0] == doctest::Approx(-0.00335650323).epsilon(1e-7));
+}
+
+TEST_CASE("analysis: the monodromy at each section of a long map is that of its first periods") {
+    // The continuation's corrector period by period takes its first guesses along the orbit from these: each
+    // must be the derivative of the map up to that section, through the compliant contacts on the way.
+    const Params p = make_version("A1C");
+    const Tolerances tol = analysis_tolerances(1e-10);
+    Vec2 y0 = settle(p, 16.0, Vec2(left_well(p), 0.0), 30, tol);
+    std::vector<Mat2> phis;
+    MapResult r = detail::period_map(p, 16.0, y0, 4, true, tol, &phis);
+    for (int i = 0; i < 50 && r.impacts == 0; ++i) {   // on along the attractor to four periods that press the bumper
+        y0 = r.y;
+        phis.clear();
+        r = detail::period_map(p, 16.0, y0, 4, true, tol, &phis);
+    }
+    REQUIRE(phis.size() == 4);
+    REQUIRE(r.impacts > 0);
+    CHECK(max_rel_diff(phis.back(), r.M) < 1e-12);
+    for (int i = 1; i <= 3; ++i) {
+        CAPTURE(i);
+        const MapResult ri = poincare_map(p, 16.0, y0, i, true, tol);
+        CHECK(max_rel_diff(phis[static_cast<std::size_t>(i - 1)], ri.M) < 1e-6);
+        CHECK(scaled_norm(r.sections[static_cast<std::size_t>(i - 1)] - ri.y) < 1e-9);
+    }
+    // Without the argument nothing changes: the same map.
+    const MapResult plain = poincare_map(p, 16.0, y0, 4, true, tol);
+    CHECK(plain.y == r.y);
+    CHECK(plain.M == r.M);
 }

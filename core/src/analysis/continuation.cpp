@@ -473,8 +473,9 @@ void Continuer::follow(const Job& job, Branch& br) {
                 const double gap = half_gap(next, k);
                 if (gap < 1e-5) {
                     // A collapse from far in one step is a corrector that jumped onto the period-k orbit
-                    // (which P^2k also fixes): retry shorter. A gradual one is the bubble's other end.
-                    if (!first && half_gap(cur, k) > 100 * std::max(gap, 1e-4) && ds > 10 * spec_.ds_min) {
+                    // (which P^2k also fixes): retry shorter; so is the first step off the doubling, whose
+                    // period-2k orbits lie about ds apart. A gradual one is the bubble's other end.
+                    if ((first || half_gap(cur, k) > 100 * std::max(gap, 1e-4)) && ds > 10 * spec_.ds_min) {
                         ds *= 0.25;
                         continue;
                     }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/tangent.hpp"
 #include "impactlab/analysis.hpp"
 #include "parallel.hpp"
 
@@ -40,6 +41,10 @@ inline bool multiplier_jumps(double m_lo, double m_hi, double ds_bracket) {
     const double dm = std::abs(m_hi - m_lo);
     return dm > kMultiplierJitter && dm / std::max(ds_bracket, 1e-300) > kSteepCrossing;
 }
+// A period map P^k expanding more than this (its largest multiplier) is corrected period by period: a point a
+// distance d off the branch has a residual of |mu| d, and P^k is nonlinear on that scale (A1C's period 8
+// pressing the bumper, mu = 2.5e4: a Newton step cut the residual only 4-fold, and the branch crawled).
+constexpr double kShootExpansion = 1e3;
 // Penetration of a compliant bumper below which an orbit is still grazing it [m] (C: a force under 0.3 N).
 constexpr double kGrazingLayer = 1e-6;
 // A step whose multipliers move more than this is retried shorter: it may have jumped onto another
@@ -125,14 +130,15 @@ private:
     // The maps at several points side by side (a corrector's point with its monodromy and its finite-difference
     // neighbours): each on its own copy of the parameters, so each result is the one map() would give, in any
     // order and on any number of threads.
-    struct MapAt { Vec3 u; bool tangent; };
+    // phis: where given, the monodromy at each section (period_map).
+    struct MapAt { Vec3 u; bool tangent; std::vector<Mat2>* phis = nullptr; };
     std::vector<MapResult> maps(const std::vector<MapAt>& at, int k) {
         std::vector<MapResult> out(at.size());
         const Params base = work_;
         ::impactlab::detail::for_each_index(at.size(), [&](std::size_t i) {
             Params w = base;
             const double omega = apply_to(w, q_of(at[i].u));
-            out[i] = poincare_map(w, omega, y_of(at[i].u), k, at[i].tangent, spec_.sim);
+            out[i] = period_map(w, omega, y_of(at[i].u), k, at[i].tangent, spec_.sim, at[i].phis);
         });
         evaluations_ += at.size();
         return out;
@@ -183,7 +189,8 @@ private:
             // A step past omega = 0 (a range that starts near it) has no forcing period: a failed step, which
             // the step control shortens until the point lands in (0, lo) and the branch ends at the range.
             if (spec_.param == ContParam::Omega && !(q_of(u) > 0)) return false;
-            std::vector<MapResult> rs = maps({{u, true}, {shifted_q(u), false}}, k);
+            std::vector<Mat2> phis;
+            std::vector<MapResult> rs = maps({{u, true, it == 0 && k >= 2 ? &phis : nullptr}, {shifted_q(u), false}}, k);
             MapResult r = std::move(rs[0]);
             const Vec2 G = residual(r, u);
             if (!G.allFinite()) return false;
@@ -197,6 +204,8 @@ private:
             const Vec3 rhs(G[0], G[1], h);
             const Vec3 du = A.fullPivLu().solve(-rhs);
             if (!du.allFinite() || du.norm() > 1.0) return false;   // left the neighbourhood of the branch
+            if (it == 0 && k >= 2 && std::abs(floquet(r.M).mu[0]) > kShootExpansion)
+                return correct_by_periods(u_pred, n, k, u, du, r, rs[1], phis, out);
             // At the map's noise floor (a long period: its residual's noise passes res_tol) the residual no
             // longer falls, yet a Newton step below the tolerance puts the branch's point within it of u (as
             // find_orbit accepts it). Without this, whether a step converges follows the last bits of libm.
@@ -206,6 +215,14 @@ private:
         }
         return false;
     }
+
+    // Newton on the k one-period maps at once (multiple shooting): unknowns z_0 .. z_{k-1} (scaled section
+    // points) and q, equations P(z_i) = z_{i+1 mod k} and n . (u - u_pred) = 0, u = (z_0, q). Started from
+    // the first Newton step du of the whole map at u (r, rq: P^k at u and at u shifted in q; phis: its
+    // monodromy at each section), carried along the orbit by the linearised map. Each period's map is
+    // evaluated on its own, on all cores.
+    bool correct_by_periods(const Vec3& u_pred, const Vec3& n, int k, const Vec3& u, const Vec3& du,
+                            const MapResult& r, const MapResult& rq, const std::vector<Mat2>& phis, Sol& out);
 
     static Vec3 tangent_of(const Sol& s, const Vec3& prev) {
         Vec3 t = Vec3(s.J.row(0).transpose()).cross(Vec3(s.J.row(1).transpose()));

@@ -20,6 +20,12 @@ Tolerances analysis_tolerances(double rtol) {
 }
 
 MapResult poincare_map(const Params& p, double omega, const Vec2& y0, int k, bool tangent, const Tolerances& tol) {
+    return detail::period_map(p, omega, y0, k, tangent, tol, nullptr);
+}
+
+namespace detail {
+MapResult period_map(const Params& p, double omega, const Vec2& y0, int k, bool tangent, const Tolerances& tol,
+                     std::vector<Mat2>* section_Phi) {
     MapResult r;
     Simulator sim(tol);
     const Drive d(omega, 0.0, 0.0);
@@ -30,6 +36,7 @@ MapResult poincare_map(const Params& p, double omega, const Vec2& y0, int k, boo
     detail::TangentTracker tr(p, d, tangent);
     r.sections.reserve(static_cast<std::size_t>(k));
     tr.sections = &r.sections;
+    tr.section_Phi = section_Phi;
     if (s.regime == Regime::Contact) tr.Phi.setZero();   // held: the start's perturbation is forgotten
     tr.max_x = s.x;
     sim.advance(p, d, s, d.time_of_phase(kTwoPi * k), &tr);
@@ -44,6 +51,7 @@ MapResult poincare_map(const Params& p, double omega, const Vec2& y0, int k, boo
     r.steps = s.steps;
     return r;
 }
+}  // namespace detail
 
 Mat2 monodromy_fd(const Params& p, double omega, const Vec2& y0, int k, const Tolerances& tol, double h) {
     Mat2 M;

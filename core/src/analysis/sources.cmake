@@ -5,6 +5,7 @@ set(IMPACTLAB_ANALYSIS_SOURCES
   src/analysis/continuation.cpp
   src/analysis/continuation_impacting.cpp
   src/analysis/continuation_contact.cpp
+  src/analysis/continuation_periods.cpp
   src/analysis/branch_curves.cpp
   src/analysis/lyapunov.cpp
   src/analysis/basins.cpp

@@ -244,6 +244,7 @@ void TangentTracker::propagate_across_zero(const Piece& piece, double a, double 
 
 void TangentTracker::on_section(const SectionPoint& sp) {
     if (sections) sections->emplace_back(sp.x, sp.v);
+    if (section_Phi) section_Phi->push_back(Phi);
 }
 
 void TangentTracker::on_impact(const ImpactEvent& ev) {

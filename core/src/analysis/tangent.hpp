@@ -13,6 +13,7 @@
 
 #include <vector>
 
+#include "impactlab/analysis.hpp"
 #include "impactlab/drive.hpp"
 #include "impactlab/params.hpp"
 #include "impactlab/rosenbrock.hpp"
@@ -40,6 +41,7 @@ public:
     double min_impact_speed = 1e300;      // [m/s]
     bool contact = false;                 // regime III met
     std::vector<Vec2>* sections = nullptr;   // optional: each section's (x, v) appended
+    std::vector<Mat2>* section_Phi = nullptr;   // optional: Phi at each section appended
     const std::atomic<bool>* cancel = nullptr;   // optional: when set, advance() returns after the piece
     // Local-error target of one Magnus substep on the scaled propagator (x / 1 cm, v / 0.1 m/s) inside a
     // compliant contact: 1e-11 for monodromies; a Lyapunov exponent at rtol 1e-8 needs less (step_tol_for).
@@ -63,5 +65,10 @@ private:
     bool inside_ = false;                 // compliant: the last piece ended in contact
     double t_hit_ = 0, v_minus_ = 0, v_plus_ = 0;   // the impact whose sticking is in progress
 };
+
+// poincare_map, with Phi at each of the k sections appended to section_Phi where given (the monodromy of the
+// first i periods: a corrector that shoots period by period takes its first guesses from them).
+MapResult period_map(const Params& p, double omega, const Vec2& y0, int k, bool tangent, const Tolerances& tol,
+                     std::vector<Mat2>* section_Phi);
 
 }  // namespace impactlab::analysis::detail
