@@ -13,12 +13,18 @@
 
 namespace impactlab::test {
 
-inline double doubling_side(const Params& p, double omega, const Vec2& y, int k, double rtol = 1e-12) {
+// The period-k orbit Newton finds from y at omega on the map at rtol (required to converge).
+inline analysis::Orbit newton_orbit(const Params& p, double omega, const Vec2& y, int k, double rtol = 1e-12) {
     analysis::OrbitOptions oo;
     oo.period = k;
     oo.sim.rtol = rtol;
     const analysis::Orbit o = analysis::find_orbit(p, omega, y, oo);
     REQUIRE(o.converged);
+    return o;
+}
+
+inline double doubling_side(const Params& p, double omega, const Vec2& y, int k, double rtol = 1e-12) {
+    const analysis::Orbit o = newton_orbit(p, omega, y, k, rtol);
     const auto& mu = o.floquet.mu;
     return (std::abs(mu[0] + 1.0) < std::abs(mu[1] + 1.0) ? mu[0] : mu[1]).real() + 1.0;
 }

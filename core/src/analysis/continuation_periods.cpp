@@ -15,17 +15,6 @@ namespace impactlab::analysis::detail {
 
 namespace {
 
-// Scaled (x / kXScale, v / kVScale) and its matrices.
-Vec2 scaled(const Vec2& y) { return Vec2(y[0] / kXScale, y[1] / kVScale); }
-Mat2 scaled(const Mat2& M) {
-    Mat2 S;
-    S(0, 0) = M(0, 0);
-    S(0, 1) = M(0, 1) * kVScale / kXScale;
-    S(1, 0) = M(1, 0) * kXScale / kVScale;
-    S(1, 1) = M(1, 1);
-    return S;
-}
-
 // The k one-period maps taken together as the whole orbit's: y, sections and monodromy of P^k, its
 // impacts and extremes.
 MapResult whole_orbit(const std::vector<MapResult>& rs, int k) {
@@ -40,9 +29,10 @@ MapResult whole_orbit(const std::vector<MapResult>& rs, int k) {
         w.min_impact_speed = std::min(w.min_impact_speed, ri.min_impact_speed);
         w.contact = w.contact || ri.contact;
         w.steps += ri.steps;
-        w.held = ri.held;
-        w.y = ri.y;
     }
+    const MapResult& last = rs[static_cast<std::size_t>(2 * (k - 1))];
+    w.y = last.y;
+    w.held = last.held;
     return w;
 }
 
@@ -102,11 +92,8 @@ bool Continuer::correct_by_periods(const Vec3& u_pred, const Vec3& n, int k, con
         if (!F.allFinite() || !A.allFinite()) return false;
         const double defect = F.head(2 * k).cwiseAbs().maxCoeff();
         auto converged = [&] {
-            Eigen::Matrix<double, 2, 3> J;
-            J.leftCols<2>() = M_whole - Mat2::Identity();
-            J.col(2) = dq_whole;
             MapResult w = whole_orbit(rs, k);
-            return take(out, u0, w, J, it);
+            return take(out, u0, w, jacobian(M_whole, dq_whole), it);
         };
         if (defect < res_tol_ && std::abs(h) < 1e-9) return converged();
         if (it == kMaxCorrector) break;

@@ -144,9 +144,18 @@ private:
         return out;
     }
 
-    Vec2 residual(const MapResult& r, const Vec3& u) const {
-        return Vec2(r.y[0] / kXScale - u[0], r.y[1] / kVScale - u[1]);
+    // A state and a monodromy in the scaled variables (x / kXScale, v / kVScale).
+    static Vec2 scaled(const Vec2& y) { return Vec2(y[0] / kXScale, y[1] / kVScale); }
+    static Mat2 scaled(const Mat2& M) {
+        Mat2 S;
+        S(0, 0) = M(0, 0);
+        S(0, 1) = M(0, 1) * kVScale / kXScale;
+        S(1, 0) = M(1, 0) * kXScale / kVScale;
+        S(1, 1) = M(1, 1);
+        return S;
     }
+
+    Vec2 residual(const MapResult& r, const Vec3& u) const { return scaled(r.y) - u.head<2>(); }
 
     // How long an impact at zero speed holds the cart [s]: 0 for G (the map is continuous at a grazing),
     // T_imp(0) for H.
@@ -163,13 +172,13 @@ private:
     static constexpr double kDq = 1e-6;
     static Vec3 shifted_q(const Vec3& u) { return Vec3(u[0], u[1], u[2] + kDq); }
     static Eigen::Matrix<double, 2, 3> jacobian(const MapResult& r, const MapResult& rq) {
+        return jacobian(scaled(r.M), Vec2((rq.y[0] - r.y[0]) / kXScale / kDq, (rq.y[1] - r.y[1]) / kVScale / kDq));
+    }
+    // The same from the scaled monodromy M and d P / d q (scaled).
+    static Eigen::Matrix<double, 2, 3> jacobian(const Mat2& M, const Vec2& dq) {
         Eigen::Matrix<double, 2, 3> J;
-        J(0, 0) = r.M(0, 0) - 1.0;
-        J(0, 1) = r.M(0, 1) * kVScale / kXScale;
-        J(1, 0) = r.M(1, 0) * kXScale / kVScale;
-        J(1, 1) = r.M(1, 1) - 1.0;
-        J(0, 2) = (rq.y[0] - r.y[0]) / kXScale / kDq;
-        J(1, 2) = (rq.y[1] - r.y[1]) / kVScale / kDq;
+        J.leftCols<2>() = M - Mat2::Identity();
+        J.col(2) = dq;
         return J;
     }
 
