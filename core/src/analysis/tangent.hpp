@@ -3,7 +3,7 @@
 // Why this is not a second integrator of the rig: the state (x, v) is never integrated here. TangentTracker
 // is an Observer; the Simulator hands it each accepted piece with its dense output y(t), and the tracker
 // integrates only the linear equation d(Phi)/dt = A(t) Phi with A = df/dy evaluated at that y(t) (Magnus
-// order 4, adaptive). At the events the Simulator reports (impact, end of sticking, permanent contact) the
+// order 6, order 4 where h A is large; adaptive). At the events the Simulator reports (impact, end of sticking, permanent contact) the
 // tracker applies the saltation matrix of the impact law. So the trajectory, its events and the sections
 // are exactly the Simulator's, and Phi is their derivative.
 #pragma once
@@ -25,6 +25,13 @@ namespace impactlab::analysis::detail {
 double acceleration(const Params& p, const Drive& d, double t, double x, double v);
 // The Jacobian A = df/dy of Eq. (1) at one instant (exact slopes, also the Hunt-Crossley damping's).
 Mat2 jacobian(const Params& p, const Drive& d, double t, double x, double v);
+
+// One Magnus step of Phi' = A(t) Phi over h: order 4 from A at the two Gauss points tm -+ sqrt(3)/6 h,
+// order 6 (Blanes, Casas, Ros) from A at the three tm - sqrt(15)/10 h, tm, tm + sqrt(15)/10 h.
+Mat2 magnus4_step(const Mat2& A1, const Mat2& A2, double h);
+Mat2 magnus6_step(const Mat2& A1, const Mat2& A2, const Mat2& A3, double h);
+constexpr double kGauss2 = 0.28867513459481287;   // sqrt(3)/6
+constexpr double kGauss3 = 0.38729833462074170;   // sqrt(15)/10
 
 // The contact's Magnus tolerance that matches a simulator tolerance: a tenth of rtol, within 1e-11..1e-9. The
 // stiff bumper's contacts cost 7x fewer substeps at 1e-9 than at 1e-11 (A1C1's CF sweep at 12.75..16.5
