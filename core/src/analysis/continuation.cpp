@@ -174,6 +174,15 @@ void Continuer::refine_crossing(BifKind kind, const Sol& lo, const Sol& hi, cons
     const double noise = std::max(0.1 * std::abs(m0 - m_mid), kMultiplierFloor);
     const double distinct = 30 * noise;   // two multipliers this far apart give a slope above the noise
     double qb = q0 + dq, mb = crossing_at(kind, qb, y, k, 0.01);
+    // A probe beyond the crossing's neighbourhood reads another multiplier (past A1C's period-8 doubling at
+    // 18.50471 the crossing one runs to -4 within 1e-4 and the nearest to -1 is then the other, -1e-5):
+    // shorter, down to the bracket's width.
+    while (std::isfinite(mb) && std::abs(mb - target) > kNearCrossing && std::abs(dq) > width) {
+        dq *= 0.1;
+        qb = q0 + dq;
+        mb = crossing_at(kind, qb, y, k, 0.01);
+    }
+    if (!std::isfinite(mb) || std::abs(mb - target) > kNearCrossing) return;   // the bracket stands
     while (std::isfinite(mb) && std::abs(mb - m0) < distinct && std::abs(dq) < 1e-3 * q_scale_) {
         dq *= 10;
         qb = q0 + dq;
@@ -191,6 +200,8 @@ void Continuer::refine_crossing(BifKind kind, const Sol& lo, const Sol& hi, cons
     for (int it = 0; it < 4 && std::abs(m1 - target) > 1e-9; ++it) {
         const double qc = q1 - (m1 - target) / slope;
         const double mc = crossing_at(kind, qc, y, k, 0.01);
+        // A first secant step that brings the multiplier no closer had a slope it cannot trust.
+        if (it == 0 && !(std::abs(mc - target) < std::abs(m1 - target))) return;
         if (!std::isfinite(mc) || std::abs(mc - target) >= std::abs(m1 - target)) break;
         if (std::abs(mc - m1) > distinct) slope = (mc - m1) / (qc - q1);
         q1 = qc;
