@@ -216,6 +216,22 @@ private:
     // The named laws give way to the generic term: rejected with `why`, the generic term found (or kept) in
     // their place, the model `m` fitted on the whole record.
     void give_way(const Model& m, const std::vector<double>& e_m, const Compare& c, const std::string& why, const std::string& note) {
+        // The generic term that would come in their place must itself be what held-out data say is there: a
+        // force of this variable admitted early may be needed no more beside a later effect of another (a
+        // sensor's x^2 read as a force of x, then the v^2 it differentiates into found as a force of v).
+        if (!in_model(cur_, rival_)) {
+            const Model neither = without_named(cur_);
+            const std::vector<double> e_neither = judge_.errors(neither);
+            const Compare g = judge_.compare(e_neither, e_m);
+            if (!judge_.better(g)) {
+                char buf[200];
+                std::snprintf(buf, sizeof buf, "; nor does the generic %s in its place predict held-out data better than the model "
+                              "without either (error %s by %.2f %%, paired z = %.1f): no force of this variable is shown",
+                              rival_.c_str(), g.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(g.gain), g.z);
+                drop(neither, e_neither, why + buf);
+                return;
+            }
+        }
         if (!adopt(m, e_m)) return;
         FoundEffect g = generic_found(c);
         for (const std::string& id : ids_) {
@@ -236,6 +252,17 @@ private:
         rep_.effects_found.push_back(g);
         rep_.notes.push_back(note);
         judge_.record(names_ + " replaced by " + rival_);
+    }
+    // The named laws leave the model, and no generic term comes in their place.
+    void drop(const Model& m, const std::vector<double>& e_m, const std::string& why) {
+        if (!adopt(m, e_m)) return;
+        for (const std::string& id : ids_) {
+            const auto it = std::find_if(rep_.effects_found.begin(), rep_.effects_found.end(), [&](const FoundEffect& f) { return f.id == id; });
+            rep_.effects_rejected.push_back({id, why, it->validation_gain, it->validation_z, it->parameters});
+            rep_.effects_found.erase(it);
+        }
+        rep_.notes.push_back(names_ + ": neither it nor the generic " + rival_ + " in its place predicts held-out data better than the model without them: removed, and no physics is named");
+        judge_.record(names_ + " removed");
     }
     // A law that stays in the model although the data do not tell its shape from `from`: a force of its
     // size, no finding of its law (in the report and in every step the final gate may go back to).
