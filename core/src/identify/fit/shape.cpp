@@ -9,6 +9,7 @@
 // symmetry); otherwise it gives way to the generic term, or stays marked as a force of its size (always so
 // against the nameless next power, unless the generic term predicts held-out data better).
 #include <cmath>
+#include <cstdlib>
 #include <optional>
 #include <string>
 
@@ -216,18 +217,18 @@ private:
     // The named laws give way to the generic term: rejected with `why`, the generic term found (or kept) in
     // their place, the model `m` fitted on the whole record.
     void give_way(const Model& m, const std::vector<double>& e_m, const Compare& c, const std::string& why, const std::string& note) {
-        // The generic term that would come in their place must itself be what held-out data say is there: a
-        // force of this variable admitted early may be needed no more beside a later effect of another (a
-        // sensor's x^2 read as a force of x, then the v^2 it differentiates into found as a force of v).
+        // The generic term that would come in their place must itself lower the held-out error against the model
+        // without either: a force of this variable admitted early may be needed no more beside a later effect of
+        // another (a sensor's x^2 read as a force of x, then the v^2 it differentiates into found as a force of v).
         if (!in_model(cur_, rival_)) {
             const Model neither = without_named(cur_);
             const std::vector<double> e_neither = judge_.errors(neither);
             const Compare g = judge_.compare(e_neither, e_m);
-            if (!judge_.better(g)) {
+            if (!(g.sum_new < g.sum_cur)) {
                 char buf[200];
-                std::snprintf(buf, sizeof buf, "; nor does the generic %s in its place predict held-out data better than the model "
-                              "without either (error %s by %.2f %%, paired z = %.1f): no force of this variable is shown",
-                              rival_.c_str(), g.gain >= 0 ? "lowered" : "raised", 100.0 * std::abs(g.gain), g.z);
+                std::snprintf(buf, sizeof buf, "; nor does the generic %s in its place lower the held-out error of the model "
+                              "without either (raised by %.2f %%, paired z = %.1f): no force of this variable is shown",
+                              rival_.c_str(), 100.0 * std::abs(g.gain), g.z);
                 drop(neither, e_neither, why + buf);
                 return;
             }
