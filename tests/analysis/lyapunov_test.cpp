@@ -42,8 +42,11 @@ TEST_CASE("analysis: the largest exponent's sign separates chaos from periodic m
     const Params p = make_version("A1C");
     CfSpec spec;
     spec.omega_min = 10.0;
-    spec.omega_max = 22.0;
-    spec.steps = 5;   // 10 (period 1), 13, 16, 19 (chaos), 22 (period 2)
+    // 10 (period 1), 12.75 (period 2), 15.5 and 18.25 (chaos), 21 (period 2). Not 22: 0.15 rad/s from the
+    // doubling at 22.147 the alternation decays by only 1.5 % a period, and whether the sweep's 20 transient
+    // periods end on the period-2 label there follows the processor's paths (masked: 17 periods, -0.05 1/s).
+    spec.omega_max = 21.0;
+    spec.steps = 5;
     const auto pts = lyapunov_sweep(p, spec);
     REQUIRE(pts.size() == 5);
     int chaotic = 0;
