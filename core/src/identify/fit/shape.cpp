@@ -9,7 +9,6 @@
 // symmetry); otherwise it gives way to the generic term, or stays marked as a force of its size (always so
 // against the nameless next power, unless the generic term predicts held-out data better).
 #include <cmath>
-#include <cstdlib>
 #include <optional>
 #include <string>
 
@@ -235,12 +234,7 @@ private:
         }
         if (!adopt(m, e_m)) return;
         FoundEffect g = generic_found(c);
-        for (const std::string& id : ids_) {
-            const auto it = std::find_if(rep_.effects_found.begin(), rep_.effects_found.end(), [&](const FoundEffect& f) { return f.id == id; });
-            g.explained_fraction += it->explained_fraction;
-            rep_.effects_rejected.push_back({id, why, it->validation_gain, it->validation_z, it->parameters});
-            rep_.effects_found.erase(it);
-        }
+        g.explained_fraction += reject_named(why);
         const auto old = std::find_if(rep_.effects_found.begin(), rep_.effects_found.end(), [&](const FoundEffect& f) { return f.id == rival_; });
         if (old != rep_.effects_found.end()) {   // already there: it stays, refitted
             g.explained_fraction += old->explained_fraction;
@@ -254,14 +248,22 @@ private:
         rep_.notes.push_back(note);
         judge_.record(names_ + " replaced by " + rival_);
     }
-    // The named laws leave the model, and no generic term comes in their place.
-    void drop(const Model& m, const std::vector<double>& e_m, const std::string& why) {
-        if (!adopt(m, e_m)) return;
+    // The named laws move from the effects found to those turned down, with `why`; returns the share of the
+    // residual they had explained.
+    double reject_named(const std::string& why) {
+        double explained = 0;
         for (const std::string& id : ids_) {
             const auto it = std::find_if(rep_.effects_found.begin(), rep_.effects_found.end(), [&](const FoundEffect& f) { return f.id == id; });
+            explained += it->explained_fraction;
             rep_.effects_rejected.push_back({id, why, it->validation_gain, it->validation_z, it->parameters});
             rep_.effects_found.erase(it);
         }
+        return explained;
+    }
+    // The named laws leave the model, and no generic term comes in their place.
+    void drop(const Model& m, const std::vector<double>& e_m, const std::string& why) {
+        if (!adopt(m, e_m)) return;
+        reject_named(why);
         rep_.notes.push_back(names_ + ": neither it nor the generic " + rival_ + " in its place predicts held-out data better than the model without them: removed, and no physics is named");
         judge_.record(names_ + " removed");
     }
