@@ -178,7 +178,8 @@ TEST_CASE("analysis: the tangent's Magnus steps converge at orders 4 and 6") {
         for (int i = 0; i < n; ++i) {
             const double tm = (i + 0.5) * h;
             P = (order == 4 ? detail::magnus4_step(A(tm - detail::kGauss2 * h), A(tm + detail::kGauss2 * h), h)
-                            : detail::magnus6_step(A(tm - detail::kGauss3 * h), A(tm), A(tm + detail::kGauss3 * h), h)) * P;
+                            : detail::magnus6_step(A(tm - detail::kGauss3 * h), A(tm), A(tm + detail::kGauss3 * h), h)) *
+                P;
         }
         return P;
     };
@@ -193,7 +194,11 @@ TEST_CASE("analysis: the tangent's Magnus steps converge at orders 4 and 6") {
 TEST_CASE("analysis: the monodromy at the default rtol is the map's derivative, through dry-friction reversals") {
     // Central differences of the map at rtol 1e-13 (steps 1e-7 m and 1e-6 m/s, where they agree with 1e-8 and
     // 1e-5 to 1e-7): the tangent at rtol 1e-10 carries the friction's reversals and the bumper's contacts.
-    struct Case { const char* model; double omega; int k; };
+    struct Case {
+        const char* model;
+        double omega;
+        int k;
+    };
     for (const Case c : {Case{"A1C", 16.0, 1}, Case{"A1H", 13.6, 2}, Case{"A1G", 9.0, 1}}) {
         CAPTURE(c.model);
         const Params p = make_version(c.model);
@@ -209,7 +214,8 @@ TEST_CASE("analysis: the monodromy at the default rtol is the map's derivative, 
         for (int j = 0; j < 2; ++j) {
             Vec2 d = Vec2::Zero();
             d[j] = j == 0 ? 1e-7 : 1e-6;
-            F.col(j) = (poincare_map(p, c.omega, o.y + d, c.k, false, fine).y - poincare_map(p, c.omega, o.y - d, c.k, false, fine).y) / (2 * d[j]);
+            F.col(j) = (poincare_map(p, c.omega, o.y + d, c.k, false, fine).y - poincare_map(p, c.omega, o.y - d, c.k, false, fine).y) /
+                       (2 * d[j]);
         }
         CHECK(max_rel_diff(r.M, F) < 3e-3);
     }

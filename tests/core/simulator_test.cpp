@@ -546,7 +546,7 @@ Vec2 one_period(const Params& p, double omega, const Vec2& y0, double rtol) {
     Simulator(tol).advance(p, d, s, 2.0 * kPi / omega);
     return Vec2(s.x, s.v);
 }
-}  // namespace
+}   // namespace
 
 TEST_CASE("dry-friction reversals: no step straddles one unseen, at any rtol") {
     // The friction flips from -T to +T within eps/|a| (about 1 us); an explicit step across it could pass its

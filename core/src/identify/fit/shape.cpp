@@ -225,7 +225,8 @@ private:
             const Compare g = judge_.compare(e_neither, e_m);
             if (!(g.sum_new < g.sum_cur)) {
                 char buf[200];
-                std::snprintf(buf, sizeof buf, "; nor does the generic %s in its place lower the held-out error of the model "
+                std::snprintf(buf, sizeof buf,
+                              "; nor does the generic %s in its place lower the held-out error of the model "
                               "without either (raised by %.2f %%, paired z = %.1f): no force of this variable is shown",
                               rival_.c_str(), 100.0 * std::abs(g.gain), g.z);
                 drop(neither, e_neither, why + buf);
@@ -253,7 +254,8 @@ private:
     double reject_named(const std::string& why) {
         double explained = 0;
         for (const std::string& id : ids_) {
-            const auto it = std::find_if(rep_.effects_found.begin(), rep_.effects_found.end(), [&](const FoundEffect& f) { return f.id == id; });
+            const auto it =
+                std::find_if(rep_.effects_found.begin(), rep_.effects_found.end(), [&](const FoundEffect& f) { return f.id == id; });
             explained += it->explained_fraction;
             rep_.effects_rejected.push_back({id, why, it->validation_gain, it->validation_z, it->parameters});
             rep_.effects_found.erase(it);
@@ -264,7 +266,8 @@ private:
     void drop(const Model& m, const std::vector<double>& e_m, const std::string& why) {
         if (!adopt(m, e_m)) return;
         reject_named(why);
-        rep_.notes.push_back(names_ + ": neither it nor the generic " + rival_ + " in its place predicts held-out data better than the model without them: removed, and no physics is named");
+        rep_.notes.push_back(names_ + ": neither it nor the generic " + rival_ +
+                             " in its place predicts held-out data better than the model without them: removed, and no physics is named");
         judge_.record(names_ + " removed");
     }
     // A law that stays in the model although the data do not tell its shape from `from`: a force of its
