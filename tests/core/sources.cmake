@@ -15,4 +15,5 @@ set(IMPACTLAB_CORE_TEST_SOURCES
   core/raster_test.cpp
   core/input_file_test.cpp
   core/atomic_file_test.cpp
+  core/parallel_test.cpp
 )

@@ -39,7 +39,9 @@ MapResult period_map(const Params& p, double omega, const Vec2& y0, int k, bool 
     tr.section_Phi = section_Phi;
     if (s.regime == Regime::Contact) tr.Phi.setZero();   // held: the start's perturbation is forgotten
     tr.max_x = s.x;
+    tr.defer = tangent;
     sim.advance(p, d, s, d.time_of_phase(kTwoPi * k), &tr);
+    tr.finish();
     r.held = s.regime != Regime::Free;
     r.y = r.held ? Vec2(p.xI, 0.0) : Vec2(s.x, s.v);
     if (!r.sections.empty()) r.sections.back() = r.y;

@@ -6,6 +6,8 @@
 
 #include <Eigen/LU>
 
+#include "parallel.hpp"
+
 #include "impactlab/equilibria.hpp"
 #include "impactlab/forces.hpp"
 #include "impactlab/rig.hpp"
@@ -90,7 +92,6 @@ void TangentTracker::on_piece(const Piece& piece) {
     if (piece.regime != Regime::Free || !piece.step) return;   // held: Phi is carried by the saltation
     const Vec2 y1 = piece.at(piece.t1);
     max_x = std::max(max_x, y1[0]);
-    const Vec2 y0 = piece.at(piece.t0);
     if (const double tm = turning_point(piece); !std::isnan(tm)) max_x = std::max(max_x, piece.at(tm)[0]);
     if (p_.compliant()) {
         const bool inside = piece.at(0.5 * (piece.t0 + piece.t1))[0] > p_.xI;
@@ -98,7 +99,18 @@ void TangentTracker::on_piece(const Piece& piece) {
         inside_ = inside;
     }
     if (!tangent_ || piece.t1 <= piece.t0) return;
+    if (defer) {   // kept for finish(): the piece's propagator does not depend on Phi
+        tape_.push_back({Op::Piece, Mat2::Zero(), pieces_.size()});
+        pieces_.push_back({piece, *piece.step});
+        return;
+    }
+    substeps_.clear();
+    propagator(piece, substeps_);
+    for (const Mat2& S : substeps_) Phi = S * Phi;
+}
 
+void TangentTracker::propagator(const Piece& piece, std::vector<Mat2>& out) const {
+    const Vec2 y0 = piece.at(piece.t0), y1 = piece.at(piece.t1);
     // Zeros of v inside the piece: the friction spike (and the Hunt-Crossley damping's infinite slope).
     std::array<double, 8> zeros{};
     int nz = 0;
@@ -113,10 +125,6 @@ void TangentTracker::on_piece(const Piece& piece) {
         ta = tb;
         va = vb;
     }
-    // A compliant contact piece is propagated on its own and then made consistent with the flow (below).
-    const bool contact_piece = p_.compliant() && std::max(y0[0], y1[0]) > p_.xI;
-    const Mat2 Phi_before = Phi;
-    if (contact_piece) Phi.setIdentity();
     double t = piece.t0;
     for (int z = 0; z <= nz; ++z) {
         const double tz = z < nz ? zeros[static_cast<std::size_t>(z)] : piece.t1;
@@ -125,27 +133,52 @@ void TangentTracker::on_piece(const Piece& piece) {
             double tau = kSpikeInner;
             while (tz - tau * kSpikeGrowth > t) tau *= kSpikeGrowth;
             while (tau >= kSpikeInner && tz - tau > t) {
-                propagate(piece, t, tz - tau);
+                propagate(piece, t, tz - tau, out);
                 t = tz - tau;
                 tau /= kSpikeGrowth;
             }
             const double next = z + 1 < nz ? zeros[static_cast<std::size_t>(z + 1)] : piece.t1;
             const double te = std::min(tz + kSpikeInner, 0.5 * (tz + next));
-            propagate_across_zero(piece, t, te);
+            propagate_across_zero(piece, t, te, out);
             t = te;
             // And graded outwards after it, up to the next zero or the end.
             tau = kSpikeGrowth * kSpikeInner;
             while (tz + tau < next) {
-                propagate(piece, t, tz + tau);
+                propagate(piece, t, tz + tau, out);
                 t = tz + tau;
                 tau *= kSpikeGrowth;
             }
         } else if (t < tz) {
-            propagate(piece, t, tz);
+            propagate(piece, t, tz, out);
             t = tz;
         }
     }
-    if (contact_piece) Phi = flow_consistent(piece, y0, y1, Phi) * Phi_before;
+    // A compliant contact piece is propagated on its own and then made consistent with the flow (below).
+    if (p_.compliant() && std::max(y0[0], y1[0]) > p_.xI) {
+        Mat2 G = Mat2::Identity();
+        for (const Mat2& S : out) G = S * G;
+        out.assign(1, flow_consistent(piece, y0, y1, G));
+    }
+}
+
+void TangentTracker::finish() {
+    if (tape_.empty()) return;
+    // The propagators side by side (each in its own slot: the same numbers on any number of threads), then
+    // applied in time order.
+    std::vector<std::vector<Mat2>> G(pieces_.size());
+    ::impactlab::detail::for_each_index(pieces_.size(), [&](std::size_t i) {
+        Piece piece = pieces_[i].piece;
+        piece.step = &pieces_[i].step;
+        propagator(piece, G[i]);
+    });
+    for (const Op& op : tape_) {
+        if (op.kind == Op::Section) section_Phi->push_back(Phi);
+        else if (op.kind == Op::Matrix) Phi = op.M * Phi;
+        else
+            for (const Mat2& S : G[op.index]) Phi = S * Phi;
+    }
+    tape_.clear();
+    pieces_.clear();
 }
 
 Mat2 TangentTracker::flow_consistent(const Piece& piece, const Vec2& y0, const Vec2& y1, const Mat2& P) const {
@@ -178,7 +211,7 @@ Mat2 TangentTracker::flow_consistent(const Piece& piece, const Vec2& y0, const V
     return Di * (D * P * Di + r * sa.transpose() / sa.squaredNorm()) * D;
 }
 
-void TangentTracker::propagate(const Piece& piece, double a, double b) {
+void TangentTracker::propagate(const Piece& piece, double a, double b, std::vector<Mat2>& P) const {
     // Magnus order 6, step halving until the step and its two halves agree; a half computed for the test is
     // handed to its child as the child's whole step. In free flight order 4 needed ~1000 substeps a period
     // for 1e-11 (its error ~ (h w0)^5), order 6 a third of them.
@@ -226,7 +259,7 @@ void TangentTracker::propagate(const Piece& piece, double a, double b) {
         const Mat2 half = right * left;
         if (f.depth >= kMaxDepth || f.b - f.a < floor || m <= f.a || m >= f.b ||
             scaled_max(full - half) <= tol) {
-            Phi = half * Phi;
+            P.push_back(half);
             continue;
         }
         stack[static_cast<std::size_t>(++top)] = {m, f.b, f.depth + 1, right, true};
@@ -234,7 +267,7 @@ void TangentTracker::propagate(const Piece& piece, double a, double b) {
     }
 }
 
-void TangentTracker::propagate_across_zero(const Piece& piece, double a, double b) {
+void TangentTracker::propagate_across_zero(const Piece& piece, double a, double b, std::vector<Mat2>& P) const {
     // The innermost interval around a zero of v, where the v-slopes are singular (|h'|^(n3-1) of the
     // Hunt-Crossley damping) or a spike (the smoothed friction). Over so short an interval v is linear in t
     // and x constant, so the integral of dF/dv dt is exactly dt times the secant slope (F(v_b) - F(v_a)) /
@@ -259,12 +292,13 @@ void TangentTracker::propagate_across_zero(const Piece& piece, double a, double 
         }
         A(1, 1) += (point - (Fv(vb) - Fv(va)) / (vb - va)) / p_.m;
     }
-    Phi = expm2(h * A) * Phi;
+    P.push_back(expm2(h * A));
 }
 
 void TangentTracker::on_section(const SectionPoint& sp) {
     if (sections) sections->emplace_back(sp.x, sp.v);
-    if (section_Phi) section_Phi->push_back(Phi);
+    if (section_Phi && !tape_.empty()) tape_.push_back({Op::Section, Mat2::Zero(), 0});
+    else if (section_Phi) section_Phi->push_back(Phi);
 }
 
 void TangentTracker::on_impact(const ImpactEvent& ev) {
@@ -281,7 +315,7 @@ void TangentTracker::on_regime(double t, Regime from, Regime to) {
     if (!tangent_) return;
     // Regime III holds the cart at (xI, 0) and releases it when N(t), a function of time alone, crosses
     // zero: nothing of the initial perturbation survives it.
-    if (to == Regime::Contact || from == Regime::Contact) Phi.setZero();
+    if (to == Regime::Contact || from == Regime::Contact) apply(Mat2::Zero());
     else if (from == Regime::Sticking && to == Regime::Free) apply_impact_saltation(t_hit_, v_minus_, t, v_plus_);
 }
 
@@ -307,7 +341,7 @@ void TangentTracker::apply_impact_saltation(double t_hit, double vm, double t_re
     Mat2 S;
     S.row(0) = -vp * dt_rel;
     S.row(1) = D * dv_minus - ap * dt_rel;
-    Phi = S * Phi;
+    apply(S);
 }
 
 }  // namespace impactlab::analysis::detail

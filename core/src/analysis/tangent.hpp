@@ -5,7 +5,8 @@
 // integrates only the linear equation d(Phi)/dt = A(t) Phi with A = df/dy evaluated at that y(t) (Magnus
 // order 6, order 4 where h A is large; adaptive). At the events the Simulator reports (impact, end of sticking, permanent contact) the
 // tracker applies the saltation matrix of the impact law. So the trajectory, its events and the sections
-// are exactly the Simulator's, and Phi is their derivative.
+// are exactly the Simulator's, and Phi is their derivative. A piece's propagators do not depend on Phi, so a
+// period map (period_map) keeps the pieces and computes them afterwards on all cores, in the same order.
 #pragma once
 
 #include <algorithm>
@@ -59,10 +60,22 @@ public:
     void on_section(const SectionPoint& sp) override;
     void on_impact(const ImpactEvent& ev) override;
     void on_regime(double t, Regime from, Regime to) override;
+    // defer: the pieces' propagators are computed by finish(), on all cores, rather than as the Simulator
+    // hands the pieces over; Phi and section_Phi are complete only after finish().
+    bool defer = false;
+    void finish();
 
 private:
-    void propagate(const Piece& piece, double a, double b);
-    void propagate_across_zero(const Piece& piece, double a, double b);
+    // The propagators of one free-flight piece's substeps, in time order, into out (a compliant contact
+    // piece's whole, made consistent with the flow): Phi = S Phi for each. They do not depend on Phi.
+    void propagator(const Piece& piece, std::vector<Mat2>& out) const;
+    void propagate(const Piece& piece, double a, double b, std::vector<Mat2>& P) const;
+    void propagate_across_zero(const Piece& piece, double a, double b, std::vector<Mat2>& P) const;
+    // Phi = M Phi, now or, deferred, in its turn.
+    void apply(const Mat2& M) {
+        if (!tape_.empty()) tape_.push_back({Op::Matrix, M, 0});
+        else Phi = M * Phi;
+    }
     Mat2 flow_consistent(const Piece& piece, const Vec2& y0, const Vec2& y1, const Mat2& P) const;
     void apply_impact_saltation(double t_hit, double v_minus, double t_release, double v_plus);
 
@@ -71,6 +84,12 @@ private:
     bool tangent_;
     bool inside_ = false;                 // compliant: the last piece ended in contact
     double t_hit_ = 0, v_minus_ = 0, v_plus_ = 0;   // the impact whose sticking is in progress
+    // Deferred: what acts on Phi, in time order, and the pieces with their steps copied.
+    struct Op { enum Kind { Matrix, Piece, Section } kind; Mat2 M; std::size_t index; };
+    struct SavedPiece { ::impactlab::Piece piece; DenseStep step; };
+    std::vector<Op> tape_;
+    std::vector<SavedPiece> pieces_;
+    std::vector<Mat2> substeps_;   // not deferred: one piece's, reused
 };
 
 // poincare_map, with Phi at each of the k sections appended to section_Phi where given (the monodromy of the
