@@ -220,11 +220,14 @@ int main() {
     web_set_text("status", "");
     web_install_picker();
     // 0 frames per second: the browser's animation frames; no simulated infinite loop (main returns and
-    // the runtime stays alive with the App in g_app).
-    emscripten_set_main_loop(tick, 0, 0);
-    // A scripted run (?frames=N) steps on 16 ms timers: a browser under virtual time (headless Chromium's
-    // --virtual-time-budget, with --dump-dom or --screenshot) fires timers but animation frames only once
-    // or twice, and #state-json stayed empty there. An open page, and ?bench-plot, keep the animation frames.
-    if (opt.frames > 0) emscripten_set_main_loop_timing(EM_TIMING_SETTIMEOUT, 16);
+    // the runtime stays alive with the App in g_app). An open page, and ?bench-plot, run on them.
+    // A scripted run (?frames=N) steps on 16 ms timers from its first frame on: under virtual time (headless
+    // Chromium's --virtual-time-budget) a wait for anything but a timer can spend the whole budget at once.
+    if (opt.frames > 0) {
+        emscripten_set_main_loop(tick, 60, 0);   // frames per second > 0: the first frame on a timer too
+        emscripten_set_main_loop_timing(EM_TIMING_SETTIMEOUT, 16);
+    } else {
+        emscripten_set_main_loop(tick, 0, 0);
+    }
     return 0;
 }
