@@ -24,9 +24,8 @@ TEST_CASE("parallel: a batch started from inside another's index completes (nest
     constexpr std::size_t outer = 6, inner = 50;
     std::vector<std::vector<int>> out(outer, std::vector<int>(inner, 0));
     for (int round = 0; round < 50; ++round)
-        for_each_index(outer, [&](std::size_t i) {
-            for_each_index(inner, [&](std::size_t j) { out[i][j] = static_cast<int>(i * 1000 + j); });
-        });
+        for_each_index(outer,
+                       [&](std::size_t i) { for_each_index(inner, [&](std::size_t j) { out[i][j] = static_cast<int>(i * 1000 + j); }); });
     for (std::size_t i = 0; i < outer; ++i)
         for (std::size_t j = 0; j < inner; ++j) CHECK(out[i][j] == static_cast<int>(i * 1000 + j));
 }

@@ -85,8 +85,15 @@ private:
     bool inside_ = false;                 // compliant: the last piece ended in contact
     double t_hit_ = 0, v_minus_ = 0, v_plus_ = 0;   // the impact whose sticking is in progress
     // Deferred: what acts on Phi, in time order, and the pieces with their steps copied.
-    struct Op { enum Kind { Matrix, Piece, Section } kind; Mat2 M; std::size_t index; };
-    struct SavedPiece { ::impactlab::Piece piece; DenseStep step; };
+    struct Op {
+        enum Kind { Matrix, Piece, Section } kind;
+        Mat2 M;
+        std::size_t index;
+    };
+    struct SavedPiece {
+        ::impactlab::Piece piece;
+        DenseStep step;
+    };
     std::vector<Op> tape_;
     std::vector<SavedPiece> pieces_;
     std::vector<Mat2> substeps_;   // not deferred: one piece's, reused
