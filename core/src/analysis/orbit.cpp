@@ -25,7 +25,7 @@ MapResult poincare_map(const Params& p, double omega, const Vec2& y0, int k, boo
 
 namespace detail {
 MapResult period_map(const Params& p, double omega, const Vec2& y0, int k, bool tangent, const Tolerances& tol,
-                     std::vector<Mat2>* section_Phi) {
+                     std::vector<Mat2>* section_Phi, bool defer) {
     MapResult r;
     Simulator sim(tol);
     const Drive d(omega, 0.0, 0.0);
@@ -39,7 +39,7 @@ MapResult period_map(const Params& p, double omega, const Vec2& y0, int k, bool 
     tr.section_Phi = section_Phi;
     if (s.regime == Regime::Contact) tr.Phi.setZero();   // held: the start's perturbation is forgotten
     tr.max_x = s.x;
-    tr.defer = tangent;
+    tr.defer = tangent && defer;
     sim.advance(p, d, s, d.time_of_phase(kTwoPi * k), &tr);
     tr.finish();
     r.held = s.regime != Regime::Free;

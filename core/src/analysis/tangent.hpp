@@ -100,8 +100,9 @@ private:
 };
 
 // poincare_map, with Phi at each of the k sections appended to section_Phi where given (the monodromy of the
-// first i periods: a corrector that shoots period by period takes its first guesses from them).
+// first i periods: a corrector that shoots period by period takes its first guesses from them). defer: the
+// tangent computed after the run on all cores (the same numbers as while it runs, which false gives).
 MapResult period_map(const Params& p, double omega, const Vec2& y0, int k, bool tangent, const Tolerances& tol,
-                     std::vector<Mat2>* section_Phi);
+                     std::vector<Mat2>* section_Phi, bool defer = true);
 
 }  // namespace impactlab::analysis::detail
