@@ -133,6 +133,15 @@ ContinuationResult check_full_range(const char* name, double lo, double start) {
             CHECK(scaled_norm(test::newton_orbit(p, pt.param, pt.y, b.period).y - pt.y) < 3e-8);
         }
     if (std::string(name) == "A1C") CHECK(expanding > 20);
+    // A grazing of the compliant bumper is an orbit touching it: Newton's orbit at the point's omega reaches
+    // xI within the grazing layer (a sign change across a jump between segments once put one at 16.8003,
+    // 1.2 um clear).
+    if (!p.rigid())
+        for (const auto& b : r.points) {
+            if (b.kind != BifKind::Grazing) continue;
+            CAPTURE(b.param);
+            CHECK(std::abs(test::newton_orbit(p, b.param, b.y, b.period).max_x - p.xI) < 1e-6);
+        }
     // Every doubling reported lies where Newton on the period map at rtol 1e-12 has the multiplier cross -1,
     // within the stated precision (the ones deep in A1C's contact too).
     for (const auto& b : r.points) {
@@ -152,6 +161,11 @@ TEST_CASE("continuation: A1C over 5..25 and 8..25 finds the doubling, the fold a
     // The period-4 doubling 25 um deep in the contact, beside the fold at 18.50493: its bracket narrows to
     // 1e-8, over which the multiplier's jitter at rtol 1e-10 (2e-4) had read as a jump and dropped it.
     CHECK(point_near(r, BifKind::PeriodDoubling, 4, 18.50478, 1e-5) != nullptr);
+    // The period-4 branch from 19.1789 reaches its own doubling at 19.1511319, 0.06 mm deep, past a spot where
+    // the map's noise at rtol 1e-10 stops the corrector (the map is sharpened there before a limit is stated),
+    // and the period-8 branch from it its doubling at 19.1447503.
+    CHECK(point_near(r, BifKind::PeriodDoubling, 4, 19.1511319, 1e-5) != nullptr);
+    CHECK(point_near(r, BifKind::PeriodDoubling, 8, 19.1447503, 1e-5) != nullptr);
     check_full_range("A1C", 8.0, 9.0);
 }
 

@@ -108,6 +108,11 @@ void Continuer::record(BifKind kind, const Sol& lo, const Sol& hi, double f_lo, 
     const Sol& best = std::abs(f_lo) < std::abs(f_hi) ? lo : hi;
     double precision = std::abs(q_of(hi.u) - q_of(lo.u)), shift = 0;
     if (kind != BifKind::Grazing && !true_crossing(kind, lo, hi, best, k, precision, shift)) return;
+    // A compliant bumper's grazing is an orbit touching it: one that stays clear by more than the grazing
+    // layer is a sign change across a jump between two segments, the corrector failing in between (A1C's
+    // period 8 near 16.8003: the free orbit 1.2 um short of the bumper on one side, one pressing it on the other).
+    if (kind == BifKind::Grazing && work_.has_bumper() && !work_.rigid() && std::abs(best.r.max_x - work_.xI) > kGrazingLayer)
+        return;
     BifPoint bp{kind, q_of(best.u) + shift, y_of(best.u), k, branch, precision, {}, NAN, NAN};
     // The same point met again (from the other side of a bubble, on another branch through the same orbit at
     // another of its k phases, or by a failed corrector after its sign change): reported once.
@@ -338,13 +343,15 @@ bool Continuer::passes_by(const BranchPoint& pj, const Vec3& a, const Vec3& b) c
     return false;
 }
 
-bool Continuer::sharpen(Sol& cur, const Vec3& t, int k, double& ds, int& sharpened) {
+bool Continuer::sharpen(Sol& cur, const Vec3& t, int k, double& ds, int& sharpened, bool at_limit) {
     // A long period (8 periods and more of a cascade) carries the integrator's error up to the corrector's
     // tolerance, and the steps shrink for noise rather than for the branch's shape: the map is sharpened for
     // the rest of this branch (twice at most, down to rtol 1e-12). (Not beside a bumper: there the steps
-    // shrink for the grazing, and a sharper map only costs.)
-    if (!(ds < 2e-3 && sharpened < 2 && spec_.sim.rtol > 1.5e-12 &&
-          !(work_.has_bumper() && std::abs(test(BifKind::Grazing, cur)) < 0.01)))
+    // shrink for the grazing, and a sharper map only costs; but at the numerical limit, deep in a compliant
+    // contact, the map's noise is the likelier cause, and a limit is stated only after the sharper map.)
+    if (!(sharpened < 2 && spec_.sim.rtol > 1.5e-12 &&
+          (at_limit ? deep_contact(cur)
+                    : ds < 2e-3 && !(work_.has_bumper() && std::abs(test(BifKind::Grazing, cur)) < 0.01))))
         return false;
     ++sharpened;
     spec_.sim.rtol = std::max(spec_.sim.rtol * 0.01, 1e-12);
@@ -446,6 +453,9 @@ void Continuer::follow(const Job& job, Branch& br) {
         }
         bool first = !job.both_ways && job.mode != JobMode::Onward;
         bool clipped = false;
+        // d t / ds from the last two tangents: the predictor u + ds t + ds^2/2 dt/ds lands an order closer to
+        // a bending branch, and its corrector needs fewer maps (zero after anything but a plain step).
+        Vec3 curv = Vec3::Zero();
         while (true) {
             if (cancelled()) {
                 end = "cancelled";
@@ -456,13 +466,17 @@ void Continuer::follow(const Job& job, Branch& br) {
                 break;
             }
             Sol next;
-            if (!correct(cur.u + ds * t, t, k, next)) {
-                if (sharpen(cur, t, k, ds, sharpened)) continue;
+            if (!correct(cur.u + ds * t + 0.5 * ds * ds * curv, t, k, next)) {
+                if (sharpen(cur, t, k, ds, sharpened)) {
+                    curv.setZero();
+                    continue;
+                }
                 ds *= 0.5;
                 if (ds < spec_.ds_min) {
                     // Within a compliant contact's grazing layer: on in the contact's depth, then onward.
                     if (layers < kMaxLayers && std::abs(test(BifKind::Grazing, cur)) < kContactDepth / kXScale && !work_.rigid()) {
                         ++layers;
+                        curv.setZero();
                         if (cross_contact_layer(cur, t, k, br.id, pts, arc)) {
                             // Resume at the layer's last step: the branch's scale there.
                             ds = std::clamp(arc.size() > 1 ? arc.back() - arc[arc.size() - 2] : spec_.ds, 16 * spec_.ds_min, spec_.ds);
@@ -472,6 +486,8 @@ void Continuer::follow(const Job& job, Branch& br) {
                     // A cart held by dry friction (a real multiplier within 1 % of +1: the creeping mode)
                     // has a nearly singular M - I, and the corrector fails where the damped Newton of
                     // find_orbit still converges: restart a little further on at fixed q, the same branch.
+                    curv.setZero();
+                    if (sharpen(cur, t, k, ds, sharpened, true)) continue;
                     if (restart(cur, t, k, ds, skipped)) continue;
                     end = corrector_limit(cur, t, ds, k, br.id);
                     break;
@@ -524,6 +540,7 @@ void Continuer::follow(const Job& job, Branch& br) {
                     break;
                 }
             }
+            const bool first_step = first;
             first = false;
             const double q = q_of(next.u);
             if (q < lo || q > hi) {
@@ -544,6 +561,8 @@ void Continuer::follow(const Job& job, Branch& br) {
                     break;
                 }
             }
+            const double step = (next.u - cur.u).norm();
+            curv = !first_step && step > 0 ? Vec3((t_next - t) / step) : Vec3::Zero();
             cur = std::move(next);
             t = t_next;
             if (dir == 0) report_progress(q);

@@ -172,21 +172,30 @@ Followed Continuer::follow_impacting(const Job& job, Branch& br) {
         Sol sp;
         sp.u = u_of(sec, q);
         sp.r = map(sp.u, k, true);
-        if (sp.r.impacts == 1 && scaled_norm(sp.r.y - sec) > std::max(1e-5, 10 * res_tol_ * std::abs(floquet(sp.r.M).mu[0]))) {
-            // One impact, yet the rig's map does not quite return the section point (a section phase at the
-            // release, say): the orbit polished by Newton on the rig's map, if it is there.
+        // One impact, yet the rig's map does not quite return the section point (a section phase at the
+        // release, or the shot's residual amplified by the orbit's instability): the orbit polished by Newton
+        // on the rig's map, if it is there. Unpolished, a point must return within 1e-5: a bound scaled by
+        // |mu| admitted anything where |mu| ~ 1e6 (A1G's period 8 at 16.7984 came back 6e-4 away, and Newton
+        // on the rig's map found the impact-free orbit 2e-5 off instead).
+        // Newton's own noise there may stall it at rtol: then again at rtol / 100.
+        bool polished = false;
+        for (double sharper : {1.0, 0.01}) {
+            if (polished || sp.r.impacts != 1 || scaled_norm(sp.r.y - sec) <= 1e-5) break;
             OrbitOptions oo;
             oo.period = k;
             oo.sim = spec_.sim;
+            oo.sim.rtol = std::max(oo.sim.rtol * sharper, 1e-13);
             oo.max_iterations = 8;
+            ++evaluations_;
             const Orbit o = find_orbit(work_, apply(q), sec, oo);
             if (o.converged && o.impacts == 1 && scaled_norm(o.y - sec) < 1e-3) {
                 sp.u = u_of(o.y, q);
                 sp.r = map(sp.u, k, true);
+                polished = true;
             }
         }
-        // (The shot's residual tolerance comes back amplified by the orbit's instability.)
-        const double returns_within = std::max(1e-5, 10 * res_tol_ * std::abs(floquet(sp.r.M).mu[0]));
+        // (A polished orbit's residual comes back amplified by its instability.)
+        const double returns_within = polished ? std::max(1e-5, 10 * res_tol_ * std::abs(floquet(sp.r.M).mu[0])) : 1e-5;
         if (sp.r.impacts != 1 || scaled_norm(sp.r.y - y_of(sp.u)) > returns_within) {
             char why[160];
             if (sp.r.impacts != 1)

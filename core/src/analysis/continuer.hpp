@@ -392,7 +392,7 @@ private:
     bool passes_by(const BranchPoint& pj, const Vec3& a, const Vec3& b) const;
     // A corrector that failed at a short step on a long period: the map sharpened and cur corrected on it;
     // false where that does not apply (or was done twice).
-    bool sharpen(Sol& cur, const Vec3& t, int k, double& ds, int& sharpened);
+    bool sharpen(Sol& cur, const Vec3& t, int k, double& ds, int& sharpened, bool at_limit = false);
     // A step from cur to next that is to be taken again shorter (ds shortened): a grazing ahead, a corrector
     // that wandered or multipliers that jumped, or once a step past the range's end (clipped).
     bool shorten(const Sol& cur, const Vec3& t, const Sol& next, bool first, bool& clipped, double& ds) const;
