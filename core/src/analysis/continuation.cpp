@@ -111,8 +111,7 @@ void Continuer::record(BifKind kind, const Sol& lo, const Sol& hi, double f_lo, 
     // A compliant bumper's grazing is an orbit touching it: one that stays clear by more than the grazing
     // layer is a sign change across a jump between two segments, the corrector failing in between (A1C's
     // period 8 near 16.8003: the free orbit 1.2 um short of the bumper on one side, one pressing it on the other).
-    if (kind == BifKind::Grazing && work_.has_bumper() && !work_.rigid() && std::abs(best.r.max_x - work_.xI) > kGrazingLayer)
-        return;
+    if (kind == BifKind::Grazing && work_.has_bumper() && !work_.rigid() && std::abs(best.r.max_x - work_.xI) > kGrazingLayer) return;
     BifPoint bp{kind, q_of(best.u) + shift, y_of(best.u), k, branch, precision, {}, NAN, NAN};
     // The same point met again (from the other side of a bubble, on another branch through the same orbit at
     // another of its k phases, or by a failed corrector after its sign change): reported once.
@@ -350,8 +349,7 @@ bool Continuer::sharpen(Sol& cur, const Vec3& t, int k, double& ds, int& sharpen
     // shrink for the grazing, and a sharper map only costs; but at the numerical limit, deep in a compliant
     // contact, the map's noise is the likelier cause, and a limit is stated only after the sharper map.)
     if (!(sharpened < 2 && spec_.sim.rtol > 1.5e-12 &&
-          (at_limit ? deep_contact(cur)
-                    : ds < 2e-3 && !(work_.has_bumper() && std::abs(test(BifKind::Grazing, cur)) < 0.01))))
+          (at_limit ? deep_contact(cur) : ds < 2e-3 && !(work_.has_bumper() && std::abs(test(BifKind::Grazing, cur)) < 0.01))))
         return false;
     ++sharpened;
     spec_.sim.rtol = std::max(spec_.sim.rtol * 0.01, 1e-12);
