@@ -390,8 +390,9 @@ private:
     void locate_crossings(const Sol& cur, const Vec3& t, double ds, const Sol& next, int k, int branch);
     // The step from a to b passes within 1e-3 (scaled) of one of pj's section points: the same orbit again.
     bool passes_by(const BranchPoint& pj, const Vec3& a, const Vec3& b) const;
-    // A corrector that failed at a short step on a long period: the map sharpened and cur corrected on it;
-    // false where that does not apply (or was done twice).
+    // A corrector that failed at a short step on a long period (at_limit: at the shortest step, on an orbit
+    // deep in a compliant contact): the map sharpened and cur corrected on it; false where that does not
+    // apply (or was done twice).
     bool sharpen(Sol& cur, const Vec3& t, int k, double& ds, int& sharpened, bool at_limit = false);
     // A step from cur to next that is to be taken again shorter (ds shortened): a grazing ahead, a corrector
     // that wandered or multipliers that jumped, or once a step past the range's end (clipped).
