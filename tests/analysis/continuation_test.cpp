@@ -388,3 +388,20 @@ TEST_CASE("continuation: a doubling of A1G's impacting period 2 (19.2312) is swi
         CHECK(impacts >= 1);
     }
 }
+
+TEST_CASE("continuation: A1H over 5..25 locates the fold of its impacting period 2 at 19.1877 on any processor path") {
+    // The fold lies on a stretch followed from impact to impact, bracketed 4.6e-3 wide; with the vector paths
+    // masked the corrector failed at the bracket's midpoint and the fold went unreported.
+    ContinuationSpec spec;
+    spec.lo = 5.0;
+    spec.hi = 25.0;
+    spec.start = 5.0;
+    const ContinuationResult r = continue_orbits(make_version("A1H"), spec);
+    const BifPoint* fold = point_near(r, BifKind::Fold, 2, 19.187663, 1e-5);
+    REQUIRE(fold != nullptr);
+    CHECK(fold->precision < 1e-6);
+    for (const auto& b : r.branches) {
+        CAPTURE(b.end);
+        CHECK(b.end.find("Newton failed") == std::string::npos);
+    }
+}
