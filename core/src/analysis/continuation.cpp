@@ -111,7 +111,7 @@ void Continuer::record(BifKind kind, const Sol& lo, const Sol& hi, double f_lo, 
     // A compliant bumper's grazing is an orbit touching it: one that stays clear by more than the grazing
     // layer is a sign change across a jump between two segments, the corrector failing in between (A1C's
     // period 8 near 16.8003: the free orbit 1.2 um short of the bumper on one side, one pressing it on the other).
-    if (kind == BifKind::Grazing && work_.has_bumper() && !work_.rigid() && std::abs(best.r.max_x - work_.xI) > kGrazingLayer) return;
+    if (kind == BifKind::Grazing && work_.compliant() && std::abs(best.r.max_x - work_.xI) > kGrazingLayer) return;
     BifPoint bp{kind, q_of(best.u) + shift, y_of(best.u), k, branch, precision, {}, NAN, NAN};
     // The same point met again (from the other side of a bubble, on another branch through the same orbit at
     // another of its k phases, or by a failed corrector after its sign change): reported once.
@@ -147,7 +147,7 @@ bool Continuer::true_crossing(BifKind kind, const Sol& lo, const Sol& hi, const 
     if (multiplier_jumps(m_lo, m_hi, (hi.u - lo.u).norm())) return false;
     // Inside a compliant bumper's grazing layer the crossing is the grazing's, however smooth it looks
     // there (A3C's period 2 at 12.8999, 1e-4 past its grazing: mu = -1.005 with 0.22 um of penetration).
-    if (work_.has_bumper() && !work_.rigid() && best.r.max_x > work_.xI && best.r.max_x - work_.xI < kGrazingLayer) return false;
+    if (work_.compliant() && best.r.max_x > work_.xI && best.r.max_x - work_.xI < kGrazingLayer) return false;
     refine_crossing(kind, lo, hi, best, k, precision, shift);
     return true;
 }
@@ -254,7 +254,7 @@ std::string Continuer::corrector_limit(const Sol& cur, const Vec3& t, double ds,
     }
     // A compliant contact's orbit that has just begun to press the bumper (inside its first
     // millimetre): the grazing it came from is located on the bumperless orbit and named.
-    if (work_.has_bumper() && !work_.rigid() && g >= 0 && g < 0.1) {
+    if (work_.compliant() && g >= 0 && g < 0.1) {
         // Located already as the corrector stepped in (the test's sign change): that one, to
         // its bracket; else located now, back along the branch on the bumperless orbit.
         last_located_ = -1;
@@ -471,10 +471,10 @@ void Continuer::follow(const Job& job, Branch& br) {
                 }
                 ds *= 0.5;
                 if (ds < spec_.ds_min) {
+                    curv.setZero();   // whatever follows moves cur or ends the branch
                     // Within a compliant contact's grazing layer: on in the contact's depth, then onward.
                     if (layers < kMaxLayers && std::abs(test(BifKind::Grazing, cur)) < kContactDepth / kXScale && !work_.rigid()) {
                         ++layers;
-                        curv.setZero();
                         if (cross_contact_layer(cur, t, k, br.id, pts, arc)) {
                             // Resume at the layer's last step: the branch's scale there.
                             ds = std::clamp(arc.size() > 1 ? arc.back() - arc[arc.size() - 2] : spec_.ds, 16 * spec_.ds_min, spec_.ds);
@@ -484,7 +484,6 @@ void Continuer::follow(const Job& job, Branch& br) {
                     // A cart held by dry friction (a real multiplier within 1 % of +1: the creeping mode)
                     // has a nearly singular M - I, and the corrector fails where the damped Newton of
                     // find_orbit still converges: restart a little further on at fixed q, the same branch.
-                    curv.setZero();
                     if (sharpen(cur, t, k, ds, sharpened, true)) continue;
                     if (restart(cur, t, k, ds, skipped)) continue;
                     end = corrector_limit(cur, t, ds, k, br.id);

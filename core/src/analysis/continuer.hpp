@@ -163,7 +163,7 @@ private:
 
     // An orbit pressing a compliant bumper deeper than its grazing layer.
     bool deep_contact(const Sol& s) const {
-        return work_.has_bumper() && !work_.rigid() && s.r.max_x - work_.xI > kContactDepth;
+        return work_.compliant() && s.r.max_x - work_.xI > kContactDepth;
     }
 
     // Scaled d G / d u (r: the map at u, with its monodromy); d P / d q by a forward difference, rq being the map
