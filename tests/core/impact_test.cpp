@@ -457,3 +457,28 @@ TEST_CASE("a cart resting on a compliant bumper costs few steps (it once crawled
     CHECK(below.F == doctest::Approx(above.F).epsilon(1e-6));
     CHECK(std::isfinite(c1->contact(c1->defaults.data(), h, 0.0).dF_dhdot));
 }
+
+TEST_CASE("Hunt-Crossley's true slope in h' (what a tangent uses) is the force's derivative") {
+    // The law hands the integrator a secant slope; the tangent takes dF_dhdot_true instead, which must be the
+    // derivative of F itself on the power law (n3 |h'|^(n3 - 1), steep towards h' = 0) and on the linear part.
+    for (const char* id : {"C", "C1"}) {
+        CAPTURE(id);
+        const ImpactModel* law = find_impact(id);
+        const double* ip = law->defaults.data();
+        for (double h : {1e-8, 1e-6, 6e-5}) {
+            for (double hdot : {-0.5, -3e-3, -2e-6, -5e-8, 0.0, 4e-8, 3e-6, 0.02, 0.7}) {
+                CAPTURE(h);
+                CAPTURE(hdot);
+                const ContactForce c = law->contact(ip, h, hdot);
+                if (c.F <= 0.0) continue;   // clipped (h' pulling out fast): no force, no slope
+                const double dv = 1e-7 * std::abs(hdot) + 1e-14;
+                const double fd = (law->contact(ip, h, hdot + dv).F - law->contact(ip, h, hdot - dv).F) / (2 * dv);
+                REQUIRE(std::isfinite(c.dF_dhdot_true));
+                CHECK(c.dF_dhdot_true == doctest::Approx(fd).epsilon(1e-6));
+                if (std::abs(hdot) > 1e-7) CHECK(c.dF_dhdot_true < c.dF_dhdot);   // n3 < 1: below the secant
+            }
+        }
+        // Out of contact: no force and no slope.
+        CHECK(law->contact(ip, -1e-6, 0.1).dF_dhdot_true == 0.0);
+    }
+}

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -38,8 +39,13 @@ struct StiffnessSet {
 enum class ImpactKind { Compliant, Rigid, None };
 
 // A contact force law for a compliant bumper: F >= 0 and its partial derivatives at penetration h >= 0
-// and penetration rate hdot. The derivatives feed the implicit integrator's Newton matrix.
-struct ContactForce { double F, dF_dh, dF_dhdot; };
+// and penetration rate hdot. dF_dh and dF_dhdot feed the implicit integrator's Newton matrix (dF_dhdot may
+// be a bounded secant slope there); dF_dhdot_true is the true slope a tangent needs (NaN where a law does not
+// give it: it is then taken by central differences).
+struct ContactForce {
+    double F, dF_dh, dF_dhdot;
+    double dF_dhdot_true = NAN;
+};
 using ContactForceFn = ContactForce (*)(const double* p, double h, double hdot);
 // A rigid (event-driven) law: restitution kappa(v-) and impact duration T_imp(v-) [s].
 using ImpactFn = double (*)(const double* p, double v_minus);

@@ -54,8 +54,16 @@ inline Vec2 rig_rhs(const Params& p, const Drive& d, double t, const Vec2& y, bo
 }
 
 // How the derivative of a compliant contact's force in h' is taken: the law's own bounded secant slope (what
-// the stiff integrator wants, MODEL.md) or the true one by central differences (what a tangent needs).
+// the stiff integrator wants, MODEL.md) or the true one (what a tangent needs): the law's, else by central
+// differences.
 enum class ContactSlope { Secant, Exact };
+
+// The true dF/dh' of a compliant contact c = contact(h, hdot): the law's, else by central differences.
+inline double contact_true_slope(const Params& p, const ContactForce& c, double h, double hdot) {
+    if (std::isfinite(c.dF_dhdot_true)) return c.dF_dhdot_true;
+    const double dv = 1e-6 * std::abs(hdot) + 1e-12;
+    return (p.impact->contact(p.ip.data(), h, hdot + dv).F - p.impact->contact(p.ip.data(), h, hdot - dv).F) / (2.0 * dv);
+}
 
 // dy'/dy in J and, if asked, dy'/dt in *dfdt (the unbalance's and the input's time derivatives, the effects'):
 // a tangent needs only J, and skips the drive's derivatives.
@@ -74,9 +82,7 @@ inline void rig_jacobian(const Params& p, const Drive& d, double t, const Vec2& 
         if (slope == ContactSlope::Secant || h <= 0.0) {
             dFdv -= c.dF_dhdot;
         } else {
-            const double dv = 1e-6 * std::abs(y[1]) + 1e-12;
-            const double Fp = p.impact->contact(p.ip.data(), h, y[1] + dv).F, Fm = p.impact->contact(p.ip.data(), h, y[1] - dv).F;
-            dFdv -= (Fp - Fm) / (2.0 * dv);
+            dFdv -= contact_true_slope(p, c, h, y[1]);
         }
     }
     if (!p.effects.empty()) {

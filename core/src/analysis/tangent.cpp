@@ -286,9 +286,8 @@ void TangentTracker::propagate_across_zero(const Piece& piece, double a, double 
         // Replace the pointwise friction and contact slopes by their secant; effects keep their own slope.
         double point = resistance(p_, ym[1]).dF;
         if (p_.compliant() && ym[0] > p_.xI) {
-            const double dv = 1e-6 * std::abs(ym[1]) + 1e-12;
-            point += (p_.impact->contact(p_.ip.data(), ym[0] - p_.xI, ym[1] + dv).F -
-                      p_.impact->contact(p_.ip.data(), ym[0] - p_.xI, ym[1] - dv).F) / (2 * dv);
+            const double depth = ym[0] - p_.xI;
+            point += contact_true_slope(p_, p_.impact->contact(p_.ip.data(), depth, ym[1]), depth, ym[1]);
         }
         A(1, 1) += (point - (Fv(vb) - Fv(va)) / (vb - va)) / p_.m;
     }
