@@ -96,9 +96,13 @@ std::string Continuer::impacts_end(const Vec3& z, const Vec3& t, double ds, cons
     Vec3 zm = zn;
     Vec2 secm = sec;
     for (int it = 0; it < 60 && std::abs(vb - va) > 0; ++it) {
-        const double sm = sb - vb * (sb - sa) / (vb - va);
+        double sm = sb - vb * (sb - sa) / (vb - va);
         Eigen::Matrix<double, 2, 3> Jm;
-        if (!correct_impacting(z + sm * t, t, k, zm, Jm, secm)) break;
+        // Where the secant's point does not converge (its prediction off the branch), the midpoint once.
+        if (!correct_impacting(z + sm * t, t, k, zm, Jm, secm)) {
+            sm = 0.5 * (sa + sb);
+            if (!correct_impacting(z + sm * t, t, k, zm, Jm, secm)) break;
+        }
         sa = sb; va = vb; sb = sm; vb = zm[1];
         if (std::abs(vb) * kVScale < 1e-12) break;
     }
@@ -106,14 +110,24 @@ std::string Continuer::impacts_end(const Vec3& z, const Vec3& t, double ds, cons
     bp.precision = std::max(bp.precision, 1e-9 * q_scale_);
     bool known = false;
     for (const BifPoint& q : result_.points)
-        if (q.kind == BifKind::Grazing && std::abs(q.param - bp.param) < 1e-5 * q_scale_) known = true;
+        if (q.kind == BifKind::Grazing && std::abs(q.param - bp.param) < std::max(1e-5 * q_scale_, 2 * bp.precision))
+            known = true;
+    // Where the corrector gave out before v- reached zero (the equations turn singular there) the grazing is
+    // only bracketed: named at the branch's end, not marked as a located point.
+    const bool located = bp.precision <= 1e-6 * q_scale_;
     // (With a dwell at rest the orbit arriving at rest grazes nothing: its end is named, not marked.)
-    if (!known && dwell_at_rest() == 0) result_.points.push_back(bp);
+    if (!known && located && dwell_at_rest() == 0) result_.points.push_back(bp);
     reached_.push_back(bp.param);
+    const std::string at = std::string(sweep_param_name(spec_.param)) + " = " + std::to_string(bp.param);
     if (dwell_at_rest() > 0)
-        return "at rest at " + std::string(sweep_param_name(spec_.param)) + " = " + std::to_string(bp.param) +
+        return "at rest at " + at +
                " (the impacts end arriving at rest, where T_imp(0) > 0 still holds the cart: no free orbit joins there)";
-    return "grazing at " + std::string(sweep_param_name(spec_.param)) + " = " + std::to_string(bp.param) + " (the impacts end)";
+    if (!located) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.2g", bp.precision);
+        return "grazing near " + at + " (+- " + buf + "; the impacts end, v- not followed to zero)";
+    }
+    return "grazing at " + at + " (the impacts end)";
 }
 
 Followed Continuer::follow_impacting(const Job& job, Branch& br) {
