@@ -110,7 +110,7 @@ std::string Continuer::impacts_end(const Vec3& z, const Vec3& t, double ds, cons
     bp.precision = std::max(bp.precision, 1e-9 * q_scale_);
     bool known = false;
     for (const BifPoint& q : result_.points)
-        if (q.kind == BifKind::Grazing && std::abs(q.param - bp.param) < std::max(1e-5 * q_scale_, 2 * bp.precision)) known = true;
+        if (q.kind == BifKind::Grazing && std::abs(q.param - bp.param) < 1e-5 * q_scale_) known = true;
     // Where the corrector gave out before v- reached zero (the equations turn singular there) the grazing is
     // only bracketed: named at the branch's end, not marked as a located point.
     const bool located = bp.precision <= 1e-6 * q_scale_;
