@@ -33,6 +33,7 @@ constexpr const char* kFitHelp =
     "Data (MODEL.md layout: t,x and phi or u; '#' comments):\n"
     "  --t-col C, --x-col C, --phi-col C, --u-col C   map a column by header name or 1-based number\n"
     "  --rate HZ               sample rate of a file without a time column\n"
+    "  --free                  a free run (a decay): nothing forced it, u = 0 (implied where every column is motion)\n"
     "  --x-scale S, --u-scale S, --phi-scale S, --t-scale S   unit factors (e.g. --x-scale 1e-3 for mm)\n"
     "  --rows A:B              use data rows A..B-1 (0-based); the whole file is still checked\n"
     "  --test-rows A:B         rows held out: their free-run simulation error, and their shooting error within\n"
@@ -75,6 +76,7 @@ identify::LoadOptions load_options(const Args& a) {
     lo.u_scale = a.num("--u-scale", 1.0, -1e12, 1e12);
     lo.phi_scale = a.num("--phi-scale", 1.0, -1e9, 1e9);
     lo.t_scale = a.num("--t-scale", 1.0, 1e-12, 1e9);
+    lo.free_run = a.has("--free");
     return lo;
 }
 
@@ -286,7 +288,7 @@ int cmd_fit(const std::vector<std::string>& argv) {
                  {"--model", "--xI", "--m0e", "--rtol", "--report", "--baseline", "--fit-params", "--gain", "--t-col", "--x-col",
                   "--phi-col", "--u-col", "--rate", "--x-scale", "--u-scale", "--phi-scale", "--t-scale", "--rows", "--test-rows",
                   "--window", "--z", "--min-gain", "--max-effects", "--only", "--exclude", "--knots", "--omega-bin", "--x-highpass"},
-                 {"--no-generic", "--no-refine", "--no-plots"}, /*takes_files=*/true);
+                 {"--no-generic", "--no-refine", "--no-plots", "--free"}, /*takes_files=*/true);
     if (a.positional().empty()) throw UsageError("fit: give a data file, or several runs of one rig (see impactlab fit --help)");
     const std::vector<std::string> paths = a.positional();
     const std::string path = paths.size() == 1 ? paths[0] : paths[0] + " + " + std::to_string(paths.size() - 1) + " more";

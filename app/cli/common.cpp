@@ -337,7 +337,7 @@ std::optional<identify::MeasuredData> input_from(const Args& a, const std::strin
     } catch (const identify::DataError& e) {
         throw UsageError(command + ": --input: " + e.what());
     }
-    if (!in.has_u()) throw UsageError(command + ": --input: " + in.source + " has no input column u (map one with --u-col)");
+    if (!in.has_u() || in.free_run) throw UsageError(command + ": --input: " + in.source + " has no input column u (map one with --u-col)");
     return in;
 }
 

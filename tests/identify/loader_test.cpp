@@ -75,7 +75,12 @@ TEST_CASE("loader: every broken file is refused with its line and the problem") 
     CHECK(refusal(good).empty());
     CHECK(has(refusal("t,phi\n" + rows(40)), "no position column 'x'"));
     CHECK(has(refusal("x,phi\n1,2\n"), "no time column"));
-    CHECK(has(refusal("t,x\n" + rows(40)), "no forcing column"));
+    // A column left unread may be the forcing under another name: the user says which, or that there is none.
+    CHECK(has(refusal("t,x,accel\n" + rows(40)), "no forcing column"));
+    CHECK(has(refusal("t,x,accel\n" + rows(40)), "--free"));
+    id::LoadOptions declared_free;
+    declared_free.free_run = true;
+    CHECK(has(refusal("t,x,phi\n" + rows(40), declared_free), "column 'phi' is its forcing"));
     CHECK(has(refusal("t,x,phi,u\n0,0,0,0\n"), "both a 'phi' and a 'u'"));
     std::string text_in_number = good;
     text_in_number.replace(text_in_number.find("0.000000,0.0000000"), 18, "0.000000,abc");
@@ -247,4 +252,34 @@ TEST_CASE("loader: hostile inputs: CR-only lines, 100k columns, scales that over
     id::LoadOptions ns;
     ns.t_scale = 1e-12;
     CHECK(has(refusal("t,x,phi\n" + rows(100), ns), "within 1 ns of the previous sample"));
+}
+
+TEST_CASE("loader: a record of the motion alone is a free run, its input zero; declared where other columns are present") {
+    std::string two;   // t,x: a free decay
+    for (int i = 0; i < 40; ++i) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.6f,%.7f\n", i * 1e-3, 0.001 * std::exp(-0.1 * i) * std::cos(0.5 * i));
+        two += buf;
+    }
+    const id::MeasuredData d = id::parse_measured("t,x\n" + two, "decay.csv", {});
+    REQUIRE(d.size() == 40);
+    CHECK(d.free_run);
+    REQUIRE(d.has_u());
+    CHECK(std::all_of(d.u.begin(), d.u.end(), [](double u) { return u == 0.0; }));
+    CHECK(id::forcing_of(d) == id::Forcing::Input);
+    CHECK(d.meta.at("forcing").find("free run") != std::string::npos);
+    // x alone at a given rate is motion only too.
+    id::LoadOptions at_rate;
+    at_rate.rate = 1000.0;
+    std::string xs;
+    for (int i = 0; i < 40; ++i) xs += std::to_string(0.001 * std::cos(0.5 * i)) + "\n";
+    CHECK(id::parse_measured("x\n" + xs, "x.csv", at_rate).free_run);
+    // An extra column, read as a free run only when the user says so.
+    id::LoadOptions declared;
+    declared.free_run = true;
+    const id::MeasuredData e = id::parse_measured("t,x,temperature\n" + rows(40), "f.csv", declared);
+    CHECK(e.free_run);
+    CHECK(e.u.size() == 40);
+    // A forced record is no free run.
+    CHECK_FALSE(id::parse_measured("t,x,phi\n" + rows(40), "f.csv", {}).free_run);
 }

@@ -31,6 +31,9 @@ struct LoadOptions {
     long row_begin = 0;         // data rows [row_begin, row_end), 0-based like a Python slice; the whole
     long row_end = -1;          // file is still checked; -1: to the end
     std::size_t min_samples = 32;
+    // A free run (a decay from an initial displacement): no forcing was applied, u = 0 throughout. A record
+    // whose columns are all motion (t, x, v, omega) is read so without it; this says so where others are present.
+    bool free_run = false;
 };
 
 struct MeasuredData {
@@ -45,6 +48,7 @@ struct MeasuredData {
     // its own forcing and initial state; nothing (smoothing, windows, impacts) reaches across a start.
     std::vector<std::size_t> run_starts{0};
     std::vector<std::string> run_sources;       // the file of each run (join_records); empty for one record
+    bool free_run = false;                      // no forcing column: u is 0 throughout (LoadOptions::free_run)
     bool has_phi() const { return !phi.empty(); }
     bool has_u() const { return !u.empty(); }
     std::size_t size() const { return t.size(); }

@@ -496,6 +496,6 @@ std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& nam
 // A base parameter's natural size in the record's units: the change that moves its force by the record's
 // typical force f_typ where x, v and u take their typical sizes (k by f/x, a3 by f/x^3, c by f/v, ...).
 double base_scale(const std::string& name, const Prep& pr, const Model& m);
-std::vector<std::string> default_fit_params(const Model& m);
+std::vector<std::string> default_fit_params(const Model& m, const Prep& pr);
 
 }  // namespace impactlab::identify::detail

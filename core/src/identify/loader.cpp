@@ -125,6 +125,7 @@ struct Table {
     int col[NSIG] = {-1, -1, -1, -1, -1, -1};
     std::vector<double> rows[NSIG];
     std::vector<long> lines;
+    bool free_run = false;   // no forcing column: u = 0 throughout
 };
 
 // The header's names checked, and each signal mapped to its column (by name, by the mapping given, or by
@@ -189,9 +190,20 @@ void map_columns(Table& tb, const LoadOptions& opt) {
         else if (!opt.columns.u.empty() && opt.columns.phi.empty()) col[PHI] = -1;
         else fail(src, header_line, "both a 'phi' and a 'u' column: say which is the forcing (--phi-col or --u-col)");
     }
-    if (col[PHI] < 0 && col[U] < 0)
-        fail(src, header_line, "no forcing column: need the unbalance angle 'phi' or a measured input 'u' (the header has: " +
-                                   list() + ")");
+    if (opt.free_run && (col[PHI] >= 0 || col[U] >= 0))
+        fail(src, header_line, std::string("a free run was declared (--free), but column '") +
+                                   header[static_cast<std::size_t>(col[PHI] >= 0 ? col[PHI] : col[U])] + "' is its forcing");
+    if (col[PHI] < 0 && col[U] < 0) {
+        // Only motion in the record (no column left unread): nothing forced it, a free decay. A column left
+        // unread may be the forcing under another name, so there the user says which.
+        bool motion_only = true;
+        for (std::size_t k = 0; k < named; ++k)
+            if (std::find(col, col + NSIG, static_cast<int>(k)) == col + NSIG) motion_only = false;
+        if (!opt.free_run && !motion_only)
+            fail(src, header_line, "no forcing column: need the unbalance angle 'phi' or a measured input 'u' (the header has: " +
+                                       list() + "; map one with --phi-col or --u-col, or declare a free run with --free)");
+        tb.free_run = true;
+    }
     tb.ncols = header.size();
 }
 
@@ -375,6 +387,11 @@ MeasuredData parse_measured(std::string_view text, const std::string& src, const
     take(tb, X, opt.x_scale, b, e, d.x);
     take(tb, PHI, opt.phi_scale, b, e, d.phi);
     take(tb, U, opt.u_scale, b, e, d.u);
+    if (tb.free_run) {
+        d.u.assign(d.t.size(), 0.0);
+        d.free_run = true;
+        d.meta["forcing"] = "none: a free run (no forcing column), input u = 0";
+    }
     take(tb, OMEGA, 1.0, b, e, d.omega);
     take(tb, V, opt.x_scale, b, e, d.v);
     check_time_unit(tb, d, b);
@@ -413,6 +430,7 @@ MeasuredData join_records(const std::vector<MeasuredData>& runs) {
         all.source += (k ? " + " : "") + r.source;
         for (const auto& [key, value] : r.meta) all.meta[r.source + ": " + key] = value;
     }
+    all.free_run = std::all_of(runs.begin(), runs.end(), [](const MeasuredData& r) { return r.free_run; });
     // An optional column only some runs have is dropped (its samples would not line up).
     if (all.omega.size() != all.t.size()) all.omega.clear();
     if (all.v.size() != all.t.size()) all.v.clear();
