@@ -17,6 +17,14 @@ DataHorizon data_horizon(const Prep& pr) {
     const MeasuredData& d = *pr.data;
     const double T = pr.period;
     if (!(T > 0) || pr.n < 64) return h;
+    // Nothing drives the record (a free decay): the rig's unforced motion is a flow in the plane (x, v), which
+    // has no chaos (Poincare-Bendixson). A decay's returns meet other amplitudes, and with a hardening spring
+    // other frequencies, so their parting would measure the decay, not a horizon.
+    if (!pr.phi_forced && !(pr.u_typ > 0)) {
+        h.measured = h.regular = h.unforced = true;
+        h.periods = INFINITY;
+        return h;
+    }
     // About 32 samples a forcing period, delays of a quarter period, followed for up to 10 periods.
     const std::size_t s = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(T / pr.dt / 32.0)));
     const std::size_t tau = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.25 * T / pr.dt)));

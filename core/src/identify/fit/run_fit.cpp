@@ -82,6 +82,9 @@ void prepare_stage(FitSession& fs) {
     Prep& prep = fs.prep;
     prep.progress = fs.progress;
     prep.predictability = data_horizon(prep);
+    if (prep.predictability.unforced)
+        rep.notes.push_back("a free run (no input): the rig's unforced motion, a flow in the plane (x, v), cannot be chaotic; it is "
+                            "judged as a regular record, over whole periods");
     const Prep& pr = prep;
     rep.samples = pr.n;
     rep.rows_used = pr.rows.size();
