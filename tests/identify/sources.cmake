@@ -17,6 +17,7 @@ set(IMPACTLAB_IDENTIFY_TEST_SOURCES
   identify/features_test.cpp
   identify/drift_test.cpp
   identify/metamorphic_test.cpp
+  identify/free_decay_test.cpp
   identify/shape_test.cpp
   identify/attractor_test.cpp
 )

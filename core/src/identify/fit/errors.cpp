@@ -31,9 +31,17 @@ Gated final_gate(FitSession& fs, const Prep* ptp) {
     std::size_t last_base = 0;
     while (last_base + 1 < chain.size() && chain[last_base + 1].baseline) ++last_base;
     std::size_t& ref_base = gd.ref_base;
+    // A reference fitted to this record's equation error is judged there in-sample: any other base parameters
+    // read worse on it, by a margin the smoother's bias sets, not the model (a free decay's k, biased 0.2 % by
+    // the smoothed acceleration, undid the refinement that brought its 10-period shooting error to the noise).
+    // Between baseline steps, each already preferred on held-out trajectories, the trajectories judge.
+    PrintedErrors pg_base = pg;
+    if (chain.front().equation_error_fit)
+        for (PrintedError& e : pg_base.e)
+            if (e.name == kErrResidual) e.decides = false;
     for (std::size_t j = last_base; j > 0; --j) {
         pb = printed_errors(pr, chain[j].model, o, judge, ptp);
-        const GateCheck g = gate_check(pg, pb);
+        const GateCheck g = gate_check(pg_base, pb);
         if (!g.worse) {
             ref_base = j;
             break;

@@ -137,7 +137,7 @@ void baseline_stage(FitSession& fs) {
     if (o.fit_baseline && model0.placeholder) {
         // Starting values are no model to be "not worse than": the baseline fitted to the equation error is the
         // reference of every later change and of the final gate.
-        chain = {{"the base parameters fitted to the equation error (the model given holds starting values only)", ee_base, {}, -1, false}};
+        chain = {{"the base parameters fitted to the equation error (the model given holds starting values only)", ee_base, {}, -1, false, true}};
         rep.notes.push_back("the model given (" + model0.p.name +
                             ") holds starting values only: the errors 'before' and the final gate's reference are those of the "
                             "baseline fitted to the equation error");

@@ -28,6 +28,7 @@ struct ChainStep {
     std::vector<FoundEffect> found;
     double held_out_rms_m = -1;
     bool baseline = false;   // a step of the baseline fit (before any effect)
+    bool equation_error_fit = false;   // this model's parameters minimise the record's own equation error
 };
 using Chain = std::vector<ChainStep>;
 
