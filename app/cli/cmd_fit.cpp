@@ -244,7 +244,7 @@ void print_errors(const identify::FitReport& r) {
         else std::printf("%-38s %14.5g %14.5g\n", name.c_str(), vb, va);
     };
     row("residual RMS " + fu, b.residual_rms_N, eb.residual_rms_N, e.residual_rms_N);
-    row("shooting RMS 1 period " + xu, b.shooting_rms_1_m, eb.shooting_rms_1_m, e.shooting_rms_1_m);
+    row("shooting RMS 1 period " + xu + (r.past_horizon(1.0) ? " *" : ""), b.shooting_rms_1_m, eb.shooting_rms_1_m, e.shooting_rms_1_m);
     row("shooting RMS 10 periods " + xu + (r.past_horizon(10.0) ? " *" : ""), b.shooting_rms_10_m, eb.shooting_rms_10_m,
         e.shooting_rms_10_m);
     if (b.shooting_rms_judge_m >= 0 && r.horizon_periods != 1.0 && r.horizon_periods != 10.0) {
