@@ -284,10 +284,10 @@ void print_errors(const identify::FitReport& r) {
 
 int cmd_fit(const std::vector<std::string>& argv) {
     if (show_help_if_asked(argv, kFitHelp)) return 0;
-    const Args a("fit", argv,
-                 {"--model", "--xI", "--m0e", "--rtol", "--report", "--baseline", "--fit-params", "--gain", "--t-col", "--x-col",
-                  "--phi-col", "--u-col", "--rate", "--x-scale", "--u-scale", "--phi-scale", "--t-scale", "--rows", "--test-rows",
-                  "--window", "--z", "--min-gain", "--max-effects", "--only", "--exclude", "--knots", "--omega-bin", "--x-highpass"},
+    const Args a("fit", argv, {"--model",    "--xI",          "--m0e",     "--rtol",    "--report",    "--baseline",  "--fit-params",
+                               "--gain",     "--t-col",       "--x-col",   "--phi-col", "--u-col",     "--rate",      "--x-scale",
+                               "--u-scale",  "--phi-scale",   "--t-scale", "--rows",    "--test-rows", "--window",    "--z",
+                               "--min-gain", "--max-effects", "--only",    "--exclude", "--knots",     "--omega-bin", "--x-highpass"},
                  {"--no-generic", "--no-refine", "--no-plots", "--free"}, /*takes_files=*/true);
     if (a.positional().empty()) throw UsageError("fit: give a data file, or several runs of one rig (see impactlab fit --help)");
     const std::vector<std::string> paths = a.positional();

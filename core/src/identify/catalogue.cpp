@@ -206,7 +206,8 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
     for (double a : pr.alpha) alpha_rms += a * a;
     alpha_rms = std::sqrt(alpha_rms / static_cast<double>(std::max<std::size_t>(1, pr.alpha.size())));
     // In fit mode the base parameters absorb some effects; in validate mode those say which base value is off.
-    const auto fitted_names = o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(m, pr) : o.fit_params) : std::vector<std::string>{};
+    const auto fitted_names =
+        o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(m, pr) : o.fit_params) : std::vector<std::string>{};
     auto fitted = [&](const char* name) { return std::find(fitted_names.begin(), fitted_names.end(), name) != fitted_names.end(); };
     for (const auto& law : effect_laws()) {
         const EffectFitHint& h = law.fit;

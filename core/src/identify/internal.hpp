@@ -123,7 +123,7 @@ struct Prep {
     // shooting error growth decides the judging windows.
     struct Predictability {
         bool measured = false, regular = false;
-        bool unforced = false;   // nothing drives the record: regular by the dynamics, not by its returns
+        bool unforced = false;            // nothing drives the record: regular by the dynamics, not by its returns
         double periods = 0, lambda = 0;   // separation doubling time [forcing periods] (inf: regular), exponent [1/s]
         std::size_t pairs = 0;
         std::vector<std::pair<double, double>> log_separation;   // (periods ahead, mean ln separation)

@@ -191,8 +191,9 @@ void map_columns(Table& tb, const LoadOptions& opt) {
         else fail(src, header_line, "both a 'phi' and a 'u' column: say which is the forcing (--phi-col or --u-col)");
     }
     if (opt.free_run && (col[PHI] >= 0 || col[U] >= 0))
-        fail(src, header_line, std::string("a free run was declared (--free), but column '") +
-                                   header[static_cast<std::size_t>(col[PHI] >= 0 ? col[PHI] : col[U])] + "' is its forcing");
+        fail(src, header_line,
+             std::string("a free run was declared (--free), but column '") +
+                 header[static_cast<std::size_t>(col[PHI] >= 0 ? col[PHI] : col[U])] + "' is its forcing");
     if (col[PHI] < 0 && col[U] < 0) {
         // Only motion in the record (no column left unread): nothing forced it, a free decay. A column left
         // unread may be the forcing under another name, so there the user says which.
@@ -200,8 +201,9 @@ void map_columns(Table& tb, const LoadOptions& opt) {
         for (std::size_t k = 0; k < named; ++k)
             if (std::find(col, col + NSIG, static_cast<int>(k)) == col + NSIG) motion_only = false;
         if (!opt.free_run && !motion_only)
-            fail(src, header_line, "no forcing column: need the unbalance angle 'phi' or a measured input 'u' (the header has: " +
-                                       list() + "; map one with --phi-col or --u-col, or declare a free run with --free)");
+            fail(src, header_line,
+                 "no forcing column: need the unbalance angle 'phi' or a measured input 'u' (the header has: " + list() +
+                     "; map one with --phi-col or --u-col, or declare a free run with --free)");
         tb.free_run = true;
     }
     tb.ncols = header.size();

@@ -112,8 +112,7 @@ void baseline_stage(FitSession& fs) {
     FitReport& rep = fs.rep;
     const Prep& pr = fs.prep;
     std::vector<std::string>& base_names = fs.base_names;
-    base_names =
-        o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0, pr) : o.fit_params) : std::vector<std::string>{};
+    base_names = o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0, pr) : o.fit_params) : std::vector<std::string>{};
     // Runs put back at their wells: the tied cubic's even term is fitted with the baseline.
     if (o.fit_baseline && o.fit_params.empty() && !rep.run_offsets.empty()) base_names.push_back("k2");
     fit_baseline_stage(fs);
@@ -137,7 +136,11 @@ void baseline_stage(FitSession& fs) {
     if (o.fit_baseline && model0.placeholder) {
         // Starting values are no model to be "not worse than": the baseline fitted to the equation error is the
         // reference of every later change and of the final gate.
-        chain = {{"the base parameters fitted to the equation error (the model given holds starting values only)", ee_base, {}, -1, false, true}};
+        ChainStep head;
+        head.what = "the base parameters fitted to the equation error (the model given holds starting values only)";
+        head.model = ee_base;
+        head.equation_error_fit = true;
+        chain = {head};
         rep.notes.push_back("the model given (" + model0.p.name +
                             ") holds starting values only: the errors 'before' and the final gate's reference are those of the "
                             "baseline fitted to the equation error");
