@@ -111,3 +111,27 @@ TEST_CASE("fit: a free decay is never judged chaotic, however its hardening spri
     }
     CHECK(said);
 }
+
+TEST_CASE("fit: a decay far from the sensor's zero pins its well's frequency; the report does not say otherwise") {
+    // x = 500 + 3 cos(60 t) exp(-t) in data units: k and a3 trade off (the motion spans 1 % of the travel from
+    // the model's origin), their sum at the well, the frequency, does not.
+    std::string csv = "t,x\n";
+    char buf[64];
+    for (int i = 0; i < 2000; ++i) {
+        const double t = i * 1e-3;
+        std::snprintf(buf, sizeof buf, "%.4f,%.6f\n", t, 500.0 + 3.0 * std::cos(60.0 * t) * std::exp(-t));
+        csv += buf;
+    }
+    const id::MeasuredData d = id::parse_measured(csv, "offset.csv", {});
+    id::FitOptions fo;
+    fo.plots = false;
+    fo.fit_baseline = true;
+    const id::FitReport r = id::run_fit(d, id::resolve_fit_model("duffing", id::Forcing::Input), fo);
+    bool k_traded = false;
+    for (const auto& u : r.unseparated) k_traded = k_traded || u.a == "k" || u.b == "k";
+    CHECK(k_traded);
+    REQUIRE_FALSE(r.data_wells.empty());
+    CHECK(r.data_wells.front().omega / kTwoPi == doctest::Approx(60.0 / kTwoPi).epsilon(1e-3));
+    CHECK(r.well_frequency.find("not identifiable") == std::string::npos);
+    CHECK(r.well_frequency.find("steady forcing") == std::string::npos);
+}

@@ -185,6 +185,11 @@ std::string well_frequency_identifiability(const std::vector<RunWell>& wells, co
     const UnseparatedPair* traded = nullptr;
     for (const UnseparatedPair& u : unseparated)
         if (u.a == "k" || u.b == "k") traded = &u;
+    // k traded against another spring term (a3 where the motion spans little of the travel) leaves the well's
+    // frequency, their sum there, pinned: only a trade against the gain or the damping unpins the frequency.
+    const std::string partner = traded ? (traded->a == "k" ? traded->b : traded->a) : "";
+    const bool spring_partner = partner == "a1" || partner == "a3" || partner == "a5" || partner == "k2";
+    if (spring_partner) traded = nullptr;
     constexpr double kApart = 0.15;
     std::string out;
     for (const RunWell& w : wells) {
@@ -195,14 +200,17 @@ std::string well_frequency_identifiability(const std::vector<RunWell>& wells, co
         if (!near) continue;
         const double apart = std::abs(near->omega - w.omega) / w.omega;
         if (apart <= kApart && !traded) continue;
-        const std::string trade = traded ? ", and k trades off against " + (traded->a == "k" ? traded->b : traded->a) + " in the fit" : "";
+        const std::string trade = traded ? ", and k trades off against " + partner + " in the fit" : "";
+        const char* why = traded || !spring_partner
+                              ? "steady forcing at one frequency lets k trade off against the gain and the damping; a transient "
+                                "would separate them"
+                              : "its motion spans too little of the travel to tell the linear spring from the nonlinear one";
         char buf[400];
         std::snprintf(buf, sizeof buf,
                       "run %zu: the well's frequency is not identifiable from this record: the model written puts it at %.3g Hz, the "
-                      "run's own local law at %.3g +/- %.2g Hz (%.0f %% apart)%s. The record does not pin it (steady forcing at one "
-                      "frequency lets k trade off against the gain and the damping; a transient would separate them): neither "
+                      "run's own local law at %.3g +/- %.2g Hz (%.0f %% apart)%s. The record does not pin it (%s): neither "
                       "value is a finding",
-                      w.run + 1, near->omega / kTwoPi, w.omega / kTwoPi, w.somega / kTwoPi, 100.0 * apart, trade.c_str());
+                      w.run + 1, near->omega / kTwoPi, w.omega / kTwoPi, w.somega / kTwoPi, 100.0 * apart, trade.c_str(), why);
         out += (out.empty() ? "" : "; ") + std::string(buf);
     }
     return out;
