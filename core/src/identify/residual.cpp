@@ -126,6 +126,13 @@ double drives_by_run(const MeasuredData& d, const FitOptions& o, Prep& pr) {
                 }
             for (std::size_t i = a; i < b; ++i) xc[i] -= cnt > 0 ? mean / cnt : 0.0;
         }
+        // A free run's "forcing period" is its own oscillation's. Its x may also settle (a decay into one of two
+        // wells), a step whose spectrum would outweigh the oscillation's: the velocity's spectrum weighs each
+        // frequency by itself, so the oscillation stands out (a 4 Hz decay into a well read as a 20 s period).
+        if (std::all_of(d.u.begin(), d.u.end(), [](double u) { return u == 0.0; })) {
+            for (std::size_t i = 0; i + 1 < xc.size(); ++i) xc[i] = xc[i + 1] - xc[i];
+            if (!xc.empty()) xc.pop_back();
+        }
         pr.period = dominant_period(xc, pr.dt);
         t_char = pr.period;
     }
