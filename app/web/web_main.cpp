@@ -35,6 +35,7 @@ EM_JS(char*, web_query_flags, (), {
     const q = new URLSearchParams(window.location.search);
     let out = "";
     for (const e of q.entries()) {   // no destructuring: emscripten 3.1.6's JS optimiser drops it
+        if (e[0] === "gl-cache") continue;   // the page's own (shell.html), not the program's
         out += "--" + e[0] + "\n";
         if (e[1] !== "") out += e[1] + "\n";
     }
