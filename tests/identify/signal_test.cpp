@@ -30,6 +30,33 @@ TEST_CASE("signal: the noise on a smooth signal is found by both estimates") {
     CHECK(std::isinf(dt::noise_sigma_spectral(std::vector<double>(100, 0.0))));
 }
 
+TEST_CASE("signal: a record in whole counts has at least their rounding noise; decimals and noise add no floor") {
+    // 30 counts decaying at 60 rad/s, 1 kHz: most 4th differences are zero, the rounding is 1 / sqrt(12).
+    std::vector<double> counts(2000);
+    for (std::size_t i = 0; i < counts.size(); ++i) {
+        const double t = static_cast<double>(i) * 1e-3;
+        counts[i] = std::round(30.0 * std::cos(60.0 * t) * std::exp(-2.0 * t));
+    }
+    CHECK(dt::noise_sigma(counts) == 0.0);
+    CHECK(dt::quantum_sigma(counts) == doctest::Approx(1.0 / std::sqrt(12.0)));
+    CHECK(impactlab::identify::estimate_noise(counts) == doctest::Approx(1.0 / std::sqrt(12.0)));
+    // The same counts in volts of 2.5 mV a count: the step scales with the unit.
+    std::vector<double> volts(counts);
+    for (double& v : volts) v *= 2.5e-3;
+    CHECK(impactlab::identify::estimate_noise(volts) == doctest::Approx(2.5e-3 / std::sqrt(12.0)));
+    // Noise in full floating point: no step.
+    std::mt19937 rng(3);
+    std::normal_distribution<double> g(0.0, 3e-6);
+    std::vector<double> x(4000);
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = 0.01 * std::sin(0.0126 * static_cast<double>(i)) + g(rng);
+    CHECK(dt::quantum_sigma(x) == 0.0);
+    // Printed to 1e-6 with 3e-6 of noise: the step's rounding lies below the noise, which stands.
+    std::vector<double> printed(x);
+    for (double& v : printed) v = std::round(v * 1e6) / 1e6;
+    CHECK(dt::quantum_sigma(printed) < 0.3e-6);
+    CHECK(impactlab::identify::estimate_noise(printed) == doctest::Approx(impactlab::identify::estimate_noise(x)).epsilon(0.05));
+}
+
 TEST_CASE("signal: Savitzky-Golay derivatives are exact on polynomials of their degree, and apply_fir centres them") {
     const double h = 1e-3;
     const std::vector<double> c0 = dt::savgol(5, 3, 0, h), c1 = dt::savgol(5, 3, 1, h), c2 = dt::savgol(5, 3, 2, h);

@@ -26,6 +26,8 @@ double noise_sigma(const std::vector<double>& x);
 // signal itself has power up to a good part of the band (where 4th differences see signal). +inf for fewer
 // than 2048 samples.
 double noise_sigma_spectral(const std::vector<double>& x);
+// The rounding noise q / sqrt(12) of a record whose values change in whole steps q (counts), else 0.
+double quantum_sigma(const std::vector<double>& x);
 // Welch's periodogram: the sum over Hann segments of `seg` samples, half overlapping, each with its mean (and
 // with remove_line its straight line) removed, of |FFT|^2 at bins 0..seg/2; `segments` says how many were
 // summed. Empty when x is shorter than one segment.
