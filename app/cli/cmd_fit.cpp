@@ -184,7 +184,9 @@ void print_findings(const identify::FitReport& r, const std::string& path) {
         std::printf("validated on %zu held-out windows of %.3g forcing periods (within the predictability horizon): shooting RMS %.3g -> %.3g %s\n",
                     r.validation_windows, r.horizon_periods, r.validation_rms_before_m, r.validation_rms_after_m,
                     r.x_unit());
-    if (r.data_horizon_measured && r.data_regular)
+    if (r.data_free_run)
+        std::printf("the record is a free run: regular by its dynamics, judged over whole periods of its own oscillation\n");
+    else if (r.data_horizon_measured && r.data_regular)
         std::printf("the record is regular: nearby returns stay together for 10 forcing periods (judged over whole periods)\n");
     else if (r.data_horizon_measured)
         std::printf("the record's own horizon: nearby returns double their separation in %.3g forcing periods (lambda ~ %.3g 1/s)\n",

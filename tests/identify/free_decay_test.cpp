@@ -113,6 +113,7 @@ TEST_CASE("fit: a free decay is never judged chaotic, however its hardening spri
     fo.fit_baseline = true;
     const id::FitReport r = id::run_fit(d, id::resolve_fit_model("duffing", id::Forcing::Input), fo);
     CHECK(r.data_regular);
+    CHECK(r.data_free_run);
     CHECK_FALSE(r.past_horizon(10.0));
     bool said = false;
     for (const auto& n : r.notes) {

@@ -257,6 +257,7 @@ struct FitReport {
     // doubling time of their separation [forcing periods] (inf: regular, no doubling in 10 periods) and the
     // exponent it implies [1/s]; not measured on records too short for it.
     bool data_horizon_measured = false, data_regular = false;
+    bool data_free_run = false;   // nothing drives the record: regular by its dynamics, no returns measured
     double data_horizon_periods = 0, data_lambda = 0;
     // Whether a trajectory error over `periods` forcing periods lies past the record's predictability horizon
     // (a chaotic record): printed, never judged.

@@ -267,7 +267,10 @@ void md_validation(std::ostream& md, const FitReport& r) {
           "by more than the windows' scatter (paired z >= 3) and by 2 % of the error above the noise. ";
     if (r.horizon_periods > 0) {
         md << "The windows are " << g3(r.horizon_periods) << " forcing periods long (" << r.validation_windows << " of them). ";
-        if (r.data_horizon_measured && r.data_regular)
+        if (r.data_free_run)
+            md << "The record is a free run: nothing drives it, and the rig's unforced motion, a flow in the plane (x, v), "
+                  "has no chaos, so it is judged over whole periods of its own oscillation.\n\n";
+        else if (r.data_horizon_measured && r.data_regular)
             md << "The record itself is regular: nearby returns of the measured trajectory stay together for 10 forcing periods "
                   "(no separation doubling), so it is judged over whole periods; a model whose error grows faster is wrong, "
                   "not unlucky.\n\n";
@@ -541,7 +544,7 @@ std::string report_json_text(const FitReport& r) {
     }
     j["validation"] = {{"horizon_periods", num(r.horizon_periods)}, {"windows", r.validation_windows},
                        {"rms_before", num(r.validation_rms_before_m)}, {"rms_after", num(r.validation_rms_after_m)}};
-    j["validation"]["data_horizon"] = {{"measured", r.data_horizon_measured}, {"regular", r.data_regular},
+    j["validation"]["data_horizon"] = {{"measured", r.data_horizon_measured}, {"regular", r.data_regular}, {"free_run", r.data_free_run},
                                        {"doubling_periods", r.data_regular ? json(nullptr) : num(r.data_horizon_periods)},
                                        {"lambda_per_s", num(r.data_lambda)}};
     j["validation"]["growth"] = json::array();

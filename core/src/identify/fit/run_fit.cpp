@@ -96,6 +96,7 @@ void prepare_stage(FitSession& fs) {
     rep.drive_fit_rms_rad = pr.drive_rms;
     rep.data_horizon_measured = pr.predictability.measured;
     rep.data_regular = pr.predictability.regular;
+    rep.data_free_run = pr.predictability.unforced;
     rep.data_horizon_periods = pr.predictability.periods;
     rep.data_lambda = pr.predictability.lambda;
     if (pr.phi_forced) {
