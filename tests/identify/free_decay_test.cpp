@@ -20,24 +20,42 @@ constexpr double kK = (kTwoPi * 13.0) * (kTwoPi * 13.0);   // [1/s^2] per unit m
 constexpr double kA3 = 4e6;                                // [1/(m^2 s^2)]
 constexpr double kC = 0.8;                                 // [1/s]
 
+// A Duffing oscillator's free decay from x0 (at rest), simulated by the core and sampled with white noise.
+struct Decay {
+    double k, a3, c, extent, duration, rate, noise, x0;
+    unsigned seed;
+};
+
+id::MeasuredData decay(const Decay& g) {
+    id::Model truth = id::resolve_fit_model("duffing", id::Forcing::Input);
+    truth.p.k = g.k;
+    truth.p.a[1] = g.a3;
+    truth.p.c = g.c;
+    truth.p.x_extent = g.extent;
+    id::SynthOptions so;
+    so.duration = g.duration;
+    so.rate = g.rate;
+    so.noise = g.noise;
+    so.quantum = 0.0;
+    so.x0 = g.x0;
+    so.v0 = 0.0;
+    so.seed = g.seed;
+    so.input.assign(static_cast<std::size_t>(std::lround(g.duration * g.rate)) + 1, 0.0);
+    so.input_dt = 1.0 / so.rate;
+    return id::synthesize(truth, so);
+}
+
+// The loop as `impactlab fit REC --model duffing` runs it, without plots.
+id::FitReport fit_duffing(const id::MeasuredData& d) {
+    id::FitOptions fo;
+    fo.plots = false;
+    fo.fit_baseline = true;
+    return id::run_fit(d, id::resolve_fit_model("duffing", id::Forcing::Input), fo);
+}
+
 // 4 s at 1 kHz from 6 mm, 5 um of noise, written as a two-column CSV in mm and ms.
 std::string decay_csv() {
-    id::Model truth = id::resolve_fit_model("duffing", id::Forcing::Input);
-    truth.p.k = kK;
-    truth.p.a[1] = kA3;
-    truth.p.c = kC;
-    truth.p.x_extent = 0.012;
-    id::SynthOptions so;
-    so.duration = 4.0;
-    so.rate = 1000.0;
-    so.noise = 5e-6;
-    so.quantum = 0.0;
-    so.x0 = 6e-3;
-    so.v0 = 0.0;
-    so.seed = 3;
-    so.input.assign(4001, 0.0);
-    so.input_dt = 1.0 / so.rate;
-    const id::MeasuredData d = id::synthesize(truth, so);
+    const id::MeasuredData d = decay({kK, kA3, kC, 0.012, 4.0, 1000.0, 5e-6, 6e-3, 3});
     std::string csv = "time_ms,disp_mm\n";
     char buf[64];
     for (std::size_t i = 0; i < d.size(); ++i) {
@@ -67,10 +85,7 @@ TEST_CASE("fit: a free decay in mm and ms, no forcing column, keeps the refineme
     lo.x_scale = 1e-3;
     const id::MeasuredData d = id::parse_measured(decay_csv(), "decay.csv", lo);
     REQUIRE(d.free_run);
-    id::FitOptions fo;
-    fo.plots = false;
-    fo.fit_baseline = true;
-    const id::FitReport r = id::run_fit(d, id::resolve_fit_model("duffing", id::Forcing::Input), fo);
+    const id::FitReport r = fit_duffing(d);
     for (const auto& n : r.notes) MESSAGE(n);
     for (const auto& g : r.gate) MESSAGE(g);
     double sk = 0, sa3 = 0;
@@ -92,26 +107,7 @@ TEST_CASE("fit: a free decay in mm and ms, no forcing column, keeps the refineme
 
 TEST_CASE("fit: a free decay is never judged chaotic, however its hardening spring parts its returns") {
     // Strain units, 36.5 -> 41.6 Hz over the decay: returns at other amplitudes part within 1.4 periods.
-    id::Model truth = id::resolve_fit_model("duffing", id::Forcing::Input);
-    truth.p.k = (kTwoPi * 36.5) * (kTwoPi * 36.5);
-    truth.p.a[1] = 5.2e11;
-    truth.p.c = 1.4;
-    truth.p.x_extent = 1e-3;
-    id::SynthOptions so;
-    so.duration = 3.0;
-    so.rate = 2000.0;
-    so.noise = 4e-7;
-    so.quantum = 0.0;
-    so.x0 = 2e-4;
-    so.v0 = 0.0;
-    so.seed = 7;
-    so.input.assign(6001, 0.0);
-    so.input_dt = 1.0 / so.rate;
-    const id::MeasuredData d = id::synthesize(truth, so);
-    id::FitOptions fo;
-    fo.plots = false;
-    fo.fit_baseline = true;
-    const id::FitReport r = id::run_fit(d, id::resolve_fit_model("duffing", id::Forcing::Input), fo);
+    const id::FitReport r = fit_duffing(decay({(kTwoPi * 36.5) * (kTwoPi * 36.5), 5.2e11, 1.4, 1e-3, 3.0, 2000.0, 4e-7, 2e-4, 7}));
     CHECK(r.data_regular);
     CHECK(r.data_free_run);
     CHECK_FALSE(r.past_horizon(10.0));
@@ -134,10 +130,7 @@ TEST_CASE("fit: a decay far from the sensor's zero pins its well's frequency; th
         csv += buf;
     }
     const id::MeasuredData d = id::parse_measured(csv, "offset.csv", {});
-    id::FitOptions fo;
-    fo.plots = false;
-    fo.fit_baseline = true;
-    const id::FitReport r = id::run_fit(d, id::resolve_fit_model("duffing", id::Forcing::Input), fo);
+    const id::FitReport r = fit_duffing(d);
     pinned_better_than_alone(r);
     REQUIRE_FALSE(r.data_wells.empty());
     CHECK(r.data_wells.front().omega / kTwoPi == doctest::Approx(60.0 / kTwoPi).epsilon(1e-3));
@@ -149,22 +142,7 @@ TEST_CASE("fit: a bistable rig's decay across its wells into one, in inches, is 
     // Wells at +-8 mm, 4 Hz at the hilltop; from 16 mm it crosses 24 times, then settles in the right well. The
     // settling is a step in x whose spectrum once outweighed the oscillation: a 20 s "period", one window.
     constexpr double kW = kTwoPi * 4.0;
-    id::Model truth = id::resolve_fit_model("duffing", id::Forcing::Input);
-    truth.p.k = -kW * kW;
-    truth.p.a[1] = kW * kW / (8e-3 * 8e-3);
-    truth.p.c = 0.5;
-    truth.p.x_extent = 0.04;
-    id::SynthOptions so;
-    so.duration = 20.0;
-    so.rate = 500.0;
-    so.noise = 1e-6;
-    so.quantum = 0.0;
-    so.x0 = 0.016;
-    so.v0 = 0.0;
-    so.seed = 5;
-    so.input.assign(10001, 0.0);
-    so.input_dt = 1.0 / so.rate;
-    const id::MeasuredData m = id::synthesize(truth, so);
+    const id::MeasuredData m = decay({-kW * kW, kW * kW / (8e-3 * 8e-3), 0.5, 0.04, 20.0, 500.0, 1e-6, 0.016, 5});
     std::string csv = "t,x_in\n";
     char buf[64];
     for (std::size_t i = 0; i < m.size(); ++i) {
@@ -175,10 +153,7 @@ TEST_CASE("fit: a bistable rig's decay across its wells into one, in inches, is 
     lo.columns.x = "x_in";
     lo.x_scale = 0.0254;
     const id::MeasuredData d = id::parse_measured(csv, "decay_in.csv", lo);
-    id::FitOptions fo;
-    fo.plots = false;
-    fo.fit_baseline = true;
-    const id::FitReport r = id::run_fit(d, id::resolve_fit_model("duffing", id::Forcing::Input), fo);
+    const id::FitReport r = fit_duffing(d);
     CHECK(r.period_s == doctest::Approx(0.177).epsilon(0.1));   // the well's 5.66 Hz, not the record's length
     CHECK(r.validation_windows >= 20);
     double sc = 0, sk = 0;

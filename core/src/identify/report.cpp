@@ -544,7 +544,9 @@ std::string report_json_text(const FitReport& r) {
     }
     j["validation"] = {{"horizon_periods", num(r.horizon_periods)}, {"windows", r.validation_windows},
                        {"rms_before", num(r.validation_rms_before_m)}, {"rms_after", num(r.validation_rms_after_m)}};
-    j["validation"]["data_horizon"] = {{"measured", r.data_horizon_measured}, {"regular", r.data_regular}, {"free_run", r.data_free_run},
+    j["validation"]["data_horizon"] = {{"measured", r.data_horizon_measured},
+                                       {"regular", r.data_regular},
+                                       {"free_run", r.data_free_run},
                                        {"doubling_periods", r.data_regular ? json(nullptr) : num(r.data_horizon_periods)},
                                        {"lambda_per_s", num(r.data_lambda)}};
     j["validation"]["growth"] = json::array();

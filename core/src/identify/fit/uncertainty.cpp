@@ -99,7 +99,8 @@ void uncertainty_stage(FitSession& fs) {
             // A pair is unseparated where what it pins together is known far better than either alone. Two well-pinned
             // values can still correlate (k and a3 where the motion spans little of the travel trade additively, not
             // as a ratio or a product): their product, less certain than each, is no combination the data pin.
-            const double rel_u = u.sigma / std::abs(u.value), rel_min = std::min(std::sqrt(si) / std::abs(vi), std::sqrt(sj) / std::abs(vj));
+            const double rel_u = u.sigma / std::abs(u.value),
+                         rel_min = std::min(std::sqrt(si) / std::abs(vi), std::sqrt(sj) / std::abs(vj));
             if (!(rel_u < 0.5 * rel_min)) continue;
             rep.unseparated.push_back(u);
         }
