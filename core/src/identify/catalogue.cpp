@@ -275,7 +275,7 @@ std::vector<std::string> default_fit_params(const Model& m, const Prep& pr) {
     if (m.forcing == Forcing::Input) {
         // A free run has no input to scale: its gain is not a parameter of the record.
         std::vector<std::string> v{"c", "k"};
-        if (pr.u_typ > 0) v.push_back("gain");
+        if (!pr.unforced) v.push_back("gain");
         if (!m.bumper()) v.insert(v.begin() + 2, "a3");
         else {
             if (m.p.T > 0) v.push_back("T");

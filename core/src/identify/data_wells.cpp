@@ -201,10 +201,9 @@ std::string well_frequency_identifiability(const std::vector<RunWell>& wells, co
         const double apart = std::abs(near->omega - w.omega) / w.omega;
         if (apart <= kApart && !traded) continue;
         const std::string trade = traded ? ", and k trades off against " + partner + " in the fit" : "";
-        const char* why = traded || !spring_partner
-                              ? "steady forcing at one frequency lets k trade off against the gain and the damping; a transient "
-                                "would separate them"
-                              : "its motion spans too little of the travel to tell the linear spring from the nonlinear one";
+        const char* why = spring_partner ? "its motion spans too little of the travel to tell the linear spring from the nonlinear one"
+                                         : "steady forcing at one frequency lets k trade off against the gain and the damping; a "
+                                           "transient would separate them";
         char buf[400];
         std::snprintf(buf, sizeof buf,
                       "run %zu: the well's frequency is not identifiable from this record: the model written puts it at %.3g Hz, the "

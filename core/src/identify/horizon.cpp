@@ -20,8 +20,8 @@ DataHorizon data_horizon(const Prep& pr) {
     // Nothing drives the record (a free decay): the rig's unforced motion is a flow in the plane (x, v), which
     // has no chaos (Poincare-Bendixson). A decay's returns meet other amplitudes, and with a hardening spring
     // other frequencies, so their parting would measure the decay, not a horizon.
-    if (!pr.phi_forced && !(pr.u_typ > 0)) {
-        h.measured = h.regular = h.unforced = true;
+    if (pr.unforced) {
+        h.measured = h.regular = true;
         h.periods = INFINITY;
         return h;
     }

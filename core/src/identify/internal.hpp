@@ -83,6 +83,7 @@ struct Prep {
     // the inertial force m a they imply. Steps, floors and ceilings are set from them, never absolutely.
     double x_typ = 0, v_typ = 0, u_typ = 0, f_typ = 0;
     bool phi_forced = true;
+    bool unforced = false;   // a free run: no phi and u zero throughout (the period, the horizon, the gain follow)
     double x_highpass_hz = 0;                // FitOptions::x_highpass_hz: applied to every free run before comparison
     // One drive per run (MeasuredData::run_starts): omega(t) fitted to the run's phi, or its input u(t).
     std::vector<Drive> drives;
@@ -125,7 +126,6 @@ struct Prep {
     // shooting error growth decides the judging windows.
     struct Predictability {
         bool measured = false, regular = false;
-        bool unforced = false;            // nothing drives the record: regular by the dynamics, not by its returns
         double periods = 0, lambda = 0;   // separation doubling time [forcing periods] (inf: regular), exponent [1/s]
         std::size_t pairs = 0;
         std::vector<std::pair<double, double>> log_separation;   // (periods ahead, mean ln separation)

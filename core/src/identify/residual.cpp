@@ -129,7 +129,7 @@ double drives_by_run(const MeasuredData& d, const FitOptions& o, Prep& pr) {
         // A free run's "forcing period" is its own oscillation's. Its x may also settle (a decay into one of two
         // wells), a step whose spectrum would outweigh the oscillation's: the velocity's spectrum weighs each
         // frequency by itself, so the oscillation stands out (a 4 Hz decay into a well read as a 20 s period).
-        if (std::all_of(d.u.begin(), d.u.end(), [](double u) { return u == 0.0; })) {
+        if (pr.unforced) {
             for (std::size_t i = 0; i + 1 < xc.size(); ++i) xc[i] = xc[i + 1] - xc[i];
             if (!xc.empty()) xc.pop_back();
         }
@@ -262,6 +262,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     pr.x_span = quantile(d.x, 0.995) - quantile(d.x, 0.005);
     pr.x_typ = std::max({0.5 * pr.x_span, 10.0 * pr.sigma_x, 1e-300});
     pr.phi_forced = d.has_phi();
+    pr.unforced = !pr.phi_forced && std::all_of(d.u.begin(), d.u.end(), [](double u) { return u == 0.0; });
     if (pr.phi_forced != (m.forcing == Forcing::Unbalance))
         throw ParamError(pr.phi_forced ? "the data are forced through phi, but the model expects an input u"
                                        : "the data carry an input u, but the model is forced by the unbalance angle phi");

@@ -82,7 +82,7 @@ void prepare_stage(FitSession& fs) {
     Prep& prep = fs.prep;
     prep.progress = fs.progress;
     prep.predictability = data_horizon(prep);
-    if (prep.predictability.unforced)
+    if (prep.unforced)
         rep.notes.push_back("a free run (no input): the rig's unforced motion, a flow in the plane (x, v), cannot be chaotic; it is "
                             "judged as a regular record, over whole periods");
     const Prep& pr = prep;
@@ -96,7 +96,7 @@ void prepare_stage(FitSession& fs) {
     rep.drive_fit_rms_rad = pr.drive_rms;
     rep.data_horizon_measured = pr.predictability.measured;
     rep.data_regular = pr.predictability.regular;
-    rep.data_free_run = pr.predictability.unforced;
+    rep.data_free_run = pr.unforced;
     rep.data_horizon_periods = pr.predictability.periods;
     rep.data_lambda = pr.predictability.lambda;
     if (pr.phi_forced) {
