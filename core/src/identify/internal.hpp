@@ -83,7 +83,7 @@ struct Prep {
     // the inertial force m a they imply. Steps, floors and ceilings are set from them, never absolutely.
     double x_typ = 0, v_typ = 0, u_typ = 0, f_typ = 0;
     bool phi_forced = true;
-    bool unforced = false;   // a free run: no phi and u zero throughout (the period, the horizon, the gain follow)
+    bool unforced = false;                   // a free run: no phi, u zero throughout (its period, horizon, gain)
     double x_highpass_hz = 0;                // FitOptions::x_highpass_hz: applied to every free run before comparison
     // One drive per run (MeasuredData::run_starts): omega(t) fitted to the run's phi, or its input u(t).
     std::vector<Drive> drives;
