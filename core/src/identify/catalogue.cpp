@@ -224,6 +224,7 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
         if ((h.needs & FitNeeds::VFeature) && !pr.v_feature.found()) continue;
         if ((h.needs & FitNeeds::Cycle) && !pr.cycle.found()) continue;
         if (h.absorbed_by && fitted(h.absorbed_by)) continue;
+        if (id == "sensor_offset" && fitted("x0")) continue;   // the model's own origin, fitted already
         out.push_back(candidate_of(law));
     }
     // The base-changing effects the screening looks for (a wrong cart mass: the acceleration's column).
@@ -281,6 +282,10 @@ std::vector<std::string> default_fit_params(const Model& m, const Prep& pr) {
             if (m.p.T > 0) v.push_back("T");
             if (m.p.a[0] != 0) v.push_back("a1");
         }
+        // A placeholder centred on its record (fit/origin.cpp): where its spring's centre lies is fitted too.
+        if (m.placeholder)
+            for (const auto& inst : m.p.effects)
+                if (inst.law == find_effect("sensor_offset")) v.push_back("x0");
         return v;
     }
     std::vector<std::string> v{"c", "T", "k", "a1", "b2", "m0e"};
@@ -305,10 +310,14 @@ std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& nam
         else if (n == "gain") p = &m.p.input_gain;
         else if (n == "m") p = &m.p.m;
         else if (n == "xI") p = &m.p.xI;
-        else if (n == "k2")   // the model's own even stiffness (an even_stiffness effect it carries)
+        else if (n == "k2" || n == "x0") {
+            // k2: the model's own even stiffness (an even_stiffness effect it carries); x0: the origin of a
+            // placeholder's spring in the record's coordinates (a sensor_offset it carries).
+            const EffectLaw* law = find_effect(n == "k2" ? "even_stiffness" : "sensor_offset");
             for (auto& e : m.p.effects)
-                if (e.law && e.law == find_effect("even_stiffness")) p = &e.p[0];
-        if (!p) throw ParamError("--fit-params: unknown parameter '" + n + "' (known: c, T, k, a1, a3, a5, b2, b4, m0e, gain, m, xI; k2 where the model carries an even_stiffness)");
+                if (e.law && e.law == law) p = &e.p[0];
+        }
+        if (!p) throw ParamError("--fit-params: unknown parameter '" + n + "' (known: c, T, k, a1, a3, a5, b2, b4, m0e, gain, m, xI; k2 where the model carries an even_stiffness, x0 where it carries a sensor_offset)");
         out.push_back({n, p, std::max(1e-6 * std::abs(*p), 1e-9)});
     }
     return out;
@@ -329,7 +338,7 @@ double base_scale(const std::string& name, const Prep& pr, const Model& m) {
     else if (name == "b2") s = 1.0 / (x * x);
     else if (name == "k2") s = f / (x * x);
     else if (name == "b4") s = 1.0 / (x * x * x * x);
-    else if (name == "xI") s = x;
+    else if (name == "xI" || name == "x0") s = x;
     return std::isfinite(s) && s > 0 ? s : 1.0;
 }
 

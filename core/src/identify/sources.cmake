@@ -12,6 +12,7 @@ set(IMPACTLAB_IDENTIFY_SOURCES
   src/identify/shooting.cpp
   src/identify/fit/run_fit.cpp
   src/identify/fit/run_offsets.cpp
+  src/identify/fit/origin.cpp
   src/identify/fit/baseline.cpp
   src/identify/fit/screening.cpp
   src/identify/fit/refit.cpp

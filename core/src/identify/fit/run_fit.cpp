@@ -38,12 +38,12 @@ void guarded(FitSession& fs, FitStage stage, Stage&& run, Undo&& undo) {
     }
 }
 
-// A model in the record's units is checked where the record lies (twice its largest |x|), not on the rail.
+// A model in the record's units is checked where the record lies (twice its largest true |x|), not on the rail.
 void set_extent(Model& model0, const Model& given, const MeasuredData& d) {
     if (stiffness_kind(model0.p) != StiffnessKind::DataUnits || given.p.x_extent != 0.0) return;
     double xmax = 0;
     for (double x : d.x)
-        if (std::isfinite(x)) xmax = std::max(xmax, std::abs(x));
+        if (std::isfinite(x)) xmax = std::max(xmax, std::abs(model0.true_x(x)));
     if (xmax > 0) model0.p.x_extent = 2.0 * xmax;
 }
 
@@ -281,6 +281,7 @@ FitReport run_fit(const MeasuredData& data_given, const Model& given, const FitO
     FitReport offsets;
     MeasuredData shifted;
     const bool moved = runs_at_wells(data_given, given, options, model0, shifted, offsets);
+    if (!moved && centre_placeholder(data_given, model0, options, offsets)) set_extent(model0, given, data_given);
     const MeasuredData& data = moved ? shifted : data_given;
     if (moved) set_extent(model0, given, data);
     FitSession fs(data, model0, options, test, progress);

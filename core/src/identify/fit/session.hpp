@@ -129,6 +129,9 @@ int hac_lag_of(const Prep& pr);
 // run_offsets.cpp: 0, runs in different wells whose chain centred each run's x: `shifted` gets the record with
 // each run at its well, model0 the tied cubic's starting values, rep the offsets and a note. False: nothing to do.
 bool run_offsets_stage(const MeasuredData& data, Model& model0, const FitOptions& o, MeasuredData& shifted, FitReport& rep);
+// origin.cpp: 0, a placeholder whose record lies far from its zero: its spring centred on the record (model0's
+// origin x0, a note in rep). False: the origin is kept.
+bool centre_placeholder(const MeasuredData& data, Model& model0, const FitOptions& o, FitReport& rep);
 void fit_baseline_stage(FitSession& fs);   // baseline.cpp: 1, the baseline (fs.base, fs.ee_base)
 void screen_candidates(FitSession& fs);    // screening.cpp: 2, the candidates' columns (fs.screen)
 void select_effects(FitSession& fs);       // screening.cpp: 3, greedy selection (fs.sel)
