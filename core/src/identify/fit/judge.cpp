@@ -31,11 +31,13 @@ std::array<std::vector<char>, 2> by_fold(const HeldOutSplit& sp, const Prep& pr,
 HeldOutJudge::HeldOutJudge(FitSession& fs)
     : fs_(fs),
       pr_(fs.prep),
-      // A fitted baseline of a record forced by the unbalance is refitted with the effects (per fold, and on the
-      // whole record at the end): base parameters fitted without an effect have absorbed what they could of it
-      // (a spring rate bent by a missing even stiffness), and those values beside the effect's make neither
-      // model. An input-forced record keeps its output-error baseline (refined on the free-run error).
-      refit_base_(fs.o.fit_baseline && fs.prep.phi_forced && !fs.base_names.empty()),
+      // A fitted baseline of a record forced by the unbalance, or of a free run not refined on its free-run
+      // error, is refitted with the effects (per fold, and on the whole record at the end): base parameters
+      // fitted without an effect have absorbed what they could of it (a spring rate bent by a missing even
+      // stiffness, a cubic bent to a shifted equilibrium), and those values beside the effect's make neither
+      // model. An input-forced record keeps its baseline: its equation error, a few samples per period of the
+      // resonance, fits the base poorly, and the output-error stage refits it with the effects.
+      refit_base_(fs.o.fit_baseline && !fs.base_names.empty() && (fs.prep.phi_forced || (fs.prep.unforced && !fs.base_refined))),
       joint_base_(fs.o.fit_baseline && !fs.base_names.empty() && !refit_base_),
       // The horizon of the best model at hand (the baseline with every effect found): a wrong baseline's error
       // grows from its own fault, not from the record's instability. An unphysical candidate falls back to the

@@ -335,21 +335,27 @@ private:
             return;
         }
         // Against a shape with no name, a named law is preferred to a curve fit that does no better: it
-        // stays, unresolved, unless the generic term predicts held-out data better.
-        if (alike.nameless && !judge_.better(judge_.compare(e_cur_, e_alone))) {
-            mark_unresolved(ids_[0], sibling, "predicts held-out data as well as the generic " + rival_);
+        // stays, unresolved, unless the generic term predicts held-out data better. Against a named law it
+        // cannot be told from, it stays where the generic term in its place would predict held-out data worse
+        // (a linear spring's constant force and sensor offset): never a worse model for want of a name. (A
+        // shape the whole record's equation error shows beyond the law is decided below.)
+        const Compare in_place = judge_.compare(e_cur_, e_alone);
+        if (!judge_.better(in_place) && (alike.nameless || (!other_shape && !(in_place.sum_new < in_place.sum_cur)))) {
+            mark_unresolved(ids_[0], sibling,
+                            alike.nameless ? "predicts held-out data as well as the generic " + rival_
+                                           : "predicts held-out data better than the generic " + rival_ + " in its place");
             return;
         }
         if (other_shape) {
             std::snprintf(buf, sizeof buf, "beside it the generic %s stands out of the whole record's equation error (z = %.1f) and it adds "
                           "nothing beside the generic (z = %.1f): the data show a shape this law does not have", rival_.c_str(), z[0], z[1]);
-            give_way(alone, e_alone, judge_.compare(e_cur_, e_alone), buf,
+            give_way(alone, e_alone, in_place, buf,
                      names_ + " left a shape in its variable that the generic " + rival_ + " follows in the whole record's equation error, where " +
                          names_ + " adds nothing beside it: the generic stands and no physics is named for it");
         } else {
             std::snprintf(buf, sizeof buf, "beside %s it adds nothing out of the noise of the whole record's equation error (z = %.1f): "
                           "the data do not resolve its shape", sibling.c_str(), z_sib);
-            give_way(alone, e_alone, judge_.compare(e_cur_, e_alone), buf,
+            give_way(alone, e_alone, in_place, buf,
                      "the data do not tell " + names_ + " from " + sibling + ": a force of the same variable whose shape they do not resolve, "
                          "so the generic " + rival_ + " stands and no physics is named for it");
         }

@@ -169,7 +169,7 @@ void conclude(FitSession& fs, HeldOutJudge& judge) {
     Model cur = judge.model();
     bool refitted = false;
     // Equation error; an input-forced record keeps its output-error values when nothing was dropped.
-    if ((!rep.effects_rejected.empty() || judge.refit_base()) && !rep.effects_found.empty() && fs.prep.phi_forced) {
+    if ((!rep.effects_rejected.empty() || judge.refit_base()) && !rep.effects_found.empty() && (fs.prep.phi_forced || judge.refit_base())) {
         Model refit = cur;
         std::vector<Knob> knobs = found_effect_knobs(refit, fs.base, fs.screen.cands);
         if (judge.refit_base())
