@@ -15,7 +15,7 @@ EffectForce force(const double* p, const ForceContext& c) {
 
 std::string describe(const double* p, const double* s, const EffectReportContext& c) {
     const double T = c.model ? c.model->T : 0.0;
-    return "the dry rolling resistance is " + pm(p[0], s[0]) + " N more than the model's T = " + fmt("%.5g", T) + " N (" +
+    return "the dry rolling resistance is " + pm(p[0], s[0]) + unit(c, "N", "model force units") + " more than the model's T = " + fmt("%.5g", T) + unit(c, "N", "") + " (" +
            (T != 0 ? fmt("%+.2g", 100 * p[0] / T) + " %" : std::string("new")) + "; negative: less)";
 }
 }  // namespace

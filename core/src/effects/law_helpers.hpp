@@ -33,6 +33,12 @@ inline std::string fmt(const char* f, double v) {
     return buf;
 }
 
+// A unit for a sentence: SI on a rig's model, the record's own on a plain Duffing model in data units.
+inline std::string unit(const EffectReportContext& c, const char* si, const char* data_units) {
+    const char* u = c.rig ? si : data_units;
+    return *u ? std::string(" ") + u : std::string();
+}
+
 // "v +/- s" with as many decimals as the uncertainty warrants (scaled by `scale` for display units).
 inline std::string pm(double v, double s, double scale = 1.0) {
     v *= scale;

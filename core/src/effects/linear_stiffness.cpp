@@ -8,7 +8,7 @@ EffectForce force(const double* p, const ForceContext& c) { return {-p[0] * c.x,
 
 std::string describe(const double* p, const double* s, const EffectReportContext& c) {
     const double k = c.model ? c.model->k : 0.0;
-    return "the springs are " + pm(p[0], s[0]) + " N/m stiffer than the model's k = " + fmt("%.5g", k) + " N/m (" +
+    return "the springs are " + pm(p[0], s[0]) + unit(c, "N/m", "force units per data unit") + " stiffer than the model's k = " + fmt("%.5g", k) + unit(c, "N/m", "") + " (" +
            fmt("%+.2g", 100 * p[0] / (k != 0 ? k : 1)) + " %; negative: softer)";
 }
 }  // namespace

@@ -12,9 +12,9 @@ EffectForce force(const double* p, const ForceContext& c) {
 
 std::string describe(const double* p, const double* s, const EffectReportContext& c) {
     const double cvis = c.model ? c.model->c : 0.0;
-    return "a resistance growing with the square of the speed, cq = " + pm(p[0], s[0]) + " N s^2/m^2: at the typical speed of " +
-           fmt("%.2g", c.v_typ) + " m/s it adds " + fmt("%.2g", p[0] * c.v_typ * c.v_typ) + " N to the viscous " +
-           fmt("%.2g", cvis * c.v_typ) + " N (air or oil drag)";
+    return "a resistance growing with the square of the speed, cq = " + pm(p[0], s[0]) + unit(c, "N s^2/m^2", "force units per (data unit / s)^2") + ": at the typical speed of " +
+           fmt("%.2g", c.v_typ) + unit(c, "m/s", "data units / s") + " it adds " + fmt("%.2g", p[0] * c.v_typ * c.v_typ) +
+           unit(c, "N", "force units") + " to the viscous " + fmt("%.2g", cvis * c.v_typ) + unit(c, "N", "") + " (air or oil drag)";
 }
 }  // namespace
 

@@ -8,8 +8,8 @@ namespace {
 EffectForce force(const double*, const ForceContext&) { return {}; }
 double measure(const double* p, double x) { return x + p[0]; }
 
-std::string describe(const double* p, const double* s, const EffectReportContext&) {
-    return "the position sensor reads " + pm(p[0], s[0], 1e3) + " mm more than the true position (a zero offset of the Hall sensor or its tape)";
+std::string describe(const double* p, const double* s, const EffectReportContext& c) {
+    return "the position sensor reads " + (c.rig ? pm(p[0], s[0], 1e3) + " mm" : pm(p[0], s[0]) + " (data units)") + " more than the true position (a zero offset of the Hall sensor or its tape)";
 }
 }  // namespace
 

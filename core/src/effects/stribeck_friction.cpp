@@ -22,9 +22,9 @@ void start(double* p, const EffectStartContext& c) {
     p[1] = c.start;
 }
 
-std::string describe(const double* p, const double* s, const EffectReportContext&) {
-    return "extra friction of " + pm(p[0], s[0]) + " N at low speed that fades above about " + pm(std::abs(p[1]), s[1]) +
-           " m/s (a Stribeck effect: stiction in the bearings)";
+std::string describe(const double* p, const double* s, const EffectReportContext& c) {
+    return "extra friction of " + pm(p[0], s[0]) + unit(c, "N", "model force units") + " at low speed that fades above about " + pm(std::abs(p[1]), s[1]) +
+           unit(c, "m/s", "data units / s") + " (a Stribeck effect: stiction in the bearings)";
 }
 }  // namespace
 

@@ -101,13 +101,17 @@ std::string describe_var(Var var, EffectForceFn force, const double* p, const Ef
             at = q;
         }
     }
-    const std::string where = var == Var::V ? "v = " + fmt("%.3g", at) + " m/s" : periodic ? "phi = " + fmt("%.2f", at) + " rad"
-                                                                                          : "x = " + fmt("%.3g", at * 1e3) + " mm";
+    // A plain Duffing model in the record's own units says its numbers in them, not in SI.
+    const bool si = c.rig;
+    const std::string where = var == Var::V ? "v = " + fmt("%.3g", at) + (si ? " m/s" : " (data units / s)")
+                              : periodic    ? "phi = " + fmt("%.2f", at) + " rad"
+                                            : "x = " + (si ? fmt("%.3g", at * 1e3) + " mm" : fmt("%.3g", at) + " (data units)");
     if (var == Var::XV)
         return "no library effect explains this part of the residual; a damping force S(x) v that depends on the position does, "
-               "its coefficient S up to " + fmt("%.2g", best) + " N s/m at " + where + ": the missing physics is a damping that varies along the rail";
+               "its coefficient S up to " + fmt("%.2g", best) + (si ? " N s/m" : " (model force units per data unit / s)") + " at " + where +
+               ": the missing physics is a damping that varies along the rail";
     return std::string("no library effect explains this part of the residual; a smooth force of ") + name + " does, up to " +
-           fmt("%.2g", best) + " N at " + where + (var == Var::XSignV ? " (for v > 0; reversed for v < 0)" : "") +
+           fmt("%.2g", best) + (si ? " N" : " model force units") + " at " + where + (var == Var::XSignV ? " (for v > 0; reversed for v < 0)" : "") +
            ": the missing physics depends on " + name;
 }
 

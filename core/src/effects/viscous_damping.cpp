@@ -8,7 +8,7 @@ EffectForce force(const double* p, const ForceContext& c) { return {-p[0] * c.v,
 
 std::string describe(const double* p, const double* s, const EffectReportContext& c) {
     const double cv = c.model ? c.model->c : 0.0;
-    return "the viscous damping is " + pm(p[0], s[0]) + " N s/m more than the model's c = " + fmt("%.5g", cv) + " N s/m (" +
+    return "the viscous damping is " + pm(p[0], s[0]) + unit(c, "N s/m", "force units per data unit / s") + " more than the model's c = " + fmt("%.5g", cv) + unit(c, "N s/m", "") + " (" +
            (cv != 0 ? fmt("%+.2g", 100 * p[0] / cv) + " %" : std::string("new")) + "; negative: less)";
 }
 }  // namespace
