@@ -110,8 +110,15 @@ TEST_CASE("metamorphic: the same decay in other units, mirrored, on a shifted cl
         CHECK(std::abs(f.a3 * s * s - base.a3) <= 0.5 * base.sa3 + 1e-9 * std::abs(base.a3));
         CHECK(f.sa3 * s * s == doctest::Approx(base.sa3).epsilon(0.05));
     };
-    for (double s : {1e3, 1e4, 1e-2}) same("units", fit(scaled(decay(), s)), s);
+    // 1e-4: a nanometre motion in metres, whose speeds are all below a rig's 1 um/s floor of "at rest".
+    for (double s : {1e3, 1e4, 1e-2, 1e-4}) same("units", fit(scaled(decay(), s)), s);
     same("mirrored", fit(scaled(decay(), -1.0)), -1.0);
+    {
+        // Read 5000 extents from the sensor's zero: the spring is centred on the record (its origin fitted).
+        id::MeasuredData d = decay();
+        for (double& x : d.x) x += 1.0;
+        same("offset by 1.0", fit(d), 1.0);
+    }
     {
         id::MeasuredData d = decay();
         for (double& t : d.t) t += 1000.0;

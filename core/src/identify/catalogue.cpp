@@ -206,8 +206,7 @@ std::vector<Candidate> library_candidates(const Model& m, const Prep& pr, const 
     for (double a : pr.alpha) alpha_rms += a * a;
     alpha_rms = std::sqrt(alpha_rms / static_cast<double>(std::max<std::size_t>(1, pr.alpha.size())));
     // In fit mode the base parameters absorb some effects; in validate mode those say which base value is off.
-    const auto fitted_names =
-        o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(m, pr) : o.fit_params) : std::vector<std::string>{};
+    const auto fitted_names = fitted_base_names(m, pr, o);
     auto fitted = [&](const char* name) { return std::find(fitted_names.begin(), fitted_names.end(), name) != fitted_names.end(); };
     for (const auto& law : effect_laws()) {
         const EffectFitHint& h = law.fit;
@@ -291,6 +290,18 @@ std::vector<std::string> default_fit_params(const Model& m, const Prep& pr) {
     std::vector<std::string> v{"c", "T", "k", "a1", "b2", "m0e"};
     if (m.p.a[1] != 0) v.push_back("a3");
     if (m.p.b[1] != 0) v.push_back("b4");
+    return v;
+}
+
+std::vector<std::string> fitted_base_names(const Model& m, const Prep& pr, const FitOptions& o) {
+    if (!o.fit_baseline) return {};
+    if (o.fit_params.empty()) return default_fit_params(m, pr);
+    std::vector<std::string> v = o.fit_params;
+    // A placeholder centred on its record (fit/origin.cpp) fits its origin beside the parameters asked for: it
+    // is a coordinate the record sets, not one a user could have named.
+    if (m.placeholder && std::find(v.begin(), v.end(), "x0") == v.end())
+        for (const auto& inst : m.p.effects)
+            if (inst.law == find_effect("sensor_offset")) v.push_back("x0");
     return v;
 }
 

@@ -500,5 +500,7 @@ std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& nam
 // typical force f_typ where x, v and u take their typical sizes (k by f/x, a3 by f/x^3, c by f/v, ...).
 double base_scale(const std::string& name, const Prep& pr, const Model& m);
 std::vector<std::string> default_fit_params(const Model& m, const Prep& pr);
+// The base parameters a fit fits: FitOptions::fit_params, else default_fit_params (none without fit_baseline).
+std::vector<std::string> fitted_base_names(const Model& m, const Prep& pr, const FitOptions& o);
 
 }  // namespace impactlab::identify::detail

@@ -288,7 +288,9 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     const auto cv = savgol(pr.Hv, 3, 1, pr.dt);
     double sv = 0;
     for (double c : cv) sv += c * c;
-    const double slow = 3.0 * pr.sigma_x * std::sqrt(sv) + 1e-6;
+    // The floor for noise-free data is a rig's 1 um/s, or less in a record whose own speeds are far smaller (a
+    // nanometre resonator in metres: every sample was once "at rest", and no row was left).
+    const double slow = 3.0 * pr.sigma_x * std::sqrt(sv) + std::min(1e-6, 1e-5 * pr.v_typ);
     if (m.bumper()) grazing_zone(d, m, pr);
     const std::vector<char> stick = stick_zone(d, m, pr);
     choose_rows(d, stick, H, slow, pr);

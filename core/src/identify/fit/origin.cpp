@@ -8,7 +8,7 @@
 namespace impactlab::identify::detail {
 
 bool centre_placeholder(const MeasuredData& data, Model& model0, const FitOptions& o, FitReport& rep) {
-    if (!model0.placeholder || !o.fit_baseline || !o.fit_params.empty()) return false;
+    if (!model0.placeholder || !o.fit_baseline) return false;
     for (const auto& e : model0.p.effects)
         if (e.law == find_effect("sensor_offset")) return false;
     std::vector<double> xs;

@@ -113,7 +113,7 @@ void baseline_stage(FitSession& fs) {
     FitReport& rep = fs.rep;
     const Prep& pr = fs.prep;
     std::vector<std::string>& base_names = fs.base_names;
-    base_names = o.fit_baseline ? (o.fit_params.empty() ? default_fit_params(model0, pr) : o.fit_params) : std::vector<std::string>{};
+    base_names = fitted_base_names(model0, pr, o);
     // Runs put back at their wells: the tied cubic's even term is fitted with the baseline.
     if (o.fit_baseline && o.fit_params.empty() && !rep.run_offsets.empty()) base_names.push_back("k2");
     fit_baseline_stage(fs);
