@@ -39,6 +39,15 @@ void fit_baseline_stage(FitSession& fs) {
         };
         // A first pass from the starting values (linear parameters converge in one step), then refine.
         const Model start = base;
+        if (std::find(base_names.begin(), base_names.end(), "x0") != base_names.end()) {
+            // A centred placeholder's origin waits for the linear parameters: beside the starting values' cubic
+            // it would wander to wherever that cubic is centred.
+            std::vector<std::string> linear = base_names;
+            linear.erase(std::find(linear.begin(), linear.end(), "x0"));
+            std::vector<Knob> lk = base_knobs(base, linear, pr);
+            lm_residual(pr, base, lk, 40, R0, Jtmp);
+            knobs = base_knobs(base, base_names, pr);
+        }
         lm_residual(pr, base, knobs, 40, R0, Jtmp);
         // The input gain keeps its sign in a fit; which sign the record has (a voltage's polarity is a
         // convention) is decided here, once: if the gain ran into zero, the other sign is tried.
