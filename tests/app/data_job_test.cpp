@@ -63,6 +63,19 @@ TEST_CASE("data panel: column fields map onto the loader's options") {
     CHECK_FALSE(du.has_phi());
     CHECK(model_for_data("A1H", du).forcing == identify::Forcing::Input);
 
+    // A decay whose file has an unused column: "a free run" reads it as one (u = 0), else it is refused.
+    DataColumns cf;
+    const std::string decay = "t,x,temperature\n0,1,20\n0.1,0.5,20\n0.2,-0.2,20\n";
+    o = load_options_from(cf);
+    o.min_samples = 2;
+    CHECK_THROWS_AS(identify::parse_measured(decay, "mem.csv", o), identify::DataError);
+    cf.free_run = true;
+    o = load_options_from(cf);
+    o.min_samples = 2;
+    const identify::MeasuredData df = identify::parse_measured(decay, "mem.csv", o);
+    CHECK(df.free_run);
+    CHECK(model_for_data("duffing", df).forcing == identify::Forcing::Input);
+
     // A mapping that names nothing is refused by the loader, with the problem.
     const DataColumns nothing{std::string(), std::string("nope"), std::string(), true, 0.0, 1.0};
     o = load_options_from(nothing);
@@ -191,6 +204,8 @@ TEST_CASE("data panel: the core's CLI flags are worded as the panel's fields") {
           "no time column 't' and no sample rate (give a sample rate (Column mapping) or map the time column (Column mapping))");
     CHECK(panel_wording("both: say which is the forcing (--phi-col or --u-col)") ==
           "both: say which is the forcing (the forcing column and \"forcing is an input u\" (Column mapping))");
+    CHECK(panel_wording("map one with --phi-col or --u-col, or declare a free run with --free)") ==
+          "map one with the forcing column and \"forcing is an input u\" (Column mapping), or declare a free run with \"a free run\" (Column mapping))");
     // No field in the panel: the flag is named as the command line's.
     CHECK(panel_wording("a corrupt sample; remove the row or select rows with --rows") ==
           "a corrupt sample; remove the row or select rows with the command line's --rows");

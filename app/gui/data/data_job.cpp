@@ -31,6 +31,7 @@ std::string panel_wording(const std::string& msg) {
         {"--rate HZ", "a sample rate (Column mapping)"},
         {"--rate", "the sample rate (Column mapping)"},
         {"--xI", "the x_I slider"},
+        {"--free", "\"a free run\" (Column mapping)"},
     };
     std::string out;
     std::size_t i = 0;
@@ -72,6 +73,7 @@ identify::LoadOptions load_options_from(const DataColumns& c) {
     }
     o.rate = c.rate;
     o.x_scale = c.x_scale;
+    o.free_run = c.free_run;
     return o;
 }
 

@@ -28,6 +28,7 @@ struct DataColumns {
     bool forcing_is_u = false;    // the forcing column is a measured input u, not the angle phi
     double rate = 0.0;            // [Hz] for a file without a time column; 0: the file has one
     double x_scale = 1.0;         // multiplies x (1e-3 for a file in mm)
+    bool free_run = false;        // nothing drove the record (a decay): u = 0, other columns ignored
 };
 identify::LoadOptions load_options_from(const DataColumns& c);
 

@@ -83,6 +83,7 @@ void DataPanel::load(const std::string& path, bool then_fit) {
     c.forcing_is_u = f_is_u_;
     c.rate = rate_;
     c.x_scale = x_scale_ > 0 ? x_scale_ : 1.0;
+    c.free_run = free_run_;
     error_.clear();
     pending_fit_ = then_fit;
     job_.start_load(path, load_options_from(c));
@@ -229,6 +230,7 @@ void DataPanel::draw_file_row() {
         ImGui::SameLine();
         ImGui::SetNextItemWidth(w);
         ImGui::InputFloat("x scale (1e-3: mm)", &x_scale_, 0, 0, "%g");
+        ImGui::Checkbox("a free run (nothing drove it: a decay; other columns ignored)", &free_run_);
         ImGui::TextDisabled("A column is a header name or a 1-based number; empty: the conventional name.");
         ImGui::TreePop();
     }

@@ -69,6 +69,7 @@ private:
     char t_col_[64] = {}, x_col_[64] = {}, f_col_[64] = {};
     bool f_is_u_ = false;
     float rate_ = 0.0f, x_scale_ = 1.0f;
+    bool free_run_ = false;
 
     // State.
     std::string error_;                                 // the last failure (shown in red)
