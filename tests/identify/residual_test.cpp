@@ -76,3 +76,35 @@ TEST_CASE("residual: the cache of a least-squares pass gives residual()'s values
         }
     }
 }
+
+TEST_CASE("residual: a record at rest or of noise alone is refused, saying which; a nanometre motion in metres is not") {
+    const id::Model duffing = id::resolve_fit_model("duffing", id::Forcing::Input);
+    auto record = [](double amplitude, double noise) {
+        id::MeasuredData d;
+        d.source = "rec.csv";
+        unsigned s = 99;
+        for (int i = 0; i < 4000; ++i) {
+            const double t = i * 1e-3;
+            s = s * 1664525u + 1013904223u;
+            d.t.push_back(t);
+            d.x.push_back(2.0 + amplitude * std::cos(60.0 * t) * std::exp(-0.5 * t) + noise * (static_cast<double>(s >> 8) / 16777216.0 - 0.5));
+            d.u.push_back(0.0);
+            d.line.push_back(i + 2);
+        }
+        d.free_run = true;
+        return d;
+    };
+    std::vector<std::string> notes;
+    auto refusal = [&](const id::MeasuredData& d) {
+        try {
+            (void)dt::prepare(d, duffing, id::FitOptions{}, notes);
+        } catch (const id::DataError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(refusal(record(0.0, 0.0)).find("rec.csv: x does not move") != std::string::npos);
+    CHECK(refusal(record(0.0, 1e-3)).find("the speed stays within the noise") != std::string::npos);
+    // 3 nm swinging about 2 m, 3 pm of noise: its speeds, all below a rig's 1 um/s, still move.
+    CHECK(refusal(record(3e-9, 3e-12)).empty());
+}

@@ -237,10 +237,25 @@ void choose_rows(const MeasuredData& d, const std::vector<char>& stick, int H, d
     const std::size_t reach = static_cast<std::size_t>(H + pr.Hv);
     const std::size_t stride = static_cast<std::size_t>(std::max(1, H / 4));
     const std::size_t max_slow = static_cast<std::size_t>(std::max(1, (2 * H + 1) / 20));
-    for (std::size_t i = reach; i + reach < n; i += stride)
-        if (cum[i + reach + 1] - cum[i - reach] == 0 && cum_slow[i + H + 1] - cum_slow[i - H] <= max_slow) pr.rows.push_back(i);
-    if (pr.rows.size() < 20) throw DataError(d.source + ": too few free-flight stretches for the residual (" +
-                                             std::to_string(pr.rows.size()) + " windows)");
+    std::size_t tried = 0, in_zone = 0, lingering = 0;
+    for (std::size_t i = reach; i + reach < n; i += stride) {
+        ++tried;
+        const bool clear = cum[i + reach + 1] - cum[i - reach] == 0, moving = cum_slow[i + H + 1] - cum_slow[i - H] <= max_slow;
+        in_zone += clear ? 0 : 1;
+        lingering += clear && !moving ? 1 : 0;
+        if (clear && moving) pr.rows.push_back(i);
+    }
+    if (pr.rows.size() < 20) {
+        // Say which it was: a record that barely moves (at rest, or all noise) is not one full of impacts.
+        std::string why;
+        if (tried > 0 && lingering * 2 >= tried)
+            why = "; in " + std::to_string(lingering) + " of " + std::to_string(tried) +
+                  " the speed stays within the noise (the record barely moves: at rest, or noise alone?)";
+        else if (tried > 0 && in_zone * 2 >= tried)
+            why = "; " + std::to_string(in_zone) + " of " + std::to_string(tried) + " touch an impact, the bumper or a run's start";
+        throw DataError(d.source + ": too few free-flight stretches for the residual (" + std::to_string(pr.rows.size()) + " windows" +
+                        why + ")");
+    }
     pr.j_lo = pr.rows.front() - static_cast<std::size_t>(H);
     pr.j_hi = pr.rows.back() + static_cast<std::size_t>(H) + 1;
 }
@@ -260,6 +275,17 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     // floor too high would pass a real residual off as noise).
     pr.sigma_x = estimate_noise(d.x);
     pr.x_span = quantile(d.x, 0.995) - quantile(d.x, 0.005);
+    {
+        // A record that does not move (a sensor read at rest) has nothing to fit, in any units.
+        double lo = INFINITY, hi = -INFINITY;
+        for (double x : d.x)
+            if (std::isfinite(x)) {
+                lo = std::min(lo, x);
+                hi = std::max(hi, x);
+            }
+        if (!(hi - lo > 1e-12 * std::max(std::abs(lo), std::abs(hi))))
+            throw DataError(d.source + ": x does not move (every sample reads " + std::to_string(lo) + "): a record at rest has nothing to fit");
+    }
     pr.x_typ = std::max({0.5 * pr.x_span, 10.0 * pr.sigma_x, 1e-300});
     pr.phi_forced = d.has_phi();
     pr.unforced = !pr.phi_forced && std::all_of(d.u.begin(), d.u.end(), [](double u) { return u == 0.0; });
@@ -290,7 +316,7 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
     for (double c : cv) sv += c * c;
     // The floor for noise-free data is a rig's 1 um/s, or less in a record whose own speeds are far smaller (a
     // nanometre resonator in metres: every sample was once "at rest", and no row was left).
-    const double slow = 3.0 * pr.sigma_x * std::sqrt(sv) + std::min(1e-6, 1e-5 * pr.v_typ);
+    const double slow = 3.0 * pr.sigma_x * std::sqrt(sv) + (pr.v_typ > 0 ? std::min(1e-6, 1e-5 * pr.v_typ) : 1e-6);
     if (m.bumper()) grazing_zone(d, m, pr);
     const std::vector<char> stick = stick_zone(d, m, pr);
     choose_rows(d, stick, H, slow, pr);
