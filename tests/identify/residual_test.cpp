@@ -107,4 +107,8 @@ TEST_CASE("residual: a record at rest or of noise alone is refused, saying which
     CHECK(refusal(record(0.0, 1e-3)).find("the speed stays within the noise") != std::string::npos);
     // 3 nm swinging about 2 m, 3 pm of noise: its speeds, all below a rig's 1 um/s, still move.
     CHECK(refusal(record(3e-9, 3e-12)).empty());
+    // A cart pushed along the rail (x = 0.4 t^2) never oscillates: no period of its own to judge a model over.
+    id::MeasuredData pushed = record(0.0, 0.0);
+    for (std::size_t i = 0; i < pushed.size(); ++i) pushed.x[i] = 0.4 * pushed.t[i] * pushed.t[i] + 1e-4 * std::sin(12345.678 * static_cast<double>(i));
+    CHECK(refusal(pushed).find("rec.csv: the free run does not oscillate") != std::string::npos);
 }

@@ -293,6 +293,13 @@ Prep prepare(const MeasuredData& d, const Model& m, const FitOptions& o, std::ve
         throw ParamError(pr.phi_forced ? "the data are forced through phi, but the model expects an input u"
                                        : "the data carry an input u, but the model is forced by the unbalance angle phi");
     const double t_char = drives_by_run(d, o, pr);
+    // A free run is judged over periods of its own oscillation: one that does not oscillate (a cart coasting
+    // along the rail) leaves no window to judge a model on.
+    const double duration = d.t.back() - d.t.front();
+    if (pr.unforced && !(duration >= 4.0 * pr.period))
+        throw DataError(d.source + ": the free run does not oscillate within the record (its strongest period, " + std::to_string(pr.period) +
+                        " s from the velocity's spectrum, is more than a quarter of its " + std::to_string(duration) +
+                        " s): no window of its own motion to judge a model on");
     int H = o.window > 0 ? static_cast<int>(std::lround(o.window / pr.dt))
                          : static_cast<int>(std::lround(t_char / (12.0 * pr.dt)));
     H = std::clamp(H, 6, 400);
