@@ -216,13 +216,8 @@ TEST_CASE("fit: a bistable rig's decay across its wells into one, in inches, is 
     const id::FitReport r = fit_duffing(d);
     CHECK(r.period_s == doctest::Approx(0.177).epsilon(0.1));   // the well's 5.66 Hz, not the record's length
     CHECK(r.validation_windows >= 20);
-    double sc = 0, sk = 0;
-    for (const auto& b : r.base_estimates) {
-        if (b.name == "c") sc = b.sigma;
-        if (b.name == "k") sk = b.sigma;
-    }
-    CHECK(std::abs(r.after.p.c - 0.5) < 3.0 * sc);
-    CHECK(std::abs(r.after.p.k + kW * kW) < 3.0 * sk);
+    CHECK(std::abs(r.after.p.c - 0.5) < 3.0 * sigma_of(r, "c"));
+    CHECK(std::abs(r.after.p.k + kW * kW) < 3.0 * sigma_of(r, "k"));
     CHECK(r.error_after.simulation_rms_m < 3.0 * r.sigma_x);
     pinned_better_than_alone(r);
 }

@@ -29,19 +29,25 @@ id::Model truth() {
     return m;
 }
 
-// 3 s of free decay at 2 kHz from 2e-4, the input u zero throughout.
+// The records' sampling: `duration` s at 2 kHz from x0 at rest, noise 4e-7, the input u zero throughout.
+id::SynthOptions synth_options(double duration, double x0, unsigned seed) {
+    id::SynthOptions so;
+    so.duration = duration;
+    so.rate = 2000.0;
+    so.noise = 4e-7;
+    so.quantum = 0.0;
+    so.x0 = x0;
+    so.v0 = 0.0;
+    so.seed = seed;
+    so.input_dt = 1.0 / so.rate;
+    so.input.assign(static_cast<std::size_t>(std::lround(duration * so.rate)) + 1, 0.0);
+    return so;
+}
+
+// 3 s of free decay at 2 kHz from 2e-4.
 const id::MeasuredData& decay() {
     static const id::MeasuredData d = [] {
-        id::SynthOptions so;
-        so.duration = 3.0;
-        so.rate = 2000.0;
-        so.noise = 4e-7;
-        so.quantum = 0.0;
-        so.x0 = 2e-4;
-        so.v0 = 0.0;
-        so.seed = 7;
-        so.input.assign(6001, 0.0);
-        so.input_dt = 1.0 / so.rate;
+        const id::SynthOptions so = synth_options(3.0, 2e-4, 7);
         id::MeasuredData r = id::synthesize(truth(), so);
         r.source = "decay";
         return r;
@@ -151,16 +157,7 @@ TEST_CASE("metamorphic: an input-forced record read far from its sensor's zero g
     // The decay's oscillator driven by a multisine (1 - 60 Hz, 4 s at 2 kHz), then read 1.0 (hundreds of extents) off
     // zero. From the placeholder's starting cubic a free origin once wandered to 0.04 (residual 1770 times its
     // floor); it now waits for the linear parameters, and the answers agree.
-    id::SynthOptions so;
-    so.duration = 4.0;
-    so.rate = 2000.0;
-    so.noise = 4e-7;
-    so.quantum = 0.0;
-    so.seed = 3;
-    so.x0 = 0.0;
-    so.v0 = 0.0;
-    so.input_dt = 1.0 / so.rate;
-    so.input.resize(8001);
+    id::SynthOptions so = synth_options(4.0, 0.0, 3);
     for (std::size_t i = 0; i < so.input.size(); ++i) {
         const double t = static_cast<double>(i) * so.input_dt;
         double u = 0;

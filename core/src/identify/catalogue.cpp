@@ -281,10 +281,6 @@ std::vector<std::string> default_fit_params(const Model& m, const Prep& pr) {
             if (m.p.T > 0) v.push_back("T");
             if (m.p.a[0] != 0) v.push_back("a1");
         }
-        // A placeholder centred on its record (fit/origin.cpp): where its spring's centre lies is fitted too.
-        if (m.placeholder)
-            for (const auto& inst : m.p.effects)
-                if (inst.law == find_effect("sensor_offset")) v.push_back("x0");
         return v;
     }
     std::vector<std::string> v{"c", "T", "k", "a1", "b2", "m0e"};
@@ -293,15 +289,17 @@ std::vector<std::string> default_fit_params(const Model& m, const Prep& pr) {
     return v;
 }
 
+bool centred_placeholder(const Model& m) {
+    return m.placeholder && std::any_of(m.p.effects.begin(), m.p.effects.end(),
+                                        [](const EffectInstance& e) { return e.law == find_effect("sensor_offset"); });
+}
+
 std::vector<std::string> fitted_base_names(const Model& m, const Prep& pr, const FitOptions& o) {
     if (!o.fit_baseline) return {};
-    if (o.fit_params.empty()) return default_fit_params(m, pr);
-    std::vector<std::string> v = o.fit_params;
-    // A placeholder centred on its record (fit/origin.cpp) fits its origin beside the parameters asked for: it
-    // is a coordinate the record sets, not one a user could have named.
-    if (m.placeholder && std::find(v.begin(), v.end(), "x0") == v.end())
-        for (const auto& inst : m.p.effects)
-            if (inst.law == find_effect("sensor_offset")) v.push_back("x0");
+    std::vector<std::string> v = o.fit_params.empty() ? default_fit_params(m, pr) : o.fit_params;
+    // A placeholder centred on its record (fit/origin.cpp) fits its origin beside the parameters, given or
+    // default: it is a coordinate the record sets, not one a user could have named.
+    if (centred_placeholder(m) && std::find(v.begin(), v.end(), "x0") == v.end()) v.push_back("x0");
     return v;
 }
 

@@ -500,7 +500,10 @@ std::vector<BaseParam> base_params(Model& m, const std::vector<std::string>& nam
 // typical force f_typ where x, v and u take their typical sizes (k by f/x, a3 by f/x^3, c by f/v, ...).
 double base_scale(const std::string& name, const Prep& pr, const Model& m);
 std::vector<std::string> default_fit_params(const Model& m, const Prep& pr);
-// The base parameters a fit fits: FitOptions::fit_params, else default_fit_params (none without fit_baseline).
+// A placeholder whose spring fit/origin.cpp centred on its record (it carries a sensor_offset as its origin).
+bool centred_placeholder(const Model& m);
+// The base parameters a fit fits: FitOptions::fit_params, else default_fit_params (none without fit_baseline),
+// and a centred placeholder's origin x0.
 std::vector<std::string> fitted_base_names(const Model& m, const Prep& pr, const FitOptions& o);
 
 }  // namespace impactlab::identify::detail

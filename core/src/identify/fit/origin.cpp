@@ -8,9 +8,7 @@
 namespace impactlab::identify::detail {
 
 bool centre_placeholder(const MeasuredData& data, Model& model0, const FitOptions& o, FitReport& rep) {
-    if (!model0.placeholder || !o.fit_baseline) return false;
-    for (const auto& e : model0.p.effects)
-        if (e.law == find_effect("sensor_offset")) return false;
+    if (!model0.placeholder || !o.fit_baseline || centred_placeholder(model0)) return false;
     std::vector<double> xs;
     xs.reserve(data.x.size());
     for (double x : data.x)
